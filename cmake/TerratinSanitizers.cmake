@@ -1,0 +1,12 @@
+# TERRATIN_SANITIZE: "" (none), "address;undefined" (dev preset) or "thread" (tsan preset).
+# Applied to every terratin target through terratin_apply_sanitizers(), not to global flags.
+set(TERRATIN_SANITIZE "" CACHE STRING "Sanitizers to build with: address;undefined or thread")
+
+function(terratin_apply_sanitizers target)
+  if(NOT TERRATIN_SANITIZE)
+    return()
+  endif()
+  list(JOIN TERRATIN_SANITIZE "," _sanitizers)
+  target_compile_options(${target} PRIVATE -fsanitize=${_sanitizers} -fno-omit-frame-pointer -g)
+  target_link_options(${target} PRIVATE -fsanitize=${_sanitizers})
+endfunction()

@@ -1,0 +1,1 @@
+int placeholder_terratin_cli_options();
