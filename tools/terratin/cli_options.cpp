@@ -1,1 +1,150 @@
-int placeholder_terratin_cli_options();
+#include "cli_options.hpp"
+
+#include "terratin/error.hpp"
+
+#include <boost/program_options.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+namespace terratin::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+constexpr const char* kUsage = "Usage: terratin build INPUT -o OUTPUT [options]\n"
+                               "       terratin --help | --version\n";
+
+constexpr const char* kDescription =
+    "Builds an exactly Delaunay TIN from a DEM raster (any format GDAL reads: GeoTIFF, VRT,\n"
+    "DTED, HGT, ASCII grid...). Every valid cell centre becomes a vertex with the cell's\n"
+    "elevation; nodata, masked and NaN cells are skipped. The output holds one Polygon Z\n"
+    "triangle per feature with z_min z_max z_mean slope_deg aspect_deg area_2d, in the\n"
+    "input's CRS.\n\n"
+    "Exit status: 0 success, 1 error (one line on stderr), 2 bad command line.\n";
+
+std::string lowercase(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
+DuplicateZPolicy parseDuplicatePolicy(const std::string& name) {
+    const std::string key = lowercase(name);
+    if (key == "first")
+        return DuplicateZPolicy::First;
+    if (key == "last")
+        return DuplicateZPolicy::Last;
+    if (key == "min")
+        return DuplicateZPolicy::Min;
+    if (key == "max")
+        return DuplicateZPolicy::Max;
+    if (key == "mean")
+        return DuplicateZPolicy::Mean;
+    throw UsageError("--duplicate-z must be first, last, min, max or mean (got '" + name + "')");
+}
+
+po::options_description buildOptionsDescription() {
+    po::options_description options("Options of 'terratin build'");
+    // clang-format off
+    options.add_options()
+        ("output,o", po::value<std::string>()->value_name("OUTPUT"),
+         "output file (.gpkg or .shp); written under a temporary name, renamed when complete")
+        ("format,f", po::value<std::string>()->value_name("GPKG|SHP"),
+         "output format (default: from the output's extension)")
+        ("band,b", po::value<int>()->default_value(1)->value_name("N"), "raster band, from 1")
+        ("seed", po::value<std::uint64_t>()->default_value(1)->value_name("S"),
+         "seed of the randomized insertion order (same seed, same TIN)")
+        ("duplicate-z", po::value<std::string>()->default_value("first")->value_name("POLICY"),
+         "elevation kept for points with the same x, y: first, last, min, max, mean")
+        ("layer", po::value<std::string>()->default_value("tin")->value_name("NAME"),
+         "name of the triangle layer")
+        ("overwrite", "replace an existing output")
+        ("validate", "check the TIN exactly (empty circles, hull, topology) before writing")
+        ("quiet,q", "no progress and no summary")
+        ("json", "print a JSON report on stdout (counts, CRS, seconds per phase)")
+        ("help,h", "show this help");
+    // clang-format on
+    return options;
+}
+
+std::string helpText(const po::options_description& options) {
+    std::ostringstream text;
+    text << kUsage << "\n" << kDescription << "\n" << options;
+    return text.str();
+}
+
+} // namespace
+
+Command parseCommandLine(const std::vector<std::string>& arguments) {
+    Command command;
+    const po::options_description options = buildOptionsDescription();
+    command.helpText = helpText(options);
+    if (arguments.empty())
+        throw UsageError("missing command; try 'terratin --help'");
+    const std::string& verb = arguments.front();
+    if (verb == "--help" || verb == "-h" || verb == "help") {
+        command.kind = Command::Kind::Help;
+        return command;
+    }
+    if (verb == "--version") {
+        command.kind = Command::Kind::Version;
+        return command;
+    }
+    if (verb != "build")
+        throw UsageError("unknown command '" + verb + "'; try 'terratin --help'");
+
+    po::options_description all;
+    all.add(options);
+    all.add_options()("input", po::value<std::vector<std::string>>());
+    po::positional_options_description positional;
+    positional.add("input", -1);
+
+    po::variables_map values;
+    try {
+        const std::vector<std::string> rest(arguments.begin() + 1, arguments.end());
+        po::store(po::command_line_parser(rest).options(all).positional(positional).run(), values);
+        po::notify(values);
+    } catch (const po::error& error) {
+        throw UsageError(error.what());
+    }
+    if (values.count("help")) {
+        command.kind = Command::Kind::Help;
+        return command;
+    }
+
+    command.kind = Command::Kind::Build;
+    if (!values.count("input"))
+        throw UsageError("missing INPUT");
+    const auto& inputs = values["input"].as<std::vector<std::string>>();
+    if (inputs.size() != 1)
+        throw UsageError("expected one INPUT, got " + std::to_string(inputs.size()));
+    if (!values.count("output"))
+        throw UsageError("missing -o OUTPUT");
+
+    BuildOptions& build = command.build;
+    build.input = inputs.front();
+    build.output = values["output"].as<std::string>();
+    build.band = values["band"].as<int>();
+    if (build.band < 1)
+        throw UsageError("--band must be 1 or more");
+    build.seed = values["seed"].as<std::uint64_t>();
+    build.duplicateZ = parseDuplicatePolicy(values["duplicate-z"].as<std::string>());
+    build.layerName = values["layer"].as<std::string>();
+    build.overwrite = values.count("overwrite") > 0;
+    build.validate = values.count("validate") > 0;
+    if (values.count("format")) {
+        try {
+            build.format = io::parseTinFormat(values["format"].as<std::string>());
+        } catch (const Error& error) {
+            throw UsageError(error.what());
+        }
+    }
+    command.quiet = values.count("quiet") > 0;
+    command.json = values.count("json") > 0;
+    return command;
+}
+
+} // namespace terratin::cli

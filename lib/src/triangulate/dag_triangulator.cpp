@@ -1,1 +1,234 @@
-// placeholder: being written
+#include "dag_triangulator.hpp"
+
+#include "terratin/error.hpp"
+
+#include <cassert>
+
+namespace terratin::detail {
+
+namespace {
+constexpr int next(int i) { return i == 2 ? 0 : i + 1; }
+constexpr int prev(int i) { return i == 0 ? 2 : i - 1; }
+
+// Progress is reported every this many insertions: often enough for a smooth bar, rarely
+// enough that the callback costs nothing measurable.
+constexpr std::size_t kProgressInterval = 1U << 16;
+
+// Expected DAG size for random insertion order is about 9 nodes per point (3 from each split,
+// 2 from each of about 3 flips); reserving that avoids most regrowth copies.
+constexpr std::size_t kExpectedNodesPerPoint = 9;
+} // namespace
+
+DagTriangulator::DagTriangulator(std::span<const Point2> points) : m_predicates(points) {
+    for (VertexId v = 1; v < points.size(); ++v)
+        if (SymbolicPredicates::compareHeight(points[m_highest], points[v]) > 0)
+            m_highest = v;
+    m_nodes.reserve(points.size() * kExpectedNodesPerPoint + 16);
+    // The auxiliary triangle (p0, p-2, p-1) is counter-clockwise (symbolic_predicates.hpp).
+    addLeaf(m_highest, m_predicates.farLeft(), m_predicates.farRight(), kNoNode, kNoNode, kNoNode);
+}
+
+NodeId DagTriangulator::addLeaf(VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb,
+                                NodeId nc) {
+    m_nodes.push_back(DagNode{{a, b, c}, {na, nb, nc}, kNoNode});
+    return static_cast<NodeId>(m_nodes.size() - 1);
+}
+
+void DagTriangulator::replaceNeighbour(NodeId node, NodeId from, NodeId to) {
+    if (node == kNoNode)
+        return;
+    std::array<NodeId, 3>& link = m_nodes[node].link;
+    for (NodeId& n : link) {
+        if (n == from) {
+            n = to;
+            return;
+        }
+    }
+    assert(false && "neighbour links are not symmetric");
+}
+
+NodeId DagTriangulator::locate(VertexId q) const {
+    NodeId n = 0;
+    for (;;) {
+        const DagNode& node = m_nodes[n];
+        if (node.isLeaf())
+            return n;
+        const NodeId c = node.firstChild;
+        if (node.link[1] == kNoNode) {
+            // Three children, child i being the node with corner i replaced by p. The rays
+            // from p to the corners separate them; two orientation tests pick the wedge.
+            const VertexId p = node.link[0];
+            if (m_predicates.orient(p, node.v[0], q) >= 0)
+                n = m_predicates.orient(p, node.v[1], q) <= 0 ? c + 2 : c;
+            else
+                n = m_predicates.orient(p, node.v[2], q) >= 0 ? c + 1 : c;
+        } else {
+            n = m_predicates.orient(node.link[0], node.link[1], q) >= 0 ? c : c + 1;
+        }
+    }
+}
+
+void DagTriangulator::insertAll(std::span<const VertexId> order, const ProgressCallback& progress) {
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        if (progress && i % kProgressInterval == 0 &&
+            !progress(static_cast<double>(i) / static_cast<double>(order.size()), "triangulating"))
+            throw Cancelled("Triangulator: cancelled");
+        insert(order[i]);
+    }
+}
+
+void DagTriangulator::insert(VertexId q) {
+    const NodeId leaf = locate(q);
+    const DagNode& node = m_nodes[leaf];
+    for (int e = 0; e < 3; ++e) {
+        // Only an edge between two finite vertices can pass through q: with a symbolic end
+        // the orientation is a strict height comparison, never zero for q distinct.
+        if (m_predicates.orient(node.v[next(e)], node.v[prev(e)], q) == 0) {
+            splitEdge(leaf, e, q);
+            legalize(q);
+            return;
+        }
+    }
+    splitTriangle(leaf, q);
+    legalize(q);
+}
+
+void DagTriangulator::splitTriangle(NodeId t, VertexId p) {
+    const DagNode parent = m_nodes[t];
+    const auto first = static_cast<NodeId>(m_nodes.size());
+    for (int i = 0; i < 3; ++i) {
+        std::array<VertexId, 3> v = parent.v;
+        v[i] = p;
+        std::array<NodeId, 3> link{};
+        link[i] = parent.link[i];
+        link[next(i)] = first + next(i);
+        link[prev(i)] = first + prev(i);
+        m_nodes.push_back(DagNode{v, link, kNoNode});
+    }
+    for (int i = 0; i < 3; ++i)
+        replaceNeighbour(parent.link[i], t, first + i);
+    m_nodes[t].link = {p, kNoNode, kNoNode};
+    m_nodes[t].firstChild = first;
+    for (int i = 0; i < 3; ++i)
+        m_pending.emplace_back(first + i, i);
+}
+
+void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p) {
+    // t = (a, b, c) with p on the edge (b, c); u = (d, c, b) is the triangle beyond it. The
+    // edge is finite, hence interior to the auxiliary triangle, so u exists.
+    const DagNode tNode = m_nodes[t];
+    const VertexId a = tNode.v[edge];
+    const VertexId b = tNode.v[next(edge)];
+    const VertexId c = tNode.v[prev(edge)];
+    const NodeId u = tNode.link[edge];
+    assert(u != kNoNode);
+    const DagNode uNode = m_nodes[u];
+    int m = 0;
+    while (uNode.link[m] != t)
+        ++m;
+    const VertexId d = uNode.v[m];
+    const NodeId outerAB = tNode.link[prev(edge)];
+    const NodeId outerCA = tNode.link[next(edge)];
+    const NodeId outerDC = uNode.link[prev(m)];
+    const NodeId outerBD = uNode.link[next(m)];
+
+    const auto t0 = static_cast<NodeId>(m_nodes.size());
+    const NodeId t1 = t0 + 1;
+    const NodeId u0 = t0 + 2;
+    const NodeId u1 = t0 + 3;
+    addLeaf(a, b, p, u1, t1, outerAB);
+    addLeaf(a, p, c, u0, outerCA, t0);
+    addLeaf(d, c, p, t1, u1, outerDC);
+    addLeaf(d, p, b, t0, outerBD, u0);
+    replaceNeighbour(outerAB, t, t0);
+    replaceNeighbour(outerCA, t, t1);
+    replaceNeighbour(outerDC, u, u0);
+    replaceNeighbour(outerBD, u, u1);
+
+    // (a, b, p) lies left of p -> a, (d, c, p) left of p -> d.
+    m_nodes[t].link = {p, a, kNoNode};
+    m_nodes[t].firstChild = t0;
+    m_nodes[u].link = {p, d, kNoNode};
+    m_nodes[u].firstChild = u0;
+    m_pending.emplace_back(t0, 2);
+    m_pending.emplace_back(t1, 1);
+    m_pending.emplace_back(u0, 2);
+    m_pending.emplace_back(u1, 1);
+}
+
+void DagTriangulator::legalize(VertexId p) {
+    while (!m_pending.empty()) {
+        const auto [t, pos] = m_pending.back();
+        m_pending.pop_back();
+        const DagNode& tNode = m_nodes[t];
+        const NodeId u = tNode.link[pos];
+        if (u == kNoNode)
+            continue; // an edge of the auxiliary triangle
+        const DagNode& uNode = m_nodes[u];
+        int m = 0;
+        while (uNode.link[m] != t)
+            ++m;
+        if (m_predicates.shouldFlip(tNode.v[next(pos)], tNode.v[prev(pos)], p, uNode.v[m]))
+            flip(t, pos, u, m);
+    }
+}
+
+void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m) {
+    // t = (p, i, j), u = (l, j, i); the edge (i, j) becomes (p, l).
+    const DagNode tNode = m_nodes[t];
+    const DagNode uNode = m_nodes[u];
+    const VertexId p = tNode.v[pos];
+    const VertexId i = tNode.v[next(pos)];
+    const VertexId l = uNode.v[m];
+    const VertexId j = tNode.v[prev(pos)];
+    const NodeId outerPI = tNode.link[prev(pos)];
+    const NodeId outerJP = tNode.link[next(pos)];
+    const NodeId outerIL = uNode.link[next(m)];
+    const NodeId outerLJ = uNode.link[prev(m)];
+
+    const auto t1 = static_cast<NodeId>(m_nodes.size());
+    const NodeId t2 = t1 + 1;
+    addLeaf(p, i, l, outerIL, t2, outerPI);
+    addLeaf(p, l, j, outerLJ, outerJP, t1);
+    replaceNeighbour(outerPI, t, t1);
+    replaceNeighbour(outerIL, u, t1);
+    replaceNeighbour(outerLJ, u, t2);
+    replaceNeighbour(outerJP, t, t2);
+
+    // (p, i, l) lies left of l -> p.
+    for (NodeId old : {t, u}) {
+        m_nodes[old].link = {l, p, kNoNode};
+        m_nodes[old].firstChild = t1;
+    }
+    m_pending.emplace_back(t1, 0);
+    m_pending.emplace_back(t2, 0);
+}
+
+void DagTriangulator::extract(std::vector<std::uint32_t>& triangles,
+                              std::vector<std::int32_t>& neighbours) const {
+    std::vector<std::int32_t> outputIndex(m_nodes.size(), -1);
+    std::int32_t count = 0;
+    for (std::size_t n = 0; n < m_nodes.size(); ++n) {
+        const DagNode& node = m_nodes[n];
+        if (node.isLeaf() && m_predicates.isFinite(node.v[0]) &&
+            m_predicates.isFinite(node.v[1]) && m_predicates.isFinite(node.v[2]))
+            outputIndex[n] = count++;
+    }
+    triangles.clear();
+    neighbours.clear();
+    triangles.reserve(3 * static_cast<std::size_t>(count));
+    neighbours.reserve(3 * static_cast<std::size_t>(count));
+    for (std::size_t n = 0; n < m_nodes.size(); ++n) {
+        if (outputIndex[n] < 0)
+            continue;
+        const DagNode& node = m_nodes[n];
+        for (int i = 0; i < 3; ++i) {
+            triangles.push_back(node.v[i]);
+            // The edge from corner i to corner i+1 is opposite corner i+2.
+            const NodeId across = node.link[prev(i)];
+            neighbours.push_back(across == kNoNode ? -1 : outputIndex[across]);
+        }
+    }
+}
+
+} // namespace terratin::detail

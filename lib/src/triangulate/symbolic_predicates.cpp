@@ -1,1 +1,65 @@
-// placeholder: being written
+#include "symbolic_predicates.hpp"
+
+namespace terratin::detail {
+
+int SymbolicPredicates::orientSymbolic(VertexId a, VertexId b, VertexId c) const {
+    const int symbolicCount = !isFinite(a) + !isFinite(b) + !isFinite(c);
+    if (symbolicCount == 2) {
+        // Rotate (orientation is invariant under rotation) so the finite vertex comes last;
+        // orient(p-2, p-1, q) = +1 because u1 x u2 = e2 - e1 < 0 dominates (see the header).
+        const VertexId first = isFinite(a) ? b : (isFinite(b) ? c : a);
+        return first == farLeft() ? 1 : -1;
+    }
+    // Exactly one symbolic vertex s: rotate to (u, v, s). With s = R*d and R -> infinity,
+    // orient(u, v, s) has the sign of (v - u) x d, which for d = (1, -e1) is minus, and for
+    // d = (-1, e2) plus, the lexicographic height of v relative to u.
+    VertexId u = a;
+    VertexId v = b;
+    VertexId s = c;
+    if (!isFinite(a)) {
+        u = b;
+        v = c;
+        s = a;
+    } else if (!isFinite(b)) {
+        u = c;
+        v = a;
+        s = b;
+    }
+    const int height = compareHeight(m_points[u], m_points[v]);
+    return s == farRight() ? -height : height;
+}
+
+bool SymbolicPredicates::shouldFlipSymbolic(VertexId i, VertexId j, VertexId k,
+                                            VertexId l) const {
+    // k is finite (just inserted). Write incircle(i, j, k, l) for "l strictly inside the
+    // circle through i, j, k". The determinant is alternating in its four arguments, and a
+    // symbolic point s is outside every circle through less symbolic points:
+    // incircle(x, y, z, s) = -orient(x, y, z) whenever that orientation is not zero.
+    if (isFinite(i) && isFinite(j))
+        return false; // l is symbolic: outside the finite circle (i, j, k).
+
+    if (isFinite(l)) {
+        // One symbolic vertex on the edge, three finite ones.
+        if (!isFinite(i)) {
+            // incircle(s, j, k, l) = -incircle(j, k, l, s) = orient(j, k, l): the quadrilateral
+            // (s, l, j, k) is convex at j. If j, k, l are collinear, j lies between l and k, so l
+            // is outside every circle through j and k: no flip either.
+            return orient(j, k, l) > 0;
+        }
+        // incircle(i, s, k, l) = incircle(i, k, l, s) = -orient(i, k, l) = orient(i, l, k).
+        return orient(i, l, k) > 0;
+    }
+
+    // Two symbolic vertices: one on the edge, the other opposite (l). p-2 is the more symbolic.
+    if (l == farLeft())
+        // incircle(p-1, j, k, p-2) = -orient(p-1, j, k) < 0 and likewise with p-1 in second
+        // place: (i, j, k) is a counter-clockwise triangle of the mesh.
+        return false;
+    if (i == farLeft())
+        // incircle(p-2, j, k, p-1) = -incircle(j, k, p-1, p-2) = orient(j, k, p-1).
+        return orient(j, k, farRight()) > 0;
+    // j == p-2: incircle(i, p-2, k, p-1) = incircle(i, k, p-1, p-2) = -orient(i, k, p-1).
+    return orient(i, k, farRight()) < 0;
+}
+
+} // namespace terratin::detail

@@ -1,0 +1,152 @@
+#!/usr/bin/env bash
+# End-to-end checks of the terratin command line: exit status, one-line errors, outputs.
+#   cli_test.sh CASE TERRATIN_BINARY SAMPLE_DEM
+# Each case runs in a fresh temporary directory and exits non-zero with a reason on failure.
+set -uo pipefail
+
+case_name=$1
+terratin=$2
+sample=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+
+fail() {
+  echo "FAIL [$case_name]: $*" >&2
+  echo "--- stdout:" >&2; cat out.txt >&2 2>/dev/null
+  echo "--- stderr:" >&2; cat err.txt >&2 2>/dev/null
+  exit 1
+}
+
+# run EXPECTED_STATUS ARGS...: runs terratin, keeps stdout/stderr in out.txt/err.txt.
+run() {
+  local expected=$1
+  shift
+  "$terratin" "$@" >out.txt 2>err.txt
+  local status=$?
+  [ "$status" -eq "$expected" ] || fail "exit status $status, expected $expected for: $*"
+}
+
+# An error is exactly one line on stderr, starting with "terratin: ".
+expect_one_error_line() {
+  [ "$(wc -l <err.txt)" -eq 1 ] || fail "stderr is not exactly one line"
+  grep -q '^terratin: ' err.txt || fail "stderr does not start with 'terratin: '"
+  [ -z "${1:-}" ] || grep -qi -- "$1" err.txt || fail "stderr does not mention '$1'"
+}
+
+expect_no_leftovers() {
+  local stray
+  stray=$(find . -name '*.tmp*' -o -name '.*tmp*' | grep -v '^\.$' || true)
+  [ -z "$stray" ] || fail "temporary files left behind: $stray"
+}
+
+feature_count() {
+  ogrinfo -ro -so -al "$1" 2>/dev/null | sed -n 's/^Feature Count: //p' | head -1
+}
+
+case "$case_name" in
+  help)
+    run 0 --help
+    grep -q 'Usage: terratin build INPUT -o OUTPUT' out.txt || fail "no usage line"
+    grep -q -- '--overwrite' out.txt || fail "options not listed"
+    ;;
+  no_arguments)
+    run 2
+    expect_one_error_line
+    ;;
+  unknown_option)
+    run 2 build "$sample" -o out.gpkg --no-such-option
+    expect_one_error_line "no-such-option"
+    [ ! -e out.gpkg ] || fail "output written despite usage error"
+    ;;
+  bad_format)
+    run 2 build "$sample" -o out.gpkg --format KML
+    expect_one_error_line "KML"
+    ;;
+  build_gpkg_json)
+    run 0 build "$sample" -o tin.gpkg --json --quiet --validate
+    [ -s tin.gpkg ] || fail "no GeoPackage written"
+    for key in '"timings"' '"read"' '"triangulate"' '"write"' '"counts"' '"points"' \
+               '"duplicates"' '"triangles"' '"validated": true'; do
+      grep -q -- "$key" out.txt || fail "JSON report lacks $key"
+    done
+    triangles=$(sed -n 's/.*"triangles": \([0-9]*\).*/\1/p' out.txt)
+    [ "$(feature_count tin.gpkg)" = "$triangles" ] || fail "feature count differs from report"
+    ogrinfo -ro -so -al tin.gpkg | grep -q 'Geometry: 3D Polygon' || fail "not Polygon Z"
+    ogrinfo -ro -so -al tin.gpkg | grep -q 'EPSG.*32633\|UTM zone 33N' || fail "CRS missing"
+    [ ! -s err.txt ] || fail "--quiet printed on stderr"
+    expect_no_leftovers
+    ;;
+  build_progress_and_summary)
+    run 0 build "$sample" -o tin.gpkg
+    grep -q '0\.\.\.10\.\.\.20\.\.\.30\.\.\.40\.\.\.50\.\.\.60\.\.\.70\.\.\.80\.\.\.90\.\.\.100 - done\.' err.txt ||
+      fail "no GDAL-style progress on stderr"
+    grep -q 'points.*duplicates.*triangles.*read .* s, triangulate .* s, write .* s' out.txt ||
+      fail "no summary line"
+    ;;
+  build_shapefile)
+    run 0 build "$sample" -o tin.shp --quiet
+    for ext in shp shx dbf prj; do [ -s "tin.$ext" ] || fail "tin.$ext missing"; done
+    [ "$(feature_count tin.shp)" -gt 0 ] || fail "empty shapefile"
+    expect_no_leftovers
+    ;;
+  missing_input)
+    run 1 build does_not_exist.tif -o out.gpkg --quiet
+    expect_one_error_line "does_not_exist.tif"
+    [ ! -e out.gpkg ] || fail "output written for a missing input"
+    ;;
+  not_a_raster)
+    printf 'this is not a raster\n' >notes.txt
+    run 1 build notes.txt -o out.gpkg --quiet
+    expect_one_error_line "notes.txt"
+    [ ! -e out.gpkg ] || fail "output written for a text input"
+    expect_no_leftovers
+    ;;
+  all_nodata)
+    gdal_create -q -of GTiff -outsize 20 10 -bands 1 -ot Float32 -burn -9999 -a_nodata -9999 \
+      -a_srs EPSG:32633 -a_ullr 0 100 200 0 empty.tif || fail "gdal_create failed"
+    run 1 build empty.tif -o out.gpkg --quiet
+    expect_one_error_line "valid"
+    [ ! -e out.gpkg ] || fail "output written for an all-nodata raster"
+    ;;
+  band_out_of_range)
+    run 1 build "$sample" -o out.gpkg --band 3 --quiet
+    expect_one_error_line "band"
+    ;;
+  missing_output_directory)
+    run 1 build "$sample" -o no/such/dir/out.gpkg --quiet
+    expect_one_error_line "no/such/dir"
+    ;;
+  unwritable_output_directory)
+    if [ "$(id -u)" -eq 0 ]; then
+      target=/proc/terratin-test.gpkg # even root cannot create files in /proc
+    else
+      mkdir locked && chmod 555 locked && target=locked/out.gpkg
+    fi
+    run 1 build "$sample" -o "$target" --quiet
+    expect_one_error_line
+    [ ! -e "$target" ] || fail "output written into an unwritable directory"
+    ;;
+  existing_output_refused)
+    printf 'precious' >tin.gpkg
+    run 1 build "$sample" -o tin.gpkg --quiet
+    expect_one_error_line "overwrite"
+    [ "$(cat tin.gpkg)" = "precious" ] || fail "existing output was modified"
+    expect_no_leftovers
+    ;;
+  existing_output_overwritten)
+    printf 'old' >tin.gpkg
+    run 0 build "$sample" -o tin.gpkg --overwrite --quiet
+    [ "$(feature_count tin.gpkg)" -gt 0 ] || fail "output not replaced by a TIN"
+    expect_no_leftovers
+    ;;
+  failed_run_keeps_existing_output)
+    printf 'precious' >tin.gpkg
+    run 1 build does_not_exist.tif -o tin.gpkg --overwrite --quiet
+    [ "$(cat tin.gpkg)" = "precious" ] || fail "a failed run destroyed the existing output"
+    ;;
+  *)
+    fail "unknown case"
+    ;;
+esac
+echo "ok [$case_name]"

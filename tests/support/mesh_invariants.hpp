@@ -1,0 +1,24 @@
+#pragma once
+// The invariants every triangulation test checks.
+
+#include "terratin/geometry/point.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
+
+#include <span>
+
+namespace terratin::test {
+
+/// Area of the convex hull of `points` (Andrew's monotone chain with exact orientation tests),
+/// computed independently of the triangulator.
+double convexHullArea(std::span<const Point3> points);
+
+/// Sum of the triangles' planimetric areas.
+double triangleAreaSum(const TinMesh& mesh);
+
+/// Asserts (with gtest EXPECTs) that `mesh` is an exact Delaunay triangulation of `input`:
+/// validateDelaunay finds nothing (CCW, twin symmetry, empty circle on every interior edge,
+/// Euler, convex boundary), the vertices are exactly the distinct input points, and the
+/// triangle areas add up to the convex hull's area.
+void expectExactDelaunayOf(const TinMesh& mesh, std::span<const Point3> input);
+
+} // namespace terratin::test

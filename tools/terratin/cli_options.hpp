@@ -1,0 +1,32 @@
+#pragma once
+// Command-line parsing for `terratin`: Boost.Program_options onto terratin::BuildOptions.
+
+#include "terratin/pipeline/build_pipeline.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace terratin::cli {
+
+/// A command line that cannot be understood; the CLI exits with status 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// What the user asked for.
+struct Command {
+    enum class Kind { Build, Help, Version };
+    Kind kind = Kind::Help;
+    /// Text to print for Help.
+    std::string helpText;
+    BuildOptions build;
+    bool quiet = false;
+    bool json = false;
+};
+
+/// Parses argv (without the program name). Throws UsageError with a one-line reason.
+Command parseCommandLine(const std::vector<std::string>& arguments);
+
+} // namespace terratin::cli
