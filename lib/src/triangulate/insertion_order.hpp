@@ -1,9 +1,12 @@
 #pragma once
 /// @file
-/// Seeded random insertion orders, identical on every platform (std::shuffle and the standard
+/// Seeded insertion orders, identical on every platform (std::shuffle and the standard
 /// distributions are implementation-defined, so they are not used).
 
+#include "terratin/geometry/point.hpp"
+
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace terratin::detail {
@@ -12,5 +15,14 @@ namespace terratin::detail {
 /// splitmix64 and Lemire's unbiased bounded integers.
 std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32_t skip,
                                                 std::uint64_t seed);
+
+/// A biased randomized insertion order (Amenta, Choi & Rote, "Incremental constructions con
+/// BRIO", SoCG 2003) of the ids of `points` except `skip`: each point falls in round k with
+/// probability 2^-(k+1), the rounds are inserted from the sparsest (highest k) to the densest
+/// (k = 0, about half the points), and each round is sorted along a Hilbert curve. The
+/// random rounds keep the expected O(n log n) bound of randomized insertion; the spatial sort
+/// makes consecutive insertions walk almost the same DAG path, so memory access is local.
+std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
+                                              std::uint64_t seed);
 
 } // namespace terratin::detail

@@ -12,7 +12,9 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
 
     detail::DagTriangulator triangulator(prepared.local);
     const std::vector<std::uint32_t> order =
-        detail::randomInsertionOrder(count, triangulator.highestVertex(), options.seed);
+        options.order == InsertionOrder::Brio
+            ? detail::brioInsertionOrder(prepared.local, triangulator.highestVertex(), options.seed)
+            : detail::randomInsertionOrder(count, triangulator.highestVertex(), options.seed);
     triangulator.insertAll(order, progress);
 
     TriangulationResult result;

@@ -32,6 +32,14 @@ TEST_P(TriangulateDistribution, IsExactlyDelaunay_WhenOffsetByAMillion) {
     test::expectExactDelaunayOf(result.mesh, points);
 }
 
+TEST_P(TriangulateDistribution, IsExactlyDelaunay_WithPlainRandomOrder) {
+    const auto [distribution, count] = GetParam();
+    const std::vector<Point3> points = test::generatePoints(distribution, count, 11);
+    TriangulationOptions options;
+    options.order = InsertionOrder::Random;
+    test::expectExactDelaunayOf(triangulate(points, options).mesh, points);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     PaperDistributions, TriangulateDistribution,
     ::testing::Combine(::testing::Values(Distribution::Uniform, Distribution::Gauss,

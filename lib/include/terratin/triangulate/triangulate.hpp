@@ -13,10 +13,21 @@
 
 namespace terratin {
 
+/// The order in which points are inserted.
+enum class InsertionOrder {
+    /// A uniformly random permutation: the paper's order.
+    Random,
+    /// Biased randomized insertion order: random rounds, each sorted along a Hilbert curve.
+    /// Same expected complexity, far fewer cache misses in the DAG (several times faster on
+    /// large inputs).
+    Brio,
+};
+
 /// How to triangulate.
 struct TriangulationOptions {
     /// Seed of the random insertion order. The same seed gives the same mesh.
     std::uint64_t seed = 1;
+    InsertionOrder order = InsertionOrder::Brio;
     /// Which elevation survives for points sharing exactly the same (x, y).
     DuplicateZPolicy duplicateZ = DuplicateZPolicy::First;
 };
