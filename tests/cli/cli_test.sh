@@ -63,6 +63,10 @@ case "$case_name" in
     run 2 build "$sample" -o out.gpkg --format KML
     expect_one_error_line "KML"
     ;;
+  unknown_extension)
+    run 2 build "$sample" -o out.kml
+    expect_one_error_line "extension"
+    ;;
   build_gpkg_json)
     run 0 build "$sample" -o tin.gpkg --json --quiet --validate
     [ -s tin.gpkg ] || fail "no GeoPackage written"

@@ -135,12 +135,13 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     build.layerName = values["layer"].as<std::string>();
     build.overwrite = values.count("overwrite") > 0;
     build.validate = values.count("validate") > 0;
-    if (values.count("format")) {
-        try {
-            build.format = io::parseTinFormat(values["format"].as<std::string>());
-        } catch (const Error& error) {
-            throw UsageError(error.what());
-        }
+    // A format that cannot be named or inferred is a command-line mistake (status 2).
+    try {
+        build.format = values.count("format")
+                           ? io::parseTinFormat(values["format"].as<std::string>())
+                           : io::tinFormatFromPath(build.output);
+    } catch (const Error& error) {
+        throw UsageError(error.what());
     }
     command.quiet = values.count("quiet") > 0;
     command.json = values.count("json") > 0;
