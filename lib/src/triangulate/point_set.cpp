@@ -113,6 +113,23 @@ Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_
     return origin;
 }
 
+// The exact predicates' range (predicates.hpp): beyond it their products could overflow or
+// underflow and the sign would no longer be exact.
+constexpr double kSmallestCoordinate = 1e-60;
+constexpr double kLargestCoordinate = 1e70;
+
+void requirePredicateRange(const std::vector<Point2>& local) {
+    const auto outside = [](double value) {
+        const double magnitude = std::abs(value);
+        return magnitude != 0.0 && (magnitude < kSmallestCoordinate || magnitude > kLargestCoordinate);
+    };
+    for (const Point2& p : local)
+        if (outside(p.x) || outside(p.y))
+            throw InvalidInputError("Triangulator: coordinate (" + std::to_string(p.x) + ", " +
+                                    std::to_string(p.y) +
+                                    ") is outside the supported magnitude range 1e-60 .. 1e70");
+}
+
 void requireTwoDimensions(const std::vector<Point2>& local) {
     if (local.size() >= 3) {
         const Point2& a = local[0];
@@ -174,6 +191,7 @@ PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy po
     for (std::uint32_t i : prepared.sourceIndex)
         prepared.local.push_back({points[i].x - prepared.origin.x, points[i].y - prepared.origin.y});
 
+    requirePredicateRange(prepared.local);
     requireTwoDimensions(prepared.local);
     return prepared;
 }

@@ -32,11 +32,18 @@ TEST(PreparePoints, ShiftsExactly_WhenCoordinatesAreLarge) {
 }
 
 TEST(PreparePoints, KeepsZeroOrigin_WhenAShiftWouldRound) {
-    // 1e-300 - c is not representable for any c of the size of 1e6: no shift is exact.
-    const std::vector<Point3> points{{1e-300, 0, 0}, {2e6, 0, 0}, {0, 2e6, 0}};
+    // 1e-50 - c is not representable for any c of the size of 1e6: no shift is exact.
+    const std::vector<Point3> points{{1e-50, 0, 0}, {2e6, 0, 0}, {0, 2e6, 0}};
     const PreparedPoints prepared = preparePoints(points, DuplicateZPolicy::First);
     EXPECT_EQ(prepared.origin.x, 0.0);
-    EXPECT_EQ(prepared.local[0].x, 1e-300);
+    EXPECT_EQ(prepared.local[0].x, 1e-50);
+}
+
+TEST(PreparePoints, Throws_WhenCoordinatesLeaveThePredicateRange) {
+    const std::vector<Point3> tiny{{1e-300, 0, 0}, {2e6, 0, 0}, {0, 2e6, 0}};
+    EXPECT_THROW(preparePoints(tiny, DuplicateZPolicy::First), InvalidInputError);
+    const std::vector<Point3> huge{{1e80, 0, 0}, {-1e80, 0, 0}, {0, 1e80, 0}};
+    EXPECT_THROW(preparePoints(huge, DuplicateZPolicy::First), InvalidInputError);
 }
 
 TEST(PreparePoints, Throws_WhenOnlyTwoDistinctPoints) {

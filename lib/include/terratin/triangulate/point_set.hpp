@@ -43,8 +43,9 @@ struct PreparedPoints {
 /// point); when no such origin exists (coordinates mixing magnitudes) it is (0, 0), which is
 /// always exact. Either way the predicates see exactly the input geometry.
 ///
-/// Throws InvalidInputError for a non-finite coordinate or elevation, for more than 2^32 - 4
-/// points, and when fewer than three distinct points are not all collinear.
+/// Throws InvalidInputError for a non-finite coordinate or elevation, for a shifted coordinate
+/// outside the exact predicates' range (0 or 1e-60 .. 1e70 in magnitude), for more than
+/// 2^32 - 5 points, and when fewer than three distinct points are not all collinear.
 /// Complexity: O(n log n) for the sort that finds duplicates.
 PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy policy);
 
