@@ -1,1 +1,80 @@
-// placeholder: being written
+/// @file
+/// Triangle attributes from the plane through three points.
+///
+/// Notation: with e1 = b - a and e2 = c - a, the normal is n = e1 x e2. For the plane
+/// z = p x + q y + r through the triangle, p = -nx / nz and q = -ny / nz, so the downhill
+/// direction -(p, q) is parallel to (nx, ny) once n is turned to point up (nz > 0). Then
+///   slope  = atan(|grad z|) = atan2(hypot(nx, ny), nz)
+///   aspect = atan2(east, north) of the downhill direction = atan2(nx, ny), clockwise from
+///            grid north (the usual GIS convention, e.g. Burrough & McDonnell, "Principles of
+///            Geographical Information Systems", 1998, ch. 8)
+///   area2d = |nz| / 2.
+/// Turning n up makes every result independent of the corner order (CW or CCW).
+
+#include "terratin/geometry/triangle_attributes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace terratin {
+
+namespace {
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
+} // namespace
+
+TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, const Point3& c) {
+    TriangleAttributes attributes;
+    attributes.zMin = std::min({a.z, b.z, c.z});
+    attributes.zMax = std::max({a.z, b.z, c.z});
+    attributes.zMean = (a.z + b.z + c.z) / 3.0;
+
+    // Edges relative to a: projected coordinates are large (UTM northings ~5e6), their
+    // differences are small and nearly exact, so the cross product keeps its precision.
+    const double e1x = b.x - a.x;
+    const double e1y = b.y - a.y;
+    const double e1z = b.z - a.z;
+    const double e2x = c.x - a.x;
+    const double e2y = c.y - a.y;
+    const double e2z = c.z - a.z;
+
+    double nx = e1y * e2z - e1z * e2y;
+    double ny = e1z * e2x - e1x * e2z;
+    double nz = e1x * e2y - e1y * e2x;
+
+    // No planimetric extent (collinear in x, y): the plane is vertical or undefined, so slope
+    // and aspect have no meaning; the header documents slope 0, aspect -1, area 0.
+    if (nz == 0.0) {
+        attributes.slopeDeg = 0.0;
+        attributes.aspectDeg = -1.0;
+        attributes.area2d = 0.0;
+        return attributes;
+    }
+    if (nz < 0.0) {
+        nx = -nx;
+        ny = -ny;
+        nz = -nz;
+    }
+
+    attributes.area2d = 0.5 * nz;
+    const double horizontal = std::hypot(nx, ny);
+    attributes.slopeDeg = std::atan2(horizontal, nz) * kDegreesPerRadian;
+
+    // Exact comparison on purpose: a horizontal triangle (all z equal) gives nx = ny = 0
+    // exactly, and any tilt at all, however small, has a well-defined downhill direction.
+    if (nx == 0.0 && ny == 0.0) {
+        attributes.aspectDeg = -1.0;
+        return attributes;
+    }
+    double aspect = std::atan2(nx, ny) * kDegreesPerRadian;
+    if (aspect < 0.0)
+        aspect += 360.0;
+    // A direction a hair west of north gives a tiny negative angle, and -tiny + 360 rounds to
+    // 360, which is outside [0, 360): it is north.
+    if (aspect >= 360.0)
+        aspect = 0.0;
+    attributes.aspectDeg = aspect;
+    return attributes;
+}
+
+} // namespace terratin

@@ -37,7 +37,8 @@ struct TinWriteOptions {
 /// The data are written under a temporary name in the output's directory and renamed into
 /// place only when complete: on any failure (or Cancelled) the temporary files are removed and
 /// an existing output is left untouched. Throws IoError, InvalidInputError (existing output
-/// without `overwrite`), Cancelled.
+/// without `overwrite`, empty mesh, a Shapefile past its 2 GB limits), CrsError (unusable
+/// `crsWkt`), Cancelled. A GeoPackage without CRS is labelled "Undefined Cartesian SRS".
 void writeTin(const TinMesh& mesh, const std::filesystem::path& output,
               const TinWriteOptions& options, const ProgressCallback& progress = {});
 
