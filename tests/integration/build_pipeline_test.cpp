@@ -165,10 +165,13 @@ void expectTinOfValidCells(const fs::path& dem, const std::string& expectedCrsFr
     std::size_t wrong = 0;
     for (const Point3& v : mesh.vertices) {
         // North-up rasters here: invert the axis-aligned transform, then confirm exactly.
-        const auto col = static_cast<long>(std::floor((v.x - gt[0]) / gt[1]));
-        const auto row = static_cast<long>(std::floor((v.y - gt[3]) / gt[5]));
+        const double col = std::floor((v.x - gt[0]) / gt[1]);
+        const double row = std::floor((v.y - gt[3]) / gt[5]);
         const bool inside = col >= 0 && row >= 0 && col < raster.width && row < raster.height;
-        const std::size_t i = inside ? static_cast<std::size_t>(row) * raster.width + col : 0;
+        const std::size_t i =
+            inside ? static_cast<std::size_t>(row) * static_cast<std::size_t>(raster.width) +
+                         static_cast<std::size_t>(col)
+                   : 0;
         const bool exact = inside && raster.valid[i] != 0 &&
                            v.x == gt[0] + (col + 0.5) * gt[1] + (row + 0.5) * gt[2] &&
                            v.y == gt[3] + (col + 0.5) * gt[4] + (row + 0.5) * gt[5] &&

@@ -13,25 +13,29 @@ constexpr int prev(int i) { return i == 0 ? 2 : i - 1; }
 // Progress is reported every this many insertions: often enough for a smooth bar, rarely
 // enough that the callback costs nothing measurable.
 constexpr std::size_t kProgressInterval = 1U << 16;
-
-// Expected DAG size for random insertion order is about 9 nodes per point (3 from each split,
-// 2 from each of about 3 flips); reserving that avoids most regrowth copies.
-constexpr std::size_t kExpectedNodesPerPoint = 9;
 } // namespace
 
 DagTriangulator::DagTriangulator(std::span<const Point2> points) : m_predicates(points) {
     for (VertexId v = 1; v < points.size(); ++v)
         if (SymbolicPredicates::compareHeight(points[m_highest], points[v]) > 0)
             m_highest = v;
-    m_nodes.reserve(points.size() * kExpectedNodesPerPoint + 16);
     // The auxiliary triangle (p0, p-2, p-1) is counter-clockwise (symbolic_predicates.hpp).
-    addLeaf(m_highest, m_predicates.farLeft(), m_predicates.farRight(), kNoNode, kNoNode, kNoNode);
+    const NodeId root = m_nodes.allocate(1);
+    setLeaf(root, m_highest, m_predicates.farLeft(), m_predicates.farRight(), kNoNode, kNoNode,
+            kNoNode);
 }
 
-NodeId DagTriangulator::addLeaf(VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb,
-                                NodeId nc) {
-    m_nodes.push_back(DagNode{{a, b, c}, {na, nb, nc}, kNoNode});
-    return static_cast<NodeId>(m_nodes.size() - 1);
+void DagTriangulator::setLeaf(NodeId id, VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb,
+                              NodeId nc) {
+    DagNode& node = m_nodes[id];
+    node.v = {a, b, c};
+    node.link = {na, nb, nc};
+    node.firstChild.store(kNoNode, std::memory_order_relaxed);
+}
+
+void DagTriangulator::setInner(NodeId node, std::array<NodeId, 3> link, NodeId firstChild) {
+    m_nodes[node].link = link;
+    m_nodes[node].firstChild.store(firstChild, std::memory_order_release);
 }
 
 void DagTriangulator::replaceNeighbour(NodeId node, NodeId from, NodeId to) {
@@ -51,9 +55,9 @@ NodeId DagTriangulator::locate(VertexId q) const {
     NodeId n = 0;
     for (;;) {
         const DagNode& node = m_nodes[n];
-        if (node.isLeaf())
+        const NodeId c = node.firstChild.load(std::memory_order_acquire);
+        if (c == kNoNode)
             return n;
-        const NodeId c = node.firstChild;
         if (node.link[1] == kNoNode) {
             // Three children, child i being the node with corner i replaced by p. The rays
             // from p to the corners separate them; two orientation tests pick the wedge.
@@ -79,11 +83,11 @@ void DagTriangulator::insertAll(std::span<const VertexId> order, const ProgressC
 
 void DagTriangulator::insert(VertexId q) {
     const NodeId leaf = locate(q);
-    const DagNode& node = m_nodes[leaf];
+    const std::array<VertexId, 3> v = m_nodes[leaf].v;
     for (int e = 0; e < 3; ++e) {
         // Only an edge between two finite vertices can pass through q: with a symbolic end
         // the orientation is a strict height comparison, never zero for q distinct.
-        if (m_predicates.orient(node.v[next(e)], node.v[prev(e)], q) == 0) {
+        if (m_predicates.orient(v[next(e)], v[prev(e)], q) == 0) {
             splitEdge(leaf, e, q);
             legalize(q);
             return;
@@ -94,21 +98,21 @@ void DagTriangulator::insert(VertexId q) {
 }
 
 void DagTriangulator::splitTriangle(NodeId t, VertexId p) {
-    const DagNode parent = m_nodes[t];
-    const auto first = static_cast<NodeId>(m_nodes.size());
+    const std::array<VertexId, 3> corner = m_nodes[t].v;
+    const std::array<NodeId, 3> outer = m_nodes[t].link;
+    const NodeId first = m_nodes.allocate(3);
     for (int i = 0; i < 3; ++i) {
-        std::array<VertexId, 3> v = parent.v;
+        std::array<VertexId, 3> v = corner;
         v[i] = p;
         std::array<NodeId, 3> link{};
-        link[i] = parent.link[i];
+        link[i] = outer[i];
         link[next(i)] = first + next(i);
         link[prev(i)] = first + prev(i);
-        m_nodes.push_back(DagNode{v, link, kNoNode});
+        setLeaf(first + i, v[0], v[1], v[2], link[0], link[1], link[2]);
     }
     for (int i = 0; i < 3; ++i)
-        replaceNeighbour(parent.link[i], t, first + i);
-    m_nodes[t].link = {p, kNoNode, kNoNode};
-    m_nodes[t].firstChild = first;
+        replaceNeighbour(outer[i], t, first + i);
+    setInner(t, {p, kNoNode, kNoNode}, first);
     for (int i = 0; i < 3; ++i)
         m_pending.emplace_back(first + i, i);
 }
@@ -116,13 +120,13 @@ void DagTriangulator::splitTriangle(NodeId t, VertexId p) {
 void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p) {
     // t = (a, b, c) with p on the edge (b, c); u = (d, c, b) is the triangle beyond it. The
     // edge is finite, hence interior to the auxiliary triangle, so u exists.
-    const DagNode tNode = m_nodes[t];
+    const DagNode& tNode = m_nodes[t];
     const VertexId a = tNode.v[edge];
     const VertexId b = tNode.v[next(edge)];
     const VertexId c = tNode.v[prev(edge)];
     const NodeId u = tNode.link[edge];
     assert(u != kNoNode);
-    const DagNode uNode = m_nodes[u];
+    const DagNode& uNode = m_nodes[u];
     int m = 0;
     while (uNode.link[m] != t)
         ++m;
@@ -132,24 +136,22 @@ void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p) {
     const NodeId outerDC = uNode.link[prev(m)];
     const NodeId outerBD = uNode.link[next(m)];
 
-    const auto t0 = static_cast<NodeId>(m_nodes.size());
+    const NodeId t0 = m_nodes.allocate(4);
     const NodeId t1 = t0 + 1;
     const NodeId u0 = t0 + 2;
     const NodeId u1 = t0 + 3;
-    addLeaf(a, b, p, u1, t1, outerAB);
-    addLeaf(a, p, c, u0, outerCA, t0);
-    addLeaf(d, c, p, t1, u1, outerDC);
-    addLeaf(d, p, b, t0, outerBD, u0);
+    setLeaf(t0, a, b, p, u1, t1, outerAB);
+    setLeaf(t1, a, p, c, u0, outerCA, t0);
+    setLeaf(u0, d, c, p, t1, u1, outerDC);
+    setLeaf(u1, d, p, b, t0, outerBD, u0);
     replaceNeighbour(outerAB, t, t0);
     replaceNeighbour(outerCA, t, t1);
     replaceNeighbour(outerDC, u, u0);
     replaceNeighbour(outerBD, u, u1);
 
     // (a, b, p) lies left of p -> a, (d, c, p) left of p -> d.
-    m_nodes[t].link = {p, a, kNoNode};
-    m_nodes[t].firstChild = t0;
-    m_nodes[u].link = {p, d, kNoNode};
-    m_nodes[u].firstChild = u0;
+    setInner(t, {p, a, kNoNode}, t0);
+    setInner(u, {p, d, kNoNode}, u0);
     m_pending.emplace_back(t0, 2);
     m_pending.emplace_back(t1, 1);
     m_pending.emplace_back(u0, 2);
@@ -175,8 +177,8 @@ void DagTriangulator::legalize(VertexId p) {
 
 void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m) {
     // t = (p, i, j), u = (l, j, i); the edge (i, j) becomes (p, l).
-    const DagNode tNode = m_nodes[t];
-    const DagNode uNode = m_nodes[u];
+    const DagNode& tNode = m_nodes[t];
+    const DagNode& uNode = m_nodes[u];
     const VertexId p = tNode.v[pos];
     const VertexId i = tNode.v[next(pos)];
     const VertexId l = uNode.v[m];
@@ -186,42 +188,42 @@ void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m) {
     const NodeId outerIL = uNode.link[next(m)];
     const NodeId outerLJ = uNode.link[prev(m)];
 
-    const auto t1 = static_cast<NodeId>(m_nodes.size());
+    const NodeId t1 = m_nodes.allocate(2);
     const NodeId t2 = t1 + 1;
-    addLeaf(p, i, l, outerIL, t2, outerPI);
-    addLeaf(p, l, j, outerLJ, outerJP, t1);
+    setLeaf(t1, p, i, l, outerIL, t2, outerPI);
+    setLeaf(t2, p, l, j, outerLJ, outerJP, t1);
     replaceNeighbour(outerPI, t, t1);
     replaceNeighbour(outerIL, u, t1);
     replaceNeighbour(outerLJ, u, t2);
     replaceNeighbour(outerJP, t, t2);
 
     // (p, i, l) lies left of l -> p.
-    for (NodeId old : {t, u}) {
-        m_nodes[old].link = {l, p, kNoNode};
-        m_nodes[old].firstChild = t1;
-    }
+    setInner(t, {l, p, kNoNode}, t1);
+    setInner(u, {l, p, kNoNode}, t1);
     m_pending.emplace_back(t1, 0);
     m_pending.emplace_back(t2, 0);
 }
 
 void DagTriangulator::extract(std::vector<std::uint32_t>& triangles,
                               std::vector<std::int32_t>& neighbours) const {
-    std::vector<std::int32_t> outputIndex(m_nodes.size(), -1);
+    const std::size_t nodeCount = m_nodes.size();
+    const auto isOutput = [&](const DagNode& node) {
+        return node.isLeaf() && m_predicates.isFinite(node.v[0]) &&
+               m_predicates.isFinite(node.v[1]) && m_predicates.isFinite(node.v[2]);
+    };
+    std::vector<std::int32_t> outputIndex(nodeCount, -1);
     std::int32_t count = 0;
-    for (std::size_t n = 0; n < m_nodes.size(); ++n) {
-        const DagNode& node = m_nodes[n];
-        if (node.isLeaf() && m_predicates.isFinite(node.v[0]) &&
-            m_predicates.isFinite(node.v[1]) && m_predicates.isFinite(node.v[2]))
+    for (std::size_t n = 0; n < nodeCount; ++n)
+        if (isOutput(m_nodes[static_cast<NodeId>(n)]))
             outputIndex[n] = count++;
-    }
     triangles.clear();
     neighbours.clear();
     triangles.reserve(3 * static_cast<std::size_t>(count));
     neighbours.reserve(3 * static_cast<std::size_t>(count));
-    for (std::size_t n = 0; n < m_nodes.size(); ++n) {
+    for (std::size_t n = 0; n < nodeCount; ++n) {
         if (outputIndex[n] < 0)
             continue;
-        const DagNode& node = m_nodes[n];
+        const DagNode& node = m_nodes[static_cast<NodeId>(n)];
         for (int i = 0; i < 3; ++i) {
             triangles.push_back(node.v[i]);
             // The edge from corner i to corner i+1 is opposite corner i+2.

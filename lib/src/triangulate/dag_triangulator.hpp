@@ -12,6 +12,7 @@
 /// the edge the point lies on) and restores the Delaunay property with Lawson flips.
 /// Expected O(n log n) time and O(n) nodes for a random insertion order.
 
+#include "node_arena.hpp"
 #include "symbolic_predicates.hpp"
 
 #include "terratin/progress.hpp"
@@ -22,24 +23,6 @@
 #include <vector>
 
 namespace terratin::detail {
-
-using NodeId = std::uint32_t;
-inline constexpr NodeId kNoNode = 0xFFFFFFFFU;
-
-/// One triangle of the history, 28 bytes.
-struct DagNode {
-    /// Corners, counter-clockwise.
-    std::array<VertexId, 3> v;
-    /// Leaf: link[i] is the leaf across the edge opposite v[i] (kNoNode on the auxiliary
-    /// triangle's boundary). Inner node with three children: link = {inserted vertex, kNoNode,
-    /// kNoNode}. Inner node with two children: link = {u, w, kNoNode}: the first child holds
-    /// the points q with orient(u, w, q) >= 0, the second the others.
-    std::array<NodeId, 3> link;
-    /// kNoNode for a leaf, else the first of the consecutive children.
-    NodeId firstChild;
-
-    [[nodiscard]] bool isLeaf() const { return firstChild == kNoNode; }
-};
 
 /// Sequential DAG triangulator over the finite points given at construction.
 class DagTriangulator {
@@ -68,10 +51,12 @@ public:
     void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours) const;
 
     [[nodiscard]] std::size_t nodeCount() const { return m_nodes.size(); }
-    [[nodiscard]] std::size_t memoryBytes() const { return m_nodes.capacity() * sizeof(DagNode); }
+    [[nodiscard]] std::size_t memoryBytes() const { return m_nodes.bytesAllocated(); }
 
 private:
-    NodeId addLeaf(VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb, NodeId nc);
+    void setLeaf(NodeId id, VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb, NodeId nc);
+    /// Turns leaf `node` into an inner node; the release store publishes its children.
+    void setInner(NodeId node, std::array<NodeId, 3> link, NodeId firstChild);
     void replaceNeighbour(NodeId node, NodeId from, NodeId to);
     void splitTriangle(NodeId t, VertexId p);
     void splitEdge(NodeId t, int edge, VertexId p);
@@ -79,7 +64,7 @@ private:
     void flip(NodeId t, int pos, NodeId u, int opposite);
 
     SymbolicPredicates m_predicates;
-    std::vector<DagNode> m_nodes;
+    NodeArena m_nodes;
     /// Triangles (node, position of the new point) whose edge opposite the new point must be
     /// checked; a member so its storage is reused between insertions.
     std::vector<std::pair<NodeId, int>> m_pending;
