@@ -2,6 +2,7 @@
 # The README's quick start. On a fresh Debian 12 machine, as root:
 #   tools/quickstart.sh demo   install what is missing, build, turn a sample DEM into a GeoPackage TIN
 #   tools/quickstart.sh test   install what is missing, build, run the whole test suite
+#                              (release, then ASan+UBSan, then ThreadSanitizer on the core)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,6 +46,9 @@ case "${1:-}" in
     # The same suite under AddressSanitizer and UndefinedBehaviorSanitizer.
     build_preset dev
     ctest --preset dev
+    # The geometry and triangulation tests, parallel methods included, under ThreadSanitizer.
+    build_preset tsan
+    ctest --preset tsan
     ;;
   *)
     echo "usage: tools/quickstart.sh demo|test" >&2

@@ -51,8 +51,8 @@ void DagTriangulator::replaceNeighbour(NodeId node, NodeId from, NodeId to) {
     assert(false && "neighbour links are not symmetric");
 }
 
-NodeId DagTriangulator::locate(VertexId q) const {
-    NodeId n = 0;
+NodeId DagTriangulator::locate(VertexId q, NodeId start) const {
+    NodeId n = start;
     for (;;) {
         const DagNode& node = m_nodes[n];
         const NodeId c = node.firstChild.load(std::memory_order_acquire);
@@ -81,8 +81,7 @@ void DagTriangulator::insertAll(std::span<const VertexId> order, const ProgressC
     }
 }
 
-void DagTriangulator::insert(VertexId q) {
-    const NodeId leaf = locate(q);
+void DagTriangulator::insertAtLeaf(NodeId leaf, VertexId q) {
     const std::array<VertexId, 3> v = m_nodes[leaf].v;
     for (int e = 0; e < 3; ++e) {
         // Only an edge between two finite vertices can pass through q: with a symbolic end

@@ -41,10 +41,19 @@ public:
     void insertAll(std::span<const VertexId> order, const ProgressCallback& progress);
 
     /// Inserts one vertex.
-    void insert(VertexId q);
+    void insert(VertexId q) { insertAtLeaf(locate(q), q); }
 
-    /// Leaf whose closed triangle contains the finite vertex q.
-    [[nodiscard]] NodeId locate(VertexId q) const;
+    /// Inserts q into `leaf`, a current leaf whose closed triangle contains q.
+    void insertAtLeaf(NodeId leaf, VertexId q);
+
+    /// Leaf whose closed triangle contains the finite vertex q, searched from `start` (the
+    /// root by default, or any node whose closed triangle contains q).
+    ///
+    /// Safe to call from other threads while one thread inserts: it reads only vertex corners,
+    /// which never change, and the links of nodes it has seen to be inner, which never change
+    /// again. It then returns a node that was a leaf when read and may since have been split:
+    /// the inserting thread completes the location from there.
+    [[nodiscard]] NodeId locate(VertexId q, NodeId start = 0) const;
 
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).

@@ -1,9 +1,57 @@
 #include "terratin/triangulate/triangulate.hpp"
 
+#include "batch_insertion.hpp"
 #include "dag_triangulator.hpp"
 #include "insertion_order.hpp"
 
+#include <algorithm>
+#include <thread>
+
 namespace terratin {
+
+namespace {
+
+// Below this many points thread start-up and the shared queue cost more than they save.
+constexpr std::size_t kParallelThresholdPoints = 20000;
+
+unsigned resolveThreads(unsigned requested) {
+    if (requested != 0)
+        return requested;
+    return std::max(1U, std::thread::hardware_concurrency());
+}
+
+TriangulationMethod resolveMethod(TriangulationMethod requested, std::size_t points,
+                                  unsigned threads) {
+    if (requested != TriangulationMethod::Auto)
+        return requested;
+    return threads > 1 && points >= kParallelThresholdPoints ? TriangulationMethod::Batch
+                                                             : TriangulationMethod::Sequential;
+}
+
+// The paper found 3 searchers per specialised thread best on two processors for up to
+// 100,000 points and 4 above (its Figs. 4-6); with more hardware threads the searchers grow
+// with them, since location is the part that scales.
+unsigned resolveSearchers(unsigned requested, std::size_t points, unsigned threads) {
+    if (requested != 0)
+        return requested;
+    constexpr std::size_t kLargeInputPoints = 100000;
+    const unsigned perTwoThreads = points > kLargeInputPoints ? 4U : 3U;
+    return std::max(1U, perTwoThreads * threads / 2U);
+}
+
+} // namespace
+
+const char* toString(TriangulationMethod method) {
+    switch (method) {
+    case TriangulationMethod::Sequential:
+        return "sequential";
+    case TriangulationMethod::Batch:
+        return "batch";
+    case TriangulationMethod::Auto:
+        return "auto";
+    }
+    return "unknown";
+}
 
 TriangulationResult triangulate(std::span<const Point3> points, const TriangulationOptions& options,
                                 const ProgressCallback& progress) {
@@ -15,9 +63,30 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
         options.order == InsertionOrder::Brio
             ? detail::brioInsertionOrder(prepared.local, triangulator.highestVertex(), options.seed)
             : detail::randomInsertionOrder(count, triangulator.highestVertex(), options.seed);
-    triangulator.insertAll(order, progress);
 
     TriangulationResult result;
+    const unsigned threads = resolveThreads(options.threads);
+    result.method = resolveMethod(options.method, count, threads);
+    switch (result.method) {
+    case TriangulationMethod::Batch: {
+        detail::BatchSettings settings;
+        settings.searchers = resolveSearchers(options.searchers, count, threads);
+        settings.queueLength = options.queueLength;
+        settings.searchersHelpWhenFull = options.searchersHelpWhenQueueFull;
+        const detail::BatchStatistics statistics =
+            detail::insertWithBatchMethod(triangulator, order, settings, progress);
+        result.threads = settings.searchers + 1;
+        result.searchers = settings.searchers;
+        result.helpedLocations = statistics.helpedLocations;
+        break;
+    }
+    case TriangulationMethod::Sequential:
+    case TriangulationMethod::Auto:
+        triangulator.insertAll(order, progress);
+        result.threads = 1;
+        break;
+    }
+
     result.inputPoints = points.size();
     result.duplicatePoints = prepared.duplicateCount;
     result.historyNodes = triangulator.nodeCount();

@@ -23,6 +23,16 @@ enum class InsertionOrder {
     Brio,
 };
 
+/// Which triangulator inserts the points.
+enum class TriangulationMethod {
+    /// One thread (Kohout & Kolingerova section 3.1).
+    Sequential,
+    /// Searching threads locate, one specialised thread subdivides and legalises (section 3.3).
+    Batch,
+    /// Chosen from the number of points and threads.
+    Auto,
+};
+
 /// How to triangulate.
 struct TriangulationOptions {
     /// Seed of the random insertion order. The same seed gives the same mesh.
@@ -30,6 +40,16 @@ struct TriangulationOptions {
     InsertionOrder order = InsertionOrder::Brio;
     /// Which elevation survives for points sharing exactly the same (x, y).
     DuplicateZPolicy duplicateZ = DuplicateZPolicy::First;
+    TriangulationMethod method = TriangulationMethod::Auto;
+    /// Hardware threads to use; 0 means all (std::thread::hardware_concurrency()).
+    unsigned threads = 0;
+    /// Batch method: searching threads; 0 chooses from the point and thread counts.
+    unsigned searchers = 0;
+    /// Batch method: capacity of the queue between searchers and the specialised thread.
+    std::size_t queueLength = 1024;
+    /// Batch method: searchers finish queued locations instead of waiting on a full queue
+    /// (the improvement in the paper's footnote).
+    bool searchersHelpWhenQueueFull = false;
 };
 
 /// A TIN and what it took to build it.
@@ -42,7 +62,16 @@ struct TriangulationResult {
     std::size_t historyNodes = 0;
     /// Bytes reserved for the history.
     std::size_t historyBytes = 0;
+    /// The method that ran (never Auto) and with how many threads in all.
+    TriangulationMethod method = TriangulationMethod::Sequential;
+    unsigned threads = 1;
+    /// Batch method: searching threads, and locations they completed on a full queue.
+    unsigned searchers = 0;
+    std::size_t helpedLocations = 0;
 };
+
+/// "sequential", "batch" or "auto".
+const char* toString(TriangulationMethod method);
 
 /// Delaunay triangulation of `points` (x, y in any planar units; z carried along).
 ///
@@ -52,6 +81,8 @@ struct TriangulationResult {
 /// Delaunay; among cocircular points, as on grids, the diagonal choice follows the insertion
 /// order). Throws InvalidInputError (non-finite values, fewer than three non-collinear points,
 /// too many points) and Cancelled when `progress` returns false.
+/// The parallel methods give an equally exact result; among cocircular points the diagonals
+/// may differ from run to run, as the insertion order does.
 /// Complexity: expected O(n log n) time, O(n) memory (about 9 history nodes of 28 bytes per
 /// point besides the mesh).
 TriangulationResult triangulate(std::span<const Point3> points,

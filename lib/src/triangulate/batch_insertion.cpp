@@ -1,0 +1,159 @@
+#include "batch_insertion.hpp"
+
+#include "bounded_queue.hpp"
+
+#include "terratin/error.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace terratin::detail {
+
+namespace {
+
+// Searchers claim this many consecutive points of the (spatially coherent) insertion order
+// at a time: few enough to keep the threads' work balanced, many enough that the shared
+// cursor is not contended and consecutive locations reuse the same DAG paths in cache.
+constexpr std::size_t kClaimedPoints = 64;
+
+// Progress from the specialised thread every this many insertions.
+constexpr std::size_t kProgressInterval = 1U << 16;
+
+struct Located {
+    VertexId vertex;
+    NodeId node;
+};
+
+// State shared by the searching threads and the specialised thread.
+class BatchRun {
+public:
+    BatchRun(DagTriangulator& triangulator, std::span<const VertexId> order,
+             const BatchSettings& settings)
+        : m_triangulator(triangulator), m_order(order), m_settings(settings),
+          m_queue(settings.queueLength) {}
+
+    void search() {
+        try {
+            for (;;) {
+                const std::size_t begin = m_cursor.fetch_add(kClaimedPoints, std::memory_order_relaxed);
+                if (begin >= m_order.size())
+                    return;
+                const std::size_t end = std::min(begin + kClaimedPoints, m_order.size());
+                for (std::size_t i = begin; i < end; ++i)
+                    if (!deliver({m_order[i], m_triangulator.locate(m_order[i])},
+                                 m_settings.searchersHelpWhenFull))
+                        return;
+            }
+        } catch (...) {
+            fail(std::current_exception());
+        }
+    }
+
+    void insertAll(const ProgressCallback& progress) {
+        for (std::size_t done = 0; done < m_order.size(); ++done) {
+            if (progress && done % kProgressInterval == 0 &&
+                !progress(static_cast<double>(done) / static_cast<double>(m_order.size()),
+                          "triangulating")) {
+                m_cancelled = true;
+                stop();
+                return;
+            }
+            Located item{};
+            while (!m_queue.tryPop(item)) {
+                if (m_stop.load(std::memory_order_acquire))
+                    return;
+                std::this_thread::yield();
+            }
+            try {
+                m_triangulator.insertAtLeaf(m_triangulator.locate(item.vertex, item.node),
+                                            item.vertex);
+            } catch (...) {
+                fail(std::current_exception());
+                return;
+            }
+        }
+    }
+
+    void stop() { m_stop.store(true, std::memory_order_release); }
+
+    void rethrowFailure() {
+        if (m_failure)
+            std::rethrow_exception(m_failure);
+        if (m_cancelled)
+            throw Cancelled("Triangulator: cancelled");
+    }
+
+    [[nodiscard]] std::size_t helpedLocations() const {
+        return m_helped.load(std::memory_order_relaxed);
+    }
+
+private:
+    // Pushes `item`, waiting (or helping) while the queue is full; false when the run stops.
+    bool deliver(Located item, bool mayHelp) {
+        while (!m_queue.tryPush(item)) {
+            if (m_stop.load(std::memory_order_acquire))
+                return false;
+            if (mayHelp && helpSpecialisedThread())
+                continue;
+            std::this_thread::yield();
+        }
+        return true;
+    }
+
+    // Takes the oldest queued element, completes its location and queues it again.
+    bool helpSpecialisedThread() {
+        Located other{};
+        if (!m_queue.tryPop(other))
+            return false;
+        other.node = m_triangulator.locate(other.vertex, other.node);
+        m_helped.fetch_add(1, std::memory_order_relaxed);
+        // The slot just freed may be taken by another searcher: wait for one like any push,
+        // without helping again (that could recurse without bound).
+        return deliver(other, false);
+    }
+
+    void fail(std::exception_ptr error) {
+        {
+            const std::lock_guard lock(m_failureMutex);
+            if (!m_failure)
+                m_failure = std::move(error);
+        }
+        stop();
+    }
+
+    DagTriangulator& m_triangulator;
+    std::span<const VertexId> m_order;
+    const BatchSettings& m_settings;
+    BoundedQueue<Located> m_queue;
+    std::atomic<std::size_t> m_cursor{0};
+    std::atomic<bool> m_stop{false};
+    std::atomic<std::size_t> m_helped{0};
+    bool m_cancelled = false;
+    std::mutex m_failureMutex;
+    std::exception_ptr m_failure;
+};
+
+} // namespace
+
+BatchStatistics insertWithBatchMethod(DagTriangulator& triangulator,
+                                      std::span<const VertexId> order,
+                                      const BatchSettings& settings,
+                                      const ProgressCallback& progress) {
+    BatchRun run(triangulator, order, settings);
+    {
+        std::vector<std::jthread> searchers;
+        searchers.reserve(std::max(1U, settings.searchers));
+        for (unsigned i = 0; i < std::max(1U, settings.searchers); ++i)
+            searchers.emplace_back([&run] { run.search(); });
+        run.insertAll(progress);
+        run.stop(); // releases searchers still waiting on a full queue after a failure
+    }
+    run.rethrowFailure();
+    return {run.helpedLocations()};
+}
+
+} // namespace terratin::detail

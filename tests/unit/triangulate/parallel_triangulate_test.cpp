@@ -1,0 +1,149 @@
+// Every parallel method, at several thread counts, on every input kind: the result must be
+// exactly Delaunay and hold exactly the sequential result's vertices.
+
+#include "terratin/triangulate/triangulate.hpp"
+
+#include "mesh_invariants.hpp"
+#include "terratin/error.hpp"
+#include "point_distributions.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <tuple>
+
+namespace terratin {
+namespace {
+
+using test::Distribution;
+
+// Sizes kept moderate: the suite also runs under ThreadSanitizer, which slows threads ~10x.
+constexpr std::size_t kPoints = 6000;
+
+TriangulationOptions parallelOptions(TriangulationMethod method, unsigned threads) {
+    TriangulationOptions options;
+    options.method = method;
+    options.threads = threads;
+    return options;
+}
+
+void expectSameVertices(const TinMesh& parallel, const TinMesh& sequential) {
+    auto sortedSources = [](const TinMesh& mesh) {
+        std::vector<std::uint32_t> sources = mesh.sourceIndex;
+        std::sort(sources.begin(), sources.end());
+        return sources;
+    };
+    EXPECT_EQ(sortedSources(parallel), sortedSources(sequential));
+}
+
+class ParallelMethod
+    : public ::testing::TestWithParam<std::tuple<TriangulationMethod, unsigned, Distribution>> {};
+
+TEST_P(ParallelMethod, IsExactlyDelaunayWithSequentialVertices_ForPaperDistributions) {
+    const auto [method, threads, distribution] = GetParam();
+    const std::vector<Point3> points = test::generatePoints(distribution, kPoints, 5);
+    const TriangulationResult result = triangulate(points, parallelOptions(method, threads));
+    EXPECT_EQ(result.method, method);
+    test::expectExactDelaunayOf(result.mesh, points);
+    TriangulationOptions sequential;
+    sequential.method = TriangulationMethod::Sequential;
+    expectSameVertices(result.mesh, triangulate(points, sequential).mesh);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    MethodsThreadsDistributions, ParallelMethod,
+    ::testing::Combine(::testing::Values(TriangulationMethod::Batch),
+                       ::testing::Values(1U, 2U, 3U, 4U, 8U),
+                       ::testing::Values(Distribution::Uniform, Distribution::Gauss,
+                                         Distribution::Cluster, Distribution::Grid,
+                                         Distribution::Arc)),
+    [](const auto& paramInfo) {
+        return std::string(toString(std::get<0>(paramInfo.param))) + "_" +
+               std::to_string(std::get<1>(paramInfo.param)) + "threads_" +
+               test::toString(std::get<2>(paramInfo.param));
+    });
+
+class ParallelDegenerate
+    : public ::testing::TestWithParam<std::tuple<TriangulationMethod, unsigned>> {};
+
+TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForDuplicates) {
+    const auto [method, threads] = GetParam();
+    const std::vector<Point3> points = test::withDuplicates(
+        test::generatePoints(Distribution::Uniform, kPoints, 8), kPoints / 4, 9);
+    const TriangulationResult result = triangulate(points, parallelOptions(method, threads));
+    EXPECT_EQ(result.duplicatePoints, kPoints / 4);
+    test::expectExactDelaunayOf(result.mesh, points);
+}
+
+TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForCollinearPlusOne) {
+    const auto [method, threads] = GetParam();
+    const std::vector<Point3> points = test::collinearPlusOne(2000);
+    test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+                                points);
+}
+
+TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForCocircularRings) {
+    const auto [method, threads] = GetParam();
+    const std::vector<Point3> points = test::cocircularRings(1.0);
+    test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+                                points);
+}
+
+TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForLargeOffsets) {
+    const auto [method, threads] = GetParam();
+    const std::vector<Point3> points =
+        test::offset(test::generatePoints(Distribution::Grid, kPoints, 3), 6.0e5, 5.2e6);
+    test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+                                points);
+}
+
+TEST_P(ParallelDegenerate, Terminates_WhenFewPointsMeetManyThreads) {
+    const auto [method, threads] = GetParam();
+    for (std::size_t count : {3U, 4U, 5U, 10U, 40U}) {
+        const std::vector<Point3> points = test::generatePoints(Distribution::Arc, count, count);
+        test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+                                    points);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(MethodsThreads, ParallelDegenerate,
+                         ::testing::Combine(::testing::Values(TriangulationMethod::Batch),
+                                            ::testing::Values(1U, 2U, 3U, 4U, 8U)),
+                         [](const auto& paramInfo) {
+                             return std::string(toString(std::get<0>(paramInfo.param))) + "_" +
+                                    std::to_string(std::get<1>(paramInfo.param)) + "threads";
+                         });
+
+TEST(BatchMethod, IsExactlyDelaunay_WhenSearchersHelpOnAFullQueue) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 20000, 4);
+    TriangulationOptions options = parallelOptions(TriangulationMethod::Batch, 2);
+    options.searchers = 4;
+    options.queueLength = 4; // tiny: the queue is full almost always
+    options.searchersHelpWhenQueueFull = true;
+    const TriangulationResult result = triangulate(points, options);
+    EXPECT_EQ(result.searchers, 4U);
+    test::expectExactDelaunayOf(result.mesh, points);
+}
+
+TEST(BatchMethod, UsesRequestedSearchersAndQueue) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Gauss, 5000, 4);
+    TriangulationOptions options = parallelOptions(TriangulationMethod::Batch, 2);
+    options.searchers = 6;
+    options.queueLength = 3;
+    const TriangulationResult result = triangulate(points, options);
+    EXPECT_EQ(result.searchers, 6U);
+    EXPECT_EQ(result.threads, 7U);
+    test::expectExactDelaunayOf(result.mesh, points);
+}
+
+TEST(BatchMethod, ThrowsCancelled_AndStopsEveryThread) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 200000, 4);
+    std::size_t calls = 0;
+    EXPECT_THROW(triangulate(points, parallelOptions(TriangulationMethod::Batch, 4),
+                             [&calls](double, std::string_view) { return ++calls < 2; }),
+                 Cancelled);
+}
+
+} // namespace
+} // namespace terratin
