@@ -7,8 +7,8 @@
 namespace terratin::detail {
 
 namespace {
-constexpr int next(int i) { return i == 2 ? 0 : i + 1; }
-constexpr int prev(int i) { return i == 0 ? 2 : i - 1; }
+constexpr int next(int i) { return nextCorner(i); }
+constexpr int prev(int i) { return previousCorner(i); }
 
 // Progress is reported every this many insertions: often enough for a smooth bar, rarely
 // enough that the callback costs nothing measurable.
@@ -21,16 +21,17 @@ DagTriangulator::DagTriangulator(std::span<const Point2> points) : m_predicates(
             m_highest = v;
     // The auxiliary triangle (p0, p-2, p-1) is counter-clockwise (symbolic_predicates.hpp).
     const NodeId root = m_nodes.allocate(1);
-    setLeaf(root, m_highest, m_predicates.farLeft(), m_predicates.farRight(), kNoNode, kNoNode,
-            kNoNode);
+    setLeaf(root, {m_highest, m_predicates.farLeft(), m_predicates.farRight()},
+            {kNoNode, kNoNode, kNoNode}, 0);
 }
 
-void DagTriangulator::setLeaf(NodeId id, VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb,
-                              NodeId nc) {
+void DagTriangulator::setLeaf(NodeId id, std::array<VertexId, 3> v, std::array<NodeId, 3> link,
+                              std::uint32_t owner) {
     DagNode& node = m_nodes[id];
-    node.v = {a, b, c};
-    node.link = {na, nb, nc};
+    node.v = v;
+    node.link = link;
     node.firstChild.store(kNoNode, std::memory_order_relaxed);
+    node.owner.store(owner, std::memory_order_relaxed);
 }
 
 void DagTriangulator::setInner(NodeId node, std::array<NodeId, 3> link, NodeId firstChild) {
@@ -77,26 +78,32 @@ void DagTriangulator::insertAll(std::span<const VertexId> order, const ProgressC
         if (progress && i % kProgressInterval == 0 &&
             !progress(static_cast<double>(i) / static_cast<double>(order.size()), "triangulating"))
             throw Cancelled("Triangulator: cancelled");
-        insert(order[i]);
+        insertAtLeaf(locate(order[i]), order[i]);
     }
 }
 
-void DagTriangulator::insertAtLeaf(NodeId leaf, VertexId q) {
+int DagTriangulator::edgeContaining(NodeId leaf, VertexId q) const {
     const std::array<VertexId, 3> v = m_nodes[leaf].v;
     for (int e = 0; e < 3; ++e) {
         // Only an edge between two finite vertices can pass through q: with a symbolic end
         // the orientation is a strict height comparison, never zero for q distinct.
-        if (m_predicates.orient(v[next(e)], v[prev(e)], q) == 0) {
-            splitEdge(leaf, e, q);
-            legalize(q);
-            return;
-        }
+        if (m_predicates.orient(v[next(e)], v[prev(e)], q) == 0)
+            return e;
     }
-    splitTriangle(leaf, q);
-    legalize(q);
+    return -1;
 }
 
-void DagTriangulator::splitTriangle(NodeId t, VertexId p) {
+void DagTriangulator::insertAtLeaf(NodeId leaf, VertexId q) {
+    const int edge = edgeContaining(leaf, q);
+    if (edge >= 0)
+        splitEdge(leaf, edge, q, m_pending);
+    else
+        splitTriangle(leaf, q, m_pending);
+    legalize(q, m_pending);
+}
+
+void DagTriangulator::splitTriangle(NodeId t, VertexId p, PendingEdges& pending,
+                                    std::uint32_t owner) {
     const std::array<VertexId, 3> corner = m_nodes[t].v;
     const std::array<NodeId, 3> outer = m_nodes[t].link;
     const NodeId first = m_nodes.allocate(3);
@@ -107,16 +114,17 @@ void DagTriangulator::splitTriangle(NodeId t, VertexId p) {
         link[i] = outer[i];
         link[next(i)] = first + next(i);
         link[prev(i)] = first + prev(i);
-        setLeaf(first + i, v[0], v[1], v[2], link[0], link[1], link[2]);
+        setLeaf(first + i, v, link, owner);
     }
     for (int i = 0; i < 3; ++i)
         replaceNeighbour(outer[i], t, first + i);
     setInner(t, {p, kNoNode, kNoNode}, first);
     for (int i = 0; i < 3; ++i)
-        m_pending.emplace_back(first + i, i);
+        pending.emplace_back(first + i, i);
 }
 
-void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p) {
+void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p, PendingEdges& pending,
+                                std::uint32_t owner) {
     // t = (a, b, c) with p on the edge (b, c); u = (d, c, b) is the triangle beyond it. The
     // edge is finite, hence interior to the auxiliary triangle, so u exists.
     const DagNode& tNode = m_nodes[t];
@@ -139,10 +147,10 @@ void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p) {
     const NodeId t1 = t0 + 1;
     const NodeId u0 = t0 + 2;
     const NodeId u1 = t0 + 3;
-    setLeaf(t0, a, b, p, u1, t1, outerAB);
-    setLeaf(t1, a, p, c, u0, outerCA, t0);
-    setLeaf(u0, d, c, p, t1, u1, outerDC);
-    setLeaf(u1, d, p, b, t0, outerBD, u0);
+    setLeaf(t0, {a, b, p}, {u1, t1, outerAB}, owner);
+    setLeaf(t1, {a, p, c}, {u0, outerCA, t0}, owner);
+    setLeaf(u0, {d, c, p}, {t1, u1, outerDC}, owner);
+    setLeaf(u1, {d, p, b}, {t0, outerBD, u0}, owner);
     replaceNeighbour(outerAB, t, t0);
     replaceNeighbour(outerCA, t, t1);
     replaceNeighbour(outerDC, u, u0);
@@ -151,16 +159,16 @@ void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p) {
     // (a, b, p) lies left of p -> a, (d, c, p) left of p -> d.
     setInner(t, {p, a, kNoNode}, t0);
     setInner(u, {p, d, kNoNode}, u0);
-    m_pending.emplace_back(t0, 2);
-    m_pending.emplace_back(t1, 1);
-    m_pending.emplace_back(u0, 2);
-    m_pending.emplace_back(u1, 1);
+    pending.emplace_back(t0, 2);
+    pending.emplace_back(t1, 1);
+    pending.emplace_back(u0, 2);
+    pending.emplace_back(u1, 1);
 }
 
-void DagTriangulator::legalize(VertexId p) {
-    while (!m_pending.empty()) {
-        const auto [t, pos] = m_pending.back();
-        m_pending.pop_back();
+void DagTriangulator::legalize(VertexId p, PendingEdges& pending) {
+    while (!pending.empty()) {
+        const auto [t, pos] = pending.back();
+        pending.pop_back();
         const DagNode& tNode = m_nodes[t];
         const NodeId u = tNode.link[pos];
         if (u == kNoNode)
@@ -170,11 +178,12 @@ void DagTriangulator::legalize(VertexId p) {
         while (uNode.link[m] != t)
             ++m;
         if (m_predicates.shouldFlip(tNode.v[next(pos)], tNode.v[prev(pos)], p, uNode.v[m]))
-            flip(t, pos, u, m);
+            flip(t, pos, u, m, pending);
     }
 }
 
-void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m) {
+void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m, PendingEdges& pending,
+                           std::uint32_t owner) {
     // t = (p, i, j), u = (l, j, i); the edge (i, j) becomes (p, l).
     const DagNode& tNode = m_nodes[t];
     const DagNode& uNode = m_nodes[u];
@@ -189,8 +198,8 @@ void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m) {
 
     const NodeId t1 = m_nodes.allocate(2);
     const NodeId t2 = t1 + 1;
-    setLeaf(t1, p, i, l, outerIL, t2, outerPI);
-    setLeaf(t2, p, l, j, outerLJ, outerJP, t1);
+    setLeaf(t1, {p, i, l}, {outerIL, t2, outerPI}, owner);
+    setLeaf(t2, {p, l, j}, {outerLJ, outerJP, t1}, owner);
     replaceNeighbour(outerPI, t, t1);
     replaceNeighbour(outerIL, u, t1);
     replaceNeighbour(outerLJ, u, t2);
@@ -199,8 +208,49 @@ void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m) {
     // (p, i, l) lies left of l -> p.
     setInner(t, {l, p, kNoNode}, t1);
     setInner(u, {l, p, kNoNode}, t1);
-    m_pending.emplace_back(t1, 0);
-    m_pending.emplace_back(t2, 0);
+    pending.emplace_back(t1, 0);
+    pending.emplace_back(t2, 0);
+}
+
+std::size_t DagTriangulator::repairAllEdges() {
+    // Every edge of every leaf, seen from both sides; flipped edges queue their four
+    // surrounding edges (the new triangles' edges away from the flipped diagonal).
+    PendingEdges work;
+    for (std::size_t n = 0; n < m_nodes.size(); ++n)
+        if (m_nodes[static_cast<NodeId>(n)].isLeaf() &&
+            m_nodes[static_cast<NodeId>(n)].v[0] != kNoNode)
+            for (int i = 0; i < 3; ++i)
+                work.emplace_back(static_cast<NodeId>(n), i);
+    std::size_t flips = 0;
+    PendingEdges created;
+    while (!work.empty()) {
+        const auto [t, pos] = work.back();
+        work.pop_back();
+        const DagNode& tNode = m_nodes[t];
+        if (!tNode.isLeaf())
+            continue;
+        const NodeId u = tNode.link[pos];
+        if (u == kNoNode)
+            continue;
+        const DagNode& uNode = m_nodes[u];
+        int m = 0;
+        while (uNode.link[m] != t)
+            ++m;
+        const VertexId i = tNode.v[next(pos)];
+        const VertexId j = tNode.v[prev(pos)];
+        if (m_predicates.incircle(i, j, tNode.v[pos], uNode.v[m]) <= 0)
+            continue;
+        flip(t, pos, u, m, created);
+        ++flips;
+        // The new triangles are (k, i, l) and (k, l, j), k = the old tNode.v[pos]: their four
+        // edges other than the new diagonal (opposite i in the first, j in the second) may
+        // now fail.
+        const NodeId first = created[0].first;
+        const NodeId second = created[1].first;
+        created.clear();
+        work.insert(work.end(), {{first, 0}, {first, 2}, {second, 0}, {second, 1}});
+    }
+    return flips;
 }
 
 void DagTriangulator::extract(std::vector<std::uint32_t>& triangles,

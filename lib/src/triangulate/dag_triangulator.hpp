@@ -4,13 +4,17 @@
 /// (Guibas, Knuth & Sharir 1992; de Berg et al., Computational Geometry, ch. 9; the base
 /// algorithm of Kohout & Kolingerova's parallel methods, section 3.1).
 ///
-/// Every triangle ever created is a node of one flat array. A leaf is a triangle of the current
+/// Every triangle ever created is a node of one arena. A leaf is a triangle of the current
 /// triangulation and stores its three neighbours; an inner node is a triangle that was split
 /// or flipped away and stores how to choose among its children, which are always allocated
 /// consecutively. Point location walks from the root (the auxiliary triangle) to a leaf in
 /// expected O(log n) orientation tests; insertion splits the leaf (or the two leaves sharing
 /// the edge the point lies on) and restores the Delaunay property with Lawson flips.
 /// Expected O(n log n) time and O(n) nodes for a random insertion order.
+///
+/// The editing operations take the caller's stack of pending edges and an owner tag for the
+/// nodes they create, so that the parallel methods can run them from several threads, each
+/// on triangles it holds (see batch_insertion.hpp and circumcircle_insertion.hpp).
 
 #include "node_arena.hpp"
 #include "symbolic_predicates.hpp"
@@ -20,11 +24,19 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace terratin::detail {
 
-/// Sequential DAG triangulator over the finite points given at construction.
+/// Triangles (node, position of the new point) whose edge opposite the new point must be
+/// checked by Lawson's test.
+using PendingEdges = std::vector<std::pair<NodeId, int>>;
+
+constexpr int nextCorner(int i) { return i == 2 ? 0 : i + 1; }
+constexpr int previousCorner(int i) { return i == 0 ? 2 : i - 1; }
+
+/// DAG triangulator over the finite points given at construction.
 class DagTriangulator {
 public:
     /// `points`: distinct points, not all collinear (see preparePoints); they must outlive the
@@ -40,43 +52,59 @@ public:
     /// of `order` done and throws Cancelled when it returns false.
     void insertAll(std::span<const VertexId> order, const ProgressCallback& progress);
 
-    /// Inserts one vertex.
-    void insert(VertexId q) { insertAtLeaf(locate(q), q); }
-
-    /// Inserts q into `leaf`, a current leaf whose closed triangle contains q.
+    /// Inserts q into `leaf`, a current leaf whose closed triangle contains q, and legalises.
     void insertAtLeaf(NodeId leaf, VertexId q);
 
     /// Leaf whose closed triangle contains the finite vertex q, searched from `start` (the
     /// root by default, or any node whose closed triangle contains q).
     ///
-    /// Safe to call from other threads while one thread inserts: it reads only vertex corners,
+    /// Safe to call from other threads while threads edit: it reads only vertex corners,
     /// which never change, and the links of nodes it has seen to be inner, which never change
-    /// again. It then returns a node that was a leaf when read and may since have been split:
-    /// the inserting thread completes the location from there.
+    /// again. It then returns a node that was a leaf when read and may since have been split.
     [[nodiscard]] NodeId locate(VertexId q, NodeId start = 0) const;
+
+    /// For a leaf whose closed triangle contains q: the corner opposite the edge q lies on,
+    /// or -1 when q is strictly inside.
+    [[nodiscard]] int edgeContaining(NodeId leaf, VertexId q) const;
+
+    /// Splits leaf t at p, strictly inside it; queues the three outer edges.
+    void splitTriangle(NodeId t, VertexId p, PendingEdges& pending, std::uint32_t owner = 0);
+    /// Splits leaf t and its neighbour across the edge opposite corner `edge` at p, which
+    /// lies on that edge; queues the four outer edges.
+    void splitEdge(NodeId t, int edge, VertexId p, PendingEdges& pending, std::uint32_t owner = 0);
+    /// Flips the edge between t = (p, i, j) (p at `pos`) and u = (l, j, i) (l at `opposite`)
+    /// into (p, l); queues the two new edges opposite p.
+    void flip(NodeId t, int pos, NodeId u, int opposite, PendingEdges& pending,
+              std::uint32_t owner = 0);
+    /// Lawson's legalisation of the pending edges opposite the inserted vertex p.
+    void legalize(VertexId p, PendingEdges& pending);
+
+    /// Makes every edge of the current triangulation locally Delaunay: checks them all and
+    /// flips until none is illegal (Lawson's algorithm, which terminates from any
+    /// triangulation). Single-threaded. Returns the number of flips.
+    std::size_t repairAllEdges();
 
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
     void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours) const;
 
+    [[nodiscard]] DagNode& node(NodeId id) { return m_nodes[id]; }
+    [[nodiscard]] const DagNode& node(NodeId id) const { return m_nodes[id]; }
+    [[nodiscard]] const SymbolicPredicates& predicates() const { return m_predicates; }
     [[nodiscard]] std::size_t nodeCount() const { return m_nodes.size(); }
     [[nodiscard]] std::size_t memoryBytes() const { return m_nodes.bytesAllocated(); }
 
 private:
-    void setLeaf(NodeId id, VertexId a, VertexId b, VertexId c, NodeId na, NodeId nb, NodeId nc);
+    void setLeaf(NodeId id, std::array<VertexId, 3> v, std::array<NodeId, 3> link,
+                 std::uint32_t owner);
     /// Turns leaf `node` into an inner node; the release store publishes its children.
     void setInner(NodeId node, std::array<NodeId, 3> link, NodeId firstChild);
     void replaceNeighbour(NodeId node, NodeId from, NodeId to);
-    void splitTriangle(NodeId t, VertexId p);
-    void splitEdge(NodeId t, int edge, VertexId p);
-    void legalize(VertexId p);
-    void flip(NodeId t, int pos, NodeId u, int opposite);
 
     SymbolicPredicates m_predicates;
     NodeArena m_nodes;
-    /// Triangles (node, position of the new point) whose edge opposite the new point must be
-    /// checked; a member so its storage is reused between insertions.
-    std::vector<std::pair<NodeId, int>> m_pending;
+    /// The sequential path's pending edges, kept to reuse the storage between insertions.
+    PendingEdges m_pending;
     VertexId m_highest = 0;
 };
 

@@ -60,7 +60,7 @@ NodeId NodeArena::allocate(unsigned count) {
     // corner, which every traversal of the whole arena ignores.
     for (std::size_t id = first; id < start; ++id)
         new (&chunkFor(id >> kChunkBits)[id & (kChunkNodes - 1)])
-            DagNode{{kNoNode, kNoNode, kNoNode}, {kNoNode, kNoNode, kNoNode}, kNoNode};
+            DagNode{{kNoNode, kNoNode, kNoNode}, {kNoNode, kNoNode, kNoNode}, kNoNode, 0};
     DagNode* nodes = chunkFor(start >> kChunkBits);
     for (unsigned i = 0; i < count; ++i)
         new (&nodes[(start & (kChunkNodes - 1)) + i]) DagNode{};

@@ -18,7 +18,7 @@ using VertexId = std::uint32_t;
 using NodeId = std::uint32_t;
 inline constexpr NodeId kNoNode = 0xFFFFFFFFU;
 
-/// One triangle of the history, 28 bytes.
+/// One triangle of the history, 32 bytes.
 ///
 /// Concurrency contract: `v` is written once, before the node is published (by the release
 /// store of its parent's firstChild, or before threads start for the root). `link` of a leaf
@@ -35,6 +35,9 @@ struct DagNode {
     std::array<NodeId, 3> link;
     /// kNoNode for a leaf, else the first of the consecutive children.
     std::atomic<NodeId> firstChild;
+    /// Circum-circle method only: 0 when free, else 1 + the index of the worker that holds
+    /// the triangle exclusively (see circumcircle_insertion.hpp).
+    std::atomic<std::uint32_t> owner;
 
     [[nodiscard]] bool isLeaf() const {
         return firstChild.load(std::memory_order_acquire) == kNoNode;

@@ -1,5 +1,9 @@
 #include "symbolic_predicates.hpp"
 
+#include <algorithm>
+#include <array>
+#include <utility>
+
 namespace terratin::detail {
 
 int SymbolicPredicates::orientSymbolic(VertexId a, VertexId b, VertexId c) const {
@@ -60,6 +64,43 @@ bool SymbolicPredicates::shouldFlipSymbolic(VertexId i, VertexId j, VertexId k,
         return orient(j, k, farRight()) > 0;
     // j == p-2: incircle(i, p-2, k, p-1) = incircle(i, k, p-1, p-2) = -orient(i, k, p-1).
     return orient(i, k, farRight()) < 0;
+}
+
+namespace {
+// For collinear finite points x, y, z (x != y): true when z lies outside the segment [x, y].
+bool outsideSegment(const Point2& z, const Point2& x, const Point2& y) {
+    if (x.x != y.x)
+        return z.x < std::min(x.x, y.x) || z.x > std::max(x.x, y.x);
+    return z.y < std::min(x.y, y.y) || z.y > std::max(x.y, y.y);
+}
+} // namespace
+
+int SymbolicPredicates::incircle(VertexId a, VertexId b, VertexId c, VertexId d) const {
+    if (isFinite(a) && isFinite(b) && isFinite(c) && isFinite(d))
+        return sign(predicates::incircle(m_points[a], m_points[b], m_points[c], m_points[d]));
+    // Move the most symbolic vertex (p-2 before p-1) to the end; each swap of two arguments
+    // flips the determinant's sign.
+    std::array<VertexId, 4> q{a, b, c, d};
+    const VertexId most = (a == farLeft() || b == farLeft() || c == farLeft() || d == farLeft())
+                              ? farLeft()
+                              : farRight();
+    int sign = 1;
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (q[i] == most) {
+            std::swap(q[i], q[i + 1]);
+            sign = -sign;
+        }
+    }
+    // The symbolic point is outside every circle through less symbolic points:
+    // incircle(x, y, z, s) = -orient(x, y, z).
+    const int orientation = orient(q[0], q[1], q[2]);
+    if (orientation != 0)
+        return -sign * orientation;
+    // x, y, z finite and collinear: the determinant reduces to (side of s) * (t_y - t_x) *
+    // (t_z - t_x) * (t_z - t_y) along the line, i.e. orient(x, y, s) times +1 when z lies
+    // outside [x, y] and -1 when inside.
+    const int side = orient(q[0], q[1], q[3]);
+    return sign * side * (outsideSegment(m_points[q[2]], m_points[q[0]], m_points[q[1]]) ? 1 : -1);
 }
 
 } // namespace terratin::detail

@@ -69,6 +69,12 @@ public:
         return shouldFlipSymbolic(i, j, k, l);
     }
 
+    /// Sign of the in-circle determinant of any four distinct vertices (finite or symbolic):
+    /// for a counter-clockwise (a, b, c), +1 when d lies strictly inside their circumcircle,
+    /// -1 outside, 0 cocircular. Slower than shouldFlip; for the circum-circle method's
+    /// conflict test and for repairs, where the fourth point is not always the new one.
+    [[nodiscard]] int incircle(VertexId a, VertexId b, VertexId c, VertexId d) const;
+
     /// +1 when q is higher than p (larger y, or equal y and larger x), -1 when lower, 0 when
     /// equal.
     static int compareHeight(const Point2& p, const Point2& q) {

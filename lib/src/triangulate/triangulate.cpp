@@ -1,6 +1,7 @@
 #include "terratin/triangulate/triangulate.hpp"
 
 #include "batch_insertion.hpp"
+#include "circumcircle_insertion.hpp"
 #include "dag_triangulator.hpp"
 #include "insertion_order.hpp"
 
@@ -47,6 +48,8 @@ const char* toString(TriangulationMethod method) {
         return "sequential";
     case TriangulationMethod::Batch:
         return "batch";
+    case TriangulationMethod::Circumcircle:
+        return "circumcircle";
     case TriangulationMethod::Auto:
         return "auto";
     }
@@ -78,6 +81,16 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
         result.threads = settings.searchers + 1;
         result.searchers = settings.searchers;
         result.helpedLocations = statistics.helpedLocations;
+        break;
+    }
+    case TriangulationMethod::Circumcircle: {
+        const detail::CircumcircleStatistics statistics =
+            detail::insertWithCircumcircleMethod(triangulator, order, threads, progress);
+        result.threads = threads;
+        result.waits = statistics.waits;
+        result.overrides = statistics.overrides;
+        result.deferredEdges = statistics.deferredEdges;
+        result.repairFlips = statistics.repairFlips;
         break;
     }
     case TriangulationMethod::Sequential:

@@ -53,7 +53,8 @@ TEST_P(ParallelMethod, IsExactlyDelaunayWithSequentialVertices_ForPaperDistribut
 
 INSTANTIATE_TEST_SUITE_P(
     MethodsThreadsDistributions, ParallelMethod,
-    ::testing::Combine(::testing::Values(TriangulationMethod::Batch),
+    ::testing::Combine(::testing::Values(TriangulationMethod::Batch,
+                                                              TriangulationMethod::Circumcircle),
                        ::testing::Values(1U, 2U, 3U, 4U, 8U),
                        ::testing::Values(Distribution::Uniform, Distribution::Gauss,
                                          Distribution::Cluster, Distribution::Grid,
@@ -108,12 +109,35 @@ TEST_P(ParallelDegenerate, Terminates_WhenFewPointsMeetManyThreads) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MethodsThreads, ParallelDegenerate,
-                         ::testing::Combine(::testing::Values(TriangulationMethod::Batch),
+                         ::testing::Combine(::testing::Values(TriangulationMethod::Batch,
+                                                              TriangulationMethod::Circumcircle),
                                             ::testing::Values(1U, 2U, 3U, 4U, 8U)),
                          [](const auto& paramInfo) {
                              return std::string(toString(std::get<0>(paramInfo.param))) + "_" +
                                     std::to_string(std::get<1>(paramInfo.param)) + "threads";
                          });
+
+TEST(CircumcircleMethod, IsExactlyDelaunay_WhenThreadsCrowdOneCircle) {
+    // Points on one circle: every triangle's circumcircle is (nearly) that circle, so every
+    // thread's point conflicts with every other's and the waits and overrides are exercised.
+    for (const unsigned threads : {2U, 4U, 8U}) {
+        std::vector<Point3> points = test::cocircularRings(1.0);
+        const std::vector<Point3> arc = test::generatePoints(Distribution::Arc, 3000, threads);
+        points.insert(points.end(), arc.begin(), arc.end());
+        const TriangulationResult result =
+            triangulate(points, parallelOptions(TriangulationMethod::Circumcircle, threads));
+        EXPECT_EQ(result.threads, threads);
+        test::expectExactDelaunayOf(result.mesh, points);
+    }
+}
+
+TEST(CircumcircleMethod, ThrowsCancelled_AndStopsEveryThread) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 200000, 4);
+    std::size_t calls = 0;
+    EXPECT_THROW(triangulate(points, parallelOptions(TriangulationMethod::Circumcircle, 4),
+                             [&calls](double, std::string_view) { return ++calls < 2; }),
+                 Cancelled);
+}
 
 TEST(BatchMethod, IsExactlyDelaunay_WhenSearchersHelpOnAFullQueue) {
     const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 20000, 4);

@@ -29,6 +29,9 @@ enum class TriangulationMethod {
     Sequential,
     /// Searching threads locate, one specialised thread subdivides and legalises (section 3.3).
     Batch,
+    /// Every thread inserts, after testing the points other threads insert against the
+    /// circumcircle of each triangle it touches (section 3.4).
+    Circumcircle,
     /// Chosen from the number of points and threads.
     Auto,
 };
@@ -68,9 +71,15 @@ struct TriangulationResult {
     /// Batch method: searching threads, and locations they completed on a full queue.
     unsigned searchers = 0;
     std::size_t helpedLocations = 0;
+    /// Circum-circle method: waits for another thread, deadlocks resolved by an override,
+    /// edges an overridden thread left unchecked, and flips that repaired them afterwards.
+    std::size_t waits = 0;
+    std::size_t overrides = 0;
+    std::size_t deferredEdges = 0;
+    std::size_t repairFlips = 0;
 };
 
-/// "sequential", "batch" or "auto".
+/// "sequential", "batch", "circumcircle" or "auto".
 const char* toString(TriangulationMethod method);
 
 /// Delaunay triangulation of `points` (x, y in any planar units; z carried along).

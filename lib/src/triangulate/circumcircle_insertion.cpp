@@ -1,0 +1,357 @@
+#include "circumcircle_insertion.hpp"
+
+#include "terratin/error.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace terratin::detail {
+
+namespace {
+
+constexpr VertexId kNoVertex = 0xFFFFFFFFU;
+
+// Workers claim this many consecutive points of the (spatially coherent) insertion order at a
+// time: each worker then inserts in its own neighbourhood, which keeps conflicts rare.
+constexpr std::size_t kClaimedPoints = 64;
+
+// Progress from the calling thread every this many insertions (all workers together).
+constexpr std::size_t kProgressInterval = 1U << 16;
+
+// What a worker publishes to the others. One cache line each: they are polled constantly.
+struct alignas(64) WorkerSlot {
+    /// The point being inserted, or kNoVertex: the paper's pool of tested points.
+    std::atomic<VertexId> activePoint{kNoVertex};
+    /// Set by another worker that resolved a deadlock against this one.
+    std::atomic<bool> overridden{false};
+    /// Worker this one waits for, or -1. Guarded by CircumcircleRun::m_waitMutex.
+    int waitingFor = -1;
+};
+
+// A worker's private state.
+struct Worker {
+    unsigned index = 0;
+    /// Owner tag written into the triangles it holds.
+    std::uint32_t tag = 0;
+    std::vector<NodeId> held;
+    PendingEdges pending;
+    CircumcircleStatistics statistics;
+};
+
+class CircumcircleRun {
+public:
+    CircumcircleRun(DagTriangulator& triangulator, std::span<const VertexId> order,
+                    unsigned workers)
+        : m_triangulator(triangulator), m_order(order), m_slots(workers) {}
+
+    void work(unsigned index, const ProgressCallback* progress) {
+        Worker worker;
+        worker.index = index;
+        worker.tag = index + 1;
+        try {
+            std::size_t nextReport = 0;
+            for (;;) {
+                const std::size_t begin =
+                    m_cursor.fetch_add(kClaimedPoints, std::memory_order_relaxed);
+                if (begin >= m_order.size() || stopping())
+                    break;
+                const std::size_t end = std::min(begin + kClaimedPoints, m_order.size());
+                for (std::size_t i = begin; i < end && !stopping(); ++i)
+                    insertPoint(worker, m_order[i]);
+                const std::size_t done = m_inserted.fetch_add(end - begin) + (end - begin);
+                if (progress != nullptr && *progress && done >= nextReport) {
+                    nextReport = done + kProgressInterval;
+                    if (!(*progress)(static_cast<double>(done) /
+                                         static_cast<double>(m_order.size()),
+                                     "triangulating")) {
+                        m_cancelled.store(true, std::memory_order_relaxed);
+                        m_stop.store(true, std::memory_order_release);
+                    }
+                }
+            }
+        } catch (...) {
+            const std::lock_guard lock(m_failureMutex);
+            if (!m_failure)
+                m_failure = std::current_exception();
+            m_stop.store(true, std::memory_order_release);
+        }
+        releaseAll(worker);
+        m_slots[index].activePoint.store(kNoVertex, std::memory_order_release);
+        const std::lock_guard lock(m_statisticsMutex);
+        m_statistics.waits += worker.statistics.waits;
+        m_statistics.overrides += worker.statistics.overrides;
+        m_statistics.deferredEdges += worker.statistics.deferredEdges;
+    }
+
+    void finish() {
+        if (m_failure)
+            std::rethrow_exception(m_failure);
+        if (m_cancelled.load())
+            throw Cancelled("Triangulator: cancelled");
+        // Without an override every insertion ran to completion as one atomic step, so the
+        // result is what sequential insertion in some order gives. With one, edges were left
+        // unchecked: repair (checking every edge keeps this simple and certain).
+        if (m_statistics.overrides > 0 || m_statistics.deferredEdges > 0)
+            m_statistics.repairFlips = m_triangulator.repairAllEdges();
+    }
+
+    [[nodiscard]] const CircumcircleStatistics& statistics() const { return m_statistics; }
+
+private:
+    enum class WaitOutcome { Retry, Override, Aborted };
+
+    bool stopping() const { return m_stop.load(std::memory_order_acquire); }
+
+    void insertPoint(Worker& worker, VertexId q) {
+        m_slots[worker.index].activePoint.store(q, std::memory_order_seq_cst);
+        NodeId hint = 0;
+        while (!subdivide(worker, q, hint)) {
+            releaseAll(worker);
+            if (stopping())
+                return;
+        }
+        legalize(worker, q);
+        releaseAll(worker);
+        m_slots[worker.index].activePoint.store(kNoVertex, std::memory_order_release);
+    }
+
+    // Locates q, takes the triangles the subdivision changes and subdivides. False when the
+    // worker has to start again (overridden, or the located leaf changed before it was taken);
+    // `hint` is then where to locate from.
+    bool subdivide(Worker& worker, VertexId q, NodeId& hint) {
+        const NodeId leaf = m_triangulator.locate(q, hint);
+        if (!take(worker, leaf)) {
+            hint = 0;
+            return false;
+        }
+        if (!m_triangulator.node(leaf).isLeaf()) {
+            hint = leaf; // split by another worker between location and taking it
+            return false;
+        }
+        const DagNode& node = m_triangulator.node(leaf);
+        const int edge = m_triangulator.edgeContaining(leaf, q);
+        // Every triangle whose neighbour links the subdivision rewrites must be held.
+        std::vector<NodeId> needed;
+        for (int i = 0; i < 3; ++i)
+            if (node.link[i] != kNoNode)
+                needed.push_back(node.link[i]);
+        if (edge >= 0) {
+            const DagNode& beyond = m_triangulator.node(node.link[edge]);
+            if (!take(worker, node.link[edge])) {
+                hint = 0;
+                return false;
+            }
+            for (const NodeId n : beyond.link)
+                if (n != kNoNode && n != leaf)
+                    needed.push_back(n);
+        }
+        for (const NodeId n : needed) {
+            if (!take(worker, n)) {
+                hint = 0;
+                return false;
+            }
+        }
+        const std::size_t before = worker.pending.size();
+        if (edge >= 0)
+            m_triangulator.splitEdge(leaf, edge, q, worker.pending, worker.tag);
+        else
+            m_triangulator.splitTriangle(leaf, q, worker.pending, worker.tag);
+        holdCreated(worker, before);
+        return true;
+    }
+
+    // Lawson's legalisation, taking each triangle before touching it. When overridden, the
+    // unchecked edges are left for the repair after all workers finish.
+    void legalize(Worker& worker, VertexId p) {
+        const SymbolicPredicates& predicates = m_triangulator.predicates();
+        while (!worker.pending.empty()) {
+            const auto [t, pos] = worker.pending.back();
+            const DagNode& tNode = m_triangulator.node(t);
+            const NodeId u = tNode.link[pos];
+            if (u == kNoNode) {
+                worker.pending.pop_back();
+                continue;
+            }
+            if (!take(worker, u)) {
+                deferPending(worker);
+                return;
+            }
+            const DagNode& uNode = m_triangulator.node(u);
+            int m = 0;
+            while (uNode.link[m] != t)
+                ++m;
+            if (!predicates.shouldFlip(tNode.v[nextCorner(pos)], tNode.v[previousCorner(pos)], p,
+                                       uNode.v[m])) {
+                worker.pending.pop_back();
+                continue;
+            }
+            // The flip rewrites the links of the four triangles around the quadrilateral.
+            for (const NodeId n : {tNode.link[nextCorner(pos)], tNode.link[previousCorner(pos)],
+                                   uNode.link[nextCorner(m)], uNode.link[previousCorner(m)]}) {
+                if (n != kNoNode && !take(worker, n)) {
+                    deferPending(worker);
+                    return;
+                }
+            }
+            worker.pending.pop_back();
+            const std::size_t before = worker.pending.size();
+            m_triangulator.flip(t, pos, u, m, worker.pending, worker.tag);
+            holdCreated(worker, before);
+        }
+    }
+
+    void deferPending(Worker& worker) {
+        worker.statistics.deferredEdges += worker.pending.size();
+        worker.pending.clear();
+    }
+
+    // Nodes the last edit created carry the worker's tag already; remember to free them.
+    static void holdCreated(Worker& worker, std::size_t firstNew) {
+        for (std::size_t i = firstNew; i < worker.pending.size(); ++i)
+            worker.held.push_back(worker.pending[i].first);
+    }
+
+    void releaseAll(Worker& worker) {
+        for (const NodeId n : worker.held) {
+            // A triangle taken over by an overriding worker is no longer ours to free.
+            std::uint32_t expected = worker.tag;
+            m_triangulator.node(n).owner.compare_exchange_strong(expected, 0,
+                                                                 std::memory_order_release,
+                                                                 std::memory_order_relaxed);
+        }
+        worker.held.clear();
+    }
+
+    // Another worker whose point lies strictly inside the circumcircle of `node`, or -1.
+    int workerInCircle(const Worker& worker, const DagNode& node) const {
+        const SymbolicPredicates& predicates = m_triangulator.predicates();
+        for (unsigned k = 0; k < m_slots.size(); ++k) {
+            if (k == worker.index)
+                continue;
+            const VertexId point = m_slots[k].activePoint.load(std::memory_order_acquire);
+            if (point != kNoVertex &&
+                predicates.incircle(node.v[0], node.v[1], node.v[2], point) > 0)
+                return static_cast<int>(k);
+        }
+        return -1;
+    }
+
+    // Takes triangle t for the worker. False when the worker was overridden meanwhile (it
+    // must give up what it holds) or the run is stopping.
+    bool take(Worker& worker, NodeId t) {
+        DagNode& node = m_triangulator.node(t);
+        for (;;) {
+            if (stopping())
+                return false;
+            std::uint32_t owner = node.owner.load(std::memory_order_acquire);
+            if (owner == worker.tag)
+                return true;
+            int blocker = static_cast<int>(owner) - 1;
+            if (owner == 0) {
+                blocker = workerInCircle(worker, node);
+                if (blocker < 0) {
+                    if (node.owner.compare_exchange_strong(owner, worker.tag,
+                                                           std::memory_order_acq_rel)) {
+                        worker.held.push_back(t);
+                        return true;
+                    }
+                    continue;
+                }
+            }
+            switch (waitFor(worker, blocker, t)) {
+            case WaitOutcome::Retry:
+                continue;
+            case WaitOutcome::Aborted:
+                return false;
+            case WaitOutcome::Override:
+                // Ignore the circum-circle test; take the triangle even from the blocker,
+                // which is waiting and will give up when it sees its flag.
+                owner = node.owner.load(std::memory_order_acquire);
+                if ((owner == 0 || owner == static_cast<std::uint32_t>(blocker) + 1) &&
+                    node.owner.compare_exchange_strong(owner, worker.tag,
+                                                       std::memory_order_acq_rel)) {
+                    worker.held.push_back(t);
+                    return true;
+                }
+                continue;
+            }
+        }
+    }
+
+    bool stillBlocked(const DagNode& node, int blocker, VertexId watchedPoint) const {
+        if (node.owner.load(std::memory_order_acquire) == static_cast<std::uint32_t>(blocker) + 1)
+            return true;
+        return watchedPoint != kNoVertex &&
+               m_slots[blocker].activePoint.load(std::memory_order_acquire) == watchedPoint &&
+               m_triangulator.predicates().incircle(node.v[0], node.v[1], node.v[2],
+                                                    watchedPoint) > 0;
+    }
+
+    WaitOutcome waitFor(Worker& worker, int blocker, NodeId t) {
+        WorkerSlot& self = m_slots[worker.index];
+        {
+            // Deadlock detection: does the chain of waits from the blocker lead back here?
+            const std::lock_guard lock(m_waitMutex);
+            int next = blocker;
+            for (std::size_t steps = 0; next >= 0 && next != static_cast<int>(worker.index) &&
+                                        steps <= m_slots.size();
+                 ++steps)
+                next = m_slots[next].waitingFor;
+            if (next == static_cast<int>(worker.index)) {
+                m_slots[blocker].overridden.store(true, std::memory_order_release);
+                ++worker.statistics.overrides;
+                return WaitOutcome::Override;
+            }
+            self.waitingFor = blocker;
+        }
+        ++worker.statistics.waits;
+        const DagNode& node = m_triangulator.node(t);
+        const VertexId watched = m_slots[blocker].activePoint.load(std::memory_order_acquire);
+        while (stillBlocked(node, blocker, watched) &&
+               !self.overridden.load(std::memory_order_acquire) && !stopping())
+            std::this_thread::yield();
+        const std::lock_guard lock(m_waitMutex);
+        self.waitingFor = -1;
+        return self.overridden.exchange(false, std::memory_order_acq_rel) ? WaitOutcome::Aborted
+                                                                           : WaitOutcome::Retry;
+    }
+
+    DagTriangulator& m_triangulator;
+    std::span<const VertexId> m_order;
+    std::vector<WorkerSlot> m_slots;
+    std::atomic<std::size_t> m_cursor{0};
+    std::atomic<std::size_t> m_inserted{0};
+    std::atomic<bool> m_stop{false};
+    std::atomic<bool> m_cancelled{false};
+    std::mutex m_waitMutex;
+    std::mutex m_failureMutex;
+    std::exception_ptr m_failure;
+    std::mutex m_statisticsMutex;
+    CircumcircleStatistics m_statistics;
+};
+
+} // namespace
+
+CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulator,
+                                                    std::span<const VertexId> order,
+                                                    unsigned workers,
+                                                    const ProgressCallback& progress) {
+    workers = std::max(1U, workers);
+    CircumcircleRun run(triangulator, order, workers);
+    {
+        std::vector<std::jthread> others;
+        others.reserve(workers - 1);
+        for (unsigned i = 1; i < workers; ++i)
+            others.emplace_back([&run, i] { run.work(i, nullptr); });
+        run.work(0, &progress);
+    }
+    run.finish();
+    return run.statistics();
+}
+
+} // namespace terratin::detail
