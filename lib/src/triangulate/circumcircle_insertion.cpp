@@ -16,10 +16,6 @@ namespace {
 
 constexpr VertexId kNoVertex = 0xFFFFFFFFU;
 
-// Workers claim this many consecutive points of the (spatially coherent) insertion order at a
-// time: each worker then inserts in its own neighbourhood, which keeps conflicts rare.
-constexpr std::size_t kClaimedPoints = 64;
-
 // Progress from the calling thread every this many insertions (all workers together).
 constexpr std::size_t kProgressInterval = 1U << 16;
 
@@ -46,8 +42,9 @@ struct Worker {
 class CircumcircleRun {
 public:
     CircumcircleRun(DagTriangulator& triangulator, std::span<const VertexId> order,
-                    unsigned workers)
-        : m_triangulator(triangulator), m_order(order), m_slots(workers) {}
+                    std::span<const std::size_t> roundStarts, unsigned workers)
+        : m_triangulator(triangulator), m_order(order), m_roundStarts(roundStarts),
+          m_slots(workers) {}
 
     void work(unsigned index, const ProgressCallback* progress) {
         Worker worker;
@@ -55,12 +52,15 @@ public:
         worker.tag = index + 1;
         try {
             std::size_t nextReport = 0;
-            for (;;) {
-                const std::size_t begin =
-                    m_cursor.fetch_add(kClaimedPoints, std::memory_order_relaxed);
-                if (begin >= m_order.size() || stopping())
-                    break;
-                const std::size_t end = std::min(begin + kClaimedPoints, m_order.size());
+            const std::size_t workers = m_slots.size();
+            for (std::size_t round = 0; round < m_roundStarts.size() && !stopping(); ++round) {
+                const std::size_t roundBegin = m_roundStarts[round];
+                const std::size_t roundEnd = round + 1 < m_roundStarts.size()
+                                                 ? m_roundStarts[round + 1]
+                                                 : m_order.size();
+                const std::size_t length = roundEnd - roundBegin;
+                const std::size_t begin = roundBegin + length * index / workers;
+                const std::size_t end = roundBegin + length * (index + 1) / workers;
                 for (std::size_t i = begin; i < end && !stopping(); ++i)
                     insertPoint(worker, m_order[i]);
                 const std::size_t done = m_inserted.fetch_add(end - begin) + (end - begin);
@@ -323,8 +323,8 @@ private:
 
     DagTriangulator& m_triangulator;
     std::span<const VertexId> m_order;
+    std::span<const std::size_t> m_roundStarts;
     std::vector<WorkerSlot> m_slots;
-    std::atomic<std::size_t> m_cursor{0};
     std::atomic<std::size_t> m_inserted{0};
     std::atomic<bool> m_stop{false};
     std::atomic<bool> m_cancelled{false};
@@ -339,10 +339,11 @@ private:
 
 CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulator,
                                                     std::span<const VertexId> order,
+                                                    std::span<const std::size_t> roundStarts,
                                                     unsigned workers,
                                                     const ProgressCallback& progress) {
     workers = std::max(1U, workers);
-    CircumcircleRun run(triangulator, order, workers);
+    CircumcircleRun run(triangulator, order, roundStarts, workers);
     {
         std::vector<std::jthread> others;
         others.reserve(workers - 1);

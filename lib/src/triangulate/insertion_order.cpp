@@ -90,7 +90,8 @@ std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32
 }
 
 std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
-                                              std::uint64_t seed) {
+                                              std::uint64_t seed,
+                                              std::vector<std::size_t>* roundStarts) {
     double minX = std::numeric_limits<double>::infinity();
     double minY = minX;
     double maxX = -minX;
@@ -118,8 +119,11 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
     std::sort(keyed.begin(), keyed.end());
     std::vector<std::uint32_t> order;
     order.reserve(keyed.size());
-    for (const auto& [key, v] : keyed)
-        order.push_back(v);
+    for (std::size_t i = 0; i < keyed.size(); ++i) {
+        order.push_back(keyed[i].second);
+        if (roundStarts != nullptr && (i == 0 || (keyed[i].first >> 32U) != (keyed[i - 1].first >> 32U)))
+            roundStarts->push_back(i);
+    }
     return order;
 }
 

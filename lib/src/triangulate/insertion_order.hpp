@@ -22,7 +22,9 @@ std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32
 /// (k = 0, about half the points), and each round is sorted along a Hilbert curve. The
 /// random rounds keep the expected O(n log n) bound of randomized insertion; the spatial sort
 /// makes consecutive insertions walk almost the same DAG path, so memory access is local.
+/// When `roundStarts` is given it receives the index in the order where each round begins.
 std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
-                                              std::uint64_t seed);
+                                              std::uint64_t seed,
+                                              std::vector<std::size_t>* roundStarts = nullptr);
 
 } // namespace terratin::detail

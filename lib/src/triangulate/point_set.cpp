@@ -4,9 +4,9 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <string>
 
 namespace terratin {
@@ -26,49 +26,80 @@ void checkFinite(std::span<const Point3> points) {
     }
 }
 
-// Groups of indices sharing (x, y) exactly, as runs of a sorted index array.
-std::vector<std::uint32_t> sortedByPosition(std::span<const Point3> points) {
-    std::vector<std::uint32_t> order(points.size());
-    std::iota(order.begin(), order.end(), 0U);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-        const Point3& p = points[a];
-        const Point3& q = points[b];
-        if (p.x != q.x)
-            return p.x < q.x;
-        if (p.y != q.y)
-            return p.y < q.y;
-        return a < b;
-    });
-    return order;
-}
+// A distinct (x, y) and what its duplicates contributed so far.
+struct Survivor {
+    std::uint32_t firstIndex;
+    std::uint32_t source;
+    double z;
+    std::uint32_t count;
+};
 
-double mergedZ(std::span<const Point3> points, std::span<const std::uint32_t> group,
-               DuplicateZPolicy policy) {
+void mergeDuplicate(Survivor& survivor, std::uint32_t index, double z, DuplicateZPolicy policy) {
+    ++survivor.count;
     switch (policy) {
     case DuplicateZPolicy::First:
-        return points[group.front()].z;
+        break;
     case DuplicateZPolicy::Last:
-        return points[group.back()].z;
-    case DuplicateZPolicy::Min: {
-        double z = points[group.front()].z;
-        for (std::uint32_t i : group)
-            z = std::min(z, points[i].z);
-        return z;
+        survivor.source = index;
+        survivor.z = z;
+        break;
+    case DuplicateZPolicy::Min:
+        survivor.z = std::min(survivor.z, z);
+        break;
+    case DuplicateZPolicy::Max:
+        survivor.z = std::max(survivor.z, z);
+        break;
+    case DuplicateZPolicy::Mean:
+        survivor.z += z; // divided by the count once the group is complete
+        break;
     }
-    case DuplicateZPolicy::Max: {
-        double z = points[group.front()].z;
-        for (std::uint32_t i : group)
-            z = std::max(z, points[i].z);
-        return z;
+}
+
+// Bits of a coordinate with -0 folded onto +0, so that equal doubles hash equally.
+std::uint64_t coordinateBits(double value) {
+    return std::bit_cast<std::uint64_t>(value == 0.0 ? 0.0 : value);
+}
+
+std::uint64_t positionHash(const Point3& p) {
+    // A multiply-xorshift mix (the finaliser of splitmix64) of both coordinates: cheap and
+    // spreads grid coordinates, whose low mantissa bits are all zero, over the whole table.
+    std::uint64_t h = coordinateBits(p.x) * 0x9E3779B97F4A7C15ULL ^ coordinateBits(p.y);
+    h = (h ^ (h >> 30U)) * 0xBF58476D1CE4E5B9ULL;
+    h = (h ^ (h >> 27U)) * 0x94D049BB133111EBULL;
+    return h ^ (h >> 31U);
+}
+
+// One survivor per distinct (x, y), in order of first occurrence, found with an
+// open-addressing hash table: O(n) expected, where sorting the points would cost O(n log n).
+std::vector<Survivor> mergeDuplicates(std::span<const Point3> points, DuplicateZPolicy policy) {
+    constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+    // At most half full, so probe sequences stay short.
+    const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * points.size(), 16));
+    std::vector<std::uint32_t> table(capacity, kEmpty);
+    std::vector<Survivor> survivors;
+    survivors.reserve(points.size());
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        const Point3& p = points[i];
+        std::size_t slot = positionHash(p) & (capacity - 1);
+        for (;;) {
+            const std::uint32_t existing = table[slot];
+            if (existing == kEmpty) {
+                table[slot] = static_cast<std::uint32_t>(survivors.size());
+                survivors.push_back({i, i, p.z, 1});
+                break;
+            }
+            const Point3& q = points[survivors[existing].firstIndex];
+            if (q.x == p.x && q.y == p.y) {
+                mergeDuplicate(survivors[existing], i, p.z, policy);
+                break;
+            }
+            slot = (slot + 1) & (capacity - 1);
+        }
     }
-    case DuplicateZPolicy::Mean: {
-        double sum = 0.0;
-        for (std::uint32_t i : group)
-            sum += points[i].z;
-        return sum / static_cast<double>(group.size());
-    }
-    }
-    return points[group.front()].z;
+    if (policy == DuplicateZPolicy::Mean)
+        for (Survivor& survivor : survivors)
+            survivor.z /= static_cast<double>(survivor.count);
+    return survivors;
 }
 
 // True when value - origin is exactly representable (Knuth's TwoDiff error term is zero).
@@ -152,34 +183,9 @@ PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy po
                                 "); at most " + std::to_string(kMaxPoints) + " are supported");
     checkFinite(points);
 
-    const std::vector<std::uint32_t> order = sortedByPosition(points);
-
-    // Walk the runs of equal (x, y); each run becomes one distinct point.
-    struct Survivor {
-        std::uint32_t firstIndex; // orders the distinct points like their first occurrence
-        std::uint32_t source;
-        double z;
-    };
-    std::vector<Survivor> survivors;
-    survivors.reserve(points.size());
+    const std::vector<Survivor> survivors = mergeDuplicates(points, policy);
     PreparedPoints prepared;
-    for (std::size_t begin = 0; begin < order.size();) {
-        std::size_t end = begin + 1;
-        const Point3& first = points[order[begin]];
-        while (end < order.size() && points[order[end]].x == first.x &&
-               points[order[end]].y == first.y)
-            ++end;
-        const std::span<const std::uint32_t> group(order.data() + begin, end - begin);
-        const std::uint32_t source =
-            policy == DuplicateZPolicy::Last ? group.back() : group.front();
-        survivors.push_back({group.front(), source, mergedZ(points, group, policy)});
-        prepared.duplicateCount += group.size() - 1;
-        begin = end;
-    }
-    // Distinct points in input order, so results do not depend on the sort above.
-    std::sort(survivors.begin(), survivors.end(),
-              [](const Survivor& a, const Survivor& b) { return a.firstIndex < b.firstIndex; });
-
+    prepared.duplicateCount = points.size() - survivors.size();
     prepared.sourceIndex.reserve(survivors.size());
     prepared.z.reserve(survivors.size());
     for (const Survivor& s : survivors) {

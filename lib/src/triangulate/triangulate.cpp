@@ -62,10 +62,14 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
     detail::DagTriangulator triangulator(prepared.local);
+    std::vector<std::size_t> roundStarts;
     const std::vector<std::uint32_t> order =
         options.order == InsertionOrder::Brio
-            ? detail::brioInsertionOrder(prepared.local, triangulator.highestVertex(), options.seed)
+            ? detail::brioInsertionOrder(prepared.local, triangulator.highestVertex(), options.seed,
+                                         &roundStarts)
             : detail::randomInsertionOrder(count, triangulator.highestVertex(), options.seed);
+    if (roundStarts.empty())
+        roundStarts.push_back(0); // a random order is one round
 
     TriangulationResult result;
     const unsigned threads = resolveThreads(options.threads);
@@ -85,7 +89,8 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     }
     case TriangulationMethod::Circumcircle: {
         const detail::CircumcircleStatistics statistics =
-            detail::insertWithCircumcircleMethod(triangulator, order, threads, progress);
+            detail::insertWithCircumcircleMethod(triangulator, order, roundStarts, threads,
+                                                 progress);
         result.threads = threads;
         result.waits = statistics.waits;
         result.overrides = statistics.overrides;
