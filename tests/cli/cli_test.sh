@@ -81,6 +81,17 @@ case "$case_name" in
     [ ! -s err.txt ] || fail "--quiet printed on stderr"
     expect_no_leftovers
     ;;
+  parallel_methods)
+    for method in sequential batch circumcircle auto; do
+      run 0 build "$sample" -o "tin_$method.gpkg" --method "$method" --threads 2 --json --quiet --validate
+      grep -q '"validated": true' out.txt || fail "$method: not validated"
+      [ "$method" = auto ] || grep -q "\"method\": \"$method\"" out.txt || fail "$method not reported"
+    done
+    ;;
+  bad_method)
+    run 2 build "$sample" -o out.gpkg --method quantum
+    expect_one_error_line "method"
+    ;;
   build_progress_and_summary)
     run 0 build "$sample" -o tin.gpkg
     grep -q '0\.\.\.10\.\.\.20\.\.\.30\.\.\.40\.\.\.50\.\.\.60\.\.\.70\.\.\.80\.\.\.90\.\.\.100 - done\.' err.txt ||

@@ -46,6 +46,17 @@ DuplicateZPolicy parseDuplicatePolicy(const std::string& name) {
     throw UsageError("--duplicate-z must be first, last, min, max or mean (got '" + name + "')");
 }
 
+TriangulationMethod parseMethod(const std::string& name) {
+    const std::string key = lowercase(name);
+    for (const TriangulationMethod method :
+         {TriangulationMethod::Sequential, TriangulationMethod::Batch,
+          TriangulationMethod::Circumcircle, TriangulationMethod::Auto})
+        if (key == toString(method))
+            return method;
+    throw UsageError("--method must be sequential, batch, circumcircle or auto (got '" + name +
+                     "')");
+}
+
 po::options_description buildOptionsDescription() {
     po::options_description options("Options of 'terratin build'");
     // clang-format off
@@ -59,6 +70,17 @@ po::options_description buildOptionsDescription() {
          "seed of the randomized insertion order (same seed, same TIN)")
         ("duplicate-z", po::value<std::string>()->default_value("first")->value_name("POLICY"),
          "elevation kept for points with the same x, y: first, last, min, max, mean")
+        ("method", po::value<std::string>()->default_value("auto")->value_name("METHOD"),
+         "triangulator: sequential, batch (searching threads + one inserting thread), "
+         "circumcircle (every thread inserts), auto")
+        ("threads,j", po::value<unsigned>()->default_value(0)->value_name("N"),
+         "threads to use; 0 = all hardware threads")
+        ("searchers", po::value<unsigned>()->default_value(0)->value_name("K"),
+         "batch method: searching threads (0 = chosen from the input size and --threads)")
+        ("queue-length", po::value<std::size_t>()->default_value(1024)->value_name("L"),
+         "batch method: length of the queue to the inserting thread")
+        ("searchers-help",
+         "batch method: searchers complete queued locations when the queue is full")
         ("layer", po::value<std::string>()->default_value("tin")->value_name("NAME"),
          "name of the triangle layer")
         ("overwrite", "replace an existing output")
@@ -130,8 +152,16 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     build.band = values["band"].as<int>();
     if (build.band < 1)
         throw UsageError("--band must be 1 or more");
-    build.seed = values["seed"].as<std::uint64_t>();
-    build.duplicateZ = parseDuplicatePolicy(values["duplicate-z"].as<std::string>());
+    TriangulationOptions& triangulation = build.triangulation;
+    triangulation.seed = values["seed"].as<std::uint64_t>();
+    triangulation.duplicateZ = parseDuplicatePolicy(values["duplicate-z"].as<std::string>());
+    triangulation.method = parseMethod(values["method"].as<std::string>());
+    triangulation.threads = values["threads"].as<unsigned>();
+    triangulation.searchers = values["searchers"].as<unsigned>();
+    triangulation.queueLength = values["queue-length"].as<std::size_t>();
+    if (triangulation.queueLength == 0)
+        throw UsageError("--queue-length must be 1 or more");
+    triangulation.searchersHelpWhenQueueFull = values.count("searchers-help") > 0;
     build.layerName = values["layer"].as<std::string>();
     build.overwrite = values.count("overwrite") > 0;
     build.validate = values.count("validate") > 0;

@@ -8,6 +8,7 @@
 
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <sstream>
@@ -122,16 +123,17 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     report.timings.read = secondsSince(phase);
 
     phase = Clock::now();
-    TriangulationOptions triangulationOptions;
-    triangulationOptions.seed = options.seed;
-    triangulationOptions.duplicateZ = options.duplicateZ;
     const TriangulationResult triangulation =
-        triangulate(raster.points, triangulationOptions,
+        triangulate(raster.points, options.triangulation,
                     phaseProgress(progress, kReadShare, kTriangulateShare));
     raster.points = {}; // the mesh holds its own copy of the vertices
     report.duplicates = triangulation.duplicatePoints;
     report.vertices = triangulation.mesh.vertexCount();
     report.triangles = triangulation.mesh.triangleCount();
+    report.method = toString(triangulation.method);
+    report.threads = triangulation.threads;
+    report.historyBytesPerPoint = static_cast<double>(triangulation.historyBytes) /
+                                  static_cast<double>(std::max<std::uint64_t>(report.points, 1));
     report.timings.triangulate = secondsSince(phase);
 
     if (options.validate) {
@@ -173,6 +175,9 @@ std::string toJson(const BuildReport& report) {
          << ", \"skipped_cells\": " << report.skippedCells << ", \"points\": " << report.points
          << ", \"duplicates\": " << report.duplicates << ", \"vertices\": " << report.vertices
          << ", \"triangles\": " << report.triangles << "}"
+         << ", \"triangulation\": {\"method\": " << jsonString(report.method)
+         << ", \"threads\": " << report.threads
+         << ", \"history_bytes_per_point\": " << report.historyBytesPerPoint << "}"
          << ", \"timings\": {\"read\": " << report.timings.read
          << ", \"triangulate\": " << report.timings.triangulate
          << ", \"validate\": " << report.timings.validate

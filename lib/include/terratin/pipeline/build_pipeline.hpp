@@ -5,7 +5,7 @@
 
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
-#include "terratin/triangulate/point_set.hpp"
+#include "terratin/triangulate/triangulate.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -23,10 +23,9 @@ struct BuildOptions {
     std::optional<io::TinFormat> format;
     /// 1-based raster band.
     int band = 1;
-    /// Seed of the randomized insertion order.
-    std::uint64_t seed = 1;
     bool overwrite = false;
-    DuplicateZPolicy duplicateZ = DuplicateZPolicy::First;
+    /// Seed, method, threads, duplicate policy... of the triangulation.
+    TriangulationOptions triangulation;
     /// Check the mesh with validateDelaunay before writing; a failure is an error.
     bool validate = false;
     /// Name of the triangle layer in the output.
@@ -57,6 +56,11 @@ struct BuildReport {
     std::uint64_t duplicates = 0;
     std::uint64_t vertices = 0;
     std::uint64_t triangles = 0;
+    /// The triangulation method that ran and its threads in all.
+    std::string method;
+    unsigned threads = 1;
+    /// Bytes of point-location history per input point.
+    double historyBytesPerPoint = 0.0;
     bool validated = false;
     BuildTimings timings;
 };
@@ -69,7 +73,8 @@ struct BuildReport {
 BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress = {});
 
 /// The report as one JSON object: input, output, format, crs {name, code}, counts {...},
-/// timings {read, triangulate, validate, write, total} in seconds, validated.
+/// triangulation {method, threads, history_bytes_per_point}, timings {read, triangulate,
+/// validate, write, total} in seconds, validated.
 std::string toJson(const BuildReport& report);
 
 /// One human-readable line: points, duplicates, triangles and seconds per phase.

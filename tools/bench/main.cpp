@@ -1,0 +1,340 @@
+// terratin-bench: how fast terratin triangulates, next to CGAL and GDAL, on the point
+// distributions of Kohout & Kolingerova ("Parallel Delaunay triangulation in E2 and E3 for
+// computers with shared memory", Parallel Computing 31, 2005; Tables 2-4).
+//
+// What is measured, for each distribution x size, on one point set generated before any timer:
+// - time [s]: median over --runs runs of the wall-clock time of the triangulation call alone:
+//   terratin::triangulate(points, options) (which includes merging duplicates and the BRIO
+//   order), CGAL's dt.insert(first, last) (which includes its spatial sort), GDAL's
+//   GDALTriangulationCreateDelaunay. Converting points into a peer's input and freeing any
+//   result are outside the timer.
+// - speed-up: terratin's sequential median / this median, same points.
+// - hist B/pt: TriangulationResult::historyBytes / N, the DAG's reserved bytes.
+// - mesh B/pt: the capacities of the returned TinMesh's four arrays, in bytes, / N.
+// - peak B/pt: median over the runs of how far the process's peak resident set (VmHWM) rose
+//   above its resident set just before the call, / N: everything the call touched, result and
+//   temporaries (the BRIO order, thread stacks, queues) included, for peers too. Linux only
+//   (reset through /proc/self/clear_refs); "n/a" elsewhere.
+// A peer run longer than --peer-limit seconds is not repeated (its median is of the runs
+// made) and the peer is skipped at larger sizes of that distribution; the notes say so.
+// - vs CGAL, vs GDAL: terratin's median / the peer's median: below 1 means terratin is faster.
+// The sequential method ignores the thread count and runs once per point set; the batch
+// method runs its searchers plus one inserting thread (the "srch" column).
+
+#include "bench_options.hpp"
+#include "distributions.hpp"
+#include "peers.hpp"
+#include "process_memory.hpp"
+#include "results_table.hpp"
+#include "stats.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/triangulate/triangulate.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <new>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using namespace terratin;
+using namespace terratin::bench;
+
+constexpr int kExitOk = 0;
+constexpr int kExitError = 1;
+constexpr int kExitUsage = 2;
+
+/// Seconds and peak memory growth of each run.
+struct RunSamples {
+    std::vector<double> seconds;
+    std::vector<double> peakBytes;
+};
+
+// Times `run` up to `runs` times, fewer when one run takes longer than `limitSeconds`;
+// `afterRun` reads and frees what it made, outside the timer.
+template <typename Run, typename AfterRun>
+RunSamples sampleRuns(unsigned runs, double limitSeconds, Run run, AfterRun afterRun) {
+    RunSamples samples;
+    PeakMemoryProbe probe;
+    while (samples.seconds.size() < runs) {
+        probe.start();
+        const Stopwatch stopwatch;
+        run();
+        samples.seconds.push_back(stopwatch.seconds());
+        if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
+            samples.peakBytes.push_back(static_cast<double>(*peak));
+        afterRun();
+        if (samples.seconds.back() > limitSeconds)
+            break;
+    }
+    return samples;
+}
+
+constexpr double kNoLimitSeconds = std::numeric_limits<double>::infinity();
+
+/// A peer, and whether it proved too slow on the current distribution.
+struct PeerSlot {
+    std::unique_ptr<Peer> peer;
+    /// The size at which one of its runs exceeded --peer-limit, on this distribution.
+    std::optional<std::size_t> tooSlowAt;
+};
+
+std::optional<double> perPoint(const std::vector<double>& bytes, std::size_t points) {
+    if (bytes.empty())
+        return std::nullopt;
+    return median(bytes) / static_cast<double>(points);
+}
+
+std::size_t meshBytes(const TinMesh& mesh) {
+    return mesh.vertices.capacity() * sizeof(Point3) +
+           mesh.sourceIndex.capacity() * sizeof(std::uint32_t) +
+           mesh.triangles.capacity() * sizeof(std::uint32_t) +
+           mesh.neighbours.capacity() * sizeof(std::int32_t);
+}
+
+ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& bench,
+                          const NamedMethod& method, unsigned threads) {
+    TriangulationOptions options;
+    options.seed = bench.seed;
+    options.order = bench.order;
+    options.method = method.method;
+    options.threads = threads;
+    options.searchers = bench.searchers;
+    options.queueLength = bench.queueLength;
+    options.searchersHelpWhenQueueFull = bench.helpWhenFull;
+
+    ResultRow row;
+    row.points = points.size();
+    row.method = method.name;
+    row.threadsRequested = threads;
+    std::optional<TriangulationResult> result;
+    const RunSamples samples = sampleRuns(
+        bench.runs, kNoLimitSeconds, [&] { result.emplace(triangulate(points, options)); },
+        [&] {
+            row.threadsUsed = result->threads;
+            row.searchers = result->searchers;
+            row.helpedLocations = result->helpedLocations;
+            row.triangles = result->mesh.triangleCount();
+            row.historyBytesPerPoint =
+                static_cast<double>(result->historyBytes) / static_cast<double>(points.size());
+            row.meshBytesPerPoint =
+                static_cast<double>(meshBytes(result->mesh)) / static_cast<double>(points.size());
+            result.reset();
+        });
+    row.runs = static_cast<unsigned>(samples.seconds.size());
+    row.seconds = median(samples.seconds);
+    row.peakBytesPerPoint = perPoint(samples.peakBytes, points.size());
+    return row;
+}
+
+std::string groupName(const std::string& distribution, std::size_t points) {
+    return distribution + " N=" + std::to_string(points);
+}
+
+std::string secondsText(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g s", seconds);
+    return text;
+}
+
+// A peer that fails is reported in `notes` and as a "failed" row; one too slow is cut short
+// and then skipped at larger sizes (a "skipped" row); the bench goes on.
+ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
+                      std::span<const Point3> points, const BenchOptions& bench,
+                      std::vector<std::string>& notes) {
+    Peer& peer = *slot.peer;
+    ResultRow row;
+    row.distribution = distribution;
+    row.points = points.size();
+    row.method = peer.name();
+    if (slot.tooSlowAt) {
+        row.unmeasured = "skipped";
+        notes.push_back(groupName(distribution, points.size()) + ": " + row.method +
+                        " skipped, a run took over " + secondsText(bench.peerLimitSeconds) +
+                        " at N=" + std::to_string(*slot.tooSlowAt));
+        return row;
+    }
+    try {
+        peer.prepare(points);
+        const RunSamples samples = sampleRuns(
+            bench.runs, bench.peerLimitSeconds, [&] { row.triangles = peer.triangulate(); },
+            [&] { peer.release(); });
+        row.runs = static_cast<unsigned>(samples.seconds.size());
+        row.seconds = median(samples.seconds);
+        row.peakBytesPerPoint = perPoint(samples.peakBytes, points.size());
+        if (samples.seconds.back() > bench.peerLimitSeconds) {
+            slot.tooSlowAt = points.size();
+            notes.push_back(groupName(distribution, points.size()) + ": " + row.method + " ran " +
+                            std::to_string(row.runs) + " of " + std::to_string(bench.runs) +
+                            " runs, the last took " + secondsText(samples.seconds.back()) +
+                            " (over --peer-limit)");
+        }
+    } catch (const Error& error) {
+        notes.push_back(groupName(distribution, points.size()) + ": " + error.what());
+    } catch (const std::bad_alloc&) {
+        notes.push_back(groupName(distribution, points.size()) + ": " + row.method +
+                        " ran out of memory");
+    }
+    peer.release();
+    return row;
+}
+
+std::optional<double> ratio(const std::optional<double>& numerator,
+                            const std::optional<double>& denominator) {
+    if (!numerator || !denominator || *denominator <= 0.0)
+        return std::nullopt;
+    return *numerator / *denominator;
+}
+
+// Every run this group's configurations make: sequential first (the speed-ups' reference),
+// then each other method at each thread count.
+std::vector<std::pair<NamedMethod, unsigned>> configurations(const BenchOptions& bench) {
+    std::vector<std::pair<NamedMethod, unsigned>> runs;
+    for (const NamedMethod& method : bench.methods)
+        if (method.method == TriangulationMethod::Sequential)
+            runs.emplace_back(method, 1U);
+    for (const NamedMethod& method : bench.methods)
+        if (method.method != TriangulationMethod::Sequential)
+            for (const unsigned threads : bench.threads)
+                runs.emplace_back(method, threads);
+    return runs;
+}
+
+// One distribution at one size: the peers first (our rows' ratios need their times), then
+// terratin's configurations, each row printed as soon as it is measured.
+void runGroup(Distribution distribution, std::size_t size, const BenchOptions& bench,
+              std::vector<PeerSlot>& peers, ResultTable& table, std::vector<std::string>& notes) {
+    const std::vector<Point3> points = generatePoints(distribution, size, bench.seed);
+    const std::string name(toString(distribution));
+
+    std::vector<ResultRow> peerRows;
+    for (PeerSlot& peer : peers)
+        peerRows.push_back(measurePeer(peer, name, points, bench, notes));
+    const auto peerSeconds = [&](std::string_view peerName) -> std::optional<double> {
+        for (const ResultRow& row : peerRows)
+            if (row.method == peerName)
+                return row.seconds;
+        return std::nullopt;
+    };
+
+    std::optional<double> sequentialSeconds;
+    std::optional<std::size_t> ourTriangles;
+    for (const auto& [method, threads] : configurations(bench)) {
+        ResultRow row = measureTerratin(points, bench, method, threads);
+        row.distribution = name;
+        if (method.method == TriangulationMethod::Sequential)
+            sequentialSeconds = row.seconds;
+        row.speedUp = ratio(sequentialSeconds, row.seconds);
+        row.vsCgal = ratio(row.seconds, peerSeconds("cgal"));
+        row.vsGdal = ratio(row.seconds, peerSeconds("gdal"));
+        if (!ourTriangles)
+            ourTriangles = row.triangles;
+        else if (row.triangles != *ourTriangles)
+            notes.push_back(groupName(name, points.size()) + ": " + row.method + " made " +
+                            std::to_string(row.triangles) + " triangles, " +
+                            std::to_string(*ourTriangles) + " expected");
+        table.printRow(row);
+    }
+    for (const ResultRow& row : peerRows) {
+        if (row.seconds && ourTriangles && row.triangles != *ourTriangles)
+            notes.push_back(groupName(name, points.size()) + ": " + row.method + " made " +
+                            std::to_string(row.triangles) + " triangles, terratin " +
+                            std::to_string(*ourTriangles));
+        table.printRow(row);
+    }
+}
+
+std::string orderName(InsertionOrder order) {
+    return order == InsertionOrder::Brio ? "brio" : "random";
+}
+
+// The peers asked for and built; a line for the preamble about each.
+std::vector<PeerSlot> makePeers(const BenchOptions& bench, std::vector<std::string>& preamble) {
+    std::vector<PeerSlot> peers;
+    const auto add = [&](std::unique_ptr<Peer> peer) {
+        preamble.push_back(peer->description());
+        peers.push_back({std::move(peer), std::nullopt});
+    };
+    if (!bench.runCgal)
+        preamble.emplace_back("CGAL: skipped (--no-cgal)");
+    else if (!cgalBuilt())
+        preamble.emplace_back("CGAL: not built");
+    else
+        add(makeCgalPeer());
+    if (!bench.runGdal)
+        preamble.emplace_back("GDAL: skipped (--no-gdal)");
+    else if (!gdalHasTriangulation())
+        preamble.emplace_back("GDAL: built without qhull, cannot triangulate");
+    else
+        add(makeGdalPeer());
+    return peers;
+}
+
+int runBench(const BenchOptions& bench) {
+    const Stopwatch total;
+    // The table goes to stdout; in CSV mode the comments go to stderr so stdout stays CSV.
+    std::FILE* comments = bench.csv ? stderr : stdout;
+    std::vector<std::string> preamble{
+        "terratin-bench: median of " + std::to_string(bench.runs) + " runs, " +
+        std::to_string(std::thread::hardware_concurrency()) + " hardware threads, order " +
+        orderName(bench.order) + ", seed " + std::to_string(bench.seed)};
+    std::vector<PeerSlot> peers = makePeers(bench, preamble);
+    for (const std::string& line : preamble)
+        std::fprintf(comments, "# %s\n", line.c_str());
+    if (!bench.csv)
+        std::fprintf(stdout, "# speed-up: vs terratin sequential; B/pt: bytes per point; "
+                             "vs CGAL/GDAL: terratin time / peer time (<1: terratin faster)\n\n");
+
+    ResultTable table(stdout, bench.csv);
+    table.printHeader();
+    std::vector<std::string> notes;
+    for (std::size_t d = 0; d < bench.distributions.size(); ++d) {
+        if (d > 0)
+            table.printSeparator();
+        for (PeerSlot& slot : peers)
+            slot.tooSlowAt.reset();
+        for (const std::size_t size : bench.sizes)
+            runGroup(bench.distributions[d], size, bench, peers, table, notes);
+    }
+
+    if (!notes.empty())
+        std::fprintf(comments, "\n");
+    for (const std::string& note : notes)
+        std::fprintf(comments, "# note: %s\n", note.c_str());
+    std::fprintf(comments, "# finished in %.1f s\n", total.seconds());
+    return kExitOk;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    BenchCommand command;
+    try {
+        command = parseBenchCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const UsageError& error) {
+        std::fprintf(stderr, "terratin-bench: %s\n", error.what());
+        return kExitUsage;
+    }
+    if (command.kind == BenchCommand::Kind::Help) {
+        std::printf("%s", command.helpText.c_str());
+        return kExitOk;
+    }
+    try {
+        return runBench(command.options);
+    } catch (const Error& error) {
+        std::fprintf(stderr, "terratin-bench: %s\n", error.what());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "terratin-bench: out of memory\n");
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "terratin-bench: unexpected error: %s\n", error.what());
+    }
+    return kExitError;
+}

@@ -1,0 +1,54 @@
+#include "process_memory.hpp"
+
+#include <malloc.h>
+
+#include <fstream>
+#include <string>
+
+namespace terratin::bench {
+
+namespace {
+
+// A "Key:   1234 kB" line of /proc/self/status, in bytes.
+std::optional<std::size_t> statusBytes(const std::string& key) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind(key + ":", 0) != 0)
+            continue;
+        try {
+            constexpr std::size_t kBytesPerKiB = 1024;
+            return std::stoull(line.substr(key.size() + 1)) * kBytesPerKiB;
+        } catch (const std::exception&) {
+            return std::nullopt;
+        }
+    }
+    return std::nullopt;
+}
+
+bool resetPeakResidentSet() {
+    std::ofstream clearRefs("/proc/self/clear_refs");
+    clearRefs << "5";
+    clearRefs.flush();
+    return static_cast<bool>(clearRefs);
+}
+
+} // namespace
+
+void PeakMemoryProbe::start() {
+    // Memory freed by the previous run but kept by malloc would otherwise sit in the baseline
+    // and be reused unseen by this one.
+    malloc_trim(0);
+    m_baselineBytes = resetPeakResidentSet() ? statusBytes("VmRSS") : std::nullopt;
+}
+
+std::optional<std::size_t> PeakMemoryProbe::peakGrowthBytes() const {
+    if (!m_baselineBytes)
+        return std::nullopt;
+    const std::optional<std::size_t> peak = statusBytes("VmHWM");
+    if (!peak)
+        return std::nullopt;
+    return *peak > *m_baselineBytes ? *peak - *m_baselineBytes : 0;
+}
+
+} // namespace terratin::bench
