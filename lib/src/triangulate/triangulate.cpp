@@ -6,6 +6,7 @@
 #include "insertion_order.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <thread>
 
 namespace terratin {
@@ -40,6 +41,16 @@ unsigned resolveSearchers(unsigned requested, std::size_t points, unsigned threa
     return std::max(1U, perTwoThreads * threads / 2U);
 }
 
+using Clock = std::chrono::steady_clock;
+
+// Seconds since `start`, restarting the clock.
+double lap(Clock::time_point& start) {
+    const Clock::time_point now = Clock::now();
+    const double seconds = std::chrono::duration<double>(now - start).count();
+    start = now;
+    return seconds;
+}
+
 } // namespace
 
 const char* toString(TriangulationMethod method) {
@@ -58,7 +69,10 @@ const char* toString(TriangulationMethod method) {
 
 TriangulationResult triangulate(std::span<const Point3> points, const TriangulationOptions& options,
                                 const ProgressCallback& progress) {
+    TriangulationResult result;
+    Clock::time_point phase = Clock::now();
     const PreparedPoints prepared = preparePoints(points, options.duplicateZ);
+    result.seconds.prepare = lap(phase);
     const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
     detail::DagTriangulator triangulator(prepared.local);
@@ -70,8 +84,8 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
             : detail::randomInsertionOrder(count, triangulator.highestVertex(), options.seed);
     if (roundStarts.empty())
         roundStarts.push_back(0); // a random order is one round
+    result.seconds.order = lap(phase);
 
-    TriangulationResult result;
     const unsigned threads = resolveThreads(options.threads);
     result.method = resolveMethod(options.method, count, threads);
     switch (result.method) {
@@ -105,6 +119,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
         break;
     }
 
+    result.seconds.insert = lap(phase);
     result.inputPoints = points.size();
     result.duplicatePoints = prepared.duplicateCount;
     result.historyNodes = triangulator.nodeCount();
@@ -119,6 +134,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
         const Point3& source = points[prepared.sourceIndex[v]];
         result.mesh.vertices.push_back({source.x, source.y, prepared.z[v]});
     }
+    result.seconds.extract = lap(phase);
     if (progress)
         progress(1.0, "triangulated");
     return result;

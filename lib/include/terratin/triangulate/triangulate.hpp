@@ -55,6 +55,18 @@ struct TriangulationOptions {
     bool searchersHelpWhenQueueFull = false;
 };
 
+/// Wall-clock seconds of the triangulation's phases.
+struct TriangulationPhases {
+    /// Validation, duplicate merging, local origin.
+    double prepare = 0.0;
+    /// The (BRIO or random) insertion order.
+    double order = 0.0;
+    /// Location, subdivision and legalisation of every point (the parallel part).
+    double insert = 0.0;
+    /// Turning the DAG's leaves into the TinMesh arrays.
+    double extract = 0.0;
+};
+
 /// A TIN and what it took to build it.
 struct TriangulationResult {
     TinMesh mesh;
@@ -77,6 +89,7 @@ struct TriangulationResult {
     std::size_t overrides = 0;
     std::size_t deferredEdges = 0;
     std::size_t repairFlips = 0;
+    TriangulationPhases seconds;
 };
 
 /// "sequential", "batch", "circumcircle" or "auto".
