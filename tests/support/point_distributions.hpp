@@ -1,7 +1,8 @@
 #pragma once
-// Point sets for tests: the distributions of Kohout & Kolingerova's experiments (uniform,
-// gauss, cluster, grid, arc in the unit square) and the degenerate cases on top of them.
+// Point sets for tests: the paper's distributions (the same generator terratin-bench uses)
+// and the degenerate cases on top of them.
 
+#include "distributions.hpp"
 #include "terratin/geometry/point.hpp"
 
 #include <cstddef>
@@ -11,15 +12,12 @@
 
 namespace terratin::test {
 
-enum class Distribution { Uniform, Gauss, Cluster, Grid, Arc };
+using bench::Distribution;
+using bench::generatePoints;
 
-std::string toString(Distribution distribution);
-
-/// About `count` points of `distribution` in the unit square (Grid rounds to a full square
-/// grid; Arc puts the points on half a circle, the in-circle worst case). z is a smooth
-/// function of (x, y).
-std::vector<Point3> generatePoints(Distribution distribution, std::size_t count,
-                                   std::uint64_t seed);
+inline std::string toString(Distribution distribution) {
+    return std::string(bench::toString(distribution));
+}
 
 /// `points` followed by `copies` exact copies of randomly chosen points with other z values.
 std::vector<Point3> withDuplicates(std::vector<Point3> points, std::size_t copies,

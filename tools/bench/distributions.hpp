@@ -1,6 +1,6 @@
 #pragma once
-// The point distributions of Kohout & Kolingerova's experiments, in the unit square: the
-// benchmark's own copy, so that terratin-bench links no test code.
+// The point distributions of Kohout & Kolingerova's experiments, in the unit square, shared
+// by terratin-bench and the test suite (target terratin_point_distributions).
 
 #include "terratin/geometry/point.hpp"
 

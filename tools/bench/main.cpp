@@ -15,9 +15,10 @@
 //   above its resident set just before the call, / N: everything the call touched, result and
 //   temporaries (the BRIO order, thread stacks, queues) included, for peers too. Linux only
 //   (reset through /proc/self/clear_refs); "n/a" elsewhere.
+// - vs CGAL, vs GDAL: terratin's median / the peer's median: below 1 means terratin is faster.
 // A peer run longer than --peer-limit seconds is not repeated (its median is of the runs
 // made) and the peer is skipped at larger sizes of that distribution; the notes say so.
-// - vs CGAL, vs GDAL: terratin's median / the peer's median: below 1 means terratin is faster.
+// Triangle counts are compared across methods and peers; a difference becomes a note.
 // The sequential method ignores the thread count and runs once per point set; the batch
 // method runs its searchers plus one inserting thread (the "srch" column).
 
@@ -216,6 +217,7 @@ void runGroup(Distribution distribution, std::size_t size, const BenchOptions& b
     const std::string name(toString(distribution));
 
     std::vector<ResultRow> peerRows;
+    peerRows.reserve(peers.size());
     for (PeerSlot& peer : peers)
         peerRows.push_back(measurePeer(peer, name, points, bench, notes));
     const auto peerSeconds = [&](std::string_view peerName) -> std::optional<double> {

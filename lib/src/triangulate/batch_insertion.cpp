@@ -104,16 +104,21 @@ private:
         return true;
     }
 
-    // Takes the oldest queued element, completes its location and queues it again.
+    // Takes the oldest queued element, completes its location and queues it again. False
+    // when there was nothing to pop or its location was already complete: re-queueing it
+    // would only rotate the queue, so the caller should wait instead.
     bool helpSpecialisedThread() {
         Located other{};
         if (!m_queue.tryPop(other))
             return false;
-        other.node = m_triangulator.locate(other.vertex, other.node);
-        m_helped.fetch_add(1, std::memory_order_relaxed);
+        const NodeId located = m_triangulator.locate(other.vertex, other.node);
+        const bool advanced = located != other.node;
+        other.node = located;
+        if (advanced)
+            m_helped.fetch_add(1, std::memory_order_relaxed);
         // The slot just freed may be taken by another searcher: wait for one like any push,
         // without helping again (that could recurse without bound).
-        return deliver(other, false);
+        return deliver(other, false) && advanced;
     }
 
     void fail(std::exception_ptr error) {
