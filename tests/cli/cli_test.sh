@@ -88,6 +88,12 @@ case "$case_name" in
       [ "$method" = auto ] || grep -q "\"method\": \"$method\"" out.txt || fail "$method not reported"
     done
     ;;
+  random_order)
+    run 0 build "$sample" -o tin.gpkg --order random --seed 7 --quiet --validate
+    [ "$(feature_count tin.gpkg)" -gt 0 ] || fail "no TIN with --order random"
+    run 2 build "$sample" -o other.gpkg --order sideways
+    expect_one_error_line "order"
+    ;;
   bad_method)
     run 2 build "$sample" -o out.gpkg --method quantum
     expect_one_error_line "method"

@@ -68,6 +68,8 @@ po::options_description buildOptionsDescription() {
         ("band,b", po::value<int>()->default_value(1)->value_name("N"), "raster band, from 1")
         ("seed", po::value<std::uint64_t>()->default_value(1)->value_name("S"),
          "seed of the randomized insertion order (same seed, same TIN)")
+        ("order", po::value<std::string>()->default_value("brio")->value_name("ORDER"),
+         "insertion order: brio (random rounds, each sorted along a Hilbert curve) or random")
         ("duplicate-z", po::value<std::string>()->default_value("first")->value_name("POLICY"),
          "elevation kept for points with the same x, y: first, last, min, max, mean")
         ("method", po::value<std::string>()->default_value("auto")->value_name("METHOD"),
@@ -156,6 +158,10 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     triangulation.seed = values["seed"].as<std::uint64_t>();
     triangulation.duplicateZ = parseDuplicatePolicy(values["duplicate-z"].as<std::string>());
     triangulation.method = parseMethod(values["method"].as<std::string>());
+    const std::string order = lowercase(values["order"].as<std::string>());
+    if (order != "brio" && order != "random")
+        throw UsageError("--order must be brio or random (got '" + order + "')");
+    triangulation.order = order == "brio" ? InsertionOrder::Brio : InsertionOrder::Random;
     triangulation.threads = values["threads"].as<unsigned>();
     triangulation.searchers = values["searchers"].as<unsigned>();
     triangulation.queueLength = values["queue-length"].as<std::size_t>();
