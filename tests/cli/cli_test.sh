@@ -93,6 +93,9 @@ case "$case_name" in
     [ "$(feature_count tin.gpkg)" -gt 0 ] || fail "no TIN with --order random"
     run 2 build "$sample" -o other.gpkg --order sideways
     expect_one_error_line "order"
+    run 0 build "$sample" -o walk.gpkg --locate walk --quiet --validate
+    run 1 build "$sample" -o walk2.gpkg --locate walk --method batch --quiet
+    expect_one_error_line "walk"
     ;;
   bad_method)
     run 2 build "$sample" -o out.gpkg --method quantum

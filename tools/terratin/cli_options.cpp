@@ -75,6 +75,8 @@ po::options_description buildOptionsDescription() {
         ("method", po::value<std::string>()->default_value("auto")->value_name("METHOD"),
          "triangulator: sequential, batch (searching threads + one inserting thread), "
          "circumcircle (every thread inserts), auto")
+        ("locate", po::value<std::string>()->default_value("dag")->value_name("HOW"),
+         "point location: dag (the history DAG) or walk (sequential method only)")
         ("threads,j", po::value<unsigned>()->default_value(0)->value_name("N"),
          "threads to use; 0 = all hardware threads")
         ("searchers", po::value<unsigned>()->default_value(0)->value_name("K"),
@@ -162,6 +164,10 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     if (order != "brio" && order != "random")
         throw UsageError("--order must be brio or random (got '" + order + "')");
     triangulation.order = order == "brio" ? InsertionOrder::Brio : InsertionOrder::Random;
+    const std::string locate = lowercase(values["locate"].as<std::string>());
+    if (locate != "dag" && locate != "walk")
+        throw UsageError("--locate must be dag or walk (got '" + locate + "')");
+    triangulation.locate = locate == "walk" ? PointLocation::Walk : PointLocation::Dag;
     triangulation.threads = values["threads"].as<unsigned>();
     triangulation.searchers = values["searchers"].as<unsigned>();
     triangulation.queueLength = values["queue-length"].as<std::size_t>();

@@ -82,6 +82,34 @@ void DagTriangulator::insertAll(std::span<const VertexId> order, const ProgressC
     }
 }
 
+void DagTriangulator::insertAllByWalking(std::span<const VertexId> order,
+                                         const ProgressCallback& progress) {
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        if (progress && i % kProgressInterval == 0 &&
+            !progress(static_cast<double>(i) / static_cast<double>(order.size()), "triangulating"))
+            throw Cancelled("Triangulator: cancelled");
+        // The node allocated last was created by the last edit and nothing has edited it
+        // since (any edit allocates newer nodes), so it is a leaf near the previous point.
+        const auto newest = static_cast<NodeId>(m_nodes.size() - 1);
+        insertAtLeaf(walk(order[i], newest), order[i]);
+    }
+}
+
+NodeId DagTriangulator::walk(VertexId q, NodeId start) const {
+    NodeId t = start;
+    for (;;) {
+        const DagNode& node = m_nodes[t];
+        int exit = 0;
+        while (exit < 3 && m_predicates.orient(node.v[next(exit)], node.v[prev(exit)], q) >= 0)
+            ++exit;
+        if (exit == 3)
+            return t;
+        // q is strictly beyond this edge, so the edge is not one of the auxiliary triangle's
+        // (every point is inside it) and the neighbour exists.
+        t = node.link[exit];
+    }
+}
+
 int DagTriangulator::edgeContaining(NodeId leaf, VertexId q) const {
     const std::array<VertexId, 3> v = m_nodes[leaf].v;
     for (int e = 0; e < 3; ++e) {

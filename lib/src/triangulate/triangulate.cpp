@@ -5,6 +5,8 @@
 #include "dag_triangulator.hpp"
 #include "insertion_order.hpp"
 
+#include "terratin/error.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <thread>
@@ -22,8 +24,14 @@ unsigned resolveThreads(unsigned requested) {
     return std::max(1U, std::thread::hardware_concurrency());
 }
 
-TriangulationMethod resolveMethod(TriangulationMethod requested, std::size_t points,
-                                  unsigned threads) {
+TriangulationMethod resolveMethod(TriangulationMethod requested, PointLocation locate,
+                                  std::size_t points, unsigned threads) {
+    if (locate == PointLocation::Walk) {
+        if (requested != TriangulationMethod::Auto && requested != TriangulationMethod::Sequential)
+            throw InvalidInputError(
+                "Triangulator: walk location is available with the sequential method only");
+        return TriangulationMethod::Sequential;
+    }
     if (requested != TriangulationMethod::Auto)
         return requested;
     return threads > 1 && points >= kParallelThresholdPoints ? TriangulationMethod::Batch
@@ -87,7 +95,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     result.seconds.order = lap(phase);
 
     const unsigned threads = resolveThreads(options.threads);
-    result.method = resolveMethod(options.method, count, threads);
+    result.method = resolveMethod(options.method, options.locate, count, threads);
     switch (result.method) {
     case TriangulationMethod::Batch: {
         detail::BatchSettings settings;
@@ -114,7 +122,10 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     }
     case TriangulationMethod::Sequential:
     case TriangulationMethod::Auto:
-        triangulator.insertAll(order, progress);
+        if (options.locate == PointLocation::Walk)
+            triangulator.insertAllByWalking(order, progress);
+        else
+            triangulator.insertAll(order, progress);
         result.threads = 1;
         break;
     }

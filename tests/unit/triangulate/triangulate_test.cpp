@@ -40,6 +40,16 @@ TEST_P(TriangulateDistribution, IsExactlyDelaunay_WithPlainRandomOrder) {
     test::expectExactDelaunayOf(triangulate(points, options).mesh, points);
 }
 
+TEST_P(TriangulateDistribution, IsExactlyDelaunay_WithWalkLocation) {
+    const auto [distribution, count] = GetParam();
+    const std::vector<Point3> points = test::generatePoints(distribution, count, 13);
+    TriangulationOptions options;
+    options.locate = PointLocation::Walk;
+    const TriangulationResult result = triangulate(points, options);
+    EXPECT_EQ(result.method, TriangulationMethod::Sequential);
+    test::expectExactDelaunayOf(result.mesh, points);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     PaperDistributions, TriangulateDistribution,
     ::testing::Combine(::testing::Values(Distribution::Uniform, Distribution::Gauss,
@@ -145,6 +155,24 @@ TEST(Triangulate, IsExactlyDelaunay_ForEverySeedOnAGrid) {
         EXPECT_EQ(mesh.triangleCount(), 2U * 19U * 19U);
         test::expectExactDelaunayOf(mesh, points);
     }
+}
+
+TEST(Triangulate, WalkLocationIsExact_ForDegenerateInputs) {
+    TriangulationOptions options;
+    options.locate = PointLocation::Walk;
+    for (const std::vector<Point3>& points :
+         {test::collinearPlusOne(300), test::cocircularRings(1.0),
+          test::withDuplicates(test::generatePoints(Distribution::Grid, 2500, 1), 300, 2),
+          test::offset(test::generatePoints(Distribution::Grid, 2500, 1), 5e5, 5e6)})
+        test::expectExactDelaunayOf(triangulate(points, options).mesh, points);
+}
+
+TEST(Triangulate, Throws_WhenWalkLocationIsAskedOfAParallelMethod) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 100, 1);
+    TriangulationOptions options;
+    options.locate = PointLocation::Walk;
+    options.method = TriangulationMethod::Batch;
+    EXPECT_THROW(triangulate(points, options), InvalidInputError);
 }
 
 TEST(Triangulate, TriangulatesThreePoints) {

@@ -23,6 +23,14 @@ enum class InsertionOrder {
     Brio,
 };
 
+/// How the triangle containing a new point is found.
+enum class PointLocation {
+    /// Descent of the DAG history (the paper's structure; expected O(log n) per point).
+    Dag,
+    /// Visibility walk from the previous insertion; sequential method only.
+    Walk,
+};
+
 /// Which triangulator inserts the points.
 enum class TriangulationMethod {
     /// One thread (Kohout & Kolingerova section 3.1).
@@ -44,6 +52,10 @@ struct TriangulationOptions {
     /// Which elevation survives for points sharing exactly the same (x, y).
     DuplicateZPolicy duplicateZ = DuplicateZPolicy::First;
     TriangulationMethod method = TriangulationMethod::Auto;
+    /// Walk is for the sequential method (the parallel methods' threads cannot read the
+    /// neighbour links other threads are changing); with another method it is an
+    /// InvalidInputError.
+    PointLocation locate = PointLocation::Dag;
     /// Hardware threads to use; 0 means all (std::thread::hardware_concurrency()).
     unsigned threads = 0;
     /// Batch method: searching threads; 0 chooses from the point and thread counts.
