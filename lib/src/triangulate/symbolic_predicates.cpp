@@ -76,6 +76,10 @@ bool outsideSegment(const Point2& z, const Point2& x, const Point2& y) {
 } // namespace
 
 int SymbolicPredicates::incircle(VertexId a, VertexId b, VertexId c, VertexId d) const {
+    // A repeated vertex lies on any circle through it. The circum-circle method asks this of a
+    // triangle that already has the tested point as a corner.
+    if (a == b || a == c || a == d || b == c || b == d || c == d)
+        return 0;
     if (isFinite(a) && isFinite(b) && isFinite(c) && isFinite(d))
         return sign(predicates::incircle(m_points[a], m_points[b], m_points[c], m_points[d]));
     // Move the most symbolic vertex (p-2 before p-1) to the end; each swap of two arguments
