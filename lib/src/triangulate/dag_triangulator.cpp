@@ -15,10 +15,16 @@ constexpr int prev(int i) { return previousCorner(i); }
 constexpr std::size_t kProgressInterval = 1U << 16;
 } // namespace
 
-DagTriangulator::DagTriangulator(std::span<const Point2> points) : m_predicates(points) {
+VertexId DagTriangulator::highestOf(std::span<const Point2> points) {
+    VertexId highest = 0;
     for (VertexId v = 1; v < points.size(); ++v)
-        if (SymbolicPredicates::compareHeight(points[m_highest], points[v]) > 0)
-            m_highest = v;
+        if (SymbolicPredicates::compareHeight(points[highest], points[v]) > 0)
+            highest = v;
+    return highest;
+}
+
+DagTriangulator::DagTriangulator(std::span<const Point2> points)
+    : m_predicates(points), m_highest(highestOf(points)) {
     // The auxiliary triangle (p0, p-2, p-1) is counter-clockwise (symbolic_predicates.hpp).
     const NodeId root = m_nodes.allocate(1);
     setLeaf(root, {m_highest, m_predicates.farLeft(), m_predicates.farRight()},

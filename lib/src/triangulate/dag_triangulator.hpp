@@ -46,6 +46,8 @@ public:
 
     /// The finite corner of the auxiliary triangle (already part of the triangulation).
     [[nodiscard]] VertexId highestVertex() const { return m_highest; }
+    /// The vertex the constructor makes highestVertex(): the highest, then rightmost point.
+    [[nodiscard]] static VertexId highestOf(std::span<const Point2> points);
 
     /// Inserts the vertices of `order` one after the other; `order` must not contain
     /// highestVertex() nor any vertex twice. Calls `progress` now and then with the fraction

@@ -1,6 +1,7 @@
 #include "insertion_order.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -40,28 +41,54 @@ std::uint32_t boundedRandom(SplitMix64& random, std::uint32_t bound) {
     return static_cast<std::uint32_t>(product >> 32U);
 }
 
-// Cells per axis of the grid the Hilbert curve runs through. 2^16 resolves a million points
-// far below one point per cell; finer grids only lengthen the keys.
-constexpr std::uint32_t kHilbertOrder = 16;
+// Cells per axis of the grid the Hilbert curve runs through: 2^13, 67 million cells, far more
+// than the points of a round need for locality, and small enough that the round, the
+// Hilbert index and the vertex id pack into one 64-bit sort key.
+constexpr int kHilbertOrder = 13;
 constexpr std::uint32_t kHilbertSide = 1U << kHilbertOrder;
 
-// Position of cell (x, y) along the Hilbert curve filling a kHilbertSide square (the classic
-// rotate-and-reflect construction, one quadrant per level).
+// Position of cell (x, y) along the Hilbert curve filling a kHilbertSide square. Each level
+// picks a quadrant and then transforms the coordinates below it by a swap and/or a
+// complement of both; those transforms commute, so the state is just two bits.
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
     std::uint32_t index = 0;
-    for (std::uint32_t side = kHilbertSide / 2; side > 0; side /= 2) {
-        const std::uint32_t rx = (x & side) != 0 ? 1U : 0U;
-        const std::uint32_t ry = (y & side) != 0 ? 1U : 0U;
-        index += side * side * ((3U * rx) ^ ry);
-        if (ry == 0) {
-            if (rx == 1) {
-                x = kHilbertSide - 1 - x;
-                y = kHilbertSide - 1 - y;
-            }
-            std::swap(x, y);
-        }
+    std::uint32_t swapped = 0;
+    std::uint32_t complemented = 0;
+    for (int level = kHilbertOrder - 1; level >= 0; --level) {
+        std::uint32_t bx = (x >> static_cast<unsigned>(level)) & 1U;
+        std::uint32_t by = (y >> static_cast<unsigned>(level)) & 1U;
+        // Branch-free on purpose: the quadrant is data, and mispredicted branches at every
+        // level made this the most expensive part of ordering a million points.
+        const std::uint32_t exchange = (bx ^ by) & swapped;
+        bx ^= exchange ^ complemented;
+        by ^= exchange ^ complemented;
+        index = (index << 2U) | ((3U * bx) ^ by);
+        const std::uint32_t lowerHalf = by ^ 1U;
+        swapped ^= lowerHalf;
+        complemented ^= bx & lowerHalf;
     }
     return index;
+}
+
+// Least-significant-digit radix sort of the keys on their bits [lowBit, 64): linear time, and
+// each pass a sequential read and 256 sequential write streams, where a comparison sort of a
+// million keys costs several times more.
+void radixSort(std::vector<std::uint64_t>& keys, unsigned lowBit) {
+    constexpr unsigned kDigitBits = 8;
+    constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+    std::vector<std::uint64_t> buffer(keys.size());
+    std::array<std::size_t, kBuckets> offsets{};
+    for (unsigned shift = lowBit; shift < 64; shift += kDigitBits) {
+        offsets.fill(0);
+        for (const std::uint64_t key : keys)
+            ++offsets[(key >> shift) & (kBuckets - 1)];
+        std::size_t total = 0;
+        for (std::size_t& offset : offsets)
+            total += std::exchange(offset, total);
+        for (const std::uint64_t key : keys)
+            buffer[offsets[(key >> shift) & (kBuckets - 1)]++] = key;
+        keys.swap(buffer);
+    }
 }
 
 // Maps a coordinate of [lo, hi] to a Hilbert grid cell.
@@ -102,26 +129,31 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
         minY = std::min(minY, p.y);
         maxY = std::max(maxY, p.y);
     }
-    // Sort key: the round (sparsest first) above the Hilbert index. The round of a point is
-    // the number of trailing zero bits of a random word: k with probability 2^-(k+1).
-    constexpr std::uint64_t kMaxRound = 63;
+    // Sort key, from the top: the round (sparsest first), the Hilbert index, the vertex id.
+    // The round of a point is the number of trailing zero bits of a random word, so k with
+    // probability 2^-(k+1), capped at kMaxRound (a round of 2^-32 of the points).
+    constexpr unsigned kRoundBits = 5;
+    constexpr std::uint64_t kMaxRound = (1U << kRoundBits) - 1;
+    constexpr unsigned kHilbertShift = 32;
+    constexpr unsigned kRoundShift = kHilbertShift + 2 * kHilbertOrder;
     SplitMix64 random(seed);
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-    keyed.reserve(points.size());
+    std::vector<std::uint64_t> keys;
+    keys.reserve(points.size());
     for (std::uint32_t v = 0; v < points.size(); ++v) {
         if (v == skip)
             continue;
-        const auto round = static_cast<std::uint64_t>(std::countr_zero(random() | (1ULL << 62U)));
-        const std::uint32_t hilbert = hilbertIndex(gridCell(points[v].x, minX, maxX),
+        const auto round = static_cast<std::uint64_t>(std::countr_zero(random() | (1ULL << kMaxRound)));
+        const std::uint64_t hilbert = hilbertIndex(gridCell(points[v].x, minX, maxX),
                                                    gridCell(points[v].y, minY, maxY));
-        keyed.emplace_back(((kMaxRound - round) << 32U) | hilbert, v);
+        keys.push_back(((kMaxRound - round) << kRoundShift) | (hilbert << kHilbertShift) | v);
     }
-    std::sort(keyed.begin(), keyed.end());
+    radixSort(keys, kHilbertShift);
     std::vector<std::uint32_t> order;
-    order.reserve(keyed.size());
-    for (std::size_t i = 0; i < keyed.size(); ++i) {
-        order.push_back(keyed[i].second);
-        if (roundStarts != nullptr && (i == 0 || (keyed[i].first >> 32U) != (keyed[i - 1].first >> 32U)))
+    order.reserve(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        order.push_back(static_cast<std::uint32_t>(keys[i]));
+        if (roundStarts != nullptr &&
+            (i == 0 || (keys[i] >> kRoundShift) != (keys[i - 1] >> kRoundShift)))
             roundStarts->push_back(i);
     }
     return order;

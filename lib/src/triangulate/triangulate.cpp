@@ -9,11 +9,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <thread>
 
 namespace terratin {
 
 namespace {
+
+using detail::VertexId;
 
 // Below this many points thread start-up and the shared queue cost more than they save.
 constexpr std::size_t kParallelThresholdPoints = 20000;
@@ -47,6 +50,39 @@ unsigned resolveSearchers(unsigned requested, std::size_t points, unsigned threa
     constexpr std::size_t kLargeInputPoints = 100000;
     const unsigned perTwoThreads = points > kLargeInputPoints ? 4U : 3U;
     return std::max(1U, perTwoThreads * threads / 2U);
+}
+
+// The points renumbered in insertion order: vertex i is the i-th inserted (vertex 0, the
+// auxiliary triangle's finite corner, first). The triangulator reads a point's coordinates
+// in every predicate; numbered this way, consecutive insertions read neighbouring memory
+// instead of jumping across the whole array.
+struct InsertionPlan {
+    std::vector<Point2> local;
+    /// preparedIndex[v]: the index in PreparedPoints of vertex v.
+    std::vector<std::uint32_t> preparedIndex;
+    /// 1, 2, ..., n-1: every vertex but the auxiliary corner, in the new numbering.
+    std::vector<VertexId> order;
+    /// Where each BRIO round begins in `order` ({0} for a random order: one round).
+    std::vector<std::size_t> roundStarts;
+};
+
+InsertionPlan planInsertion(const std::vector<Point2>& local, const TriangulationOptions& options) {
+    const auto count = static_cast<std::uint32_t>(local.size());
+    const VertexId highest = detail::DagTriangulator::highestOf(local);
+    InsertionPlan plan;
+    plan.preparedIndex =
+        options.order == InsertionOrder::Brio
+            ? detail::brioInsertionOrder(local, highest, options.seed, &plan.roundStarts)
+            : detail::randomInsertionOrder(count, highest, options.seed);
+    if (plan.roundStarts.empty())
+        plan.roundStarts.push_back(0);
+    plan.preparedIndex.insert(plan.preparedIndex.begin(), highest);
+    plan.local.resize(count);
+    for (std::uint32_t v = 0; v < count; ++v)
+        plan.local[v] = local[plan.preparedIndex[v]];
+    plan.order.resize(count - 1);
+    std::iota(plan.order.begin(), plan.order.end(), VertexId{1});
+    return plan;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -83,16 +119,12 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     result.seconds.prepare = lap(phase);
     const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
-    detail::DagTriangulator triangulator(prepared.local);
-    std::vector<std::size_t> roundStarts;
-    const std::vector<std::uint32_t> order =
-        options.order == InsertionOrder::Brio
-            ? detail::brioInsertionOrder(prepared.local, triangulator.highestVertex(), options.seed,
-                                         &roundStarts)
-            : detail::randomInsertionOrder(count, triangulator.highestVertex(), options.seed);
-    if (roundStarts.empty())
-        roundStarts.push_back(0); // a random order is one round
+    const InsertionPlan plan = planInsertion(prepared.local, options);
     result.seconds.order = lap(phase);
+
+    detail::DagTriangulator triangulator(plan.local);
+    const std::span<const VertexId> order(plan.order);
+    const std::vector<std::size_t>& roundStarts = plan.roundStarts;
 
     const unsigned threads = resolveThreads(options.threads);
     result.method = resolveMethod(options.method, options.locate, count, threads);
@@ -139,11 +171,13 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
 
     // Vertices carry the caller's exact coordinates (not local + origin, to avoid relying on
     // the round trip) and the elevation chosen by the duplicate policy.
-    result.mesh.sourceIndex = prepared.sourceIndex;
-    result.mesh.vertices.reserve(count);
+    result.mesh.sourceIndex.resize(count);
+    result.mesh.vertices.resize(count);
     for (std::uint32_t v = 0; v < count; ++v) {
-        const Point3& source = points[prepared.sourceIndex[v]];
-        result.mesh.vertices.push_back({source.x, source.y, prepared.z[v]});
+        const std::uint32_t preparedIndex = plan.preparedIndex[v];
+        const std::uint32_t source = prepared.sourceIndex[preparedIndex];
+        result.mesh.sourceIndex[v] = source;
+        result.mesh.vertices[v] = {points[source].x, points[source].y, prepared.z[preparedIndex]};
     }
     result.seconds.extract = lap(phase);
     if (progress)
