@@ -93,9 +93,14 @@ case "$case_name" in
     [ "$(feature_count tin.gpkg)" -gt 0 ] || fail "no TIN with --order random"
     run 2 build "$sample" -o other.gpkg --order sideways
     expect_one_error_line "order"
-    run 0 build "$sample" -o walk.gpkg --locate walk --quiet --validate
-    run 1 build "$sample" -o walk2.gpkg --locate walk --method batch --quiet
-    expect_one_error_line "walk"
+    for method in sequential batch circumcircle; do
+      run 0 build "$sample" -o "walk_$method.gpkg" --locate walk --method "$method" -j 2 \
+        --quiet --validate
+      [ "$(feature_count "walk_$method.gpkg")" = "$(feature_count tin.gpkg)" ] ||
+        fail "--locate walk --method $method: another triangle count"
+    done
+    run 2 build "$sample" -o jump.gpkg --locate jump
+    expect_one_error_line "locate"
     ;;
   bad_method)
     run 2 build "$sample" -o out.gpkg --method quantum

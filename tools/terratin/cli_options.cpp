@@ -76,7 +76,7 @@ po::options_description buildOptionsDescription() {
          "triangulator: sequential, batch (searching threads + one inserting thread), "
          "circumcircle (every thread inserts), auto")
         ("locate", po::value<std::string>()->default_value("dag")->value_name("HOW"),
-         "point location: dag (the history DAG) or walk (sequential method only)")
+         "point location: dag (the history DAG) or walk (from the previous point)")
         ("threads,j", po::value<unsigned>()->default_value(0)->value_name("N"),
          "threads to use; 0 = all hardware threads")
         ("searchers", po::value<unsigned>()->default_value(0)->value_name("K"),

@@ -37,16 +37,20 @@ public:
           m_queue(settings.queueLength) {}
 
     void search() {
+        NodeId previous = 0; // where the previous point was found
         try {
             for (;;) {
                 const std::size_t begin = m_cursor.fetch_add(kClaimedPoints, std::memory_order_relaxed);
                 if (begin >= m_order.size())
                     return;
                 const std::size_t end = std::min(begin + kClaimedPoints, m_order.size());
-                for (std::size_t i = begin; i < end; ++i)
-                    if (!deliver({m_order[i], m_triangulator.locate(m_order[i])},
-                                 m_settings.searchersHelpWhenFull))
+                for (std::size_t i = begin; i < end; ++i) {
+                    const VertexId q = m_order[i];
+                    previous = m_settings.walk ? m_triangulator.walk(q, previous)
+                                               : m_triangulator.locate(q);
+                    if (!deliver({q, previous}, m_settings.searchersHelpWhenFull))
                         return;
+                }
             }
         } catch (...) {
             fail(std::current_exception());

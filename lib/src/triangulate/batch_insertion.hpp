@@ -25,6 +25,9 @@ struct BatchSettings {
     /// completes its location (work the specialised thread would otherwise do) and puts it
     /// back, instead of waiting idle.
     bool searchersHelpWhenFull = false;
+    /// Searchers locate each point by a visibility walk from the leaf they found for their
+    /// previous point (DagTriangulator::walk) instead of descending the DAG from the root.
+    bool walk = false;
 };
 
 /// Counters for the benchmark and the closing notes.

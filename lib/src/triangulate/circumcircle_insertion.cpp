@@ -36,15 +36,17 @@ struct Worker {
     std::uint32_t tag = 0;
     std::vector<NodeId> held;
     PendingEdges pending;
+    /// A triangle this worker created for its previous point: where walks start.
+    NodeId recent = 0;
     CircumcircleStatistics statistics;
 };
 
 class CircumcircleRun {
 public:
     CircumcircleRun(DagTriangulator& triangulator, std::span<const VertexId> order,
-                    std::span<const std::size_t> roundStarts, unsigned workers)
+                    std::span<const std::size_t> roundStarts, unsigned workers, bool walk)
         : m_triangulator(triangulator), m_order(order), m_roundStarts(roundStarts),
-          m_slots(workers) {}
+          m_slots(workers), m_walk(walk) {}
 
     void work(unsigned index, const ProgressCallback* progress) {
         Worker worker;
@@ -124,7 +126,8 @@ private:
     // worker has to start again (overridden, or the located leaf changed before it was taken);
     // `hint` is then where to locate from.
     bool subdivide(Worker& worker, VertexId q, NodeId& hint) {
-        const NodeId leaf = m_triangulator.locate(q, hint);
+        const NodeId leaf = m_walk ? m_triangulator.walk(q, hint == 0 ? worker.recent : hint)
+                                   : m_triangulator.locate(q, hint);
         if (!take(worker, leaf)) {
             hint = 0;
             return false;
@@ -162,6 +165,7 @@ private:
         else
             m_triangulator.splitTriangle(leaf, q, worker.pending, worker.tag);
         holdCreated(worker, before);
+        worker.recent = worker.pending[before].first;
         return true;
     }
 
@@ -325,6 +329,8 @@ private:
     std::span<const VertexId> m_order;
     std::span<const std::size_t> m_roundStarts;
     std::vector<WorkerSlot> m_slots;
+    /// Locate by walking (DagTriangulator::walk) instead of descending the DAG.
+    bool m_walk;
     std::atomic<std::size_t> m_inserted{0};
     std::atomic<bool> m_stop{false};
     std::atomic<bool> m_cancelled{false};
@@ -340,10 +346,10 @@ private:
 CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulator,
                                                     std::span<const VertexId> order,
                                                     std::span<const std::size_t> roundStarts,
-                                                    unsigned workers,
+                                                    unsigned workers, bool walk,
                                                     const ProgressCallback& progress) {
     workers = std::max(1U, workers);
-    CircumcircleRun run(triangulator, order, roundStarts, workers);
+    CircumcircleRun run(triangulator, order, roundStarts, workers, walk);
     {
         std::vector<std::jthread> others;
         others.reserve(workers - 1);

@@ -44,13 +44,15 @@ struct CircumcircleStatistics {
 /// Inserts `order` into `triangulator` with `workers` threads (the calling thread is one of
 /// them). `roundStarts` splits the order into rounds (BRIO; {0} for one round): each worker
 /// inserts its own contiguous share of every round in turn, so that with a spatially sorted
-/// round the workers stay far apart and rarely conflict. Calls `progress` from the calling
+/// round the workers stay far apart and rarely conflict. With `walk`, each worker locates a
+/// point by a visibility walk from the triangles of its previous one (DagTriangulator::walk)
+/// instead of descending the DAG from the root. Calls `progress` from the calling
 /// thread only; throws Cancelled when it returns false and rethrows any worker's exception,
 /// after every thread has stopped.
 CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulator,
                                                     std::span<const VertexId> order,
                                                     std::span<const std::size_t> roundStarts,
-                                                    unsigned workers,
+                                                    unsigned workers, bool walk,
                                                     const ProgressCallback& progress);
 
 } // namespace terratin::detail

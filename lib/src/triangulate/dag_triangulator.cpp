@@ -3,6 +3,7 @@
 #include "terratin/error.hpp"
 
 #include <cassert>
+#include <thread>
 
 namespace terratin::detail {
 
@@ -13,6 +14,11 @@ constexpr int prev(int i) { return previousCorner(i); }
 // Progress is reported every this many insertions: often enough for a smooth bar, rarely
 // enough that the callback costs nothing measurable.
 constexpr std::size_t kProgressInterval = 1U << 16;
+
+// A visibility walk longer than this gives up and descends the DAG from the root instead.
+// Sequential walks on a Delaunay triangulation always end; this bounds the rare walk that a
+// concurrent edit sends in circles.
+constexpr std::size_t kMaxWalkSteps = 1U << 16;
 } // namespace
 
 VertexId DagTriangulator::highestOf(std::span<const Point2> points) {
@@ -35,23 +41,27 @@ void DagTriangulator::setLeaf(NodeId id, std::array<VertexId, 3> v, std::array<N
                               std::uint32_t owner) {
     DagNode& node = m_nodes[id];
     node.v = v;
-    node.link = link;
+    node.link = link; // not yet published: no other thread can see this node
     node.firstChild.store(kNoNode, std::memory_order_relaxed);
     node.owner.store(owner, std::memory_order_relaxed);
 }
 
 void DagTriangulator::setInner(NodeId node, std::array<NodeId, 3> link, NodeId firstChild) {
-    m_nodes[node].link = link;
-    m_nodes[node].firstChild.store(firstChild, std::memory_order_release);
+    // Walkers may be reading this leaf's links: mark it busy first (node_arena.hpp).
+    DagNode& inner = m_nodes[node];
+    inner.firstChild.store(kBusyNode, std::memory_order_relaxed);
+    for (int i = 0; i < 3; ++i)
+        inner.storeLink(i, link[static_cast<std::size_t>(i)]);
+    inner.firstChild.store(firstChild, std::memory_order_release);
 }
 
 void DagTriangulator::replaceNeighbour(NodeId node, NodeId from, NodeId to) {
     if (node == kNoNode)
         return;
-    std::array<NodeId, 3>& link = m_nodes[node].link;
-    for (NodeId& n : link) {
-        if (n == from) {
-            n = to;
+    DagNode& neighbour = m_nodes[node];
+    for (int i = 0; i < 3; ++i) {
+        if (neighbour.link[static_cast<std::size_t>(i)] == from) {
+            neighbour.storeLink(i, to);
             return;
         }
     }
@@ -65,6 +75,11 @@ NodeId DagTriangulator::locate(VertexId q, NodeId start) const {
         const NodeId c = node.firstChild.load(std::memory_order_acquire);
         if (c == kNoNode)
             return n;
+        if (c == kBusyNode) {
+            // Another thread is publishing this node's children: a few stores away.
+            std::this_thread::yield();
+            continue;
+        }
         if (node.link[1] == kNoNode) {
             // Three children, child i being the node with corner i replaced by p. The rays
             // from p to the corners separate them; two orientation tests pick the wedge.
@@ -103,7 +118,12 @@ void DagTriangulator::insertAllByWalking(std::span<const VertexId> order,
 
 NodeId DagTriangulator::walk(VertexId q, NodeId start) const {
     NodeId t = start;
-    for (;;) {
+    for (std::size_t steps = 0;; ++steps) {
+        if (steps == kMaxWalkSteps)
+            return locate(q); // a walk through a mesh others keep changing might not end
+        // An inner node (a stale start, or a neighbour split since its link was read) is left
+        // by descending to one of its leaves: the walk goes on from there.
+        t = locate(q, t);
         const DagNode& node = m_nodes[t];
         int exit = 0;
         while (exit < 3 && m_predicates.orient(node.v[next(exit)], node.v[prev(exit)], q) >= 0)
@@ -111,8 +131,11 @@ NodeId DagTriangulator::walk(VertexId q, NodeId start) const {
         if (exit == 3)
             return t;
         // q is strictly beyond this edge, so the edge is not one of the auxiliary triangle's
-        // (every point is inside it) and the neighbour exists.
-        t = node.link[exit];
+        // (every point is inside it) and the neighbour exists. The link is a neighbour only if
+        // the node was still a leaf after reading it (node_arena.hpp).
+        const NodeId neighbour = node.loadLink(exit);
+        if (node.firstChild.load(std::memory_order_relaxed) == kNoNode)
+            t = neighbour;
     }
 }
 
@@ -289,29 +312,29 @@ std::size_t DagTriangulator::repairAllEdges() {
 
 void DagTriangulator::extract(std::vector<std::uint32_t>& triangles,
                               std::vector<std::int32_t>& neighbours) const {
+    // One pass over the arena finds the output triangles (finite leaves) and numbers them;
+    // the second visits only those.
     const std::size_t nodeCount = m_nodes.size();
-    const auto isOutput = [&](const DagNode& node) {
-        return node.isLeaf() && m_predicates.isFinite(node.v[0]) &&
-               m_predicates.isFinite(node.v[1]) && m_predicates.isFinite(node.v[2]);
-    };
     std::vector<std::int32_t> outputIndex(nodeCount, -1);
-    std::int32_t count = 0;
-    for (std::size_t n = 0; n < nodeCount; ++n)
-        if (isOutput(m_nodes[static_cast<NodeId>(n)]))
-            outputIndex[n] = count++;
-    triangles.clear();
-    neighbours.clear();
-    triangles.reserve(3 * static_cast<std::size_t>(count));
-    neighbours.reserve(3 * static_cast<std::size_t>(count));
-    for (std::size_t n = 0; n < nodeCount; ++n) {
-        if (outputIndex[n] < 0)
-            continue;
-        const DagNode& node = m_nodes[static_cast<NodeId>(n)];
+    std::vector<NodeId> outputNodes;
+    outputNodes.reserve(2 * static_cast<std::size_t>(m_predicates.farRight()));
+    for (NodeId n = 0; n < nodeCount; ++n) {
+        const DagNode& node = m_nodes[n];
+        if (node.isLeaf() && m_predicates.isFinite(node.v[0]) && m_predicates.isFinite(node.v[1]) &&
+            m_predicates.isFinite(node.v[2])) {
+            outputIndex[n] = static_cast<std::int32_t>(outputNodes.size());
+            outputNodes.push_back(n);
+        }
+    }
+    triangles.resize(3 * outputNodes.size());
+    neighbours.resize(3 * outputNodes.size());
+    for (std::size_t t = 0; t < outputNodes.size(); ++t) {
+        const DagNode& node = m_nodes[outputNodes[t]];
         for (int i = 0; i < 3; ++i) {
-            triangles.push_back(node.v[i]);
+            triangles[3 * t + i] = node.v[i];
             // The edge from corner i to corner i+1 is opposite corner i+2.
             const NodeId across = node.link[prev(i)];
-            neighbours.push_back(across == kNoNode ? -1 : outputIndex[across]);
+            neighbours[3 * t + i] = across == kNoNode ? -1 : outputIndex[across];
         }
     }
 }

@@ -61,9 +61,11 @@ public:
     /// uniform case); the DAG is still built (the parallel methods need it).
     void insertAllByWalking(std::span<const VertexId> order, const ProgressCallback& progress);
 
-    /// Leaf containing q, found by a visibility walk from the current leaf `start`
-    /// (terminates on a Delaunay triangulation; Edelsbrunner 1989). Single-threaded only: it
-    /// reads the neighbour links of leaves.
+    /// Node whose closed triangle contains q and that was a leaf when examined, found by a
+    /// visibility walk from `start` (any node; an inner one is first descended to a leaf).
+    /// Terminates on a Delaunay triangulation (Edelsbrunner 1989). Safe while other threads
+    /// edit (see node_arena.hpp): a walk that a concurrent edit sends astray is bounded and
+    /// then replaced by locate(q). Like locate, the leaf found may since have been split.
     [[nodiscard]] NodeId walk(VertexId q, NodeId start) const;
 
     /// Inserts q into `leaf`, a current leaf whose closed triangle contains q, and legalises.

@@ -53,7 +53,7 @@ NodeId NodeArena::allocate(unsigned count) {
         start = first;
         if ((start & (kChunkNodes - 1)) + count > kChunkNodes)
             start = (start | (kChunkNodes - 1)) + 1;
-        if (start + count >= kNoNode)
+        if (start + count > kBusyNode)
             throw std::length_error("Triangulator: more than 2^32 triangles in the history");
     } while (!m_next.compare_exchange_weak(first, start + count, std::memory_order_relaxed));
     // Ids skipped at the end of the previous chunk become dead nodes: a leaf with no finite

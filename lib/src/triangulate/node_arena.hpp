@@ -17,14 +17,21 @@ namespace terratin::detail {
 using VertexId = std::uint32_t;
 using NodeId = std::uint32_t;
 inline constexpr NodeId kNoNode = 0xFFFFFFFFU;
+/// firstChild of a node that is becoming inner: its links are being rewritten and its
+/// children are not published yet. Never a node id (the arena stops below it).
+inline constexpr NodeId kBusyNode = 0xFFFFFFFEU;
 
 /// One triangle of the history, 32 bytes.
 ///
 /// Concurrency contract: `v` is written once, before the node is published (by the release
-/// store of its parent's firstChild, or before threads start for the root). `link` of a leaf
-/// is changed only by a thread that owns the leaf; readers that do not own it read `link` only
-/// after an acquire load of firstChild has shown the node is inner, from when on `link` and
-/// `firstChild` never change again.
+/// store of its parent's firstChild or of a neighbour's link, or before threads start for the
+/// root). `link` of a leaf is changed only by a thread that owns the leaf, always through
+/// storeLink (release), and read by other threads only through loadLink (acquire), so a
+/// node reached through a link is fully initialised. A leaf becomes inner in three steps:
+/// firstChild = kBusyNode, the links rewritten to the children's selection data, firstChild =
+/// the first child (release); from then on `link` and `firstChild` never change again. A
+/// reader that loads a leaf's link and then still sees firstChild == kNoNode therefore holds
+/// a real neighbour id (see DagTriangulator::walk).
 struct DagNode {
     /// Corners, counter-clockwise.
     std::array<VertexId, 3> v;
@@ -41,6 +48,16 @@ struct DagNode {
 
     [[nodiscard]] bool isLeaf() const {
         return firstChild.load(std::memory_order_acquire) == kNoNode;
+    }
+    /// link[i] as published by another thread's storeLink.
+    [[nodiscard]] NodeId loadLink(int i) const {
+        // atomic_ref has no const form in C++20; the load does not modify the link.
+        return std::atomic_ref<NodeId>(const_cast<NodeId&>(link[static_cast<std::size_t>(i)]))
+            .load(std::memory_order_acquire);
+    }
+    void storeLink(int i, NodeId neighbour) {
+        std::atomic_ref<NodeId>(link[static_cast<std::size_t>(i)])
+            .store(neighbour, std::memory_order_release);
     }
 };
 

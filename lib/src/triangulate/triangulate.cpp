@@ -27,14 +27,8 @@ unsigned resolveThreads(unsigned requested) {
     return std::max(1U, std::thread::hardware_concurrency());
 }
 
-TriangulationMethod resolveMethod(TriangulationMethod requested, PointLocation locate,
-                                  std::size_t points, unsigned threads) {
-    if (locate == PointLocation::Walk) {
-        if (requested != TriangulationMethod::Auto && requested != TriangulationMethod::Sequential)
-            throw InvalidInputError(
-                "Triangulator: walk location is available with the sequential method only");
-        return TriangulationMethod::Sequential;
-    }
+TriangulationMethod resolveMethod(TriangulationMethod requested, std::size_t points,
+                                  unsigned threads) {
     if (requested != TriangulationMethod::Auto)
         return requested;
     return threads > 1 && points >= kParallelThresholdPoints ? TriangulationMethod::Batch
@@ -127,13 +121,15 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     const std::vector<std::size_t>& roundStarts = plan.roundStarts;
 
     const unsigned threads = resolveThreads(options.threads);
-    result.method = resolveMethod(options.method, options.locate, count, threads);
+    result.method = resolveMethod(options.method, count, threads);
+    const bool walk = options.locate == PointLocation::Walk;
     switch (result.method) {
     case TriangulationMethod::Batch: {
         detail::BatchSettings settings;
         settings.searchers = resolveSearchers(options.searchers, count, threads);
         settings.queueLength = options.queueLength;
         settings.searchersHelpWhenFull = options.searchersHelpWhenQueueFull;
+        settings.walk = walk;
         const detail::BatchStatistics statistics =
             detail::insertWithBatchMethod(triangulator, order, settings, progress);
         result.threads = settings.searchers + 1;
@@ -143,7 +139,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     }
     case TriangulationMethod::Circumcircle: {
         const detail::CircumcircleStatistics statistics =
-            detail::insertWithCircumcircleMethod(triangulator, order, roundStarts, threads,
+            detail::insertWithCircumcircleMethod(triangulator, order, roundStarts, threads, walk,
                                                  progress);
         result.threads = threads;
         result.waits = statistics.waits;
@@ -154,7 +150,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     }
     case TriangulationMethod::Sequential:
     case TriangulationMethod::Auto:
-        if (options.locate == PointLocation::Walk)
+        if (walk)
             triangulator.insertAllByWalking(order, progress);
         else
             triangulator.insertAll(order, progress);

@@ -21,12 +21,16 @@ using test::Distribution;
 // Sizes kept moderate: the suite also runs under ThreadSanitizer, which slows threads ~10x.
 constexpr std::size_t kPoints = 6000;
 
-TriangulationOptions parallelOptions(TriangulationMethod method, unsigned threads) {
+TriangulationOptions parallelOptions(TriangulationMethod method, unsigned threads,
+                                     PointLocation locate = PointLocation::Dag) {
     TriangulationOptions options;
     options.method = method;
     options.threads = threads;
+    options.locate = locate;
     return options;
 }
+
+const char* toString(PointLocation locate) { return locate == PointLocation::Dag ? "dag" : "walk"; }
 
 void expectSameVertices(const TinMesh& parallel, const TinMesh& sequential) {
     auto sortedSources = [](const TinMesh& mesh) {
@@ -38,12 +42,14 @@ void expectSameVertices(const TinMesh& parallel, const TinMesh& sequential) {
 }
 
 class ParallelMethod
-    : public ::testing::TestWithParam<std::tuple<TriangulationMethod, unsigned, Distribution>> {};
+    : public ::testing::TestWithParam<
+          std::tuple<TriangulationMethod, PointLocation, unsigned, Distribution>> {};
 
 TEST_P(ParallelMethod, IsExactlyDelaunayWithSequentialVertices_ForPaperDistributions) {
-    const auto [method, threads, distribution] = GetParam();
+    const auto [method, locate, threads, distribution] = GetParam();
     const std::vector<Point3> points = test::generatePoints(distribution, kPoints, 5);
-    const TriangulationResult result = triangulate(points, parallelOptions(method, threads));
+    const TriangulationResult result =
+        triangulate(points, parallelOptions(method, threads, locate));
     EXPECT_EQ(result.method, method);
     test::expectExactDelaunayOf(result.mesh, points);
     TriangulationOptions sequential;
@@ -54,56 +60,59 @@ TEST_P(ParallelMethod, IsExactlyDelaunayWithSequentialVertices_ForPaperDistribut
 INSTANTIATE_TEST_SUITE_P(
     MethodsThreadsDistributions, ParallelMethod,
     ::testing::Combine(::testing::Values(TriangulationMethod::Batch,
-                                                              TriangulationMethod::Circumcircle),
+                                         TriangulationMethod::Circumcircle),
+                       ::testing::Values(PointLocation::Dag, PointLocation::Walk),
                        ::testing::Values(1U, 2U, 3U, 4U, 8U),
                        ::testing::Values(Distribution::Uniform, Distribution::Gauss,
                                          Distribution::Cluster, Distribution::Grid,
                                          Distribution::Arc)),
     [](const auto& paramInfo) {
         return std::string(toString(std::get<0>(paramInfo.param))) + "_" +
-               std::to_string(std::get<1>(paramInfo.param)) + "threads_" +
-               test::toString(std::get<2>(paramInfo.param));
+               toString(std::get<1>(paramInfo.param)) + "_" +
+               std::to_string(std::get<2>(paramInfo.param)) + "threads_" +
+               test::toString(std::get<3>(paramInfo.param));
     });
 
 class ParallelDegenerate
-    : public ::testing::TestWithParam<std::tuple<TriangulationMethod, unsigned>> {};
+    : public ::testing::TestWithParam<std::tuple<TriangulationMethod, PointLocation, unsigned>> {
+protected:
+    [[nodiscard]] TriangulationOptions options() const {
+        const auto [method, locate, threads] = GetParam();
+        return parallelOptions(method, threads, locate);
+    }
+};
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForDuplicates) {
-    const auto [method, threads] = GetParam();
     const std::vector<Point3> points = test::withDuplicates(
         test::generatePoints(Distribution::Uniform, kPoints, 8), kPoints / 4, 9);
-    const TriangulationResult result = triangulate(points, parallelOptions(method, threads));
+    const TriangulationResult result = triangulate(points, options());
     EXPECT_EQ(result.duplicatePoints, kPoints / 4);
     test::expectExactDelaunayOf(result.mesh, points);
 }
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForCollinearPlusOne) {
-    const auto [method, threads] = GetParam();
     const std::vector<Point3> points = test::collinearPlusOne(2000);
-    test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+    test::expectExactDelaunayOf(triangulate(points, options()).mesh,
                                 points);
 }
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForCocircularRings) {
-    const auto [method, threads] = GetParam();
     const std::vector<Point3> points = test::cocircularRings(1.0);
-    test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+    test::expectExactDelaunayOf(triangulate(points, options()).mesh,
                                 points);
 }
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForLargeOffsets) {
-    const auto [method, threads] = GetParam();
     const std::vector<Point3> points =
         test::offset(test::generatePoints(Distribution::Grid, kPoints, 3), 6.0e5, 5.2e6);
-    test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+    test::expectExactDelaunayOf(triangulate(points, options()).mesh,
                                 points);
 }
 
 TEST_P(ParallelDegenerate, Terminates_WhenFewPointsMeetManyThreads) {
-    const auto [method, threads] = GetParam();
     for (std::size_t count : {3U, 4U, 5U, 10U, 40U}) {
         const std::vector<Point3> points = test::generatePoints(Distribution::Arc, count, count);
-        test::expectExactDelaunayOf(triangulate(points, parallelOptions(method, threads)).mesh,
+        test::expectExactDelaunayOf(triangulate(points, options()).mesh,
                                     points);
     }
 }
@@ -111,23 +120,28 @@ TEST_P(ParallelDegenerate, Terminates_WhenFewPointsMeetManyThreads) {
 INSTANTIATE_TEST_SUITE_P(MethodsThreads, ParallelDegenerate,
                          ::testing::Combine(::testing::Values(TriangulationMethod::Batch,
                                                               TriangulationMethod::Circumcircle),
+                                            ::testing::Values(PointLocation::Dag,
+                                                              PointLocation::Walk),
                                             ::testing::Values(1U, 2U, 3U, 4U, 8U)),
                          [](const auto& paramInfo) {
                              return std::string(toString(std::get<0>(paramInfo.param))) + "_" +
-                                    std::to_string(std::get<1>(paramInfo.param)) + "threads";
+                                    toString(std::get<1>(paramInfo.param)) + "_" +
+                                    std::to_string(std::get<2>(paramInfo.param)) + "threads";
                          });
 
 TEST(CircumcircleMethod, IsExactlyDelaunay_WhenThreadsCrowdOneCircle) {
     // Points on one circle: every triangle's circumcircle is (nearly) that circle, so every
     // thread's point conflicts with every other's and the waits and overrides are exercised.
-    for (const unsigned threads : {2U, 4U, 8U}) {
-        std::vector<Point3> points = test::cocircularRings(1.0);
-        const std::vector<Point3> arc = test::generatePoints(Distribution::Arc, 3000, threads);
-        points.insert(points.end(), arc.begin(), arc.end());
-        const TriangulationResult result =
-            triangulate(points, parallelOptions(TriangulationMethod::Circumcircle, threads));
-        EXPECT_EQ(result.threads, threads);
-        test::expectExactDelaunayOf(result.mesh, points);
+    for (const PointLocation locate : {PointLocation::Dag, PointLocation::Walk}) {
+        for (const unsigned threads : {2U, 4U, 8U}) {
+            std::vector<Point3> points = test::cocircularRings(1.0);
+            const std::vector<Point3> arc = test::generatePoints(Distribution::Arc, 3000, threads);
+            points.insert(points.end(), arc.begin(), arc.end());
+            const TriangulationResult result = triangulate(
+                points, parallelOptions(TriangulationMethod::Circumcircle, threads, locate));
+            EXPECT_EQ(result.threads, threads);
+            test::expectExactDelaunayOf(result.mesh, points);
+        }
     }
 }
 

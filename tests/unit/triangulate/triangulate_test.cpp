@@ -44,6 +44,7 @@ TEST_P(TriangulateDistribution, IsExactlyDelaunay_WithWalkLocation) {
     const auto [distribution, count] = GetParam();
     const std::vector<Point3> points = test::generatePoints(distribution, count, 13);
     TriangulationOptions options;
+    options.method = TriangulationMethod::Sequential;
     options.locate = PointLocation::Walk;
     const TriangulationResult result = triangulate(points, options);
     EXPECT_EQ(result.method, TriangulationMethod::Sequential);
@@ -165,14 +166,6 @@ TEST(Triangulate, WalkLocationIsExact_ForDegenerateInputs) {
           test::withDuplicates(test::generatePoints(Distribution::Grid, 2500, 1), 300, 2),
           test::offset(test::generatePoints(Distribution::Grid, 2500, 1), 5e5, 5e6)})
         test::expectExactDelaunayOf(triangulate(points, options).mesh, points);
-}
-
-TEST(Triangulate, Throws_WhenWalkLocationIsAskedOfAParallelMethod) {
-    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 100, 1);
-    TriangulationOptions options;
-    options.locate = PointLocation::Walk;
-    options.method = TriangulationMethod::Batch;
-    EXPECT_THROW(triangulate(points, options), InvalidInputError);
 }
 
 TEST(Triangulate, TriangulatesThreePoints) {

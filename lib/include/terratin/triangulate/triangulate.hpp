@@ -27,7 +27,9 @@ enum class InsertionOrder {
 enum class PointLocation {
     /// Descent of the DAG history (the paper's structure; expected O(log n) per point).
     Dag,
-    /// Visibility walk from the previous insertion; sequential method only.
+    /// Visibility walk from the thread's previous point, on the current triangulation (the
+    /// DAG is still built, for the parallel methods' descents); no O(log n) guarantee, but
+    /// with the BRIO order the walks are short and stay in cache.
     Walk,
 };
 
@@ -52,9 +54,7 @@ struct TriangulationOptions {
     /// Which elevation survives for points sharing exactly the same (x, y).
     DuplicateZPolicy duplicateZ = DuplicateZPolicy::First;
     TriangulationMethod method = TriangulationMethod::Auto;
-    /// Walk is for the sequential method (the parallel methods' threads cannot read the
-    /// neighbour links other threads are changing); with another method it is an
-    /// InvalidInputError.
+    /// How every method locates points (batch: its searching threads).
     PointLocation locate = PointLocation::Dag;
     /// Hardware threads to use; 0 means all (std::thread::hardware_concurrency()).
     unsigned threads = 0;
