@@ -2,7 +2,10 @@
 
 #include "terratin/error.hpp"
 
+#include "parallel_for.hpp"
+
 #include <cassert>
+#include <memory>
 #include <thread>
 
 namespace terratin::detail {
@@ -311,32 +314,50 @@ std::size_t DagTriangulator::repairAllEdges() {
 }
 
 void DagTriangulator::extract(std::vector<std::uint32_t>& triangles,
-                              std::vector<std::int32_t>& neighbours) const {
-    // One pass over the arena finds the output triangles (finite leaves) and numbers them;
-    // the second visits only those.
+                              std::vector<std::int32_t>& neighbours, unsigned threads) const {
+    // Each thread takes a contiguous block of the arena: it lists the output triangles
+    // (finite leaves) of its block, numbers them after the blocks before it, and then writes
+    // their corners and neighbours. Three passes, since a neighbour may be in any block.
     const std::size_t nodeCount = m_nodes.size();
-    std::vector<std::int32_t> outputIndex(nodeCount, -1);
-    std::vector<NodeId> outputNodes;
-    outputNodes.reserve(2 * static_cast<std::size_t>(m_predicates.farRight()));
-    for (NodeId n = 0; n < nodeCount; ++n) {
-        const DagNode& node = m_nodes[n];
-        if (node.isLeaf() && m_predicates.isFinite(node.v[0]) && m_predicates.isFinite(node.v[1]) &&
-            m_predicates.isFinite(node.v[2])) {
-            outputIndex[n] = static_cast<std::int32_t>(outputNodes.size());
-            outputNodes.push_back(n);
+    const auto isOutput = [this](const DagNode& node) {
+        return node.isLeaf() && m_predicates.isFinite(node.v[0]) &&
+               m_predicates.isFinite(node.v[1]) && m_predicates.isFinite(node.v[2]);
+    };
+    std::vector<std::vector<NodeId>> blockOutputs(parallelForThreads(nodeCount, threads));
+    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        std::vector<NodeId>& outputs = blockOutputs[block];
+        outputs.reserve((end - begin) / 4);
+        for (std::size_t n = begin; n < end; ++n)
+            if (isOutput(m_nodes[static_cast<NodeId>(n)]))
+                outputs.push_back(static_cast<NodeId>(n));
+    });
+    std::vector<std::size_t> blockFirst(blockOutputs.size() + 1, 0);
+    for (std::size_t block = 0; block < blockOutputs.size(); ++block)
+        blockFirst[block + 1] = blockFirst[block] + blockOutputs[block].size();
+
+    const std::unique_ptr<std::int32_t[]> outputIndex(new std::int32_t[nodeCount]);
+    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        std::fill(outputIndex.get() + begin, outputIndex.get() + end, -1);
+        const std::vector<NodeId>& outputs = blockOutputs[block];
+        for (std::size_t k = 0; k < outputs.size(); ++k)
+            outputIndex[outputs[k]] = static_cast<std::int32_t>(blockFirst[block] + k);
+    });
+
+    triangles.resize(3 * blockFirst.back());
+    neighbours.resize(3 * blockFirst.back());
+    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
+        const std::vector<NodeId>& outputs = blockOutputs[block];
+        for (std::size_t k = 0; k < outputs.size(); ++k) {
+            const DagNode& node = m_nodes[outputs[k]];
+            const std::size_t t = blockFirst[block] + k;
+            for (int i = 0; i < 3; ++i) {
+                triangles[3 * t + i] = node.v[i];
+                // The edge from corner i to corner i+1 is opposite corner i+2.
+                const NodeId across = node.link[prev(i)];
+                neighbours[3 * t + i] = across == kNoNode ? -1 : outputIndex[across];
+            }
         }
-    }
-    triangles.resize(3 * outputNodes.size());
-    neighbours.resize(3 * outputNodes.size());
-    for (std::size_t t = 0; t < outputNodes.size(); ++t) {
-        const DagNode& node = m_nodes[outputNodes[t]];
-        for (int i = 0; i < 3; ++i) {
-            triangles[3 * t + i] = node.v[i];
-            // The edge from corner i to corner i+1 is opposite corner i+2.
-            const NodeId across = node.link[prev(i)];
-            neighbours[3 * t + i] = across == kNoNode ? -1 : outputIndex[across];
-        }
-    }
+    });
 }
 
 } // namespace terratin::detail

@@ -102,7 +102,9 @@ public:
 
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
-    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours) const;
+    /// Uses up to `threads` threads; the result does not depend on it.
+    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours,
+                 unsigned threads = 1) const;
 
     [[nodiscard]] DagNode& node(NodeId id) { return m_nodes[id]; }
     [[nodiscard]] const DagNode& node(NodeId id) const { return m_nodes[id]; }

@@ -1,5 +1,7 @@
 #include "insertion_order.hpp"
 
+#include "parallel_for.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -118,7 +120,8 @@ std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32
 
 std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
                                               std::uint64_t seed,
-                                              std::vector<std::size_t>* roundStarts) {
+                                              std::vector<std::size_t>* roundStarts,
+                                              unsigned threads) {
     double minX = std::numeric_limits<double>::infinity();
     double minY = minX;
     double maxX = -minX;
@@ -136,17 +139,22 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
     constexpr std::uint64_t kMaxRound = (1U << kRoundBits) - 1;
     constexpr unsigned kHilbertShift = 32;
     constexpr unsigned kRoundShift = kHilbertShift + 2 * kHilbertOrder;
-    SplitMix64 random(seed);
-    std::vector<std::uint64_t> keys;
-    keys.reserve(points.size());
-    for (std::uint32_t v = 0; v < points.size(); ++v) {
-        if (v == skip)
-            continue;
-        const auto round = static_cast<std::uint64_t>(std::countr_zero(random() | (1ULL << kMaxRound)));
-        const std::uint64_t hilbert = hilbertIndex(gridCell(points[v].x, minX, maxX),
-                                                   gridCell(points[v].y, minY, maxY));
-        keys.push_back(((kMaxRound - round) << kRoundShift) | (hilbert << kHilbertShift) | v);
-    }
+    // The round comes from a hash of (seed, vertex) rather than one random stream, so that
+    // threads can compute the keys of their blocks independently and identically.
+    std::vector<std::uint64_t> keys(points.size() - (skip < points.size() ? 1 : 0));
+    parallelFor(points.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (auto v = static_cast<std::uint32_t>(begin); v < end; ++v) {
+            if (v == skip)
+                continue;
+            const std::uint64_t word = SplitMix64(seed ^ (std::uint64_t{v} << 32U))();
+            const auto round =
+                static_cast<std::uint64_t>(std::countr_zero(word | (1ULL << kMaxRound)));
+            const std::uint64_t hilbert = hilbertIndex(gridCell(points[v].x, minX, maxX),
+                                                       gridCell(points[v].y, minY, maxY));
+            keys[v < skip ? v : v - 1] =
+                ((kMaxRound - round) << kRoundShift) | (hilbert << kHilbertShift) | v;
+        }
+    });
     radixSort(keys, kHilbertShift);
     std::vector<std::uint32_t> order;
     order.reserve(keys.size());

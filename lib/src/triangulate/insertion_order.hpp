@@ -23,8 +23,10 @@ std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32
 /// random rounds keep the expected O(n log n) bound of randomized insertion; the spatial sort
 /// makes consecutive insertions walk almost the same DAG path, so memory access is local.
 /// When `roundStarts` is given it receives the index in the order where each round begins.
+/// The sort keys are computed with up to `threads` threads; the order does not depend on it.
 std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
                                               std::uint64_t seed,
-                                              std::vector<std::size_t>* roundStarts = nullptr);
+                                              std::vector<std::size_t>* roundStarts = nullptr,
+                                              unsigned threads = 1);
 
 } // namespace terratin::detail

@@ -4,6 +4,7 @@
 #include "circumcircle_insertion.hpp"
 #include "dag_triangulator.hpp"
 #include "insertion_order.hpp"
+#include "parallel_for.hpp"
 
 #include "terratin/error.hpp"
 
@@ -60,20 +61,24 @@ struct InsertionPlan {
     std::vector<std::size_t> roundStarts;
 };
 
-InsertionPlan planInsertion(const std::vector<Point2>& local, const TriangulationOptions& options) {
+InsertionPlan planInsertion(const std::vector<Point2>& local, const TriangulationOptions& options,
+                            unsigned threads) {
     const auto count = static_cast<std::uint32_t>(local.size());
     const VertexId highest = detail::DagTriangulator::highestOf(local);
     InsertionPlan plan;
     plan.preparedIndex =
         options.order == InsertionOrder::Brio
-            ? detail::brioInsertionOrder(local, highest, options.seed, &plan.roundStarts)
+            ? detail::brioInsertionOrder(local, highest, options.seed, &plan.roundStarts,
+                                         threads)
             : detail::randomInsertionOrder(count, highest, options.seed);
     if (plan.roundStarts.empty())
         plan.roundStarts.push_back(0);
     plan.preparedIndex.insert(plan.preparedIndex.begin(), highest);
     plan.local.resize(count);
-    for (std::uint32_t v = 0; v < count; ++v)
-        plan.local[v] = local[plan.preparedIndex[v]];
+    detail::parallelFor(count, threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v)
+            plan.local[v] = local[plan.preparedIndex[v]];
+    });
     plan.order.resize(count - 1);
     std::iota(plan.order.begin(), plan.order.end(), VertexId{1});
     return plan;
@@ -113,16 +118,19 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     result.seconds.prepare = lap(phase);
     const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
-    const InsertionPlan plan = planInsertion(prepared.local, options);
+    const unsigned threads = resolveThreads(options.threads);
+    result.method = resolveMethod(options.method, count, threads);
+    const bool walk = options.locate == PointLocation::Walk;
+    // The sequential method is the baseline of the parallel ones: one thread throughout.
+    const unsigned phaseThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
+
+    const InsertionPlan plan = planInsertion(prepared.local, options, phaseThreads);
     result.seconds.order = lap(phase);
 
     detail::DagTriangulator triangulator(plan.local);
     const std::span<const VertexId> order(plan.order);
     const std::vector<std::size_t>& roundStarts = plan.roundStarts;
 
-    const unsigned threads = resolveThreads(options.threads);
-    result.method = resolveMethod(options.method, count, threads);
-    const bool walk = options.locate == PointLocation::Walk;
     switch (result.method) {
     case TriangulationMethod::Batch: {
         detail::BatchSettings settings;
@@ -163,18 +171,21 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     result.duplicatePoints = prepared.duplicateCount;
     result.historyNodes = triangulator.nodeCount();
     result.historyBytes = triangulator.memoryBytes();
-    triangulator.extract(result.mesh.triangles, result.mesh.neighbours);
+    triangulator.extract(result.mesh.triangles, result.mesh.neighbours, phaseThreads);
 
     // Vertices carry the caller's exact coordinates (not local + origin, to avoid relying on
     // the round trip) and the elevation chosen by the duplicate policy.
     result.mesh.sourceIndex.resize(count);
     result.mesh.vertices.resize(count);
-    for (std::uint32_t v = 0; v < count; ++v) {
-        const std::uint32_t preparedIndex = plan.preparedIndex[v];
-        const std::uint32_t source = prepared.sourceIndex[preparedIndex];
-        result.mesh.sourceIndex[v] = source;
-        result.mesh.vertices[v] = {points[source].x, points[source].y, prepared.z[preparedIndex]};
-    }
+    detail::parallelFor(count, phaseThreads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v) {
+            const std::uint32_t preparedIndex = plan.preparedIndex[v];
+            const std::uint32_t source = prepared.sourceIndex[preparedIndex];
+            result.mesh.sourceIndex[v] = source;
+            result.mesh.vertices[v] = {points[source].x, points[source].y,
+                                       prepared.z[preparedIndex]};
+        }
+    });
     result.seconds.extract = lap(phase);
     if (progress)
         progress(1.0, "triangulated");

@@ -72,6 +72,9 @@ TEST(InsertionOrder, BrioRoundsGrowAndTheLastHoldsAboutHalfThePoints) {
     EXPECT_NEAR(static_cast<double>(last) / kCount, 0.5, 0.01);
     const std::size_t secondLast = roundStarts[rounds - 1] - roundStarts[rounds - 2];
     EXPECT_NEAR(static_cast<double>(secondLast) / kCount, 0.25, 0.01);
+    // The keys are computed in parallel blocks; the order must not depend on how many.
+    for (const unsigned threads : {2U, 3U, 8U})
+        EXPECT_EQ(detail::brioInsertionOrder(points, 0, 1, nullptr, threads), order);
 }
 
 TEST(InsertionOrder, BrioSortsEachRoundSpatially) {

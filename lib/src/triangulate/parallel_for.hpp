@@ -1,0 +1,59 @@
+#pragma once
+/// @file
+/// The data-parallel loops around the triangulation (keys for the insertion order, the
+/// final extraction): contiguous blocks, one per thread, no pool. The loops are a few passes
+/// over millions of elements, so starting threads costs microseconds against milliseconds.
+
+#include <algorithm>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace terratin::detail {
+
+/// Below this many elements a loop runs on the calling thread alone.
+inline constexpr std::size_t kParallelForMinimum = std::size_t{1} << 16;
+
+/// The threads parallelFor uses for `count` elements when allowed `threads`.
+inline unsigned parallelForThreads(std::size_t count, unsigned threads) {
+    if (count < kParallelForMinimum)
+        return 1;
+    return static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, count / (kParallelForMinimum / 2)));
+}
+
+/// Calls body(block, begin, end) for the blocks of [0, count) split into
+/// parallelForThreads(count, threads) contiguous ranges, block 0 on the calling thread.
+/// Rethrows the first exception after every thread has finished.
+template <class Body>
+void parallelFor(std::size_t count, unsigned threads, Body&& body) {
+    const unsigned blocks = parallelForThreads(count, threads);
+    const auto begin = [&](unsigned block) { return count * block / blocks; };
+    if (blocks == 1) {
+        body(0U, std::size_t{0}, count);
+        return;
+    }
+    std::mutex failureMutex;
+    std::exception_ptr failure;
+    const auto run = [&](unsigned block) {
+        try {
+            body(block, begin(block), begin(block + 1));
+        } catch (...) {
+            const std::lock_guard lock(failureMutex);
+            if (!failure)
+                failure = std::current_exception();
+        }
+    };
+    {
+        std::vector<std::jthread> others;
+        others.reserve(blocks - 1);
+        for (unsigned block = 1; block < blocks; ++block)
+            others.emplace_back(run, block);
+        run(0);
+    }
+    if (failure)
+        std::rethrow_exception(failure);
+}
+
+} // namespace terratin::detail
