@@ -105,6 +105,8 @@ po::options_description benchOptionsDescription() {
          "seed of the point sets and of the insertion order")
         ("order", po::value<std::string>()->default_value("brio")->value_name("brio|random"),
          "insertion order of terratin's methods")
+        ("locate", po::value<std::string>()->default_value("dag,walk")->value_name("LIST"),
+         "point location of terratin's methods: dag, walk or both")
         ("searchers", po::value<unsigned>()->default_value(0)->value_name("K"),
          "batch method: searching threads (0: chosen from points and threads)")
         ("queue-length", po::value<std::size_t>()
@@ -176,6 +178,20 @@ InsertionOrder parseOrder(const std::string& name) {
     throw UsageError("--order must be brio or random (got '" + name + "')");
 }
 
+std::vector<PointLocation> parseLocations(const std::string& list) {
+    std::vector<PointLocation> locations;
+    for (const std::string& item : splitList(list, "--locate")) {
+        const std::string key = lowercase(item);
+        if (key == "dag")
+            locations.push_back(PointLocation::Dag);
+        else if (key == "walk")
+            locations.push_back(PointLocation::Walk);
+        else
+            throw UsageError("--locate takes dag and walk (got '" + item + "')");
+    }
+    return locations;
+}
+
 } // namespace
 
 const std::vector<NamedMethod>& benchMethods() {
@@ -231,6 +247,7 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
         throw UsageError("--runs must be at least 1");
     bench.seed = values["seed"].as<std::uint64_t>();
     bench.order = parseOrder(values["order"].as<std::string>());
+    bench.locations = parseLocations(values["locate"].as<std::string>());
     bench.searchers = values["searchers"].as<unsigned>();
     bench.queueLength = values["queue-length"].as<std::size_t>();
     if (bench.queueLength == 0)

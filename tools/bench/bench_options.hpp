@@ -46,6 +46,8 @@ struct BenchOptions {
     /// Seed of the point sets and of the insertion order.
     std::uint64_t seed = 1;
     InsertionOrder order = InsertionOrder::Brio;
+    /// Point location strategies, each measured for every method (DAG first).
+    std::vector<PointLocation> locations{PointLocation::Dag, PointLocation::Walk};
     /// Batch method settings, passed through (0 searchers: the library chooses).
     unsigned searchers = 0;
     std::size_t queueLength = TriangulationOptions{}.queueLength;

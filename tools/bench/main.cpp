@@ -101,12 +101,17 @@ std::size_t meshBytes(const TinMesh& mesh) {
            mesh.neighbours.capacity() * sizeof(std::int32_t);
 }
 
+const char* locationName(PointLocation locate) {
+    return locate == PointLocation::Dag ? "dag" : "walk";
+}
+
 ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& bench,
-                          const NamedMethod& method, unsigned threads) {
+                          const NamedMethod& method, PointLocation locate, unsigned threads) {
     TriangulationOptions options;
     options.seed = bench.seed;
     options.order = bench.order;
     options.method = method.method;
+    options.locate = locate;
     options.threads = threads;
     options.searchers = bench.searchers;
     options.queueLength = bench.queueLength;
@@ -115,6 +120,7 @@ ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& be
     ResultRow row;
     row.points = points.size();
     row.method = method.name;
+    row.locate = locationName(locate);
     row.threadsRequested = threads;
     std::optional<TriangulationResult> result;
     const RunSamples samples = sampleRuns(
@@ -195,17 +201,25 @@ std::optional<double> ratio(const std::optional<double>& numerator,
     return *numerator / *denominator;
 }
 
-// Every run this group's configurations make: sequential first (the speed-ups' reference),
-// then each other method at each thread count.
-std::vector<std::pair<NamedMethod, unsigned>> configurations(const BenchOptions& bench) {
-    std::vector<std::pair<NamedMethod, unsigned>> runs;
-    for (const NamedMethod& method : bench.methods)
-        if (method.method == TriangulationMethod::Sequential)
-            runs.emplace_back(method, 1U);
-    for (const NamedMethod& method : bench.methods)
-        if (method.method != TriangulationMethod::Sequential)
-            for (const unsigned threads : bench.threads)
-                runs.emplace_back(method, threads);
+struct Configuration {
+    NamedMethod method;
+    PointLocation locate;
+    unsigned threads;
+};
+
+// Every run this group's configurations make, per point location: sequential first (the
+// speed-ups' reference), then each other method at each thread count.
+std::vector<Configuration> configurations(const BenchOptions& bench) {
+    std::vector<Configuration> runs;
+    for (const PointLocation locate : bench.locations) {
+        for (const NamedMethod& method : bench.methods)
+            if (method.method == TriangulationMethod::Sequential)
+                runs.push_back({method, locate, 1U});
+        for (const NamedMethod& method : bench.methods)
+            if (method.method != TriangulationMethod::Sequential)
+                for (const unsigned threads : bench.threads)
+                    runs.push_back({method, locate, threads});
+    }
     return runs;
 }
 
@@ -229,11 +243,11 @@ void runGroup(Distribution distribution, std::size_t size, const BenchOptions& b
 
     std::optional<double> sequentialSeconds;
     std::optional<std::size_t> ourTriangles;
-    for (const auto& [method, threads] : configurations(bench)) {
-        ResultRow row = measureTerratin(points, bench, method, threads);
+    for (const auto& [method, locate, threads] : configurations(bench)) {
+        ResultRow row = measureTerratin(points, bench, method, locate, threads);
         row.distribution = name;
         if (method.method == TriangulationMethod::Sequential)
-            sequentialSeconds = row.seconds;
+            sequentialSeconds = row.seconds; // rows of one location follow their sequential one
         row.speedUp = ratio(sequentialSeconds, row.seconds);
         row.vsCgal = ratio(row.seconds, peerSeconds("cgal"));
         row.vsGdal = ratio(row.seconds, peerSeconds("gdal"));

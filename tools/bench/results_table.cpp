@@ -29,12 +29,12 @@ std::string csvField(const std::optional<double>& value, const char* format) {
 void ResultTable::printHeader() {
     if (m_csv) {
         std::fprintf(m_stream,
-                     "distribution,points,method,threads_requested,threads_used,searchers,"
+                     "distribution,points,method,locate,threads_requested,threads_used,searchers,"
                      "helped_locations,triangles,runs,seconds,speed_up,history_bytes_per_point,"
                      "mesh_bytes_per_point,peak_bytes_per_point,vs_cgal,vs_gdal,unmeasured\n");
     } else {
-        std::fprintf(m_stream, "%-8s %9s %-12s %3s %4s %10s %8s %9s %9s %9s %7s %7s\n", "dist", "N",
-                     "method", "thr", "srch", "time [s]", "speed-up", "hist B/pt", "mesh B/pt",
+        std::fprintf(m_stream, "%-8s %9s %-12s %-4s %3s %4s %10s %8s %9s %9s %9s %7s %7s\n",
+                     "dist", "N", "method", "loc", "thr", "srch", "time [s]", "speed-up", "hist B/pt", "mesh B/pt",
                      "peak B/pt", "vs CGAL", "vs GDAL");
     }
     std::fflush(m_stream);
@@ -42,8 +42,9 @@ void ResultTable::printHeader() {
 
 void ResultTable::printRow(const ResultRow& row) {
     if (m_csv) {
-        std::fprintf(m_stream, "%s,%zu,%s,%u,%u,%u,%zu,%zu,%u,%s,%s,%s,%s,%s,%s,%s,%s\n",
-                     row.distribution.c_str(), row.points, row.method.c_str(), row.threadsRequested,
+        std::fprintf(m_stream, "%s,%zu,%s,%s,%u,%u,%u,%zu,%zu,%u,%s,%s,%s,%s,%s,%s,%s,%s\n",
+                     row.distribution.c_str(), row.points, row.method.c_str(), row.locate.c_str(),
+                     row.threadsRequested,
                      row.threadsUsed, row.searchers, row.helpedLocations, row.triangles, row.runs,
                      csvField(row.seconds, "%.6g").c_str(), csvField(row.speedUp, "%.4f").c_str(),
                      csvField(row.historyBytesPerPoint, "%.2f").c_str(),
@@ -53,8 +54,9 @@ void ResultTable::printRow(const ResultRow& row) {
                      row.seconds ? "" : row.unmeasured.c_str());
     } else {
         const std::string searchers = row.searchers > 0 ? std::to_string(row.searchers) : "-";
-        std::fprintf(m_stream, "%-8s %9zu %-12s %3u %4s %s %s %s %s %s %s %s\n",
-                     row.distribution.c_str(), row.points, row.method.c_str(), row.threadsRequested,
+        std::fprintf(m_stream, "%-8s %9zu %-12s %-4s %3u %4s %s %s %s %s %s %s %s\n",
+                     row.distribution.c_str(), row.points, row.method.c_str(),
+                     row.locate.empty() ? "-" : row.locate.c_str(), row.threadsRequested,
                      searchers.c_str(),
                      field(row.seconds, "%*.4g", 10, row.unmeasured.c_str()).c_str(),
                      field(row.speedUp, "%*.2f", 8).c_str(),

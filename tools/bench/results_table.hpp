@@ -15,6 +15,8 @@ struct ResultRow {
     std::size_t points = 0;
     /// A terratin method ("sequential", "batch", ...) or a peer ("cgal", "gdal").
     std::string method;
+    /// terratin's point location ("dag", "walk"); empty for the peers.
+    std::string locate;
     /// TriangulationOptions::threads asked for, and threads that ran in all.
     unsigned threadsRequested = 1;
     unsigned threadsUsed = 1;
@@ -27,7 +29,7 @@ struct ResultRow {
     unsigned runs = 0;
     std::optional<double> seconds;
     std::string unmeasured = "failed";
-    /// Our sequential method's seconds / these seconds, same points.
+    /// Our sequential method's seconds (same point location) / these seconds, same points.
     std::optional<double> speedUp;
     /// TriangulationResult::historyBytes / points.
     std::optional<double> historyBytesPerPoint;
