@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace terratin::detail {
@@ -38,6 +39,9 @@ struct Worker {
     PendingEdges pending;
     /// A triangle this worker created for its previous point: where walks start.
     NodeId recent = 0;
+    /// Set when the worker learns it was overridden: an overriding worker may have taken
+    /// some of the triangles it holds.
+    bool overridden = false;
     CircumcircleStatistics statistics;
 };
 
@@ -221,12 +225,20 @@ private:
     }
 
     void releaseAll(Worker& worker) {
-        for (const NodeId n : worker.held) {
-            // A triangle taken over by an overriding worker is no longer ours to free.
-            std::uint32_t expected = worker.tag;
-            m_triangulator.node(n).owner.compare_exchange_strong(expected, 0,
-                                                                 std::memory_order_release,
-                                                                 std::memory_order_relaxed);
+        if (std::exchange(worker.overridden, false)) {
+            for (const NodeId n : worker.held) {
+                // A triangle taken over by an overriding worker is no longer ours to free.
+                std::uint32_t expected = worker.tag;
+                m_triangulator.node(n).owner.compare_exchange_strong(
+                    expected, 0, std::memory_order_release, std::memory_order_relaxed);
+            }
+        } else {
+            // Only a worker that was overridden loses triangles (an override is decided
+            // while its victim waits, and the victim always sees its flag when the wait
+            // ends), so here every triangle is still ours: plain release stores, not a
+            // locked read-modify-write each, which would drain the store buffer every time.
+            for (const NodeId n : worker.held)
+                m_triangulator.node(n).owner.store(0, std::memory_order_release);
         }
         worker.held.clear();
     }
@@ -271,6 +283,7 @@ private:
             case WaitOutcome::Retry:
                 continue;
             case WaitOutcome::Aborted:
+                worker.overridden = true;
                 return false;
             case WaitOutcome::Override:
                 // Ignore the circum-circle test; take the triangle even from the blocker,
