@@ -17,6 +17,21 @@ namespace {
 
 constexpr VertexId kNoVertex = 0xFFFFFFFFU;
 
+// A triangle's owner word: 0 when free, else the holder's index + 1 in the low bits and its
+// attempt number above. Each attempt to insert a point takes triangles under a new tag, so
+// an overriding worker, which may take its victim's triangles, takes only those of the
+// attempt it overrode: never one the victim took again after giving up.
+constexpr unsigned kWorkerBits = 12;
+constexpr std::uint32_t kWorkerMask = (1U << kWorkerBits) - 1;
+constexpr unsigned kMaxWorkers = kWorkerMask - 1;
+
+std::uint32_t ownerTag(unsigned worker, std::uint32_t attempt) {
+    return (attempt << kWorkerBits) | (worker + 1);
+}
+
+// The worker holding a triangle with this owner word, or -1 when it is free.
+int holderOf(std::uint32_t owner) { return static_cast<int>(owner & kWorkerMask) - 1; }
+
 // Progress from the calling thread every this many insertions (all workers together).
 constexpr std::size_t kProgressInterval = 1U << 16;
 
@@ -28,13 +43,16 @@ struct alignas(64) WorkerSlot {
     std::atomic<bool> overridden{false};
     /// Worker this one waits for, or -1. Guarded by CircumcircleRun::m_waitMutex.
     int waitingFor = -1;
+    /// The worker's current owner tag (ownerTag), read by a worker that overrides it.
+    std::atomic<std::uint32_t> tag{0};
 };
 
 // A worker's private state.
 struct Worker {
     unsigned index = 0;
-    /// Owner tag written into the triangles it holds.
+    /// Owner tag written into the triangles it holds; a new one for every attempt.
     std::uint32_t tag = 0;
+    std::uint32_t attempt = 0;
     std::vector<NodeId> held;
     PendingEdges pending;
     /// A triangle this worker created for its previous point: where walks start.
@@ -55,7 +73,8 @@ public:
     void work(unsigned index, const ProgressCallback* progress) {
         Worker worker;
         worker.index = index;
-        worker.tag = index + 1;
+        worker.tag = ownerTag(index, 0);
+        m_slots[index].tag.store(worker.tag, std::memory_order_relaxed);
         try {
             std::size_t nextReport = 0;
             const std::size_t workers = m_slots.size();
@@ -241,6 +260,9 @@ private:
                 m_triangulator.node(n).owner.store(0, std::memory_order_release);
         }
         worker.held.clear();
+        ++worker.attempt;
+        worker.tag = ownerTag(worker.index, worker.attempt & (~0U >> kWorkerBits));
+        m_slots[worker.index].tag.store(worker.tag, std::memory_order_relaxed);
     }
 
     // Another worker whose point lies strictly inside the circumcircle of `node`, or -1.
@@ -267,7 +289,7 @@ private:
             std::uint32_t owner = node.owner.load(std::memory_order_acquire);
             if (owner == worker.tag)
                 return true;
-            int blocker = static_cast<int>(owner) - 1;
+            int blocker = holderOf(owner);
             if (owner == 0) {
                 blocker = workerInCircle(worker, node);
                 if (blocker < 0) {
@@ -279,17 +301,18 @@ private:
                     continue;
                 }
             }
-            switch (waitFor(worker, blocker, t)) {
+            std::uint32_t overriddenTag = 0;
+            switch (waitFor(worker, blocker, t, overriddenTag)) {
             case WaitOutcome::Retry:
                 continue;
             case WaitOutcome::Aborted:
                 worker.overridden = true;
                 return false;
             case WaitOutcome::Override:
-                // Ignore the circum-circle test; take the triangle even from the blocker,
-                // which is waiting and will give up when it sees its flag.
+                // Ignore the circum-circle test; take the triangle even from the blocker's
+                // overridden attempt: it is waiting and will give up when it sees its flag.
                 owner = node.owner.load(std::memory_order_acquire);
-                if ((owner == 0 || owner == static_cast<std::uint32_t>(blocker) + 1) &&
+                if ((owner == 0 || owner == overriddenTag) &&
                     node.owner.compare_exchange_strong(owner, worker.tag,
                                                        std::memory_order_acq_rel)) {
                     worker.held.push_back(t);
@@ -301,7 +324,7 @@ private:
     }
 
     bool stillBlocked(const DagNode& node, int blocker, VertexId watchedPoint) const {
-        if (node.owner.load(std::memory_order_acquire) == static_cast<std::uint32_t>(blocker) + 1)
+        if (holderOf(node.owner.load(std::memory_order_acquire)) == blocker)
             return true;
         return watchedPoint != kNoVertex &&
                m_slots[blocker].activePoint.load(std::memory_order_acquire) == watchedPoint &&
@@ -309,7 +332,9 @@ private:
                                                     watchedPoint) > 0;
     }
 
-    WaitOutcome waitFor(Worker& worker, int blocker, NodeId t) {
+    // Waits while `blocker` keeps t. On Override, `overriddenTag` is the blocker's tag for
+    // the attempt overridden.
+    WaitOutcome waitFor(Worker& worker, int blocker, NodeId t, std::uint32_t& overriddenTag) {
         WorkerSlot& self = m_slots[worker.index];
         {
             // Deadlock detection: does the chain of waits from the blocker lead back here?
@@ -320,6 +345,9 @@ private:
                  ++steps)
                 next = m_slots[next].waitingFor;
             if (next == static_cast<int>(worker.index)) {
+                // The blocker is waiting, so its attempt (and tag) cannot change until it
+                // sees the flag and gives up.
+                overriddenTag = m_slots[blocker].tag.load(std::memory_order_relaxed);
                 m_slots[blocker].overridden.store(true, std::memory_order_release);
                 ++worker.statistics.overrides;
                 return WaitOutcome::Override;
@@ -361,7 +389,7 @@ CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulato
                                                     std::span<const std::size_t> roundStarts,
                                                     unsigned workers, bool walk,
                                                     const ProgressCallback& progress) {
-    workers = std::max(1U, workers);
+    workers = std::clamp(workers, 1U, kMaxWorkers);
     CircumcircleRun run(triangulator, order, roundStarts, workers, walk);
     {
         std::vector<std::jthread> others;

@@ -42,7 +42,7 @@ struct CircumcircleStatistics {
 };
 
 /// Inserts `order` into `triangulator` with `workers` threads (the calling thread is one of
-/// them). `roundStarts` splits the order into rounds (BRIO; {0} for one round): each worker
+/// them; at most 4094). `roundStarts` splits the order into rounds (BRIO; {0} for one round): each worker
 /// inserts its own contiguous share of every round in turn, so that with a spatially sorted
 /// round the workers stay far apart and rarely conflict. With `walk`, each worker locates a
 /// point by a visibility walk from the triangles of its previous one (DagTriangulator::walk)
