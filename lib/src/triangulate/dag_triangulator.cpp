@@ -114,8 +114,7 @@ void DagTriangulator::insertAllByWalking(std::span<const VertexId> order,
             throw Cancelled("Triangulator: cancelled");
         // The node allocated last was created by the last edit and nothing has edited it
         // since (any edit allocates newer nodes), so it is a leaf near the previous point.
-        const auto newest = static_cast<NodeId>(m_nodes.size() - 1);
-        insertAtLeaf(walk(order[i], newest), order[i]);
+        insertAtLeaf(walk(order[i], newestNode()), order[i]);
     }
 }
 

@@ -13,9 +13,23 @@ namespace {
 // back each chunk with few large pages.
 constexpr std::size_t kHugePageBytes = std::size_t{2} << 20U;
 constexpr std::size_t kChunkBytes = NodeArena::kChunkNodes * sizeof(DagNode);
+static_assert(NodeArena::kChunkNodes % NodeArena::kBlockNodes == 0,
+              "a block must never straddle two chunks");
+
+std::atomic<std::uint64_t> nextGeneration{1};
+
+// The block of ids the calling thread is allocating from, in the arena of that generation.
+struct ThreadBlock {
+    std::uint64_t generation = 0;
+    std::size_t next = 0;
+    std::size_t end = 0;
+};
+thread_local ThreadBlock threadBlock;
 } // namespace
 
-NodeArena::NodeArena() : m_chunks(new std::atomic<DagNode*>[kMaxChunks]) {
+NodeArena::NodeArena()
+    : m_generation(nextGeneration.fetch_add(1, std::memory_order_relaxed)),
+      m_chunks(new std::atomic<DagNode*>[kMaxChunks]) {
     for (std::size_t i = 0; i < kMaxChunks; ++i)
         m_chunks[i].store(nullptr, std::memory_order_relaxed);
 }
@@ -46,25 +60,27 @@ DagNode* NodeArena::chunkFor(std::size_t chunk) {
 }
 
 NodeId NodeArena::allocate(unsigned count) {
-    std::size_t first = m_next.load(std::memory_order_relaxed);
-    std::size_t start = 0;
-    do {
-        // Children must be consecutive and in one chunk: skip a chunk's last few ids if needed.
-        start = first;
-        if ((start & (kChunkNodes - 1)) + count > kChunkNodes)
-            start = (start | (kChunkNodes - 1)) + 1;
-        if (start + count > kBusyNode)
+    ThreadBlock& block = threadBlock;
+    if (block.generation != m_generation || block.next + count > block.end) {
+        const std::size_t start = m_next.fetch_add(kBlockNodes, std::memory_order_relaxed);
+        if (start + kBlockNodes > kBusyNode)
             throw std::length_error("Triangulator: more than 2^32 triangles in the history");
-    } while (!m_next.compare_exchange_weak(first, start + count, std::memory_order_relaxed));
-    // Ids skipped at the end of the previous chunk become dead nodes: a leaf with no finite
-    // corner, which every traversal of the whole arena ignores.
-    for (std::size_t id = first; id < start; ++id)
-        new (&chunkFor(id >> kChunkBits)[id & (kChunkNodes - 1)])
-            DagNode{{kNoNode, kNoNode, kNoNode}, {kNoNode, kNoNode, kNoNode}, kNoNode, 0};
-    DagNode* nodes = chunkFor(start >> kChunkBits);
-    for (unsigned i = 0; i < count; ++i)
-        new (&nodes[(start & (kChunkNodes - 1)) + i]) DagNode{};
-    return static_cast<NodeId>(start);
+        DagNode* nodes = chunkFor(start >> kChunkBits) + (start & (kChunkNodes - 1));
+        for (std::size_t i = 0; i < kBlockNodes; ++i)
+            new (&nodes[i])
+                DagNode{{kNoNode, kNoNode, kNoNode}, {kNoNode, kNoNode, kNoNode}, kNoNode, 0};
+        block = {m_generation, start, start + kBlockNodes};
+    }
+    const std::size_t first = block.next;
+    block.next += count;
+    return static_cast<NodeId>(first);
+}
+
+NodeId NodeArena::newestOfThisThread() const {
+    const ThreadBlock& block = threadBlock;
+    if (block.generation != m_generation || block.next == 0)
+        return kNoNode;
+    return static_cast<NodeId>(block.next - 1);
 }
 
 } // namespace terratin::detail

@@ -81,11 +81,21 @@ public:
     }
 
     /// Reserves `count` (at most 4) consecutive ids in one chunk and returns the first; the
-    /// nodes are uninitialised leaves to be filled by the caller before publication.
-    /// Thread-safe. Throws std::length_error past 2^32 - 2 nodes.
+    /// nodes are blank leaves to be filled by the caller before publication. Thread-safe:
+    /// each thread takes ids from a block of kBlockNodes it reserved with one atomic add, so
+    /// threads neither contend for a shared counter on every triangle nor write nodes that
+    /// share a cache line. Throws std::length_error past 2^32 - 2 nodes.
     NodeId allocate(unsigned count);
 
-    /// Ids handed out so far (including the few skipped at chunk ends).
+    /// The id the calling thread allocated last in this arena, or kNoNode.
+    [[nodiscard]] NodeId newestOfThisThread() const;
+
+    /// Nodes per block a thread reserves. Every id reserved is initialised as a dead node (a
+    /// leaf with no finite corner, which every traversal of the whole arena ignores) until
+    /// allocated, so ids a thread reserved and never used are harmless.
+    static constexpr std::size_t kBlockNodes = 512;
+
+    /// Ids handed out so far, including reserved and unused ones (dead nodes).
     [[nodiscard]] std::size_t size() const { return m_next.load(std::memory_order_relaxed); }
     /// Bytes of node storage allocated.
     [[nodiscard]] std::size_t bytesAllocated() const {
@@ -95,6 +105,9 @@ public:
 private:
     DagNode* chunkFor(std::size_t chunk);
 
+    /// Distinguishes this arena from every other, past or future, in the threads' caches of
+    /// their current block.
+    const std::uint64_t m_generation;
     std::unique_ptr<std::atomic<DagNode*>[]> m_chunks;
     std::atomic<std::size_t> m_next{0};
     std::atomic<std::size_t> m_chunkCount{0};
