@@ -34,6 +34,8 @@ int holderOf(std::uint32_t owner) { return static_cast<int>(owner & kWorkerMask)
 
 // Progress from the calling thread every this many insertions (all workers together).
 constexpr std::size_t kProgressInterval = 1U << 16;
+// Workers add to the shared count of insertions once per this many of their own.
+constexpr std::size_t kCountBatch = 4096;
 
 // What a worker publishes to the others. One cache line each: they are polled constantly.
 struct alignas(64) WorkerSlot {
@@ -86,17 +88,12 @@ public:
                 const std::size_t length = roundEnd - roundBegin;
                 const std::size_t begin = roundBegin + length * index / workers;
                 const std::size_t end = roundBegin + length * (index + 1) / workers;
-                for (std::size_t i = begin; i < end && !stopping(); ++i)
+                for (std::size_t i = begin; i < end && !stopping(); ++i) {
                     insertPoint(worker, m_order[i]);
-                const std::size_t done = m_inserted.fetch_add(end - begin) + (end - begin);
-                if (progress != nullptr && *progress && done >= nextReport) {
-                    nextReport = done + kProgressInterval;
-                    if (!(*progress)(static_cast<double>(done) /
-                                         static_cast<double>(m_order.size()),
-                                     "triangulating")) {
-                        m_cancelled.store(true, std::memory_order_relaxed);
-                        m_stop.store(true, std::memory_order_release);
-                    }
+                    const std::size_t sinceCounted = (i + 1 - begin) % kCountBatch;
+                    if (sinceCounted == 0 || i + 1 == end)
+                        reportProgress(sinceCounted == 0 ? kCountBatch : sinceCounted, progress,
+                                       nextReport);
                 }
             }
         } catch (...) {
@@ -128,6 +125,22 @@ public:
     [[nodiscard]] const CircumcircleStatistics& statistics() const { return m_statistics; }
 
 private:
+    // Adds a worker's insertions to the shared count; the calling thread (the only one with
+    // a callback) reports every kProgressInterval insertions of all workers together.
+    void reportProgress(std::size_t inserted, const ProgressCallback* progress,
+                        std::size_t& nextReport) {
+        const std::size_t done =
+            m_inserted.fetch_add(inserted, std::memory_order_relaxed) + inserted;
+        if (progress == nullptr || !*progress || done < nextReport)
+            return;
+        nextReport = done + kProgressInterval;
+        if (!(*progress)(static_cast<double>(done) / static_cast<double>(m_order.size()),
+                         "triangulating")) {
+            m_cancelled.store(true, std::memory_order_relaxed);
+            m_stop.store(true, std::memory_order_release);
+        }
+    }
+
     enum class WaitOutcome { Retry, Override, Aborted };
 
     bool stopping() const { return m_stop.load(std::memory_order_acquire); }

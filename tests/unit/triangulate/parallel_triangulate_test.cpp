@@ -153,6 +153,21 @@ TEST(CircumcircleMethod, ThrowsCancelled_AndStopsEveryThread) {
                  Cancelled);
 }
 
+TEST(CircumcircleMethod, ReportsProgressInStepsThroughTheLastRound) {
+    // The last BRIO round holds half the points: progress must not jump over it.
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 300000, 6);
+    std::vector<double> fractions;
+    triangulate(points, parallelOptions(TriangulationMethod::Circumcircle, 2),
+                [&fractions](double fraction, std::string_view) {
+                    fractions.push_back(fraction);
+                    return true;
+                });
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    const auto inLastHalf = std::count_if(fractions.begin(), fractions.end(),
+                                          [](double f) { return f > 0.5 && f < 1.0; });
+    EXPECT_GE(inLastHalf, 2);
+}
+
 TEST(BatchMethod, IsExactlyDelaunay_WhenSearchersHelpOnAFullQueue) {
     const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 20000, 4);
     TriangulationOptions options = parallelOptions(TriangulationMethod::Batch, 2);
