@@ -47,7 +47,7 @@ feature_count() {
 case "$case_name" in
   help)
     run 0 --help
-    grep -q 'Usage: terratin build INPUT -o OUTPUT' out.txt || fail "no usage line"
+    grep -q 'Usage: terratin build INPUT\.\.\. -o OUTPUT' out.txt || fail "no usage line"
     grep -q -- '--overwrite' out.txt || fail "options not listed"
     ;;
   no_arguments)
