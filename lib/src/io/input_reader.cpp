@@ -115,8 +115,12 @@ InputKind detectInputKind(const std::string& path) {
         return InputKind::Raster;
     }
     if (!virtualPath && !fs::is_directory(path, error)) {
+        // Text unless it starts like JSON or XML (a damaged GeoJSON or GML should get GDAL's
+        // message, not a line-number complaint).
         const std::string sample = head(path, kSniffBytes);
-        if (!sample.empty() && sample.find('\0') == std::string::npos)
+        const std::size_t first = sample.find_first_not_of(" \t\r\n");
+        if (first != std::string::npos && sample[first] != '{' && sample[first] != '<' &&
+            sample.find('\0') == std::string::npos)
             return InputKind::Text;
     }
     throw IoError(std::string(kStage) + ": '" + path +

@@ -174,22 +174,28 @@ private:
             }
         }
 
-        // A header: a named column was asked for, or a chosen column of this line is not a
-        // number.
-        const auto numeric = [&](std::size_t index) {
+        // A header: a named column was asked for, or none of the chosen columns of this line
+        // reads as a number (a line with some numbers is data, to be reported if bad).
+        const auto looksNumeric = [](std::string_view field) {
             double ignored = 0.0;
-            return index < all.size() && parseNumber(all[index], ignored);
+            if (!field.empty() && field.front() == '+')
+                field.remove_prefix(1);
+            const char* end = field.data() + field.size();
+            const auto [ptr, error] = std::from_chars(field.data(), end, ignored);
+            return !field.empty() && ptr == end &&
+                   (error == std::errc() || error == std::errc::result_out_of_range);
         };
-        bool header = namesGiven;
-        for (std::size_t i = 0; i < 3 && !header; ++i) {
+        bool header = true;
+        for (std::size_t i = 0; i < 3; ++i) {
             const std::size_t index = byNumber[i].value_or(i);
-            header = !numeric(index);
+            if (index < all.size() && looksNumeric(all[index]))
+                header = false;
         }
-        if (header && count > 0 && std::none_of(all.begin(), all.end(), [](std::string_view f) {
-                return !f.empty() && std::isalpha(static_cast<unsigned char>(f.front()));
-            }) && !namesGiven) {
-            // Not a header (no field looks like a name): the first line is bad data.
-            header = false;
+        if (namesGiven) {
+            if (std::all_of(all.begin(), all.end(), looksNumeric))
+                throw InvalidInputError(where(number) + "no header line to find the named "
+                                        "columns of --columns in (the first line is numbers)");
+            header = true;
         }
 
         std::vector<std::string> names;
@@ -286,6 +292,9 @@ std::size_t parseLines(std::string_view data, bool final, LineParser& parser,
         if (found == nullptr) {
             if (!final)
                 break;
+            if (data.size() - pos > kMaxLineBytes)
+                throw InvalidInputError(std::string(kStage) + ": '" + name + "' line " +
+                                        std::to_string(lineNumber + 1) + " is longer than 1 MiB");
             parser.line(data.substr(pos), ++lineNumber);
             return data.size();
         }
