@@ -189,6 +189,20 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     source.read(0, std::span(raw).first(4));
     if (std::memcmp(raw.data(), "LASF", 4) != 0)
         invalid(name, "not a LAS file (no LASF signature)");
+    // LAZ first, whatever else is wrong: it is the likeliest reason for a failure. LASzip
+    // marks compressed files by setting bit 7 (and 6) of the point format (byte 104).
+    const bool lazExtension = name.size() >= 4 && [&] {
+        std::string ext = name.substr(name.size() - 4);
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        return ext == ".laz";
+    }();
+    std::array<std::byte, 1> formatProbe{};
+    if (fileSize > 104)
+        source.read(104, formatProbe);
+    if (lazExtension || (std::to_integer<unsigned>(formatProbe[0]) & 0xC0u) != 0)
+        invalid(name, "LAZ is compressed; not supported (decompress it first, e.g. with "
+                      "'pdal translate in.laz out.las' or 'laszip -i in.laz -o out.las')");
     if (fileSize < kHeaderSize12)
         invalid(name, "truncated: " + std::to_string(fileSize) +
                           " bytes, shorter than a LAS header (227 bytes)");
@@ -219,16 +233,6 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
         h.bounds[axis] = field<double>(bytes, 187 + 16 * axis);
     }
 
-    // LASzip marks compressed files by setting bit 7 (and 6) of the point format.
-    const bool lazExtension = name.size() >= 4 && [&] {
-        std::string ext = name.substr(name.size() - 4);
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        return ext == ".laz";
-    }();
-    if ((formatByte & 0xC0) != 0 || lazExtension)
-        invalid(name, "LAZ is compressed; not supported (decompress it first, e.g. with "
-                      "'pdal translate in.laz out.las' or 'laszip -i in.laz -o out.las')");
     h.pointFormat = formatByte;
     if (h.pointFormat > 10)
         invalid(name, "point data record format " + std::to_string(h.pointFormat) +
