@@ -147,8 +147,10 @@ private:
                 m_delimiter = ' ';
         }
         std::vector<std::string_view> all;
-        m_fields.resize(kMaxColumnNumber);
-        const std::size_t count = split(text, kMaxColumnNumber);
+        // A line of n bytes has at most n + 1 fields.
+        const std::size_t limit = std::min(kMaxColumnNumber, text.size() + 1);
+        m_fields.resize(limit);
+        const std::size_t count = split(text, limit);
         all.assign(m_fields.begin(), m_fields.begin() + static_cast<std::ptrdiff_t>(count));
 
         // Column numbers given as numbers, names kept for a header lookup.
