@@ -35,8 +35,9 @@ class TempDir {
 public:
     TempDir()
         : m_path(fs::temp_directory_path() /
-                 ("terratin_pc_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                  "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+                 ("terratin_pc_" +
+                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
         fs::remove_all(m_path);
         fs::create_directories(m_path);
     }
@@ -96,8 +97,13 @@ void cutWindow(const std::string& source, const fs::path& target, int col, int r
                int height) {
     std::unique_ptr<GDALDataset> in(GDALDataset::Open(source.c_str(), GDAL_OF_RASTER));
     ASSERT_NE(in, nullptr);
-    const std::string args[] = {"-srcwin", std::to_string(col), std::to_string(row),
-                                std::to_string(width), std::to_string(height), "-of", "GTiff"};
+    const std::string args[] = {"-srcwin",
+                                std::to_string(col),
+                                std::to_string(row),
+                                std::to_string(width),
+                                std::to_string(height),
+                                "-of",
+                                "GTiff"};
     std::vector<char*> argv;
     for (const std::string& arg : args)
         argv.push_back(const_cast<char*>(arg.c_str()));
@@ -134,7 +140,7 @@ TEST(PointCloudPipeline, ProjectsSrtmWindowToUtm19_WithExactElevations) {
     raster->GetGeoTransform(gt);
     std::vector<double> values(60 * 50);
     ASSERT_EQ(raster->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 60, 50, values.data(), 60, 50,
-                                                  GDT_Float64, 0, 0),
+                                                 GDT_Float64, 0, 0),
               CE_None);
 
     std::vector<std::string> notices;
@@ -174,7 +180,8 @@ TEST(PointCloudPipeline, ProjectsSrtmWindowToUtm19_WithExactElevations) {
         // neighbouring keys holds it.
         for (long long dx = -1; dx <= 1; ++dx)
             for (long long dy = -1; dy <= 1; ++dy) {
-                const auto it = expected.find({std::llround(v.x * 100) + dx, std::llround(v.y * 100) + dy});
+                const auto it =
+                    expected.find({std::llround(v.x * 100) + dx, std::llround(v.y * 100) + dy});
                 if (it != expected.end() && v.z == it->second) {
                     ++matched;
                     dx = dy = 2;
@@ -202,7 +209,7 @@ TEST(PointCloudPipeline, ReprojectsToWebMercator_AndRoundTripsWithinAMillimetre)
     ASSERT_NE(raster, nullptr);
     std::vector<double> values(40 * 40);
     ASSERT_EQ(raster->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 40, 40, values.data(), 40, 40,
-                                                  GDT_Float64, 0, 0),
+                                                 GDT_Float64, 0, 0),
               CE_None);
     std::vector<Point3> back = tin.vertices;
     crs::Reprojector(tin.crsWkt, crs::crsFromUserInput("EPSG:32633", "test")).transform(back);
@@ -233,7 +240,8 @@ TEST(PointCloudPipeline, MergesRasterLasAndGeoJson_InTheRastersCrs) {
     {
         const std::vector<std::byte> bytes = las.bytes();
         std::ofstream(lasPath, std::ios::binary)
-            .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+            .write(reinterpret_cast<const char*>(bytes.data()),
+                   static_cast<std::streamsize>(bytes.size()));
     }
     const Point2 spot = crs::Reprojector(crs::crsFromUserInput("EPSG:32633", "t"),
                                          crs::crsFromUserInput("EPSG:4326", "t"))
@@ -287,9 +295,9 @@ TEST(PointCloudPipeline, DemandsSourceSrs_WhenAnInputHasNoCrs) {
 
     // Beside a raster with a CRS, or with --t_srs: an error naming the file and --s_srs.
     for (const bool withTarget : {false, true}) {
-        BuildOptions options = withTarget ? optionsFor({text.string()}, dir.file("t.gpkg"))
-                                          : optionsFor({sample.string(), text.string()},
-                                                       dir.file("m.gpkg"));
+        BuildOptions options =
+            withTarget ? optionsFor({text.string()}, dir.file("t.gpkg"))
+                       : optionsFor({sample.string(), text.string()}, dir.file("m.gpkg"));
         if (withTarget)
             options.targetSrs = "EPSG:3857";
         try {
@@ -380,8 +388,10 @@ TEST(PointCloudPipeline, ReportsInputsAndCrsInJson) {
           "\"reprojected\": true"})
         EXPECT_NE(json.find(key), std::string::npos) << key << " missing in " << json;
     const std::string text = toInputSummary(report);
-    EXPECT_NE(text.find("input 1: a.las (las, no CRS): 10 records, 4 filtered out, 6 points, 1 duplicates"),
-              std::string::npos)
+    EXPECT_NE(
+        text.find(
+            "input 1: a.las (las, no CRS): 10 records, 4 filtered out, 6 points, 1 duplicates"),
+        std::string::npos)
         << text;
     EXPECT_NE(text.find("WGS 84 [EPSG:4326] -> WGS 84 / UTM zone 19N [EPSG:32619] (UTM zone 19N"),
               std::string::npos)

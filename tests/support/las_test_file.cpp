@@ -82,18 +82,18 @@ std::vector<std::byte> LasTestFile::bytes() const {
         put<std::int32_t>(out, pos + 4, p.y);
         put<std::int32_t>(out, pos + 8, p.z);
         if (extended) {
-            put<std::uint8_t>(out, pos + 14,
-                              static_cast<std::uint8_t>((p.returnNumber & 0x0F) |
-                                                        ((p.returnCount & 0x0F) << 4)));
+            put<std::uint8_t>(
+                out, pos + 14,
+                static_cast<std::uint8_t>((p.returnNumber & 0x0F) | ((p.returnCount & 0x0F) << 4)));
             put<std::uint8_t>(out, pos + 15, static_cast<std::uint8_t>(p.withheld ? 0x04 : 0));
             put<std::uint8_t>(out, pos + 16, p.classification);
         } else {
-            put<std::uint8_t>(out, pos + 14,
-                              static_cast<std::uint8_t>((p.returnNumber & 0x07) |
-                                                        ((p.returnCount & 0x07) << 3)));
-            put<std::uint8_t>(out, pos + 15,
-                              static_cast<std::uint8_t>((p.classification & 0x1F) |
-                                                        (p.withheld ? 0x80 : 0)));
+            put<std::uint8_t>(
+                out, pos + 14,
+                static_cast<std::uint8_t>((p.returnNumber & 0x07) | ((p.returnCount & 0x07) << 3)));
+            put<std::uint8_t>(
+                out, pos + 15,
+                static_cast<std::uint8_t>((p.classification & 0x1F) | (p.withheld ? 0x80 : 0)));
         }
         pos += recordLength;
     }
@@ -116,9 +116,9 @@ std::vector<std::byte> LasTestFile::bytes() const {
 
 LasTestRecord geoKeysForProjectedEpsg(std::uint16_t epsg) {
     // GeoTIFF 1.0: header {1, 1, 0, keys}, then {key, location 0 (value inline), 1, value}.
-    const std::uint16_t keys[] = {1,    1, 0, 3,   //
-                                  1024, 0, 1, 1,   // GTModelTypeGeoKey = projected
-                                  1025, 0, 1, 1,   // GTRasterTypeGeoKey = PixelIsArea
+    const std::uint16_t keys[] = {1,    1, 0, 3, //
+                                  1024, 0, 1, 1, // GTModelTypeGeoKey = projected
+                                  1025, 0, 1, 1, // GTRasterTypeGeoKey = PixelIsArea
                                   3072, 0, 1, epsg};
     LasTestRecord record{"LASF_Projection", 34735, {}};
     record.data.resize(sizeof keys);

@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
                 const auto start = std::chrono::steady_clock::now();
                 const terratin::io::PointCloud cloud = terratin::io::readInput(file);
                 seconds.push_back(
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                        .count());
                 if (cloud.points.size() != points)
                     throw terratin::Error("the point count changed between runs");
             }

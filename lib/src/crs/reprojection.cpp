@@ -152,7 +152,8 @@ void Reprojector::transform(std::span<Point3> points) const {
             ys[i] = points[first + i].y;
         }
         // z = nullptr: a 2D transformation, elevations stay as they are.
-        m_impl->transform->Transform(static_cast<int>(count), xs.data(), ys.data(), nullptr, nullptr, ok.data());
+        m_impl->transform->Transform(static_cast<int>(count), xs.data(), ys.data(), nullptr,
+                                     nullptr, ok.data());
         for (std::size_t i = 0; i < count; ++i) {
             if (ok[i] == 0 || !std::isfinite(xs[i]) || !std::isfinite(ys[i])) {
                 if (failures++ == 0)

@@ -33,8 +33,8 @@ UtmZone standardUtmZone(double longitudeDeg, double latitudeDeg) {
     if (!std::isfinite(longitudeDeg) || !std::isfinite(latitudeDeg) || latitudeDeg < -90.0 ||
         latitudeDeg > 90.0)
         throw CrsError(std::string(kStage) + ": no UTM/UPS zone for longitude " +
-                       std::to_string(longitudeDeg) + ", latitude " +
-                       std::to_string(latitudeDeg) + " (latitude outside -90..90 degrees: "
+                       std::to_string(longitudeDeg) + ", latitude " + std::to_string(latitudeDeg) +
+                       " (latitude outside -90..90 degrees: "
                        "is the input really geographic?)");
     UtmZone result;
     try {
@@ -71,8 +71,8 @@ std::string utmZoneCrs(const UtmZone& zone, const std::string& geographicWkt) {
                            " is missing from PROJ's database: " + io::lastGdalErrorMessage());
     } else {
         projected.CopyGeogCSFrom(&geographic);
-        const std::string name = std::string(geographic.GetName() ? geographic.GetName() : "") +
-                                 " / " + zone.name();
+        const std::string name =
+            std::string(geographic.GetName() ? geographic.GetName() : "") + " / " + zone.name();
         projected.SetProjCS(name.c_str());
         if (zone.zone == 0) {
             projected.SetPS(zone.north ? 90.0 : -90.0, 0.0, kUpsScale, kUpsFalseOriginM,

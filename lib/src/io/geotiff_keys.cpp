@@ -176,16 +176,15 @@ std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
         const std::unique_ptr<void, DatasetCloser> dataset(
             GDALOpenEx(memName.c_str(), GDAL_OF_RASTER, drivers, nullptr, nullptr));
         if (dataset) {
-            const auto* srs =
-                OGRSpatialReference::FromHandle(GDALGetSpatialRef(dataset.get()));
+            const auto* srs = OGRSpatialReference::FromHandle(GDALGetSpatialRef(dataset.get()));
             if (srs != nullptr)
                 wkt = crs::detail::exportWkt(*srs);
         }
     }
     VSIUnlink(memName.c_str());
     if (wkt.empty())
-        throw CrsError(where + "its GeoTIFF keys describe no CRS GDAL can use: " +
-                       lastGdalErrorMessage());
+        throw CrsError(where +
+                       "its GeoTIFF keys describe no CRS GDAL can use: " + lastGdalErrorMessage());
     return wkt;
 }
 

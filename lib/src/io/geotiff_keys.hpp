@@ -8,7 +8,6 @@
 #include <string>
 #include <string_view>
 
-
 namespace terratin::io::detail {
 
 /// The CRS that a GeoKeyDirectory (with its double and ASCII parameters) describes, as WKT2.

@@ -123,9 +123,9 @@ InputKind detectInputKind(const std::string& path) {
             sample.find('\0') == std::string::npos)
             return InputKind::Text;
     }
-    throw IoError(std::string(kStage) + ": '" + path +
-                  "' is not a raster, LAS, text or vector file terratin can read: " +
-                  lastGdalErrorMessage());
+    throw IoError(
+        std::string(kStage) + ": '" + path +
+        "' is not a raster, LAS, text or vector file terratin can read: " + lastGdalErrorMessage());
 }
 
 PointCloud readInput(const std::string& path, const InputReadOptions& options,

@@ -133,10 +133,10 @@ std::string trimmedText(std::span<const std::byte> bytes) {
 
 /// The CRS records found among the (E)VLRs.
 struct CrsRecords {
-    std::optional<std::vector<std::byte>> geoKeys;     // 34735
-    std::optional<std::vector<std::byte>> geoDoubles;  // 34736
-    std::optional<std::vector<std::byte>> geoAscii;    // 34737
-    std::optional<std::vector<std::byte>> wkt;         // 2112
+    std::optional<std::vector<std::byte>> geoKeys;    // 34735
+    std::optional<std::vector<std::byte>> geoDoubles; // 34736
+    std::optional<std::vector<std::byte>> geoAscii;   // 34737
+    std::optional<std::vector<std::byte>> wkt;        // 2112
     bool laszip = false;
 };
 
@@ -224,8 +224,10 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     h.recordLength = field<std::uint16_t>(bytes, 105);
     const std::uint64_t legacyCount = field<std::uint32_t>(bytes, 107);
     for (int i = 0; i < 3; ++i) {
-        h.scale[static_cast<std::size_t>(i)] = field<double>(bytes, 131 + 8 * static_cast<std::size_t>(i));
-        h.offset[static_cast<std::size_t>(i)] = field<double>(bytes, 155 + 8 * static_cast<std::size_t>(i));
+        h.scale[static_cast<std::size_t>(i)] =
+            field<double>(bytes, 131 + 8 * static_cast<std::size_t>(i));
+        h.offset[static_cast<std::size_t>(i)] =
+            field<double>(bytes, 155 + 8 * static_cast<std::size_t>(i));
     }
     // Header order: max x, min x, max y, min y, max z, min z.
     for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -252,7 +254,8 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     std::uint32_t evlrCount = 0;
     h.pointCount = legacyCount;
     if (h.versionMinor >= 4) {
-        source.read(kHeaderSize12, std::span(raw).subspan(kHeaderSize12, kHeaderSize14 - kHeaderSize12));
+        source.read(kHeaderSize12,
+                    std::span(raw).subspan(kHeaderSize12, kHeaderSize14 - kHeaderSize12));
         evlrStart = field<std::uint64_t>(bytes, 235);
         evlrCount = field<std::uint32_t>(bytes, 243);
         const auto extendedCount = field<std::uint64_t>(bytes, 247);
@@ -265,16 +268,16 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     }
 
     for (std::size_t axis = 0; axis < 3; ++axis) {
-        if (!std::isfinite(h.scale[axis]) || h.scale[axis] == 0.0 ||
-            !std::isfinite(h.offset[axis]))
-            invalid(name, std::string("the ") + "xyz"[axis] + " scale factor or offset is zero or "
-                          "not finite");
+        if (!std::isfinite(h.scale[axis]) || h.scale[axis] == 0.0 || !std::isfinite(h.offset[axis]))
+            invalid(name, std::string("the ") + "xyz"[axis] +
+                              " scale factor or offset is zero or "
+                              "not finite");
     }
     if (h.recordLength < kMinRecordLength[static_cast<std::size_t>(h.pointFormat)])
-        invalid(name, "point record length " + std::to_string(h.recordLength) +
-                          " is below the " +
-                          std::to_string(kMinRecordLength[static_cast<std::size_t>(h.pointFormat)]) +
-                          " bytes of point format " + std::to_string(h.pointFormat));
+        invalid(name,
+                "point record length " + std::to_string(h.recordLength) + " is below the " +
+                    std::to_string(kMinRecordLength[static_cast<std::size_t>(h.pointFormat)]) +
+                    " bytes of point format " + std::to_string(h.pointFormat));
     if (h.pointDataOffset < h.headerSize)
         invalid(name, "the point data offset " + std::to_string(h.pointDataOffset) +
                           " lies inside the " + std::to_string(h.headerSize) + "-byte header");
@@ -322,8 +325,7 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
                                   " runs past the end of the file");
             std::array<std::byte, kEvlrHeaderSize> evlr{};
             source.read(pos, evlr);
-            const std::string userId =
-                trimmedText(std::span<const std::byte>(evlr).subspan(2, 16));
+            const std::string userId = trimmedText(std::span<const std::byte>(evlr).subspan(2, 16));
             const auto recordId = field<std::uint16_t>(evlr, 18);
             const auto length = field<std::uint64_t>(evlr, 20);
             if (length > fileSize - pos - kEvlrHeaderSize)
@@ -356,11 +358,10 @@ std::string crsOf(const ParsedHeader& parsed, const std::string& name) {
         const std::vector<std::uint16_t> keys = asArray<std::uint16_t>(*records.geoKeys);
         const std::vector<double> doubles =
             records.geoDoubles ? asArray<double>(*records.geoDoubles) : std::vector<double>();
-        const std::string ascii = records.geoAscii
-                                      ? std::string(reinterpret_cast<const char*>(
-                                                        records.geoAscii->data()),
-                                                    records.geoAscii->size())
-                                      : std::string();
+        const std::string ascii =
+            records.geoAscii ? std::string(reinterpret_cast<const char*>(records.geoAscii->data()),
+                                           records.geoAscii->size())
+                             : std::string();
         return detail::geoTiffKeysToWkt(keys, doubles, ascii, kStage, name);
     };
     if ((parsed.header.globalEncoding & kWktBit) != 0 && records.wkt)
@@ -397,8 +398,8 @@ PointCloud readPoints(ByteSource& source, const std::string& name, const LasRead
     const bool extended = h.pointFormat >= 6;
     const std::size_t recordLength = h.recordLength;
     const std::size_t recordsPerBuffer = std::max<std::size_t>(1, kBufferBytes / recordLength);
-    std::vector<std::byte> buffer(
-        recordLength * static_cast<std::size_t>(std::min<std::uint64_t>(recordsPerBuffer, h.pointCount)));
+    std::vector<std::byte> buffer(recordLength * static_cast<std::size_t>(std::min<std::uint64_t>(
+                                                     recordsPerBuffer, h.pointCount)));
     // Bounded by the file size, already checked: 24 bytes per point for at most
     // fileSize / 20 records.
     cloud.points.reserve(static_cast<std::size_t>(h.pointCount));
@@ -406,8 +407,8 @@ PointCloud readPoints(ByteSource& source, const std::string& name, const LasRead
     const double sx = h.scale[0], sy = h.scale[1], sz = h.scale[2];
     const double ox = h.offset[0], oy = h.offset[1], oz = h.offset[2];
     for (std::uint64_t first = 0; first < h.pointCount; first += recordsPerBuffer) {
-        const auto records =
-            static_cast<std::size_t>(std::min<std::uint64_t>(recordsPerBuffer, h.pointCount - first));
+        const auto records = static_cast<std::size_t>(
+            std::min<std::uint64_t>(recordsPerBuffer, h.pointCount - first));
         const std::span<std::byte> chunk(buffer.data(), records * recordLength);
         source.read(h.pointDataOffset + first * recordLength, chunk);
         for (std::size_t r = 0; r < records; ++r) {
@@ -429,9 +430,10 @@ PointCloud readPoints(ByteSource& source, const std::string& name, const LasRead
                 withheld = (flagByte & 0x80u) != 0;
                 classification = flagByte & 0x1Fu;
             }
-            const bool returnKept = options.returns == LasReturns::All ||
-                                    (options.returns == LasReturns::First && returnNumber <= 1) ||
-                                    (options.returns == LasReturns::Last && returnNumber >= returnCount);
+            const bool returnKept =
+                options.returns == LasReturns::All ||
+                (options.returns == LasReturns::First && returnNumber <= 1) ||
+                (options.returns == LasReturns::Last && returnNumber >= returnCount);
             if (withheld || !returnKept || !keepClass.test(classification)) {
                 ++cloud.filteredOut;
                 continue;

@@ -101,8 +101,7 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
         if (zFieldType != OFTInteger && zFieldType != OFTInteger64 && zFieldType != OFTReal &&
             zFieldType != OFTString)
             throw InvalidInputError(where + "field '" + options.zField + "' is " +
-                                    OGRFieldDefn::GetFieldTypeName(zFieldType) +
-                                    ", not a number");
+                                    OGRFieldDefn::GetFieldTypeName(zFieldType) + ", not a number");
     }
 
     PointCloud cloud;
@@ -138,7 +137,7 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
         if (!z) {
             if (!point.Is3D())
                 throw InvalidInputError(where + "its points have no z; name the elevation "
-                                        "attribute with --z-field NAME");
+                                                "attribute with --z-field NAME");
             z = point.getZ();
         }
         cloud.points.push_back({point.getX(), point.getY(), *z});
@@ -177,8 +176,8 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
             throw Cancelled(std::string(kStage) + ": cancelled while reading '" + path + "'");
     }
     if (cloud.points.empty())
-        throw InvalidInputError(where + "no point among its " +
-                                std::to_string(cloud.recordsRead) + " feature(s)");
+        throw InvalidInputError(where + "no point among its " + std::to_string(cloud.recordsRead) +
+                                " feature(s)");
     return cloud;
 }
 

@@ -31,7 +31,9 @@ constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
 /// More columns than this in --columns is a mistake, not a file layout.
 constexpr std::size_t kMaxColumnNumber = 10000;
 
-bool isBlank(char c) { return c == ' ' || c == '\t'; }
+bool isBlank(char c) {
+    return c == ' ' || c == '\t';
+}
 
 std::string_view trim(std::string_view text) {
     while (!text.empty() && isBlank(text.front()))
@@ -70,12 +72,14 @@ public:
             const char d = *options.delimiter;
             if (d != ' ' && d != '\t' && d != ',' && d != ';' && d != '|')
                 throw InvalidInputError(std::string(kStage) + ": the delimiter must be space, "
-                                        "tab, ',', ';' or '|'");
+                                                              "tab, ',', ';' or '|'");
             m_delimiter = d == '\t' ? ' ' : d;
         }
         if (!options.columns.empty() && options.columns.size() != 3)
-            throw InvalidInputError(std::string(kStage) + ": --columns takes three columns "
-                                    "(x,y,z), got " + std::to_string(options.columns.size()));
+            throw InvalidInputError(std::string(kStage) +
+                                    ": --columns takes three columns "
+                                    "(x,y,z), got " +
+                                    std::to_string(options.columns.size()));
     }
 
     void line(std::string_view text, std::uint64_t number) {
@@ -195,7 +199,8 @@ private:
         }
         if (namesGiven) {
             if (std::all_of(all.begin(), all.end(), looksNumeric))
-                throw InvalidInputError(where(number) + "no header line to find the named "
+                throw InvalidInputError(where(number) +
+                                        "no header line to find the named "
                                         "columns of --columns in (the first line is numbers)");
             header = true;
         }
@@ -262,10 +267,9 @@ private:
         for (std::size_t axis = 0; axis < 3; ++axis) {
             const std::string_view field = m_fields[m_columns[axis]];
             if (!parseNumber(field, xyz[axis]))
-                throw InvalidInputError(where(number) + "column " +
-                                        std::to_string(m_columns[axis] + 1) + " ('" +
-                                        std::string(field.substr(0, 40)) +
-                                        "') is not a finite number");
+                throw InvalidInputError(
+                    where(number) + "column " + std::to_string(m_columns[axis] + 1) + " ('" +
+                    std::string(field.substr(0, 40)) + "') is not a finite number");
         }
         m_cloud.points.push_back({xyz[0], xyz[1], xyz[2]});
     }
@@ -323,8 +327,8 @@ PointCloud readTextPoints(const std::string& path, const TextReadOptions& option
                           const ProgressCallback& progress) {
     const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
     if (!file)
-        throw IoError(std::string(kStage) + ": cannot open '" + path + "': " +
-                      std::strerror(errno));
+        throw IoError(std::string(kStage) + ": cannot open '" + path +
+                      "': " + std::strerror(errno));
     std::uint64_t fileSize = 0;
     if (fseeko(file.get(), 0, SEEK_END) == 0) {
         const off_t end = ftello(file.get());
@@ -338,7 +342,8 @@ PointCloud readTextPoints(const std::string& path, const TextReadOptions& option
     cloud.kind = InputKind::Text;
     // A point line is rarely under 16 bytes: reserving size / 32 avoids most reallocations
     // without overcommitting for wide lines.
-    cloud.points.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(fileSize / 32, std::uint64_t{1} << 28)));
+    cloud.points.reserve(
+        static_cast<std::size_t>(std::min<std::uint64_t>(fileSize / 32, std::uint64_t{1} << 28)));
     LineParser parser(path, options, cloud);
     // Room for a chunk plus a carried-over partial line.
     std::vector<char> buffer(kChunkBytes + kMaxLineBytes + 1);

@@ -247,10 +247,9 @@ std::string toInputSummary(const BuildReport& report) {
         const InputReport& input = report.inputs[i];
         text += "input " + std::to_string(i + 1) + ": " + input.path + " (" + input.kind + ", " +
                 label(input.crsName, input.crsCode) + "): " + std::to_string(input.records) +
-                (input.kind == "raster" ? " cells, " + std::to_string(input.skippedCells) +
-                                              " nodata skipped"
-                                        : " records, " + std::to_string(input.filteredOut) +
-                                              " filtered out") +
+                (input.kind == "raster"
+                     ? " cells, " + std::to_string(input.skippedCells) + " nodata skipped"
+                     : " records, " + std::to_string(input.filteredOut) + " filtered out") +
                 ", " + std::to_string(input.points) + " points, " +
                 std::to_string(input.duplicates) + " duplicates" +
                 (input.reprojected ? ", reprojected" : "") + "\n";

@@ -44,7 +44,7 @@ std::string crsLabel(const crs::CrsDescription& description) {
     if (description.name.empty())
         return "no CRS";
     return description.code.empty() ? description.name
-                                     : description.name + " [" + description.code + "]";
+                                    : description.name + " [" + description.code + "]";
 }
 
 /// Centre of the bounding box of every point, in the (common geographic) CRS of the points.
@@ -86,12 +86,12 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
     report.zFactor = options.zFactor;
 
     // The user's CRSs first: a typo should fail before minutes of reading.
-    const std::string sourceOverride =
-        options.sourceSrs.empty() ? std::string()
-                                  : crs::crsFromUserInput(options.sourceSrs, "--s_srs");
-    const std::string requestedTarget =
-        options.targetSrs.empty() ? std::string()
-                                  : crs::crsFromUserInput(options.targetSrs, "--t_srs");
+    const std::string sourceOverride = options.sourceSrs.empty()
+                                           ? std::string()
+                                           : crs::crsFromUserInput(options.sourceSrs, "--s_srs");
+    const std::string requestedTarget = options.targetSrs.empty()
+                                            ? std::string()
+                                            : crs::crsFromUserInput(options.targetSrs, "--t_srs");
 
     io::InputReadOptions readOptions;
     readOptions.raster.band = options.band;
@@ -173,9 +173,9 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
         char centreText[96];
         std::snprintf(centreText, sizeof centreText, "%.6f, %.6f", centre.x, centre.y);
         notify(options, report,
-               "the input is geographic (" + geographicName + "); projecting it to " +
-                   zone.name() + " (" + crsLabel(projected) + "), the zone of its centre (" +
-                   centreText + "); use --t_srs to choose another CRS or --keep-geographic "
+               "the input is geographic (" + geographicName + "); projecting it to " + zone.name() +
+                   " (" + crsLabel(projected) + "), the zone of its centre (" + centreText +
+                   "); use --t_srs to choose another CRS or --keep-geographic "
                    "to triangulate in degrees");
     }
 
@@ -185,7 +185,8 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
         const crs::CrsDescription source = crs::describeCrs(cloudCrs[i]);
         reprojectInto(clouds[i], cloudCrs[i], target, report.inputs[i]);
         if (report.inputs[i].reprojected && options.zFactor == 1.0 && source.projected &&
-            targetDescription.projected && source.metresPerUnit != targetDescription.metresPerUnit) {
+            targetDescription.projected &&
+            source.metresPerUnit != targetDescription.metresPerUnit) {
             char factor[64];
             std::snprintf(factor, sizeof factor, "%.10g",
                           source.metresPerUnit / targetDescription.metresPerUnit);
@@ -213,8 +214,7 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
             total += cloud.points.size();
         gathered.points.reserve(total);
         for (io::PointCloud& cloud : clouds) {
-            gathered.points.insert(gathered.points.end(), cloud.points.begin(),
-                                   cloud.points.end());
+            gathered.points.insert(gathered.points.end(), cloud.points.begin(), cloud.points.end());
             cloud.points = {};
         }
     }
@@ -233,8 +233,8 @@ void countDuplicatesPerInput(const std::vector<std::size_t>& offsets,
     std::vector<std::uint64_t> vertices(report.inputs.size(), 0);
     for (const std::uint32_t index : sourceIndex) {
         const auto input = static_cast<std::size_t>(
-            std::upper_bound(offsets.begin(), offsets.end(), std::size_t{index}) -
-            offsets.begin() - 1);
+            std::upper_bound(offsets.begin(), offsets.end(), std::size_t{index}) - offsets.begin() -
+            1);
         if (input < vertices.size())
             ++vertices[input];
     }

@@ -26,10 +26,10 @@ TEST(UtmZone, FollowsGeographicLibStandardZones) {
     EXPECT_EQ(standardUtmZone(-71.5, 44.5), (UtmZone{19, true}));
     EXPECT_EQ(standardUtmZone(-122.0, 45.0), (UtmZone{10, true}));
     EXPECT_EQ(standardUtmZone(151.2, -33.9), (UtmZone{56, false}));
-    EXPECT_EQ(standardUtmZone(5.0, 60.0), (UtmZone{32, true}));   // Norway exception
-    EXPECT_EQ(standardUtmZone(10.0, 75.0), (UtmZone{33, true}));  // Svalbard exception
-    EXPECT_EQ(standardUtmZone(0.0, 85.0), (UtmZone{0, true}));    // UPS north above 84
-    EXPECT_EQ(standardUtmZone(0.0, -81.0), (UtmZone{0, false}));  // UPS south below -80
+    EXPECT_EQ(standardUtmZone(5.0, 60.0), (UtmZone{32, true}));  // Norway exception
+    EXPECT_EQ(standardUtmZone(10.0, 75.0), (UtmZone{33, true})); // Svalbard exception
+    EXPECT_EQ(standardUtmZone(0.0, 85.0), (UtmZone{0, true}));   // UPS north above 84
+    EXPECT_EQ(standardUtmZone(0.0, -81.0), (UtmZone{0, false})); // UPS south below -80
     EXPECT_EQ(standardUtmZone(0.0, 85.0).name(), "UPS North");
     EXPECT_EQ(standardUtmZone(-71.5, 44.5).name(), "UTM zone 19N");
     EXPECT_THROW(standardUtmZone(0.0, 91.0), CrsError);
@@ -87,7 +87,7 @@ TEST(Reprojection, RoundTripsWithinAMillimetre) {
     const Case cases[] = {
         {"EPSG:32619", "EPSG:3857", {250000, 4800000}, {750000, 5100000}},
         {"EPSG:32619", "EPSG:4326", {250000, 4800000}, {750000, 5100000}},
-        {"EPSG:2992", "EPSG:32610", {5e5, 7e5}, {1.5e6, 1.2e6}}, // Oregon Lambert ft
+        {"EPSG:2992", "EPSG:32610", {5e5, 7e5}, {1.5e6, 1.2e6}},        // Oregon Lambert ft
         {"EPSG:3358", "EPSG:3857", {600000, 200000}, {700000, 250000}}, // NC State Plane m
     };
     std::mt19937_64 random(3);
@@ -105,8 +105,10 @@ TEST(Reprojection, RoundTripsWithinAMillimetre) {
         back.transform(moved);
         const double unitM = describeCrs(crsFromUserInput(c.source, "test")).metresPerUnit;
         for (std::size_t i = 0; i < points.size(); ++i) {
-            ASSERT_NEAR(moved[i].x, points[i].x, kRoundTripToleranceM / unitM) << c.source << " " << c.target;
-            ASSERT_NEAR(moved[i].y, points[i].y, kRoundTripToleranceM / unitM) << c.source << " " << c.target;
+            ASSERT_NEAR(moved[i].x, points[i].x, kRoundTripToleranceM / unitM)
+                << c.source << " " << c.target;
+            ASSERT_NEAR(moved[i].y, points[i].y, kRoundTripToleranceM / unitM)
+                << c.source << " " << c.target;
             ASSERT_EQ(moved[i].z, points[i].z) << "z changed";
         }
     }
@@ -128,7 +130,8 @@ TEST(Reprojection, ThrowsCrsError_ForUnknownCrsAndUntransformablePoints) {
         toMercator.transform(beyondPole);
         FAIL() << "a latitude of 95 degrees was transformed";
     } catch (const CrsError& error) {
-        EXPECT_NE(std::string(error.what()).find("1 of 2 points"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("1 of 2 points"), std::string::npos)
+            << error.what();
     }
 }
 

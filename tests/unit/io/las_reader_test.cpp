@@ -25,16 +25,18 @@ using test::LasTestFile;
 using test::LasTestPoint;
 using test::poke;
 
-fs::path sharedFile(const std::string& name) { return fs::path(TERRATIN_SHARED_DEMS) / name; }
+fs::path sharedFile(const std::string& name) {
+    return fs::path(TERRATIN_SHARED_DEMS) / name;
+}
 
 /// A scratch file removed at the end of the test.
 class ScratchFile {
 public:
     explicit ScratchFile(const std::string& name)
         : m_path(fs::temp_directory_path() /
-                 ("terratin_las_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                  "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                  name)) {}
+                 ("terratin_las_" +
+                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name)) {}
     ~ScratchFile() {
         std::error_code ignored;
         fs::remove(m_path, ignored);
@@ -55,11 +57,11 @@ private:
 /// Five points covering the classification and return cases.
 std::vector<LasTestPoint> samplePoints() {
     return {
-        {100, 200, 300, 1, 1, 2, false},     // single return, ground
-        {-100, 5, 7, 1, 3, 1, false},        // first of three, unclassified
-        {7, 8, 9, 2, 3, 5, false},           // middle, high vegetation
+        {100, 200, 300, 1, 1, 2, false},         // single return, ground
+        {-100, 5, 7, 1, 3, 1, false},            // first of three, unclassified
+        {7, 8, 9, 2, 3, 5, false},               // middle, high vegetation
         {1000000, -2000000, 12, 3, 3, 2, false}, // last of three, ground
-        {1, 1, 1, 1, 1, 2, true},            // withheld ground: always dropped
+        {1, 1, 1, 1, 1, 2, true},                // withheld ground: always dropped
     };
 }
 
@@ -298,8 +300,7 @@ TEST(LasReader, RejectsLyingHeaders_WithClearMessages) {
          "runs past the end"},
         {"zero scale", [](auto& b) { poke<double>(b, 131, 0.0); }, "scale"},
         {"NaN offset",
-         [](auto& b) { poke<double>(b, 163, std::numeric_limits<double>::quiet_NaN()); },
-         "offset"},
+         [](auto& b) { poke<double>(b, 163, std::numeric_limits<double>::quiet_NaN()); }, "offset"},
     };
     for (const Lie& lie : lies) {
         std::vector<std::byte> bytes = good;
@@ -367,12 +368,10 @@ TEST_P(SharedLasFiles, MatchHeaderCountsBoundsAndGroundCount) {
     EXPECT_EQ(cloud.points.size(), header.pointCount);
     EXPECT_EQ(cloud.filteredOut, 0U);
 
-    std::array<double, 6> bounds{std::numeric_limits<double>::infinity(),
-                                 std::numeric_limits<double>::infinity(),
-                                 std::numeric_limits<double>::infinity(),
-                                 -std::numeric_limits<double>::infinity(),
-                                 -std::numeric_limits<double>::infinity(),
-                                 -std::numeric_limits<double>::infinity()};
+    std::array<double, 6> bounds{
+        std::numeric_limits<double>::infinity(),  std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(),  -std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     for (const Point3& p : cloud.points) {
         const double xyz[3] = {p.x, p.y, p.z};
         for (std::size_t a = 0; a < 3; ++a) {
@@ -407,7 +406,8 @@ INSTANTIATE_TEST_SUITE_P(
                       SharedLas{"pdal__test1_4.las", 1000, 1000, "New Mexico Central"}),
     [](const auto& testInfo) {
         std::string name = testInfo.param.name;
-        std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+        std::replace_if(
+            name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
         return name;
     });
 

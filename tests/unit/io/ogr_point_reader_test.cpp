@@ -26,8 +26,9 @@ class TempDir {
 public:
     TempDir()
         : m_path(fs::temp_directory_path() /
-                 ("terratin_ogr_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                  "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+                 ("terratin_ogr_" +
+                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
         fs::remove_all(m_path);
         fs::create_directories(m_path);
     }
@@ -37,14 +38,16 @@ public:
     }
     TempDir(const TempDir&) = delete;
     TempDir& operator=(const TempDir&) = delete;
-    [[nodiscard]] std::string file(const std::string& name) const { return (m_path / name).string(); }
+    [[nodiscard]] std::string file(const std::string& name) const {
+        return (m_path / name).string();
+    }
 
 private:
     fs::path m_path;
 };
 
-const std::vector<Point3> kPoints{{500000.5, 4900000.25, 101.5}, {500010.0, 4900000.0, 99.0},
-                                  {500005.0, 4900010.0, 120.75}};
+const std::vector<Point3> kPoints{
+    {500000.5, 4900000.25, 101.5}, {500010.0, 4900000.0, 99.0}, {500005.0, 4900010.0, 120.75}};
 
 /// A GeoPackage with a Point Z layer "spots" (EPSG:32619, field "elev" = z + 1000) and a
 /// polygon layer "area" before it.
@@ -52,7 +55,8 @@ void writeGeoPackage(const std::string& path) {
     initialiseGdal();
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
     ASSERT_NE(driver, nullptr);
-    std::unique_ptr<GDALDataset> dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    std::unique_ptr<GDALDataset> dataset(
+        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
     ASSERT_NE(dataset, nullptr);
     OGRSpatialReference srs;
     srs.importFromEPSG(32619);
@@ -125,7 +129,8 @@ TEST(OgrPointReader, ReadsGeoJsonPoints_WithZFromAField) {
     OgrPointReadOptions options;
     options.zField = "h";
     const PointCloud cloud = readOgrPoints(path, options);
-    EXPECT_EQ(cloud.points, (std::vector<Point3>{{-71.5, 44.25, 12.5}, {-71.3, 44.2, 7}, {-71.2, 44.1, 7}}));
+    EXPECT_EQ(cloud.points,
+              (std::vector<Point3>{{-71.5, 44.25, 12.5}, {-71.3, 44.2, 7}, {-71.2, 44.1, 7}}));
     EXPECT_EQ(cloud.recordsRead, 4U);
     EXPECT_EQ(cloud.filteredOut, 2U); // null z, line
     EXPECT_TRUE(crs::describeCrs(cloud.crsWkt).geographic);

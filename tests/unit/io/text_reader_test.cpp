@@ -33,10 +33,12 @@ std::string rejection(const std::string& text, const TextReadOptions& options = 
 
 TEST(TextReader, ReadsEveryDelimiter) {
     const std::vector<Point3> expected{{1.5, -2.25, 3.0}, {4e3, 5.0, -6.125}};
-    for (const std::string& text :
-         {std::string("1.5 -2.25 3\n4e3   5 -6.125\n"), std::string("1.5\t-2.25\t3\n4e3\t5\t-6.125"),
-          std::string("1.5,-2.25,3\n4e3, 5 ,-6.125\n"), std::string("1.5;-2.25;3\r\n4e3;5;-6.125\r\n"),
-          std::string("1.5|-2.25|3\n4e3|5|-6.125\n"), std::string("+1.5 -2.25 +3\n4000 5 -6.125\n")}) {
+    for (const std::string& text : {std::string("1.5 -2.25 3\n4e3   5 -6.125\n"),
+                                    std::string("1.5\t-2.25\t3\n4e3\t5\t-6.125"),
+                                    std::string("1.5,-2.25,3\n4e3, 5 ,-6.125\n"),
+                                    std::string("1.5;-2.25;3\r\n4e3;5;-6.125\r\n"),
+                                    std::string("1.5|-2.25|3\n4e3|5|-6.125\n"),
+                                    std::string("+1.5 -2.25 +3\n4000 5 -6.125\n")}) {
         const PointCloud cloud = parse(text);
         EXPECT_EQ(cloud.points, expected) << text;
         EXPECT_EQ(cloud.recordsRead, 2U);
@@ -64,8 +66,7 @@ TEST(TextReader, UsesColumnsOption_ByNumberAndByName) {
 
     TextReadOptions byName;
     byName.columns = {"lon", "LAT", "h_m"};
-    EXPECT_EQ(parse("h_m|lat|lon\n5|45|-71\n", byName).points,
-              (std::vector<Point3>{{-71, 45, 5}}));
+    EXPECT_EQ(parse("h_m|lat|lon\n5|45|-71\n", byName).points, (std::vector<Point3>{{-71, 45, 5}}));
 
     // A header skipped when the numbered columns of the first line are not numbers.
     TextReadOptions skipName;
@@ -131,8 +132,9 @@ class ScratchFile {
 public:
     explicit ScratchFile(const std::string& name)
         : m_path(fs::temp_directory_path() /
-                 ("terratin_text_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                  "_" + name)) {}
+                 ("terratin_text_" +
+                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" + name)) {
+    }
     ~ScratchFile() {
         std::error_code ignored;
         fs::remove(m_path, ignored);
@@ -155,16 +157,18 @@ TEST(TextReader, ReadsLinesAcrossBufferBoundaries_FromAFile) {
             out << i << ".25;" << -(i + 1) << ".5;" << (i % 977) << ".125\r\n";
     }
     int calls = 0;
-    const PointCloud cloud = readTextPoints(file.path(), {}, [&](double fraction, std::string_view) {
-        ++calls;
-        EXPECT_LE(fraction, 1.0);
-        return true;
-    });
+    const PointCloud cloud =
+        readTextPoints(file.path(), {}, [&](double fraction, std::string_view) {
+            ++calls;
+            EXPECT_LE(fraction, 1.0);
+            return true;
+        });
     EXPECT_GE(calls, 3);
     ASSERT_EQ(cloud.points.size(), 400000U);
     for (std::size_t i = 0; i < cloud.points.size(); ++i) {
         const double n = static_cast<double>(i);
-        ASSERT_EQ(cloud.points[i], (Point3{n + 0.25, -n - 1.5, static_cast<double>(i % 977) + 0.125}))
+        ASSERT_EQ(cloud.points[i],
+                  (Point3{n + 0.25, -n - 1.5, static_cast<double>(i % 977) + 0.125}))
             << "line " << i + 2;
     }
 }
