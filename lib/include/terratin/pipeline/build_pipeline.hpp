@@ -79,7 +79,7 @@ struct BuildTimings {
     double validate = 0.0;
     double write = 0.0;
     double total = 0.0;
-    /// Reprojection of the inputs (part of the read phase's share of progress).
+    /// Reprojection of the inputs; included in `read`.
     double reproject = 0.0;
 };
 
