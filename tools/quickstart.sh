@@ -3,6 +3,8 @@
 #   tools/quickstart.sh demo   install what is missing, build, turn a sample DEM into a GeoPackage TIN
 #   tools/quickstart.sh test   install what is missing, build, run the whole test suite
 #                              (release, then ASan+UBSan, then ThreadSanitizer on the core)
+#   tools/quickstart.sh fuzz   also install clang and libFuzzer, run each reader fuzzer for a
+#                              minute on its seed corpus (not part of 'test' or CI)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,9 +14,12 @@ readonly packages=(
   googletest libgtest-dev
 )
 
+# Only for 'fuzz': clang and its libFuzzer runtime.
+readonly fuzz_packages=(clang libclang-rt-14-dev)
+
 install_missing_packages() {
   local missing=()
-  for package in "${packages[@]}"; do
+  for package in "${packages[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
       missing+=("$package")
   done
@@ -50,8 +55,20 @@ case "${1:-}" in
     build_preset tsan
     ctest --preset tsan
     ;;
+  fuzz)
+    install_missing_packages "${fuzz_packages[@]}"
+    cmake --preset fuzz >/dev/null
+    cmake --build --preset fuzz -j "$(nproc)" --target terratin_las_fuzzer terratin_text_fuzzer
+    for reader in las text; do
+      found=$(mktemp -d)
+      UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+        "build/fuzz/tests/fuzz/terratin_${reader}_fuzzer" -max_total_time=60 -print_final_stats=1 \
+        "$found" "tests/fuzz/corpus/$reader"
+      rm -rf "$found"
+    done
+    ;;
   *)
-    echo "usage: tools/quickstart.sh demo|test" >&2
+    echo "usage: tools/quickstart.sh demo|test|fuzz" >&2
     exit 2
     ;;
 esac

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # End-to-end checks of the terratin command line: exit status, one-line errors, outputs.
-#   cli_test.sh CASE TERRATIN_BINARY SAMPLE_DEM
-# Each case runs in a fresh temporary directory and exits non-zero with a reason on failure.
+#   cli_test.sh CASE TERRATIN_BINARY SAMPLE_DEM [SHARED_DEMS]
+# Each case runs in a fresh temporary directory and exits non-zero with a reason on failure;
+# cases that need SHARED_DEMS exit 77 (skipped) without it.
 set -uo pipefail
 
 case_name=$1
 terratin=$2
 sample=$3
+shared=${4:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
@@ -44,10 +46,20 @@ feature_count() {
   ogrinfo -ro -so -al "$1" 2>/dev/null | sed -n 's/^Feature Count: //p' | head -1
 }
 
+# need_shared FILE: skip the case (exit 77) when FILE is not in SHARED_DEMS.
+need_shared() {
+  [ -n "$shared" ] && [ -e "$shared/$1" ] || { echo "skip [$case_name]: no $1"; exit 77; }
+}
+
+# small_sample: 40 x 40 cells of the sample (UTM 33N) in small.tif, for fast runs.
+small_sample() {
+  gdal_translate -q -srcwin 90 90 40 40 "$sample" small.tif || fail "gdal_translate failed"
+}
+
 case "$case_name" in
   help)
     run 0 --help
-    grep -q 'Usage: terratin build INPUT -o OUTPUT' out.txt || fail "no usage line"
+    grep -q 'Usage: terratin build INPUT\.\.\. -o OUTPUT' out.txt || fail "no usage line"
     grep -q -- '--overwrite' out.txt || fail "options not listed"
     ;;
   no_arguments)
@@ -173,6 +185,113 @@ case "$case_name" in
     printf 'precious' >tin.gpkg
     run 1 build does_not_exist.tif -o tin.gpkg --overwrite --quiet
     [ "$(cat tin.gpkg)" = "precious" ] || fail "a failed run destroyed the existing output"
+    ;;
+  las_ground)
+    need_shared pdal__autzen_trim.las
+    run 0 build "$shared/pdal__autzen_trim.las" --class 2 -o autzen.gpkg --json --quiet --validate
+    grep -q '"kind": "las"' out.txt || fail "input kind not reported"
+    grep -q '"records": 110000' out.txt || fail "records not 110000"
+    grep -q '"filtered_out": 83893' out.txt || fail "filtered-out count wrong"
+    grep -q '"points": 26107' out.txt || fail "ground count not 26107"
+    grep -q '"validated": true' out.txt || fail "not validated"
+    ogrinfo -ro -so -al autzen.gpkg | grep -q 'Lambert' || fail "not in Oregon Lambert"
+    ogrinfo -ro -so -al autzen.gpkg | grep -qi 'foot' || fail "not in feet"
+    run 0 build "$shared/pdal__autzen_trim.las" --class 2 --class 1 --returns last -o last.gpkg
+    grep -q 'input 1: .*pdal__autzen_trim.las (las, .*): 110000 records, .* filtered out, .* points, .* duplicates' out.txt ||
+      fail "no per-input line in the human report"
+    ;;
+  text_pipe_with_s_srs)
+    need_shared ncsu__lid_mr_pts.txt
+    run 0 build "$shared/ncsu__lid_mr_pts.txt" --s_srs EPSG:3358 -o ncsu.gpkg --json --quiet
+    grep -q '"kind": "text"' out.txt || fail "not read as text"
+    grep -q '"points": 36944' out.txt || fail "not 36944 points"
+    grep -q '"source_crs": {"name": "[^"]*", "code": "EPSG:3358"}' out.txt || fail "no source CRS"
+    ogrinfo -ro -so -al ncsu.gpkg | grep -q 'EPSG.*3358' || fail "output not in EPSG:3358"
+    ;;
+  t_srs_web_mercator)
+    small_sample
+    run 0 build small.tif --t_srs EPSG:3857 -o merc.gpkg --json --quiet --validate
+    grep -q '"target_crs": {"name": "WGS 84 / Pseudo-Mercator", "code": "EPSG:3857"}' out.txt ||
+      fail "target CRS not reported"
+    grep -q '"reprojected": true' out.txt || fail "not reprojected"
+    ogrinfo -ro -so -al merc.gpkg | grep -q 'EPSG.*3857' || fail "output not in EPSG:3857"
+    # Elevations untouched: the same highest z as the raster.
+    zmax=$(gdalinfo -mm small.tif | sed -n 's/.*Computed Min\/Max=[^,]*,\([0-9.-]*\).*/\1/p')
+    [ -n "$zmax" ] || fail "no raster maximum"
+    ogrinfo -ro -q merc.gpkg -sql 'SELECT MAX(z_max) AS m FROM tin' | grep -q "m (Real) = ${zmax}" ||
+      fail "z_max differs from the raster maximum $zmax"
+    ;;
+  mixed_inputs)
+    small_sample
+    printf '456003.12 5104000.47 1000\n456100.5 5103800.25 1100\n' >spots.xyz
+    gdalsrsinfo -o wkt EPSG:32633 >spots.prj
+    printf '%s\n' '{"type": "FeatureCollection", "features": [{"type": "Feature",' \
+      '"properties": {"h": 950}, "geometry": {"type": "Point", "coordinates": [13.9, 46.08]}}]}' \
+      >spot.geojson
+    run 0 build small.tif spots.xyz spot.geojson --z-field h -o mixed.gpkg --json --quiet --validate
+    [ "$(grep -o '"kind": "[a-z]*"' out.txt | tr '\n' ' ')" = '"kind": "raster" "kind": "text" "kind": "vector" ' ] ||
+      fail "inputs not reported in order"
+    grep -q '"points": 1603' out.txt || fail "not 1600 + 2 + 1 points"
+    grep -q '"code": "EPSG:32633"}, "zone": ""' out.txt || fail "target is not the raster's CRS"
+    ogrinfo -ro -so -al mixed.gpkg | grep -q 'EPSG.*32633' || fail "output not in EPSG:32633"
+    ;;
+  geographic_to_utm_notice)
+    gdal_create -q -of GTiff -outsize 30 20 -bands 1 -ot Int16 -burn 100 -a_srs EPSG:4326 \
+      -a_ullr -71.6 44.6 -71.5 44.5 geo.tif || fail "gdal_create failed"
+    run 0 build geo.tif -o utm.gpkg
+    grep -q 'terratin: notice: .*UTM zone 19N' err.txt || fail "no notice of the zone"
+    grep -q 'CRS: WGS 84 \[EPSG:4326\] -> WGS 84 / UTM zone 19N \[EPSG:32619\] (UTM zone 19N' out.txt ||
+      fail "zone not in the report"
+    ogrinfo -ro -so -al utm.gpkg | grep -q 'EPSG.*32619' || fail "output not in EPSG:32619"
+    run 0 build geo.tif -o deg.gpkg --keep-geographic --json --quiet
+    [ ! -s err.txt ] || fail "--quiet printed on stderr"
+    grep -q '"zone": ""' out.txt || fail "a zone was chosen despite --keep-geographic"
+    ogrinfo -ro -so -al deg.gpkg | grep -q 'EPSG.*4326' || fail "output not in EPSG:4326"
+    run 0 build geo.tif -o feet.gpkg --z-factor 3.28084 --json --quiet
+    grep -q '"z_factor": 3.28084' out.txt || fail "z factor not reported"
+    ogrinfo -ro -q feet.gpkg -sql 'SELECT MAX(z_max) AS m FROM tin' | grep -q 'm (Real) = 328.084' ||
+      fail "z not scaled"
+    ;;
+  missing_crs)
+    small_sample
+    printf '456003 5104000 1000\n456100 5103800 1100\n' >spots.xyz
+    run 1 build small.tif spots.xyz -o out.gpkg --quiet
+    expect_one_error_line "spots.xyz.*--s_srs"
+    [ ! -e out.gpkg ] || fail "output written without a CRS"
+    run 1 build spots.xyz -o out.gpkg --t_srs EPSG:3857 --quiet
+    expect_one_error_line "--s_srs"
+    run 1 build small.tif -o out.gpkg --t_srs EPSG:999999 --quiet
+    expect_one_error_line "--t_srs 'EPSG:999999'"
+    ;;
+  laz_rejected)
+    printf 'LASF' >cloud.laz
+    head -c 400 /dev/zero >>cloud.laz
+    run 1 build cloud.laz -o out.gpkg --quiet
+    expect_one_error_line "LAZ is compressed; not supported"
+    [ ! -e out.gpkg ] || fail "output written for LAZ"
+    ;;
+  truncated_las)
+    need_shared pdal__autzen_trim.las
+    head -c 100000 "$shared/pdal__autzen_trim.las" >cut.las
+    run 1 build cut.las -o out.gpkg --quiet
+    expect_one_error_line "truncated"
+    head -c 200 "$shared/pdal__autzen_trim.las" >header.las
+    run 1 build header.las -o out.gpkg --quiet
+    expect_one_error_line "truncated"
+    expect_no_leftovers
+    ;;
+  bad_point_cloud_options)
+    run 2 build "$sample" -o out.gpkg --class ground
+    expect_one_error_line "--class"
+    run 2 build "$sample" -o out.gpkg --returns second
+    expect_one_error_line "--returns"
+    run 2 build "$sample" -o out.gpkg --columns 1,2
+    expect_one_error_line "--columns"
+    run 2 build "$sample" -o out.gpkg --z-factor 0
+    expect_one_error_line "--z-factor"
+    run 2 build "$sample" -o out.gpkg --keep-geographic --t_srs EPSG:3857
+    expect_one_error_line "--keep-geographic"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
     ;;
   *)
     fail "unknown case"

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <sstream>
 
 namespace terratin::cli {
@@ -14,7 +16,7 @@ namespace po = boost::program_options;
 
 namespace {
 
-constexpr const char* kUsage = "Usage: terratin build INPUT -o OUTPUT [options]\n"
+constexpr const char* kUsage = "Usage: terratin build INPUT... -o OUTPUT [options]\n"
                                "       terratin --help | --version\n";
 
 constexpr const char* kDescription =
@@ -23,6 +25,12 @@ constexpr const char* kDescription =
     "elevation; nodata, masked and NaN cells are skipped. The output holds one Polygon Z\n"
     "triangle per feature with z_min z_max z_mean slope_deg aspect_deg area_2d, in the\n"
     "input's CRS.\n\n"
+    "Point clouds too: LAS 1.0-1.4 (.las, uncompressed), delimited text (.xyz .txt .csv...:\n"
+    "x y z per line, separated by spaces, ',', ';' or '|', optional header line) and any OGR\n"
+    "point layer (GeoPackage, Shapefile, GeoJSON...). Several inputs are merged after being\n"
+    "brought into one CRS. Geographic input is projected to the UTM/UPS zone of its centre\n"
+    "unless --t_srs or --keep-geographic says otherwise; elevations are never converted\n"
+    "except by --z-factor.\n\n"
     "Exit status: 0 success, 1 error (one line on stderr), 2 bad command line.\n";
 
 std::string lowercase(std::string text) {
@@ -57,6 +65,65 @@ TriangulationMethod parseMethod(const std::string& name) {
                      "')");
 }
 
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::string item;
+    std::istringstream stream(text);
+    while (std::getline(stream, item, ','))
+        items.push_back(item);
+    if (!text.empty() && text.back() == ',')
+        items.emplace_back();
+    return items;
+}
+
+/// --class, --returns, --columns, --z-field, --input-layer, --s_srs, --t_srs,
+/// --keep-geographic, --z-factor.
+void parsePointCloudOptions(const po::variables_map& values, BuildOptions& build) {
+    if (values.count("class")) {
+        for (const std::string& list : values["class"].as<std::vector<std::string>>()) {
+            for (const std::string& item : splitList(list)) {
+                int code = -1;
+                const char* end = item.data() + item.size();
+                const auto [ptr, error] = std::from_chars(item.data(), end, code);
+                if (item.empty() || error != std::errc() || ptr != end || code < 0 || code > 255)
+                    throw UsageError("--class takes classification codes 0..255 (got '" + item +
+                                     "')");
+                build.lasClasses.push_back(code);
+            }
+        }
+    }
+    try {
+        build.lasReturns = io::parseLasReturns(values["returns"].as<std::string>());
+    } catch (const Error& error) {
+        throw UsageError(error.what());
+    }
+    if (values.count("columns")) {
+        build.textColumns = splitList(values["columns"].as<std::string>());
+        if (build.textColumns.size() != 3 ||
+            std::any_of(build.textColumns.begin(), build.textColumns.end(),
+                        [](const std::string& column) { return column.empty(); }))
+            throw UsageError("--columns takes three columns x,y,z (got '" +
+                             values["columns"].as<std::string>() + "')");
+        for (const std::string& column : build.textColumns)
+            if (column == "0")
+                throw UsageError("--columns: columns are numbered from 1");
+    }
+    if (values.count("z-field"))
+        build.zField = values["z-field"].as<std::string>();
+    if (values.count("input-layer"))
+        build.inputLayer = values["input-layer"].as<std::string>();
+    if (values.count("s_srs"))
+        build.sourceSrs = values["s_srs"].as<std::string>();
+    if (values.count("t_srs"))
+        build.targetSrs = values["t_srs"].as<std::string>();
+    build.keepGeographic = values.count("keep-geographic") > 0;
+    if (build.keepGeographic && !build.targetSrs.empty())
+        throw UsageError("--keep-geographic and --t_srs contradict each other");
+    build.zFactor = values["z-factor"].as<double>();
+    if (!std::isfinite(build.zFactor) || build.zFactor == 0.0)
+        throw UsageError("--z-factor must be a finite number other than 0");
+}
+
 po::options_description buildOptionsDescription() {
     po::options_description options("Options of 'terratin build'");
     // clang-format off
@@ -87,6 +154,24 @@ po::options_description buildOptionsDescription() {
          "batch method: searchers complete queued locations when the queue is full")
         ("layer", po::value<std::string>()->default_value("tin")->value_name("NAME"),
          "name of the triangle layer")
+        ("class", po::value<std::vector<std::string>>()->composing()->value_name("C[,C...]"),
+         "LAS: keep only these classification codes (2 = ground); repeatable")
+        ("returns", po::value<std::string>()->default_value("all")->value_name("WHICH"),
+         "LAS: keep first, last or all returns")
+        ("columns", po::value<std::string>()->value_name("X,Y,Z"),
+         "text: the x, y, z columns, by 1-based number or header name (e.g. 1,2,3 or E,N,H)")
+        ("z-field", po::value<std::string>()->value_name("NAME"),
+         "vector points: the attribute holding the elevation (default: the geometry's z)")
+        ("input-layer", po::value<std::string>()->value_name("NAME"),
+         "vector points: the layer to read (default: the first point layer)")
+        ("s_srs", po::value<std::string>()->value_name("SRS"),
+         "CRS of the inputs, overriding theirs (EPSG:n, WKT, PROJ string, .prj file...)")
+        ("t_srs", po::value<std::string>()->value_name("SRS"),
+         "reproject every point (x, y) to this CRS before triangulating; the output carries it")
+        ("keep-geographic",
+         "triangulate geographic input in degrees instead of its UTM/UPS zone")
+        ("z-factor", po::value<double>()->default_value(1.0)->value_name("F"),
+         "multiply every elevation by F (0.3048: feet to metres); z is never converted otherwise")
         ("overwrite", "replace an existing output")
         ("validate", "check the TIN exactly (empty circles, hull, topology) before writing")
         ("quiet,q", "no progress and no summary")
@@ -145,13 +230,13 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     if (!values.count("input"))
         throw UsageError("missing INPUT");
     const auto& inputs = values["input"].as<std::vector<std::string>>();
-    if (inputs.size() != 1)
-        throw UsageError("expected one INPUT, got " + std::to_string(inputs.size()));
     if (!values.count("output"))
         throw UsageError("missing -o OUTPUT");
 
     BuildOptions& build = command.build;
     build.input = inputs.front();
+    build.inputs = inputs;
+    parsePointCloudOptions(values, build);
     build.output = values["output"].as<std::string>();
     build.band = values["band"].as<int>();
     if (build.band < 1)

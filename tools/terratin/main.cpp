@@ -34,15 +34,22 @@ int runBuildCommand(const terratin::cli::Command& command) {
                 return !g_cancelRequested.load();
             })
                           : printer.callback();
-        const terratin::BuildReport report = terratin::runBuild(command.build, progress);
+        terratin::BuildOptions build = command.build;
+        if (!command.quiet)
+            build.notice = [&printer](std::string_view text) {
+                printer.printLine("terratin: notice: " + std::string(text));
+            };
+        const terratin::BuildReport report = terratin::runBuild(build, progress);
         if (!command.quiet)
             printer.finish();
         if (command.json) {
             std::printf("%s\n", terratin::toJson(report).c_str());
             if (!command.quiet)
-                std::fprintf(stderr, "%s\n", terratin::toSummaryLine(report).c_str());
+                std::fprintf(stderr, "%s%s\n", terratin::toInputSummary(report).c_str(),
+                             terratin::toSummaryLine(report).c_str());
         } else if (!command.quiet) {
-            std::printf("%s\n", terratin::toSummaryLine(report).c_str());
+            std::printf("%s%s\n", terratin::toInputSummary(report).c_str(),
+                        terratin::toSummaryLine(report).c_str());
         }
         return kExitOk;
     } catch (const terratin::Error& error) {

@@ -39,3 +39,21 @@ void ProgressPrinter::breakLine() {
 }
 
 } // namespace terratin::cli
+
+namespace terratin::cli {
+
+void ProgressPrinter::printLine(std::string_view text) {
+    const bool midLine = m_ticks >= 0 && m_ticks < kTicks;
+    if (midLine)
+        std::fputc('\n', m_stream);
+    std::fprintf(m_stream, "%.*s\n", static_cast<int>(text.size()), text.data());
+    if (midLine) {
+        // Start the progress line again with the ticks already printed.
+        const int printed = m_ticks;
+        m_ticks = -1;
+        update(static_cast<double>(printed) / kTicks);
+    }
+    std::fflush(m_stream);
+}
+
+} // namespace terratin::cli

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <string_view>
 
 namespace terratin::cli {
 
@@ -24,6 +25,10 @@ public:
 
     /// Ends a half-printed line so that an error message starts on a line of its own.
     void breakLine();
+
+    /// Prints `text` as a line of its own (a notice) and, when a progress line was under way,
+    /// starts it again on the next line with the ticks already printed.
+    void printLine(std::string_view text);
 
     ProgressCallback callback() {
         return [this](double fraction, std::string_view) { return update(fraction); };

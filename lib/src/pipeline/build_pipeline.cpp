@@ -1,15 +1,17 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
+#include "gather_inputs.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
-#include "terratin/io/raster_reader.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -97,6 +99,15 @@ std::string jsonString(const std::string& text) {
     return quoted + "\"";
 }
 
+/// A double as JSON: shortest round-trip text; JSON has no NaN or infinity.
+std::string jsonNumber(double value) {
+    if (!std::isfinite(value))
+        return "null";
+    char text[32];
+    const std::to_chars_result end = std::to_chars(text, text + sizeof text, value);
+    return std::string(text, end.ptr);
+}
+
 } // namespace
 
 BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
@@ -106,27 +117,26 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     checkOutputPath(options);
 
     BuildReport report;
-    report.input = options.input;
+    {
+        const std::vector<std::string> paths = options.inputPaths();
+        for (std::size_t i = 0; i < paths.size(); ++i)
+            report.input += (i > 0 ? ", " : "") + paths[i];
+    }
     report.output = options.output.string();
     report.format = formatName(format);
 
     Clock::time_point phase = Clock::now();
-    io::RasterReadOptions readOptions;
-    readOptions.band = options.band;
-    io::RasterPoints raster =
-        io::readRasterPoints(options.input, readOptions, phaseProgress(progress, 0.0, kReadShare));
-    report.rasterCells = static_cast<std::uint64_t>(raster.width) *
-                         static_cast<std::uint64_t>(raster.height);
-    report.skippedCells = raster.skippedCells;
-    report.points = raster.points.size();
-    describeCrs(raster.crsWkt, report);
+    detail::GatheredInputs gathered =
+        detail::gatherInputs(options, report, phaseProgress(progress, 0.0, kReadShare));
+    describeCrs(gathered.crsWkt, report);
     report.timings.read = secondsSince(phase);
 
     phase = Clock::now();
     const TriangulationResult triangulation =
-        triangulate(raster.points, options.triangulation,
+        triangulate(gathered.points, options.triangulation,
                     phaseProgress(progress, kReadShare, kTriangulateShare));
-    raster.points = {}; // the mesh holds its own copy of the vertices
+    gathered.points = {}; // the mesh holds its own copy of the vertices
+    detail::countDuplicatesPerInput(gathered.offsets, triangulation.mesh.sourceIndex, report);
     report.duplicates = triangulation.duplicatePoints;
     report.vertices = triangulation.mesh.vertexCount();
     report.triangles = triangulation.mesh.triangleCount();
@@ -151,7 +161,7 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     io::TinWriteOptions writeOptions;
     writeOptions.format = format;
     writeOptions.overwrite = options.overwrite;
-    writeOptions.crsWkt = raster.crsWkt;
+    writeOptions.crsWkt = gathered.crsWkt;
     writeOptions.layerName = options.layerName;
     io::writeTin(triangulation.mesh, options.output, writeOptions,
                  phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
@@ -182,7 +192,31 @@ std::string toJson(const BuildReport& report) {
          << ", \"triangulate\": " << report.timings.triangulate
          << ", \"validate\": " << report.timings.validate
          << ", \"write\": " << report.timings.write << ", \"total\": " << report.timings.total
-         << "}, \"validated\": " << (report.validated ? "true" : "false") << "}";
+         << ", \"reproject\": " << report.timings.reproject
+         << "}, \"validated\": " << (report.validated ? "true" : "false");
+    // Inputs and coordinate systems.
+    json << ", \"source_crs\": {\"name\": " << jsonString(report.sourceCrsName)
+         << ", \"code\": " << jsonString(report.sourceCrsCode) << "}"
+         << ", \"target_crs\": {\"name\": " << jsonString(report.crsName)
+         << ", \"code\": " << jsonString(report.crsCode) << "}"
+         << ", \"zone\": " << jsonString(report.zone)
+         << ", \"reprojected\": " << (report.reprojected ? "true" : "false")
+         << ", \"z_factor\": " << jsonNumber(report.zFactor) << ", \"inputs\": [";
+    for (std::size_t i = 0; i < report.inputs.size(); ++i) {
+        const InputReport& input = report.inputs[i];
+        json << (i > 0 ? ", " : "") << "{\"path\": " << jsonString(input.path)
+             << ", \"kind\": " << jsonString(input.kind)
+             << ", \"crs\": {\"name\": " << jsonString(input.crsName)
+             << ", \"code\": " << jsonString(input.crsCode) << "}"
+             << ", \"records\": " << input.records << ", \"filtered_out\": " << input.filteredOut
+             << ", \"skipped_cells\": " << input.skippedCells << ", \"points\": " << input.points
+             << ", \"duplicates\": " << input.duplicates
+             << ", \"reprojected\": " << (input.reprojected ? "true" : "false") << "}";
+    }
+    json << "], \"notices\": [";
+    for (std::size_t i = 0; i < report.notices.size(); ++i)
+        json << (i > 0 ? ", " : "") << jsonString(report.notices[i]);
+    json << "]}";
     return json.str();
 }
 
@@ -196,7 +230,41 @@ std::string toSummaryLine(const BuildReport& report) {
                   static_cast<unsigned long long>(report.skippedCells),
                   static_cast<unsigned long long>(report.triangles), report.timings.read,
                   report.timings.triangulate, report.timings.write, report.timings.total);
-    return line;
+    std::string text = line;
+    if (report.filteredOut > 0)
+        text += "; " + std::to_string(report.filteredOut) + " records filtered out";
+    return text;
+}
+
+std::string toInputSummary(const BuildReport& report) {
+    const auto label = [](const std::string& name, const std::string& code) {
+        if (name.empty())
+            return std::string("no CRS");
+        return code.empty() ? name : name + " [" + code + "]";
+    };
+    std::string text;
+    for (std::size_t i = 0; i < report.inputs.size(); ++i) {
+        const InputReport& input = report.inputs[i];
+        text += "input " + std::to_string(i + 1) + ": " + input.path + " (" + input.kind + ", " +
+                label(input.crsName, input.crsCode) + "): " + std::to_string(input.records) +
+                (input.kind == "raster"
+                     ? " cells, " + std::to_string(input.skippedCells) + " nodata skipped"
+                     : " records, " + std::to_string(input.filteredOut) + " filtered out") +
+                ", " + std::to_string(input.points) + " points, " +
+                std::to_string(input.duplicates) + " duplicates" +
+                (input.reprojected ? ", reprojected" : "") + "\n";
+    }
+    text += "CRS: " + label(report.sourceCrsName, report.sourceCrsCode);
+    if (report.reprojected || !report.zone.empty())
+        text += " -> " + label(report.crsName, report.crsCode);
+    if (!report.zone.empty())
+        text += " (" + report.zone + ", chosen from the data's centre)";
+    if (report.zFactor != 1.0) {
+        char factor[64];
+        std::snprintf(factor, sizeof factor, "%.10g", report.zFactor);
+        text += std::string("; z scaled by ") + factor;
+    }
+    return text + "\n";
 }
 
 } // namespace terratin

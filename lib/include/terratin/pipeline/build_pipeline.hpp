@@ -3,21 +3,28 @@
 /// `terratin build` as a library call: read -> triangulate -> write, timed and reported.
 /// The CLI only maps its arguments onto BuildOptions and prints the BuildReport.
 
+#include "terratin/io/las_reader.hpp"
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace terratin {
 
 /// Everything `terratin build` can be asked.
 struct BuildOptions {
-    /// A raster GDAL can open.
+    /// The one input, when `inputs` is empty (the convenience of the single-raster build).
     std::string input;
+    /// Inputs to merge: rasters (anything GDAL opens), LAS, delimited text, OGR point layers;
+    /// see io::detectInputKind. When set, `input` is ignored.
+    std::vector<std::string> inputs;
     std::filesystem::path output;
     /// Output format; when unset it follows the output's extension (.gpkg, .shp).
     std::optional<io::TinFormat> format;
@@ -30,6 +37,39 @@ struct BuildOptions {
     bool validate = false;
     /// Name of the triangle layer in the output.
     std::string layerName = "tin";
+
+    // Point clouds (see io::LasReadOptions, io::TextReadOptions, io::OgrPointReadOptions).
+    /// LAS: classification codes to keep (empty: all).
+    std::vector<int> lasClasses;
+    /// LAS: which returns to keep.
+    io::LasReturns lasReturns = io::LasReturns::All;
+    /// Text: the x, y, z columns, each a 1-based number or a header name (empty: automatic).
+    std::vector<std::string> textColumns;
+    /// Vector inputs: the numeric attribute holding z (empty: the geometry's z).
+    std::string zField;
+    /// Vector inputs: the layer to read (empty: the first point layer).
+    std::string inputLayer;
+
+    // Coordinate systems.
+    /// Overrides every input's CRS (anything crs::crsFromUserInput accepts); required when an
+    /// input has no CRS and the run needs one (--t_srs, or other inputs with a CRS).
+    std::string sourceSrs;
+    /// Reproject every point (x, y; z untouched) to this CRS before triangulating; the output
+    /// carries it. Empty: the first input's CRS, or a UTM/UPS zone when that is geographic.
+    std::string targetSrs;
+    /// Keep geographic inputs in degrees instead of projecting them to their UTM/UPS zone.
+    bool keepGeographic = false;
+    /// Every elevation is multiplied by this (0.3048 turns feet into metres); finite, not 0.
+    /// Units are never converted otherwise.
+    double zFactor = 1.0;
+    /// Receives notices as they happen (the UTM zone chosen, units left unconverted); they are
+    /// also kept in BuildReport::notices. The CLI prints them on stderr.
+    std::function<void(std::string_view)> notice;
+
+    /// The inputs to read: `inputs`, or `input` alone when `inputs` is empty.
+    [[nodiscard]] std::vector<std::string> inputPaths() const {
+        return inputs.empty() ? std::vector<std::string>{input} : inputs;
+    }
 };
 
 /// Wall-clock seconds per phase.
@@ -39,6 +79,32 @@ struct BuildTimings {
     double validate = 0.0;
     double write = 0.0;
     double total = 0.0;
+    /// Reprojection of the inputs; included in `read`.
+    double reproject = 0.0;
+};
+
+/// What was read from one input.
+struct InputReport {
+    std::string path;
+    /// "raster", "las", "text", "vector".
+    std::string kind;
+    /// The input's CRS (after --s_srs), empty when it has none.
+    std::string crsName;
+    std::string crsCode;
+    /// Records in the file: raster cells, LAS point records, text data lines, OGR features.
+    std::uint64_t records = 0;
+    /// Records dropped by the class / return filters, withheld LAS points, OGR features
+    /// without a point (or with a null z field).
+    std::uint64_t filteredOut = 0;
+    /// Rasters: nodata, masked or NaN cells.
+    std::uint64_t skippedCells = 0;
+    /// Points this input contributed.
+    std::uint64_t points = 0;
+    /// Of those, points merged into another point with the same x, y (from this input or an
+    /// earlier one, whichever the duplicate policy keeps).
+    std::uint64_t duplicates = 0;
+    /// Its points were transformed to the target CRS.
+    bool reprojected = false;
 };
 
 /// What a build did.
@@ -63,6 +129,22 @@ struct BuildReport {
     double historyBytesPerPoint = 0.0;
     bool validated = false;
     BuildTimings timings;
+
+    /// Per input, in command-line order.
+    std::vector<InputReport> inputs;
+    /// Records dropped by the point-cloud filters, over all inputs.
+    std::uint64_t filteredOut = 0;
+    /// The inputs' CRS when they all share one (after --s_srs), "several" when they differ,
+    /// empty when none has any.
+    std::string sourceCrsName;
+    std::string sourceCrsCode;
+    /// "UTM zone 19N" / "UPS North" when geographic input was projected to its zone.
+    std::string zone;
+    /// Some input was reprojected.
+    bool reprojected = false;
+    double zFactor = 1.0;
+    /// Notices given during the run (see BuildOptions::notice).
+    std::vector<std::string> notices;
 };
 
 /// Runs the build. Before reading anything it refuses an existing output without
@@ -70,14 +152,28 @@ struct BuildReport {
 /// terratin::Error whose message names the stage; the output is written atomically (see
 /// io::writeTin). `progress` receives the fraction of the whole build (reading 10 %,
 /// triangulating 40 %, writing 50 %).
+/// Inputs are read in order, each in its own CRS (or `sourceSrs`), brought into the target
+/// CRS (see BuildOptions::targetSrs) with x, y reprojected and z untouched, scaled by
+/// `zFactor`, and merged in input order; duplicates across inputs are merged by the
+/// triangulation's duplicate policy. Without any reprojection and with zFactor 1, vertex
+/// coordinates and elevations are exactly the readers' values. Throws CrsError when an input
+/// lacks a CRS the run needs, or a CRS is unusable; InvalidInputError for a zFactor that is 0
+/// or not finite.
 BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress = {});
 
 /// The report as one JSON object: input, output, format, crs {name, code}, counts {...},
 /// triangulation {method, threads, history_bytes_per_point}, timings {read, triangulate,
-/// validate, write, total} in seconds, validated.
+/// validate, write, total, reproject} in seconds, validated; then source_crs {name, code},
+/// target_crs {name, code}, zone, reprojected, z_factor, inputs [{path, kind, crs {name, code},
+/// records, filtered_out, skipped_cells, points, duplicates, reprojected}], notices [...].
 std::string toJson(const BuildReport& report);
 
 /// One human-readable line: points, duplicates, triangles and seconds per phase.
 std::string toSummaryLine(const BuildReport& report);
+
+/// One line per input ("input 1: a.las (las, EPSG:2992): 110000 records, 83893 filtered out,
+/// 26107 points, 0 duplicates") and one for the CRS ("CRS: EPSG:4326 -> EPSG:32619 (UTM zone
+/// 19N)"), each ending in a newline.
+std::string toInputSummary(const BuildReport& report);
 
 } // namespace terratin

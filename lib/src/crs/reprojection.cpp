@@ -1,0 +1,187 @@
+/// @file
+/// Reprojection through OGRCoordinateTransformation (PROJ's best available operation between
+/// the two CRSs, as gdalwarp and ogr2ogr use it).
+
+#include "terratin/crs/reprojection.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/io/gdal_error.hpp"
+#include "wkt.hpp"
+
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace terratin::crs {
+
+namespace {
+
+constexpr std::string_view kStage = "CRS";
+/// Points per call to PROJ: large enough to amortise the call, small enough for the x / y
+/// scratch arrays (1 MiB) to stay in cache.
+constexpr std::size_t kBlock = std::size_t{1} << 16;
+
+OGRSpatialReference importOrThrow(const std::string& wkt, std::string_view what) {
+    OGRSpatialReference srs;
+    if (!detail::importWkt(wkt, srs))
+        throw CrsError(std::string(kStage) + ": the " + std::string(what) +
+                       " CRS cannot be read: " + io::lastGdalErrorMessage());
+    return srs;
+}
+
+struct TransformDeleter {
+    void operator()(OGRCoordinateTransformation* transform) const {
+        OGRCoordinateTransformation::DestroyCT(transform);
+    }
+};
+
+std::string shortName(const OGRSpatialReference& srs) {
+    const char* name = srs.GetName();
+    return name != nullptr ? name : "unnamed CRS";
+}
+
+} // namespace
+
+std::string crsFromUserInput(const std::string& definition, std::string_view option) {
+    io::initialiseGdal();
+    OGRSpatialReference srs;
+    CPLErrorReset();
+    if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE)
+        throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
+                       "' is not a CRS PROJ knows: " + io::lastGdalErrorMessage());
+    std::string wkt = detail::exportWkt(srs);
+    if (wkt.empty())
+        throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
+                       "' cannot be written as WKT: " + io::lastGdalErrorMessage());
+    return wkt;
+}
+
+CrsDescription describeCrs(const std::string& wkt) {
+    CrsDescription description;
+    if (wkt.empty())
+        return description;
+    OGRSpatialReference srs = importOrThrow(wkt, "described");
+    description.name = shortName(srs);
+    description.geographic = srs.IsGeographic() != 0;
+    description.projected = srs.IsProjected() != 0;
+    if (!description.geographic) {
+        const char* unit = nullptr;
+        description.metresPerUnit = srs.GetLinearUnits(&unit);
+        description.linearUnit = unit != nullptr ? unit : "";
+    }
+    // An EPSG code when the definition carries one, else when OGR can identify it exactly.
+    OGRSpatialReference identified(srs);
+    const char* authority = identified.GetAuthorityName(nullptr);
+    if (authority == nullptr) {
+        identified.AutoIdentifyEPSG();
+        authority = identified.GetAuthorityName(nullptr);
+    }
+    const char* code = identified.GetAuthorityCode(nullptr);
+    if (authority != nullptr && code != nullptr)
+        description.code = std::string(authority) + ":" + code;
+    return description;
+}
+
+bool sameCrs(const std::string& wktA, const std::string& wktB) {
+    if (wktA.empty() || wktB.empty())
+        return wktA.empty() && wktB.empty();
+    if (wktA == wktB)
+        return true;
+    const OGRSpatialReference a = importOrThrow(wktA, "first compared");
+    const OGRSpatialReference b = importOrThrow(wktB, "second compared");
+    const char* const options[] = {"IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES",
+                                   "CRITERION=EQUIVALENT_EXCEPT_AXIS_ORDER_GEOGCRS", nullptr};
+    return a.IsSame(&b, options) != 0;
+}
+
+std::string geographicBaseCrs(const std::string& wkt) {
+    const OGRSpatialReference srs = importOrThrow(wkt, "source");
+    OGRSpatialReference geographic;
+    if (srs.IsGeographic() == 0 && srs.IsProjected() == 0)
+        throw CrsError(std::string(kStage) + ": '" + shortName(srs) +
+                       "' is neither geographic nor projected");
+    if (geographic.CopyGeogCSFrom(&srs) != OGRERR_NONE)
+        throw CrsError(std::string(kStage) + ": '" + shortName(srs) +
+                       "' has no geographic base CRS: " + io::lastGdalErrorMessage());
+    return detail::exportWkt(geographic);
+}
+
+struct Reprojector::Impl {
+    std::string sourceWkt;
+    std::string targetWkt;
+    std::string sourceName;
+    std::string targetName;
+    std::unique_ptr<OGRCoordinateTransformation, TransformDeleter> transform;
+};
+
+Reprojector::Reprojector(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+
+Reprojector::Reprojector(const std::string& sourceWkt, const std::string& targetWkt)
+    : m_impl(std::make_unique<Impl>()) {
+    io::initialiseGdal();
+    const OGRSpatialReference source = importOrThrow(sourceWkt, "source");
+    const OGRSpatialReference target = importOrThrow(targetWkt, "target");
+    m_impl->sourceWkt = sourceWkt;
+    m_impl->targetWkt = targetWkt;
+    m_impl->sourceName = shortName(source);
+    m_impl->targetName = shortName(target);
+    CPLErrorReset();
+    m_impl->transform.reset(OGRCreateCoordinateTransformation(&source, &target));
+    if (!m_impl->transform)
+        throw CrsError(std::string(kStage) + ": PROJ has no transformation from '" +
+                       m_impl->sourceName + "' to '" + m_impl->targetName +
+                       "': " + io::lastGdalErrorMessage());
+}
+
+Reprojector::~Reprojector() = default;
+Reprojector::Reprojector(Reprojector&&) noexcept = default;
+Reprojector& Reprojector::operator=(Reprojector&&) noexcept = default;
+
+void Reprojector::transform(std::span<Point3> points) const {
+    std::vector<double> xs(std::min(points.size(), kBlock));
+    std::vector<double> ys(xs.size());
+    std::vector<int> ok(xs.size());
+    std::size_t failures = 0;
+    std::size_t firstFailure = 0;
+    for (std::size_t first = 0; first < points.size(); first += kBlock) {
+        const std::size_t count = std::min(kBlock, points.size() - first);
+        for (std::size_t i = 0; i < count; ++i) {
+            xs[i] = points[first + i].x;
+            ys[i] = points[first + i].y;
+        }
+        // z = nullptr: a 2D transformation, elevations stay as they are.
+        m_impl->transform->Transform(static_cast<int>(count), xs.data(), ys.data(), nullptr,
+                                     nullptr, ok.data());
+        for (std::size_t i = 0; i < count; ++i) {
+            if (ok[i] == 0 || !std::isfinite(xs[i]) || !std::isfinite(ys[i])) {
+                if (failures++ == 0)
+                    firstFailure = first + i;
+                continue;
+            }
+            points[first + i].x = xs[i];
+            points[first + i].y = ys[i];
+        }
+    }
+    if (failures > 0) {
+        const Point3& p = points[firstFailure];
+        throw CrsError(std::string(kStage) + ": " + std::to_string(failures) + " of " +
+                       std::to_string(points.size()) + " points cannot be transformed from '" +
+                       m_impl->sourceName + "' to '" + m_impl->targetName + "', the first (" +
+                       std::to_string(p.x) + ", " + std::to_string(p.y) +
+                       ") (outside the target's area of use?)");
+    }
+}
+
+Point2 Reprojector::transform(Point2 point) const {
+    Point3 p{point.x, point.y, 0.0};
+    transform(std::span<Point3>(&p, 1));
+    return {p.x, p.y};
+}
+
+Reprojector Reprojector::inverse() const {
+    return Reprojector(m_impl->targetWkt, m_impl->sourceWkt);
+}
+
+} // namespace terratin::crs

@@ -1,0 +1,165 @@
+/// @file
+/// InputReader: dispatch by content first (the LAS signature), then by extension for text, then
+/// by what GDAL recognises.
+
+#include "terratin/io/input_reader.hpp"
+
+#include "terratin/crs/reprojection.hpp"
+#include "terratin/error.hpp"
+#include "terratin/io/gdal_error.hpp"
+
+#include <gdal.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+namespace terratin::io {
+
+namespace {
+
+constexpr std::string_view kStage = "InputReader";
+/// Bytes looked at to call an unrecognised file text.
+constexpr std::size_t kSniffBytes = 65536;
+
+namespace fs = std::filesystem;
+
+std::string lowercaseExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+std::string head(const std::string& path, std::size_t bytes) {
+    std::ifstream file(path, std::ios::binary);
+    std::string data(bytes, '\0');
+    file.read(data.data(), static_cast<std::streamsize>(bytes));
+    data.resize(static_cast<std::size_t>(std::max<std::streamsize>(file.gcount(), 0)));
+    return data;
+}
+
+/// Whether a CSV's header line names a geometry column that OGR's CSV driver reads.
+bool csvHasGeometryColumn(const std::string& path) {
+    std::string line = head(path, 4096);
+    line = line.substr(0, line.find('\n'));
+    std::transform(line.begin(), line.end(), line.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (char& c : line)
+        if (c == '"' || c == '\r' || c == ' ' || c == ';' || c == '\t')
+            c = ',';
+    line = "," + line + ",";
+    for (const char* name : {",wkt,", ",geometry,", ",geom,", ",the_geom,"})
+        if (line.find(name) != std::string::npos)
+            return true;
+    return false;
+}
+
+struct DatasetCloser {
+    void operator()(void* dataset) const { GDALClose(dataset); }
+};
+
+} // namespace
+
+const char* toString(InputKind kind) {
+    switch (kind) {
+    case InputKind::Raster:
+        return "raster";
+    case InputKind::Las:
+        return "las";
+    case InputKind::Text:
+        return "text";
+    case InputKind::Vector:
+        return "vector";
+    }
+    return "unknown";
+}
+
+InputKind detectInputKind(const std::string& path) {
+    const bool virtualPath = path.rfind("/vsi", 0) == 0;
+    std::error_code error;
+    if (!virtualPath) {
+        if (!fs::exists(path, error))
+            throw IoError(std::string(kStage) + ": cannot open '" + path +
+                          "': no such file or directory");
+        if (fs::is_directory(path, error)) {
+            // A directory can be a vector dataset (a folder of Shapefiles); GDAL decides below.
+        } else {
+            const std::string start = head(path, 4);
+            const std::string ext = lowercaseExtension(path);
+            if (start == "LASF" || ext == ".las" || ext == ".laz")
+                return InputKind::Las;
+            if (ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".tsv" || ext == ".dat")
+                return InputKind::Text;
+            if (ext == ".csv")
+                return csvHasGeometryColumn(path) ? InputKind::Vector : InputKind::Text;
+        }
+    }
+
+    initialiseGdal();
+    CPLErrorReset();
+    const std::unique_ptr<void, DatasetCloser> dataset(
+        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
+                   nullptr, nullptr));
+    if (dataset) {
+        if (GDALGetRasterCount(dataset.get()) > 0)
+            return InputKind::Raster;
+        if (GDALDatasetGetLayerCount(dataset.get()) > 0)
+            return InputKind::Vector;
+        // A container of subdatasets: the raster reader explains how to pick one.
+        return InputKind::Raster;
+    }
+    if (!virtualPath && !fs::is_directory(path, error)) {
+        // Text unless it starts like JSON or XML (a damaged GeoJSON or GML should get GDAL's
+        // message, not a line-number complaint).
+        const std::string sample = head(path, kSniffBytes);
+        const std::size_t first = sample.find_first_not_of(" \t\r\n");
+        if (first != std::string::npos && sample[first] != '{' && sample[first] != '<' &&
+            sample.find('\0') == std::string::npos)
+            return InputKind::Text;
+    }
+    throw IoError(
+        std::string(kStage) + ": '" + path +
+        "' is not a raster, LAS, text or vector file terratin can read: " + lastGdalErrorMessage());
+}
+
+PointCloud readInput(const std::string& path, const InputReadOptions& options,
+                     const ProgressCallback& progress) {
+    switch (detectInputKind(path)) {
+    case InputKind::Raster: {
+        RasterPoints raster = readRasterPoints(path, options.raster, progress);
+        PointCloud cloud;
+        cloud.path = path;
+        cloud.kind = InputKind::Raster;
+        cloud.points = std::move(raster.points);
+        cloud.cellIndex = std::move(raster.cellIndex);
+        cloud.crsWkt = std::move(raster.crsWkt);
+        cloud.recordsRead =
+            static_cast<std::uint64_t>(raster.width) * static_cast<std::uint64_t>(raster.height);
+        cloud.skippedCells = raster.skippedCells;
+        return cloud;
+    }
+    case InputKind::Las:
+        return readLasPoints(path, options.las, progress);
+    case InputKind::Text: {
+        PointCloud cloud = readTextPoints(path, options.text, progress);
+        fs::path prj = fs::path(path).replace_extension(".prj");
+        std::error_code error;
+        if (!fs::exists(prj, error))
+            prj = fs::path(path).replace_extension(".PRJ");
+        if (fs::exists(prj, error))
+            cloud.crsWkt = crs::crsFromUserInput(prj.string(), "the sidecar file");
+        return cloud;
+    }
+    case InputKind::Vector:
+        return readOgrPoints(path, options.vector, progress);
+    }
+    throw InvalidInputError(std::string(kStage) + ": unknown kind of input '" + path + "'");
+}
+
+} // namespace terratin::io

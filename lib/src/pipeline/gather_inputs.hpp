@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// The read stage of runBuild: every input read, brought into one CRS, scaled and merged.
+/// Internal to terratin::io.
+
+#include "terratin/geometry/point.hpp"
+#include "terratin/pipeline/build_pipeline.hpp"
+#include "terratin/progress.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace terratin::detail {
+
+/// The merged points of all inputs.
+struct GatheredInputs {
+    /// Every input's points, in input order, in the target CRS.
+    std::vector<Point3> points;
+    /// points[offsets[i] .. offsets[i + 1]) came from input i; offsets.size() == inputs + 1.
+    std::vector<std::size_t> offsets;
+    /// The CRS of `points` (and of the output), empty when the inputs have none.
+    std::string crsWkt;
+};
+
+/// Reads, reprojects and merges options.inputPaths(); fills report.inputs (all but
+/// duplicates), the CRS fields, rasterCells, skippedCells, filteredOut, points, notices and
+/// timings.reproject. `progress` gets the 0..1 fraction of this stage.
+GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
+                            const ProgressCallback& progress);
+
+/// Fills report.inputs[i].duplicates from the mesh's sourceIndex: the points of input i that
+/// did not become a vertex.
+void countDuplicatesPerInput(const std::vector<std::size_t>& offsets,
+                             const std::vector<std::uint32_t>& sourceIndex, BuildReport& report);
+
+} // namespace terratin::detail
