@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -104,6 +105,7 @@ public:
         }
         releaseAll(worker);
         m_slots[index].activePoint.store(kNoVertex, std::memory_order_release);
+        m_finishedWorkers.fetch_add(1, std::memory_order_release);
         const std::lock_guard lock(m_statisticsMutex);
         m_statistics.waits += worker.statistics.waits;
         m_statistics.overrides += worker.statistics.overrides;
@@ -123,6 +125,19 @@ public:
     }
 
     [[nodiscard]] const CircumcircleStatistics& statistics() const { return m_statistics; }
+
+    // Called by the calling thread once its own work is done: keeps reporting (and honouring
+    // a cancel) while the other workers finish theirs.
+    void reportUntilOthersFinish(const ProgressCallback& progress) {
+        if (!progress)
+            return; // the threads' join waits for them
+        constexpr auto kPollInterval = std::chrono::milliseconds(5);
+        std::size_t nextReport = 0;
+        while (m_finishedWorkers.load(std::memory_order_acquire) < m_slots.size()) {
+            std::this_thread::sleep_for(kPollInterval);
+            reportProgress(0, &progress, nextReport);
+        }
+    }
 
 private:
     // Adds a worker's insertions to the shared count; the calling thread (the only one with
@@ -386,6 +401,7 @@ private:
     /// Locate by walking (DagTriangulator::walk) instead of descending the DAG.
     bool m_walk;
     std::atomic<std::size_t> m_inserted{0};
+    std::atomic<std::size_t> m_finishedWorkers{0};
     std::atomic<bool> m_stop{false};
     std::atomic<bool> m_cancelled{false};
     std::mutex m_waitMutex;
@@ -410,6 +426,7 @@ CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulato
         for (unsigned i = 1; i < workers; ++i)
             others.emplace_back([&run, i] { run.work(i, nullptr); });
         run.work(0, &progress);
+        run.reportUntilOthersFinish(progress);
     }
     run.finish();
     return run.statistics();
