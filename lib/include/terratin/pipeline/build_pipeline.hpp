@@ -5,6 +5,7 @@
 
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
+#include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <cstdint>
@@ -30,6 +31,14 @@ struct BuildOptions {
     bool validate = false;
     /// Name of the triangle layer in the output.
     std::string layerName = "tin";
+    /// Terrain simplification (--max-error, --max-points, --max-triangles, --max-hole,
+    /// --fill-holes): when set, the raster is read as a HeightGrid and refined instead of
+    /// triangulating every valid cell; `refine->threads` 0 follows triangulation.threads and
+    /// `validate` above applies to the refined TIN before its holes are cut.
+    std::optional<RefineOptions> refine;
+    /// Drop the triangles with an edge longer than this (planimetric, CRS units) from the final
+    /// TIN, whatever built it (meant for point clouds, whose hull bridges gaps).
+    std::optional<double> maxEdge;
 };
 
 /// Wall-clock seconds per phase.
@@ -62,6 +71,19 @@ struct BuildReport {
     /// Bytes of point-location history per input point.
     double historyBytesPerPoint = 0.0;
     bool validated = false;
+    /// Set when BuildOptions::refine was: what the refinement achieved, measured over every
+    /// valid cell after the build (z units).
+    bool refined = false;
+    std::optional<double> targetMaxError;
+    double achievedMaxError = 0.0;
+    double rmse = 0.0;
+    /// "error", "points" or "triangles": what stopped the refinement.
+    std::string refineStop;
+    std::uint64_t openHoleCells = 0;
+    std::uint64_t holeTriangles = 0;
+    std::uint64_t uncoveredCells = 0;
+    /// Triangles removed by BuildOptions::maxEdge.
+    std::uint64_t longEdgeTriangles = 0;
     BuildTimings timings;
 };
 
@@ -74,10 +96,13 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
 
 /// The report as one JSON object: input, output, format, crs {name, code}, counts {...},
 /// triangulation {method, threads, history_bytes_per_point}, timings {read, triangulate,
-/// validate, write, total} in seconds, validated.
+/// validate, write, total} in seconds, validated; after a refinement also refine {max_error,
+/// achieved_max_error, rmse, points, triangles, stop, open_hole_cells, hole_triangles,
+/// uncovered_cells}; with maxEdge, long_edge_triangles.
 std::string toJson(const BuildReport& report);
 
-/// One human-readable line: points, duplicates, triangles and seconds per phase.
+/// One human-readable line: points, duplicates, triangles and seconds per phase (after a
+/// refinement: points, triangles, achieved max error and RMSE).
 std::string toSummaryLine(const BuildReport& report);
 
 } // namespace terratin
