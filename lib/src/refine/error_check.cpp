@@ -9,15 +9,23 @@ namespace terratin::detail {
 
 namespace {
 
-PixelCorner cornerOf(const TinMesh& mesh, std::int64_t width, std::uint32_t v) {
-    const auto cell = static_cast<std::int64_t>(mesh.sourceIndex[v]);
-    return {cell % width, cell / width, mesh.vertices[v].z, v};
+// Pixel corners of every vertex, computed once (a division per vertex, not per triangle).
+std::vector<PixelCorner> pixelCorners(const TinMesh& mesh, std::int64_t width, unsigned threads) {
+    std::vector<PixelCorner> corners(mesh.vertexCount());
+    parallelFor(corners.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v) {
+            const auto cell = static_cast<std::int64_t>(mesh.sourceIndex[v]);
+            corners[v] = {cell % width, cell / width, mesh.vertices[v].z,
+                          static_cast<std::uint32_t>(v)};
+        }
+    });
+    return corners;
 }
 
-PixelTriangle triangleOf(const TinMesh& mesh, std::int64_t width, std::size_t t) {
-    return {cornerOf(mesh, width, mesh.triangles[3 * t]),
-            cornerOf(mesh, width, mesh.triangles[3 * t + 1]),
-            cornerOf(mesh, width, mesh.triangles[3 * t + 2])};
+PixelTriangle triangleOf(const TinMesh& mesh, const std::vector<PixelCorner>& corners,
+                         std::size_t t) {
+    return {corners[mesh.triangles[3 * t]], corners[mesh.triangles[3 * t + 1]],
+            corners[mesh.triangles[3 * t + 2]]};
 }
 
 } // namespace
@@ -25,9 +33,10 @@ PixelTriangle triangleOf(const TinMesh& mesh, std::int64_t width, std::size_t t)
 std::vector<std::uint8_t> trianglesOverOpenHoles(const TinMesh& mesh, const GridView& grid,
                                                  unsigned threads) {
     std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
+    const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
     parallelFor(drop.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
         for (std::size_t t = begin; t < end; ++t) {
-            const PixelTriangle triangle = triangleOf(mesh, grid.width, t);
+            const PixelTriangle triangle = triangleOf(mesh, corners, t);
             bool covers = false;
             if (triangle.hasArea()) {
                 triangle.forEachRow(grid.width, grid.height, nullptr,
@@ -50,10 +59,11 @@ std::vector<std::uint8_t> trianglesOverOpenHoles(const TinMesh& mesh, const Grid
 ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned threads) {
     const std::size_t triangles = mesh.triangleCount();
     std::vector<ErrorMeasure> blocks(parallelForThreads(triangles, threads));
+    const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
     parallelFor(triangles, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         ErrorMeasure& measure = blocks[block];
         for (std::size_t t = begin; t < end; ++t) {
-            const PixelTriangle triangle = triangleOf(mesh, grid.width, t);
+            const PixelTriangle triangle = triangleOf(mesh, corners, t);
             if (!triangle.hasArea())
                 continue; // its cells lie on neighbouring triangles' edges (grid_scan.hpp)
             // Edge i of `triangle` runs corner(i) -> corner(i+1); find the mesh's neighbour
@@ -71,31 +81,25 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
                 }
             }
             const double gradCol = triangle.gradCol();
-            const auto errorAt = [&](std::int64_t row, std::int64_t col, double base) {
-                return std::fabs(static_cast<double>(grid.z[row * grid.width + col]) -
-                                 (base + gradCol * static_cast<double>(col)));
-            };
-            triangle.forEachRow(grid.width, grid.height, nullptr,
-                                [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                    const std::uint8_t* flags = grid.flags + row * grid.width;
-                                    const double base = triangle.rowBase(row);
-                                    for (std::int64_t col = lo; col <= hi; ++col)
-                                        if (flags[col] == 0)
-                                            measure.maxError = std::max(
-                                                measure.maxError, errorAt(row, col, base));
-                                });
-            triangle.forEachRow(grid.width, grid.height, strict,
-                                [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                    const std::uint8_t* flags = grid.flags + row * grid.width;
-                                    const double base = triangle.rowBase(row);
-                                    for (std::int64_t col = lo; col <= hi; ++col) {
-                                        if (flags[col] != 0)
-                                            continue;
-                                        const double error = errorAt(row, col, base);
-                                        measure.sumSquares += error * error;
-                                        ++measure.coveredCells;
-                                    }
-                                });
+            triangle.forEachRowPair(
+                grid.width, grid.height, strict,
+                [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t ownedLo,
+                    std::int64_t ownedHi) {
+                    const std::uint8_t* flags = grid.flags + row * grid.width;
+                    const float* z = grid.z + row * grid.width;
+                    const double base = triangle.rowBase(row);
+                    for (std::int64_t col = lo; col <= hi; ++col) {
+                        if (flags[col] != 0)
+                            continue;
+                        const double error = std::fabs(static_cast<double>(z[col]) -
+                                                       (base + gradCol * static_cast<double>(col)));
+                        measure.maxError = std::max(measure.maxError, error);
+                        if (col >= ownedLo && col <= ownedHi) {
+                            measure.sumSquares += error * error;
+                            ++measure.coveredCells;
+                        }
+                    }
+                });
         }
     });
     ErrorMeasure total;

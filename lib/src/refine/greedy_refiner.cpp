@@ -3,6 +3,7 @@
 #include "valid_hull.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -41,10 +42,45 @@ GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& 
 }
 
 PixelCorner GreedyRefiner::corner(VertexId v) const {
-    const std::uint32_t cell = m_vertexCell[v];
+    const VertexPixel& pixel = m_vertexPixel[v];
+    return {pixel.col, pixel.row, static_cast<double>(pixel.z), v};
+}
+
+void GreedyRefiner::addVertex(std::uint32_t cell) {
     const auto width = static_cast<std::uint32_t>(m_grid.width);
-    return {static_cast<std::int64_t>(cell % width), static_cast<std::int64_t>(cell / width),
-            static_cast<double>(m_grid.z[cell]), v};
+    m_vertexCell.push_back(cell);
+    m_vertexPixel.push_back({static_cast<std::int32_t>(cell % width),
+                             static_cast<std::int32_t>(cell / width), m_grid.z[cell]});
+    m_flags[cell] |= kCellVertex;
+}
+
+bool GreedyRefiner::mayBeInCircle(const DagNode& node, VertexId vertex) const {
+    const SymbolicPredicates& predicates = m_triangulator->predicates();
+    if (!isFiniteTriangle(predicates, node))
+        return predicates.incircle(node.v[0], node.v[1], node.v[2], vertex) >= 0;
+    // Shewchuk's stage A evaluation of the in-circle determinant; anything not certainly
+    // negative (outside) counts as inside. The bound is twice the stage A error bound.
+    const Point2& d = m_points.get()[vertex];
+    const Point2& a = m_points.get()[node.v[0]];
+    const Point2& b = m_points.get()[node.v[1]];
+    const Point2& c = m_points.get()[node.v[2]];
+    const double adx = a.x - d.x;
+    const double bdx = b.x - d.x;
+    const double cdx = c.x - d.x;
+    const double ady = a.y - d.y;
+    const double bdy = b.y - d.y;
+    const double cdy = c.y - d.y;
+    const double bc = bdx * cdy - cdx * bdy;
+    const double ca = cdx * ady - adx * cdy;
+    const double ab = adx * bdy - bdx * ady;
+    const double aLift = adx * adx + ady * ady;
+    const double bLift = bdx * bdx + bdy * bdy;
+    const double cLift = cdx * cdx + cdy * cdy;
+    const double det = aLift * bc + bLift * ca + cLift * ab;
+    const double permanent = (std::fabs(bdx * cdy) + std::fabs(cdx * bdy)) * aLift +
+                             (std::fabs(cdx * ady) + std::fabs(adx * cdy)) * bLift +
+                             (std::fabs(adx * bdy) + std::fabs(bdx * ady)) * cLift;
+    return det >= -2.0 * predicates::detail::kIncircleErrorBoundA * permanent;
 }
 
 std::optional<GreedyRefiner::Candidate> GreedyRefiner::scan(NodeId id) const {
@@ -86,16 +122,48 @@ std::optional<GreedyRefiner::Candidate> GreedyRefiner::scan(NodeId id) const {
     return Candidate{priority, static_cast<std::uint32_t>(bestCell), id};
 }
 
+// The queue is a 4-ary max-heap: half the levels of a binary heap, and the four children of a
+// node share one or two cache lines. With millions of entries, most of them stale by the time
+// they surface, its sift-downs are the refiner's main sequential cost.
+constexpr std::size_t kHeapArity = 4;
+
 void GreedyRefiner::push(const Candidate& candidate) {
+    std::size_t i = m_queue.size();
     m_queue.push_back(candidate);
-    std::push_heap(m_queue.begin(), m_queue.end(), Lower{});
+    while (i > 0) {
+        const std::size_t parent = (i - 1) / kHeapArity;
+        if (!Lower{}(m_queue[parent], candidate))
+            break;
+        m_queue[i] = m_queue[parent];
+        i = parent;
+    }
+    m_queue[i] = candidate;
 }
 
 bool GreedyRefiner::popLive(Candidate& candidate) {
     while (!m_queue.empty()) {
-        std::pop_heap(m_queue.begin(), m_queue.end(), Lower{});
-        candidate = m_queue.back();
+        candidate = m_queue.front();
+        const Candidate last = m_queue.back();
         m_queue.pop_back();
+        const std::size_t size = m_queue.size();
+        if (size > 0) {
+            std::size_t i = 0;
+            for (;;) {
+                const std::size_t first = kHeapArity * i + 1;
+                if (first >= size)
+                    break;
+                std::size_t best = first;
+                const std::size_t end = std::min(first + kHeapArity, size);
+                for (std::size_t child = first + 1; child < end; ++child)
+                    if (Lower{}(m_queue[best], m_queue[child]))
+                        best = child;
+                if (!Lower{}(last, m_queue[best]))
+                    break;
+                m_queue[i] = m_queue[best];
+                i = best;
+            }
+            m_queue[i] = last;
+        }
         if (m_triangulator->node(candidate.node).isLeaf() &&
             (m_flags[candidate.cell] & kCellVertex) == 0)
             return true;
@@ -121,11 +189,11 @@ void GreedyRefiner::startFromHull() {
                                               m_grid.cellCentre(hull[i])) > 0)
             highest = i;
     m_vertexCell.reserve(std::min<std::size_t>(m_capacity, std::size_t{1} << 20));
+    m_vertexPixel.reserve(m_vertexCell.capacity());
     for (std::size_t k = 0; k < hull.size(); ++k) {
         const std::uint32_t cell = hull[(highest + k) % hull.size()];
         m_points.get()[k] = m_grid.cellCentre(cell);
-        m_vertexCell.push_back(cell);
-        m_flags[cell] |= kCellVertex;
+        addVertex(cell);
     }
     m_triangulator.emplace(std::span<const Point2>(m_points.get(), m_capacity), VertexId{0});
     for (VertexId v = 1; v < hull.size(); ++v)
@@ -157,42 +225,43 @@ bool GreedyRefiner::claim(VertexId vertex, NodeId start, std::uint32_t stamp, No
     DagTriangulator& dag = *m_triangulator;
     const SymbolicPredicates& predicates = dag.predicates();
     leaf = dag.walk(vertex, start);
-    // Cavity first (the triangles the insertion replaces), then the ring around it.
-    std::vector<NodeId>& zone = m_zone;
-    zone.clear();
-    zone.push_back(leaf);
+    // The cavity (the triangles the insertion may replace), then the ring around it.
+    std::vector<NodeId>& cavity = m_cavity;
+    std::vector<NodeId>& ring = m_ring;
+    cavity.clear();
+    ring.clear();
+    cavity.push_back(leaf);
     growth = 2;
     const int edge = dag.edgeContaining(leaf, vertex);
     if (edge >= 0) {
         const NodeId beyond = dag.node(leaf).link[static_cast<std::size_t>(edge)];
-        zone.push_back(beyond);
+        cavity.push_back(beyond);
         // On a hull edge the triangle beyond is an auxiliary one: one new output triangle.
         if (!isFiniteTriangle(predicates, dag.node(beyond)))
             growth = 1;
     }
-    std::size_t cavityEnd = zone.size();
-    for (std::size_t i = 0; i < cavityEnd; ++i) {
-        const DagNode& node = dag.node(zone[i]);
+    const auto seen = [&](NodeId n) {
+        return std::find(cavity.begin(), cavity.end(), n) != cavity.end() ||
+               std::find(ring.begin(), ring.end(), n) != ring.end();
+    };
+    for (std::size_t i = 0; i < cavity.size(); ++i) {
+        const DagNode& node = dag.node(cavity[i]);
         for (const NodeId n : node.link) {
-            if (n == kNoNode || std::find(zone.begin(), zone.end(), n) != zone.end())
+            if (n == kNoNode || seen(n))
                 continue;
-            const DagNode& other = dag.node(n);
-            const bool inCavity =
-                predicates.incircle(other.v[0], other.v[1], other.v[2], vertex) >= 0;
-            if (inCavity) {
-                // Keep the cavity contiguous at the front so its members are expanded.
-                zone.insert(zone.begin() + static_cast<std::ptrdiff_t>(cavityEnd), n);
-                ++cavityEnd;
-            } else {
-                zone.push_back(n);
-            }
+            if (mayBeInCircle(dag.node(n), vertex))
+                cavity.push_back(n);
+            else
+                ring.push_back(n);
         }
     }
-    for (const NodeId n : zone)
-        if (dag.node(n).owner.load(std::memory_order_relaxed) == stamp)
-            return false;
-    for (const NodeId n : zone)
-        dag.node(n).owner.store(stamp, std::memory_order_relaxed);
+    for (const std::vector<NodeId>* zone : {&cavity, &ring})
+        for (const NodeId n : *zone)
+            if (dag.node(n).owner.load(std::memory_order_relaxed) == stamp)
+                return false;
+    for (const std::vector<NodeId>* zone : {&cavity, &ring})
+        for (const NodeId n : *zone)
+            dag.node(n).owner.store(stamp, std::memory_order_relaxed);
     return true;
 }
 
@@ -274,8 +343,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
                 waiting.push_back(candidate);
                 break;
             }
-            m_vertexCell.push_back(candidate.cell);
-            m_flags[candidate.cell] |= kCellVertex;
+            addVertex(candidate.cell);
             m_triangles += static_cast<std::size_t>(growth);
             accepted.push_back({vertex, leaf});
         }

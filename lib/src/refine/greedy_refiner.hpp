@@ -73,6 +73,12 @@ private:
         VertexId vertex;
         NodeId leaf;
     };
+    /// A vertex's cell in pixel coordinates and its elevation, for the scans.
+    struct VertexPixel {
+        std::int32_t col;
+        std::int32_t row;
+        float z;
+    };
     struct FreeDeleter {
         void operator()(Point2* p) const { std::free(p); }
     };
@@ -88,6 +94,11 @@ private:
     /// Inserts one accepted point and appends the candidates of its new triangles.
     void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& out);
     void push(const Candidate& candidate);
+    void addVertex(std::uint32_t cell);
+    /// Whether `vertex` may lie inside or on the circumcircle of the leaf `node`: exact for
+    /// auxiliary triangles, a floating-point test erring towards "yes" otherwise (a larger
+    /// claim is still a correct one, and grids make exact cocircularity tests common).
+    [[nodiscard]] bool mayBeInCircle(const DagNode& node, VertexId vertex) const;
     bool popLive(Candidate& candidate);
     [[nodiscard]] double progressFraction(double topPriority) const;
 
@@ -101,10 +112,12 @@ private:
     std::size_t m_capacity = 0;
     std::unique_ptr<Point2, FreeDeleter> m_points;
     std::vector<std::uint32_t> m_vertexCell;
+    std::vector<VertexPixel> m_vertexPixel;
     std::optional<DagTriangulator> m_triangulator;
     std::vector<Candidate> m_queue;
-    /// claim()'s triangles, kept to reuse the storage.
-    std::vector<NodeId> m_zone;
+    /// claim()'s cavity and the ring around it, kept to reuse the storage.
+    std::vector<NodeId> m_cavity;
+    std::vector<NodeId> m_ring;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
     std::size_t m_rounds = 0;

@@ -57,6 +57,53 @@ inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
 }
 inline std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
 
+/// One edge's constraint on the columns of successive rows (PixelTriangle::forEachRowPair):
+/// N(r) = n0 + (r - first) * step; with slope > 0 the row's cells satisfy x >= -floor(N /
+/// slope), with slope < 0 x <= floor(N / -slope), with slope 0 all or none (N >= 0).
+class EdgeWalk {
+public:
+    void start(std::int64_t slope, std::int64_t n0, std::int64_t step) {
+        m_slope = slope;
+        if (slope == 0) {
+            m_quotient = n0;
+            m_stepQuotient = step;
+            return;
+        }
+        m_divisor = slope > 0 ? slope : -slope;
+        m_quotient = floorDiv(n0, m_divisor);
+        m_remainder = n0 - m_quotient * m_divisor;
+        m_stepQuotient = floorDiv(step, m_divisor);
+        m_stepRemainder = step - m_stepQuotient * m_divisor;
+    }
+    void clip(std::int64_t& lo, std::int64_t& hi) const {
+        if (m_slope > 0)
+            lo = std::max(lo, -m_quotient);
+        else if (m_slope < 0)
+            hi = std::min(hi, m_quotient);
+        else if (m_quotient < 0)
+            hi = -1; // the row lies beyond this horizontal edge
+    }
+    void advance() {
+        m_quotient += m_stepQuotient;
+        if (m_slope == 0)
+            return;
+        m_remainder += m_stepRemainder;
+        if (m_remainder >= m_divisor) {
+            m_remainder -= m_divisor;
+            ++m_quotient;
+        }
+    }
+
+private:
+    std::int64_t m_slope = 0;
+    std::int64_t m_divisor = 1;
+    /// floor(N / divisor) (N itself for a horizontal edge) and N - quotient * divisor.
+    std::int64_t m_quotient = 0;
+    std::int64_t m_remainder = 0;
+    std::int64_t m_stepQuotient = 0;
+    std::int64_t m_stepRemainder = 0;
+};
+
 /// A triangle of cell centres prepared for row-by-row visits and linear interpolation.
 class PixelTriangle {
 public:
@@ -107,39 +154,60 @@ public:
     template <class Visit>
     void forEachRow(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
                     Visit&& visit) const {
-        // Edge i runs from corner i to corner i+1; inside means sgn * orient(p, q, x) >= 0.
+        forEachRowPair(gridWidth, gridHeight, strictEdge,
+                       [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t,
+                           std::int64_t) { visit(row, lo, hi); });
+    }
+
+    /// Like forEachRow without `strictEdge`, and gives as well the sub-interval [ownedLo,
+    /// ownedHi] of the row's cells left when the edges marked in `strictEdge` are excluded
+    /// (empty when ownedLo > ownedHi). `strictEdge` may be null (then both intervals agree).
+    template <class Visit>
+    void forEachRowPair(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
+                        Visit&& visit) const {
+        // Edge i runs from corner i to corner i+1; a cell (x, r) is inside when
+        // sgn * orient(p, q, (x, r)) >= t (t = 0 closed, 1 to leave the edge's cells out), with
+        //   orient(p, q, (x, r)) = (q.col - p.col)(r - p.row) - (q.row - p.row)(x - p.col).
+        // As a condition on x: slope * x >= bound(r), slope = -sgn (q.row - p.row), where
+        // bound(r) = t - sgn * ((q.col - p.col)(r - p.row) + (q.row - p.row) p.col) changes by
+        // a constant from row to row. Writing N(r) = -bound(r): slope > 0 gives x >= -floor(N /
+        // slope), slope < 0 gives x <= floor(N / -slope), slope == 0 needs N(r) >= 0. The floor
+        // divisions are carried from row to row with a remainder (Bresenham), exactly.
         const std::int64_t sgn = m_det > 0 ? 1 : -1;
-        std::int64_t slope[3];
-        std::int64_t offset[3];
+        const std::int64_t rowFirst = std::max<std::int64_t>(m_rowMin, 0);
+        const std::int64_t rowLast = std::min<std::int64_t>(m_rowMax, gridHeight - 1);
+        if (rowFirst > rowLast)
+            return;
+        EdgeWalk closed[3];
+        EdgeWalk owned[3];
         for (int i = 0; i < 3; ++i) {
             const PixelCorner& p = m_corner[static_cast<std::size_t>(i)];
             const PixelCorner& q = m_corner[static_cast<std::size_t>((i + 1) % 3)];
-            // orient(p, q, (x, r)) = (q.col - p.col)(r - p.row) - (q.row - p.row)(x - p.col)
-            //                      = K(r) - D x,  D = q.row - p.row.
-            // Condition sgn * (K(r) - D x) >= t  <=>  (-sgn D) x >= t - sgn K(r).
-            const std::int64_t d = q.row - p.row;
-            slope[i] = -sgn * d;
-            offset[i] = (strictEdge != nullptr && strictEdge[i]) ? 1 : 0;
+            const std::int64_t slope = -sgn * (q.row - p.row);
+            const std::int64_t k = (q.col - p.col) * (rowFirst - p.row) + (q.row - p.row) * p.col;
+            const std::int64_t step = sgn * (q.col - p.col);
+            closed[i].start(slope, sgn * k, step);
+            const std::int64_t t = strictEdge != nullptr && strictEdge[i] ? 1 : 0;
+            owned[i].start(slope, sgn * k - t, step);
         }
-        const std::int64_t rowFirst = std::max<std::int64_t>(m_rowMin, 0);
-        const std::int64_t rowLast = std::min<std::int64_t>(m_rowMax, gridHeight - 1);
         for (std::int64_t r = rowFirst; r <= rowLast; ++r) {
             std::int64_t lo = 0;
             std::int64_t hi = gridWidth - 1;
-            for (int i = 0; i < 3; ++i) {
-                const PixelCorner& p = m_corner[static_cast<std::size_t>(i)];
-                const PixelCorner& q = m_corner[static_cast<std::size_t>((i + 1) % 3)];
-                const std::int64_t k = (q.col - p.col) * (r - p.row) + (q.row - p.row) * p.col;
-                const std::int64_t bound = offset[i] - sgn * k;
-                if (slope[i] > 0)
-                    lo = std::max(lo, ceilDiv(bound, slope[i]));
-                else if (slope[i] < 0)
-                    hi = std::min(hi, floorDiv(bound, slope[i]));
-                else if (bound > 0)
-                    hi = -1; // the row lies outside this horizontal edge
+            for (const EdgeWalk& edge : closed)
+                edge.clip(lo, hi);
+            if (lo <= hi) {
+                std::int64_t ownedLo = lo;
+                std::int64_t ownedHi = hi;
+                if (strictEdge != nullptr)
+                    for (const EdgeWalk& edge : owned)
+                        edge.clip(ownedLo, ownedHi);
+                visit(r, lo, hi, ownedLo, ownedHi);
             }
-            if (lo <= hi)
-                visit(r, lo, hi);
+            for (EdgeWalk& edge : closed)
+                edge.advance();
+            if (strictEdge != nullptr)
+                for (EdgeWalk& edge : owned)
+                    edge.advance();
         }
     }
 
