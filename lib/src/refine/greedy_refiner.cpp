@@ -177,7 +177,8 @@ void GreedyRefiner::startFromHull() {
     // points are chosen, so memory follows the output even though the triangulator must know
     // its capacity (its symbolic vertex ids) up front. Point2 is an implicit-lifetime
     // aggregate, so writing into malloc'd storage is valid.
-    m_capacity = std::max(m_capacity, hull.size());
+    // A round holds its candidates at ids past the chosen points while it finds their zones.
+    m_capacity = std::max(m_capacity, hull.size()) + std::max<std::size_t>(m_options.roundCandidates, 1);
     m_points.reset(static_cast<Point2*>(std::malloc(m_capacity * sizeof(Point2))));
     if (m_points == nullptr)
         throw std::bad_alloc();
@@ -220,48 +221,52 @@ void GreedyRefiner::startFromHull() {
     m_firstPriority = m_queue.empty() ? 0.0 : m_queue.front().priority;
 }
 
-bool GreedyRefiner::claim(VertexId vertex, NodeId start, std::uint32_t stamp, NodeId& leaf,
-                          int& growth) {
-    DagTriangulator& dag = *m_triangulator;
+void GreedyRefiner::findZone(VertexId vertex, NodeId start, Zone& zone) const {
+    const DagTriangulator& dag = *m_triangulator;
     const SymbolicPredicates& predicates = dag.predicates();
-    leaf = dag.walk(vertex, start);
-    // The cavity (the triangles the insertion may replace), then the ring around it.
-    std::vector<NodeId>& cavity = m_cavity;
-    std::vector<NodeId>& ring = m_ring;
-    cavity.clear();
-    ring.clear();
-    cavity.push_back(leaf);
-    growth = 2;
-    const int edge = dag.edgeContaining(leaf, vertex);
+    zone.leaf = dag.walk(vertex, start);
+    // The cavity (the triangles the insertion may replace) first, then the ring around it.
+    std::vector<NodeId>& nodes = zone.nodes;
+    nodes.clear();
+    nodes.push_back(zone.leaf);
+    zone.growth = 2;
+    const int edge = dag.edgeContaining(zone.leaf, vertex);
     if (edge >= 0) {
-        const NodeId beyond = dag.node(leaf).link[static_cast<std::size_t>(edge)];
-        cavity.push_back(beyond);
+        const NodeId beyond = dag.node(zone.leaf).link[static_cast<std::size_t>(edge)];
+        nodes.push_back(beyond);
         // On a hull edge the triangle beyond is an auxiliary one: one new output triangle.
         if (!isFiniteTriangle(predicates, dag.node(beyond)))
-            growth = 1;
+            zone.growth = 1;
     }
-    const auto seen = [&](NodeId n) {
-        return std::find(cavity.begin(), cavity.end(), n) != cavity.end() ||
-               std::find(ring.begin(), ring.end(), n) != ring.end();
-    };
-    for (std::size_t i = 0; i < cavity.size(); ++i) {
-        const DagNode& node = dag.node(cavity[i]);
+    // Breadth-first over the cavity, which stays at the front of `nodes`: the ring members
+    // found so far are moved behind each newly found cavity member.
+    std::size_t cavityEnd = nodes.size();
+    for (std::size_t i = 0; i < cavityEnd; ++i) {
+        const DagNode& node = dag.node(nodes[i]);
         for (const NodeId n : node.link) {
-            if (n == kNoNode || seen(n))
+            if (n == kNoNode || std::find(nodes.begin(), nodes.end(), n) != nodes.end())
                 continue;
+            nodes.push_back(n);
             if (mayBeInCircle(dag.node(n), vertex))
-                cavity.push_back(n);
-            else
-                ring.push_back(n);
+                std::swap(nodes[cavityEnd++], nodes.back());
         }
     }
-    for (const std::vector<NodeId>* zone : {&cavity, &ring})
-        for (const NodeId n : *zone)
-            if (dag.node(n).owner.load(std::memory_order_relaxed) == stamp)
-                return false;
-    for (const std::vector<NodeId>* zone : {&cavity, &ring})
-        for (const NodeId n : *zone)
-            dag.node(n).owner.store(stamp, std::memory_order_relaxed);
+}
+
+bool GreedyRefiner::claimFree(const Zone& zone, std::uint32_t stamp) const {
+    for (const NodeId n : zone.nodes)
+        if (m_triangulator->node(n).owner.load(std::memory_order_relaxed) == stamp)
+            return false;
+    return true;
+}
+
+bool GreedyRefiner::claim(const Zone& zone, std::uint32_t stamp) {
+    DagTriangulator& dag = *m_triangulator;
+    for (const NodeId n : zone.nodes)
+        if (dag.node(n).owner.load(std::memory_order_relaxed) == stamp)
+            return false;
+    for (const NodeId n : zone.nodes)
+        dag.node(n).owner.store(stamp, std::memory_order_relaxed);
     return true;
 }
 
@@ -315,37 +320,59 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
     std::vector<std::vector<Candidate>> found(m_workers.size());
     std::vector<PendingEdges> pending(m_workers.size());
     bool limitReached = false;
+    std::vector<Candidate> popped;
+    std::vector<Zone> zones(roundCandidates);
     while (!limitReached) {
-        // Select: candidates in priority order whose insertions touch disjoint triangles.
+        // Pop the round's candidates and find, in parallel, the triangles each insertion can
+        // change (read-only on the DAG); the candidate j sits at vertex id base + j meanwhile.
         accepted.clear();
         waiting.clear();
-        const auto stamp = static_cast<std::uint32_t>(m_rounds + 1);
+        popped.clear();
         Candidate candidate{};
-        while (accepted.size() + waiting.size() < roundCandidates && popLive(candidate)) {
+        while (popped.size() < roundCandidates && popLive(candidate))
+            popped.push_back(candidate);
+        const auto base = static_cast<VertexId>(m_vertexCell.size());
+        for (std::size_t j = 0; j < popped.size(); ++j)
+            m_points.get()[base + j] = m_grid.cellCentre(popped[j].cell);
+        std::atomic<std::size_t> nextZone{0};
+        m_workers.run([&](unsigned) {
+            for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
+                findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
+        });
+
+        // Accept in priority order those whose triangles no earlier one claimed; the accepted
+        // points are renumbered base, base + 1, ... (each slot is rewritten only after the
+        // candidates before it are done with it).
+        const auto stamp = static_cast<std::uint32_t>(m_rounds + 1);
+        for (std::size_t j = 0; j < popped.size(); ++j) {
+            if (limitReached) {
+                waiting.push_back(popped[j]);
+                continue;
+            }
             if (m_options.maxPoints && m_vertexCell.size() >= *m_options.maxPoints) {
                 m_stop = RefineStop::PointLimit;
                 limitReached = true;
-                waiting.push_back(candidate);
-                break;
-            }
-            const auto vertex = static_cast<VertexId>(m_vertexCell.size());
-            m_points.get()[vertex] = m_grid.cellCentre(candidate.cell);
-            NodeId leaf = kNoNode;
-            int growth = 0;
-            if (!claim(vertex, candidate.node, stamp, leaf, growth)) {
-                waiting.push_back(candidate);
+                waiting.push_back(popped[j]);
                 continue;
             }
+            const Zone& zone = zones[j];
             if (m_options.maxTriangles &&
-                m_triangles + static_cast<std::size_t>(growth) > *m_options.maxTriangles) {
+                m_triangles + static_cast<std::size_t>(zone.growth) > *m_options.maxTriangles &&
+                claimFree(zone, stamp)) {
                 m_stop = RefineStop::TriangleLimit;
                 limitReached = true;
-                waiting.push_back(candidate);
-                break;
+                waiting.push_back(popped[j]);
+                continue;
             }
-            addVertex(candidate.cell);
-            m_triangles += static_cast<std::size_t>(growth);
-            accepted.push_back({vertex, leaf});
+            if (!claim(zone, stamp)) {
+                waiting.push_back(popped[j]);
+                continue;
+            }
+            const auto vertex = static_cast<VertexId>(m_vertexCell.size());
+            m_points.get()[vertex] = m_grid.cellCentre(popped[j].cell);
+            addVertex(popped[j].cell);
+            m_triangles += static_cast<std::size_t>(zone.growth);
+            accepted.push_back({vertex, zone.leaf});
         }
         m_deferred += waiting.size();
         if (accepted.empty()) {

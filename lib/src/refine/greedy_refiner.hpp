@@ -87,10 +87,21 @@ private:
     [[nodiscard]] PixelCorner corner(VertexId v) const;
     /// The candidate of a leaf, if it has one worth inserting.
     [[nodiscard]] std::optional<Candidate> scan(NodeId node) const;
-    /// Claims the triangles inserting `vertex` (already in m_points) can change, unless an
-    /// accepted insertion of this round claimed one. Sets the leaf to split and the change in
-    /// the triangle count.
-    bool claim(VertexId vertex, NodeId start, std::uint32_t stamp, NodeId& leaf, int& growth);
+    /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
+    struct Zone {
+        NodeId leaf = kNoNode;
+        /// Change in the number of output triangles: 2, or 1 on the hull.
+        int growth = 2;
+        std::vector<NodeId> nodes;
+    };
+    /// Fills `zone` for `vertex` (already in m_points), searching from the leaf `start`.
+    /// Reads the DAG only: safe from several threads while nothing edits it.
+    void findZone(VertexId vertex, NodeId start, Zone& zone) const;
+    /// Claims the zone's triangles for this round, unless an accepted insertion of the round
+    /// claimed one of them (then nothing is claimed).
+    bool claim(const Zone& zone, std::uint32_t stamp);
+    /// Whether claim would succeed, without claiming.
+    [[nodiscard]] bool claimFree(const Zone& zone, std::uint32_t stamp) const;
     /// Inserts one accepted point and appends the candidates of its new triangles.
     void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& out);
     void push(const Candidate& candidate);
@@ -115,9 +126,6 @@ private:
     std::vector<VertexPixel> m_vertexPixel;
     std::optional<DagTriangulator> m_triangulator;
     std::vector<Candidate> m_queue;
-    /// claim()'s cavity and the ring around it, kept to reuse the storage.
-    std::vector<NodeId> m_cavity;
-    std::vector<NodeId> m_ring;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
     std::size_t m_rounds = 0;
