@@ -39,7 +39,9 @@ TEST(RefineParallel, SameTinForOneTwoAndFourThreads) {
         EXPECT_EQ(many.mesh.triangleCount(), one.mesh.triangleCount());
         EXPECT_EQ(sortedCells(many.mesh), sortedCells(one.mesh));
         EXPECT_EQ(many.maxError, one.maxError);
-        EXPECT_EQ(many.rmse, one.rmse);
+        // The squares are summed in triangle order, which follows the threads' allocation
+        // order: the RMSE may differ in its last bits, never more.
+        EXPECT_NEAR(many.rmse, one.rmse, 1e-12 * one.rmse);
         EXPECT_LE(many.maxError, 1.0);
     }
 }

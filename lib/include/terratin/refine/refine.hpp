@@ -65,7 +65,8 @@ struct RefineResult {
     TinMesh mesh;
     /// Largest error of a valid cell inside a kept triangle (checked cell by cell), z units.
     double maxError = 0.0;
-    /// Root mean square of the errors of the covered valid cells (vertices count as 0).
+    /// Root mean square of the errors of the covered valid cells (vertices count as 0). Summed
+    /// in triangle order, which depends on the threads: may differ in the last bits.
     double rmse = 0.0;
     /// Valid cells inside a kept triangle (each counted once) and valid cells in none.
     std::size_t coveredCells = 0;
