@@ -293,6 +293,54 @@ case "$case_name" in
     expect_one_error_line "--keep-geographic"
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
     ;;
+  refine_max_error)
+    run 0 build "$sample" -o tin.gpkg --max-error 2 --json --quiet --validate --threads 2
+    for key in '"refine"' '"achieved_max_error"' '"rmse"' '"stop": "error"' '"validated": true'; do
+      grep -q -- "$key" out.txt || fail "JSON report lacks $key"
+    done
+    achieved=$(sed -n 's/.*"achieved_max_error": \([0-9.]*\).*/\1/p' out.txt)
+    awk -v e="$achieved" 'BEGIN { exit !(e <= 2.0) }' || fail "achieved max error $achieved > 2"
+    triangles=$(sed -n 's/.*"refine": {.*"triangles": \([0-9]*\).*/\1/p' out.txt)
+    [ "$(feature_count tin.gpkg)" = "$triangles" ] || fail "feature count differs from report"
+    full=$(sed -n 's/.*"raster_cells": \([0-9]*\).*/\1/p' out.txt)
+    points=$(sed -n 's/.*"refine": {.*"points": \([0-9]*\).*/\1/p' out.txt)
+    [ "$points" -lt "$full" ] || fail "no simplification: $points points of $full cells"
+    ;;
+  refine_summary_line)
+    run 0 build "$sample" -o tin.gpkg --max-points 500
+    grep -q '500 points' out.txt || fail "summary does not give the 500 points"
+    grep -q 'max error' out.txt || fail "summary lacks the max error"
+    grep -q 'RMSE' out.txt || fail "summary lacks the RMSE"
+    ;;
+  refine_limits)
+    run 0 build "$sample" -o tin.gpkg --max-error 0 --max-triangles 300 --json --quiet
+    grep -q '"stop": "triangles"' out.txt || fail "the triangle limit did not stop the run"
+    [ "$(feature_count tin.gpkg)" -le 300 ] || fail "more than 300 triangles"
+    ;;
+  refine_bad_values)
+    run 2 build "$sample" -o tin.gpkg --max-error -1
+    expect_one_error_line "max-error"
+    run 2 build "$sample" -o tin.gpkg --max-edge 0
+    expect_one_error_line "max-edge"
+    [ ! -e tin.gpkg ] || fail "output written despite usage error"
+    # Combinations the refiner cannot honour are refused, not silently ignored.
+    run 1 build "$sample" "$sample" -o tin.gpkg --max-error 5 --quiet
+    expect_one_error_line "one raster input"
+    run 1 build "$sample" -o tin.gpkg --max-error 5 --t_srs EPSG:3857 --quiet
+    expect_one_error_line "t_srs"
+    gdal_create -q -of GTiff -outsize 30 20 -bands 1 -ot Int16 -burn 100 -a_srs EPSG:4326 \
+      -a_ullr -71.6 44.6 -71.5 44.5 geo.tif || fail "gdal_create failed"
+    run 1 build geo.tif -o tin.gpkg --max-error 5 --quiet
+    expect_one_error_line "geographic"
+    [ ! -e tin.gpkg ] || fail "output written despite a refused combination"
+    run 0 build geo.tif -o deg.gpkg --max-error 5 --keep-geographic --quiet
+    ;;
+  max_edge)
+    run 0 build "$sample" -o all.gpkg --max-error 5 --json --quiet
+    run 0 build "$sample" -o cut.gpkg --max-error 5 --max-edge 200 --json --quiet
+    grep -q '"long_edge_triangles"' out.txt || fail "JSON report lacks long_edge_triangles"
+    [ "$(feature_count cut.gpkg)" -lt "$(feature_count all.gpkg)" ] || fail "nothing dropped"
+    ;;
   *)
     fail "unknown case"
     ;;

@@ -119,6 +119,10 @@ po::options_description benchOptionsDescription() {
         ("no-cgal", "do not run CGAL")
         ("no-gdal", "do not run GDAL (slow and memory-hungry above a few million points)")
         ("csv", "print comma-separated rows instead of the table")
+        ("refine", "terrain refinement table instead: N44W072 at E = 1, 5, 10 m and Mt Hood at "
+                   "E = 1, 5 m (points, triangles, achieved max error, seconds per thread count)")
+        ("dems", po::value<std::string>()->default_value("../shared/dems")->value_name("DIR"),
+         "--refine: folder of the shared DEMs")
         ("help,h", "show this help");
     // clang-format on
     return options;
@@ -259,6 +263,9 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
     bench.runCgal = values.count("no-cgal") == 0;
     bench.runGdal = values.count("no-gdal") == 0;
     bench.csv = values.count("csv") != 0;
+    bench.refine = values.count("refine") != 0;
+    bench.demDirectory = values["dems"].as<std::string>();
+    bench.threadsGiven = values.count("threads") != 0;
     return command;
 }
 

@@ -60,6 +60,11 @@ struct BenchOptions {
     bool runGdal = true;
     /// Comma-separated rows instead of the aligned table.
     bool csv = false;
+    /// Terrain refinement table instead (refine_bench.cpp): real DEMs from `demDirectory`.
+    bool refine = false;
+    std::string demDirectory = "../shared/dems";
+    /// Whether --threads was given (the refinement table defaults to 1 and 2 threads).
+    bool threadsGiven = false;
 };
 
 /// What the user asked for.

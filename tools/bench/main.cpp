@@ -26,6 +26,7 @@
 #include "distributions.hpp"
 #include "peers.hpp"
 #include "process_memory.hpp"
+#include "refine_bench.hpp"
 #include "results_table.hpp"
 #include "stats.hpp"
 
@@ -344,6 +345,8 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     try {
+        if (command.options.refine)
+            return runRefineBench(command.options);
         return runBench(command.options);
     } catch (const Error& error) {
         std::fprintf(stderr, "terratin-bench: %s\n", error.what());

@@ -31,6 +31,9 @@ constexpr const char* kDescription =
     "brought into one CRS. Geographic input is projected to the UTM/UPS zone of its centre\n"
     "unless --t_srs or --keep-geographic says otherwise; elevations are never converted\n"
     "except by --z-factor.\n\n"
+    "With --max-error, --max-points or --max-triangles the DEM is simplified instead: greedy\n"
+    "insertion of the cell farthest from the TIN, kept exactly Delaunay, until the tolerance\n"
+    "or a limit is reached; nodata regions larger than --max-hole cells become holes.\n\n"
     "Exit status: 0 success, 1 error (one line on stderr), 2 bad command line.\n";
 
 std::string lowercase(std::string text) {
@@ -152,6 +155,17 @@ po::options_description buildOptionsDescription() {
          "batch method: length of the queue to the inserting thread")
         ("searchers-help",
          "batch method: searchers complete queued locations when the queue is full")
+        ("max-error", po::value<double>()->value_name("E"),
+         "simplify: greedy insertion until every valid cell is within E (z units) of the TIN")
+        ("max-points", po::value<std::size_t>()->value_name("N"),
+         "simplify: at most N vertices (the first limit reached stops)")
+        ("max-triangles", po::value<std::size_t>()->value_name("N"),
+         "simplify: at most N triangles (the first limit reached stops)")
+        ("max-hole", po::value<std::size_t>()->value_name("N"),
+         "simplify: nodata regions (8-connected) of more than N cells stay open (default 1)")
+        ("fill-holes", "simplify: triangulate across every nodata region")
+        ("max-edge", po::value<double>()->value_name("L"),
+         "drop triangles with an edge longer than L (CRS units), e.g. across point-cloud gaps")
         ("layer", po::value<std::string>()->default_value("tin")->value_name("NAME"),
          "name of the triangle layer")
         ("class", po::value<std::vector<std::string>>()->composing()->value_name("C[,C...]"),
@@ -259,6 +273,37 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     if (triangulation.queueLength == 0)
         throw UsageError("--queue-length must be 1 or more");
     triangulation.searchersHelpWhenQueueFull = values.count("searchers-help") > 0;
+    // Simplification: any of its options selects the refinement path.
+    if (values.count("max-error") || values.count("max-points") || values.count("max-triangles") ||
+        values.count("max-hole") || values.count("fill-holes")) {
+        RefineOptions refine;
+        if (values.count("max-error")) {
+            const double maxError = values["max-error"].as<double>();
+            if (!std::isfinite(maxError) || maxError < 0.0)
+                throw UsageError("--max-error must be a finite number >= 0");
+            refine.maxError = maxError;
+        }
+        if (values.count("max-points")) {
+            refine.maxPoints = values["max-points"].as<std::size_t>();
+            if (*refine.maxPoints < 3)
+                throw UsageError("--max-points must be 3 or more");
+        }
+        if (values.count("max-triangles")) {
+            refine.maxTriangles = values["max-triangles"].as<std::size_t>();
+            if (*refine.maxTriangles < 1)
+                throw UsageError("--max-triangles must be 1 or more");
+        }
+        if (values.count("max-hole"))
+            refine.maxHole = values["max-hole"].as<std::size_t>();
+        refine.fillHoles = values.count("fill-holes") > 0;
+        build.refine = refine;
+    }
+    if (values.count("max-edge")) {
+        const double maxEdge = values["max-edge"].as<double>();
+        if (!std::isfinite(maxEdge) || maxEdge <= 0.0)
+            throw UsageError("--max-edge must be a positive number");
+        build.maxEdge = maxEdge;
+    }
     build.layerName = values["layer"].as<std::string>();
     build.overwrite = values.count("overwrite") > 0;
     build.validate = values.count("validate") > 0;

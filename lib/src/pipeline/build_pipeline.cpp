@@ -1,8 +1,12 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
 #include "gather_inputs.hpp"
+#include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
+#include "terratin/io/height_grid_reader.hpp"
+#include "terratin/io/raster_reader.hpp"
+#include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
@@ -14,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 namespace terratin {
 
@@ -108,6 +113,83 @@ std::string jsonNumber(double value) {
     return std::string(text, end.ptr);
 }
 
+void writeMesh(const TinMesh& mesh, const BuildOptions& options, io::TinFormat format,
+               const std::string& crsWkt, const ProgressCallback& progress) {
+    io::TinWriteOptions writeOptions;
+    writeOptions.format = format;
+    writeOptions.overwrite = options.overwrite;
+    writeOptions.crsWkt = crsWkt;
+    writeOptions.layerName = options.layerName;
+    io::writeTin(mesh, options.output, writeOptions,
+                 phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
+}
+
+// runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
+BuildReport runRefineBuild(const BuildOptions& options, io::TinFormat format,
+                           const ProgressCallback& progress, BuildReport report,
+                           Clock::time_point start) {
+    // The refiner works on the raster's own grid, so the point-cloud and CRS options, which
+    // move points off that grid, do not combine with it (yet): refuse them clearly.
+    const std::vector<std::string> paths = options.inputPaths();
+    if (paths.size() != 1)
+        throw InvalidInputError("Simplification (--max-error...) takes exactly one raster input");
+    if (!options.targetSrs.empty() || !options.sourceSrs.empty() || options.zFactor != 1.0)
+        throw InvalidInputError("Simplification (--max-error...) does not combine with --s_srs, "
+                                "--t_srs or --z-factor; reproject or scale the DEM first "
+                                "(gdalwarp -t_srs, gdal_calc)");
+    Clock::time_point phase = Clock::now();
+    io::RasterReadOptions readOptions;
+    readOptions.band = options.band;
+    io::HeightGridRaster raster =
+        io::readHeightGrid(paths.front(), readOptions, phaseProgress(progress, 0.0, kReadShare));
+    if (!options.keepGeographic && crs::describeCrs(raster.crsWkt).geographic)
+        throw InvalidInputError(
+            "Simplification (--max-error...) of a raster in geographic coordinates would measure "
+            "distances in degrees: reproject it first (gdalwarp -t_srs EPSG:...) or pass "
+            "--keep-geographic");
+    report.rasterCells = raster.grid.cellCount();
+    report.skippedCells = raster.skippedCells;
+    describeCrs(raster.crsWkt, report);
+    report.timings.read = secondsSince(phase);
+
+    phase = Clock::now();
+    RefineOptions refineOptions = *options.refine;
+    if (refineOptions.threads == 0)
+        refineOptions.threads = options.triangulation.threads;
+    refineOptions.validate = options.validate;
+    RefineResult result = refine(raster.grid, refineOptions,
+                                 phaseProgress(progress, kReadShare, kTriangulateShare));
+    raster.grid = {}; // the mesh holds its own vertices
+    report.refined = true;
+    report.targetMaxError = refineOptions.maxError;
+    report.achievedMaxError = result.maxError;
+    report.rmse = result.rmse;
+    report.refineStop = toString(result.stop);
+    report.openHoleCells = result.openHoleCells;
+    report.holeTriangles = result.droppedTriangles;
+    report.uncoveredCells = result.uncoveredCells;
+    report.validated = result.validated;
+    report.method = "refine";
+    report.threads = result.threads;
+    report.points = result.mesh.vertexCount();
+    report.vertices = result.mesh.vertexCount();
+    report.historyBytesPerPoint =
+        static_cast<double>(result.historyBytes) /
+        static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
+    if (options.maxEdge)
+        report.longEdgeTriangles = dropLongEdgeTriangles(result.mesh, *options.maxEdge);
+    report.triangles = result.mesh.triangleCount();
+    report.timings.triangulate = secondsSince(phase);
+
+    phase = Clock::now();
+    writeMesh(result.mesh, options, format, raster.crsWkt, progress);
+    report.timings.write = secondsSince(phase);
+    report.timings.total = secondsSince(start);
+    if (progress)
+        progress(1.0, "done");
+    return report;
+}
+
 } // namespace
 
 BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
@@ -124,6 +206,8 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     }
     report.output = options.output.string();
     report.format = formatName(format);
+    if (options.refine)
+        return runRefineBuild(options, format, progress, std::move(report), start);
 
     Clock::time_point phase = Clock::now();
     detail::GatheredInputs gathered =
@@ -132,7 +216,7 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     report.timings.read = secondsSince(phase);
 
     phase = Clock::now();
-    const TriangulationResult triangulation =
+    TriangulationResult triangulation =
         triangulate(gathered.points, options.triangulation,
                     phaseProgress(progress, kReadShare, kTriangulateShare));
     gathered.points = {}; // the mesh holds its own copy of the vertices
@@ -155,6 +239,11 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
                                                      : validation.problems.front()));
         report.validated = true;
         report.timings.validate = secondsSince(phase);
+    }
+
+    if (options.maxEdge) {
+        report.longEdgeTriangles = dropLongEdgeTriangles(triangulation.mesh, *options.maxEdge);
+        report.triangles = triangulation.mesh.triangleCount();
     }
 
     phase = Clock::now();
@@ -216,12 +305,40 @@ std::string toJson(const BuildReport& report) {
     json << "], \"notices\": [";
     for (std::size_t i = 0; i < report.notices.size(); ++i)
         json << (i > 0 ? ", " : "") << jsonString(report.notices[i]);
-    json << "]}";
+    json << "]";
+    if (report.refined) {
+        json << ", \"refine\": {\"max_error\": ";
+        if (report.targetMaxError)
+            json << *report.targetMaxError;
+        else
+            json << "null";
+        json << ", \"achieved_max_error\": " << report.achievedMaxError
+             << ", \"rmse\": " << report.rmse << ", \"points\": " << report.vertices
+             << ", \"triangles\": " << report.triangles
+             << ", \"stop\": " << jsonString(report.refineStop)
+             << ", \"open_hole_cells\": " << report.openHoleCells
+             << ", \"hole_triangles\": " << report.holeTriangles
+             << ", \"uncovered_cells\": " << report.uncoveredCells << "}";
+    }
+    if (report.longEdgeTriangles > 0)
+        json << ", \"long_edge_triangles\": " << report.longEdgeTriangles;
+    json << "}";
     return json.str();
 }
 
 std::string toSummaryLine(const BuildReport& report) {
     char line[512];
+    if (report.refined) {
+        std::snprintf(line, sizeof line,
+                      "%llu points, %llu triangles (%llu over holes dropped); max error %.3f, "
+                      "RMSE %.3f; read %.2f s, refine %.2f s, write %.2f s, total %.2f s",
+                      static_cast<unsigned long long>(report.vertices),
+                      static_cast<unsigned long long>(report.triangles),
+                      static_cast<unsigned long long>(report.holeTriangles),
+                      report.achievedMaxError, report.rmse, report.timings.read,
+                      report.timings.triangulate, report.timings.write, report.timings.total);
+        return line;
+    }
     std::snprintf(line, sizeof line,
                   "%llu points (%llu duplicates, %llu nodata cells skipped) -> %llu triangles; "
                   "read %.2f s, triangulate %.2f s, write %.2f s, total %.2f s",

@@ -6,6 +6,7 @@
 #include "terratin/io/las_reader.hpp"
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
+#include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <cstdint>
@@ -70,6 +71,14 @@ struct BuildOptions {
     [[nodiscard]] std::vector<std::string> inputPaths() const {
         return inputs.empty() ? std::vector<std::string>{input} : inputs;
     }
+    /// Terrain simplification (--max-error, --max-points, --max-triangles, --max-hole,
+    /// --fill-holes): when set, the raster is read as a HeightGrid and refined instead of
+    /// triangulating every valid cell; `refine->threads` 0 follows triangulation.threads and
+    /// `validate` above applies to the refined TIN before its holes are cut.
+    std::optional<RefineOptions> refine;
+    /// Drop the triangles with an edge longer than this (planimetric, CRS units) from the final
+    /// TIN, whatever built it (meant for point clouds, whose hull bridges gaps).
+    std::optional<double> maxEdge;
 };
 
 /// Wall-clock seconds per phase.
@@ -128,6 +137,19 @@ struct BuildReport {
     /// Bytes of point-location history per input point.
     double historyBytesPerPoint = 0.0;
     bool validated = false;
+    /// Set when BuildOptions::refine was: what the refinement achieved, measured over every
+    /// valid cell after the build (z units).
+    bool refined = false;
+    std::optional<double> targetMaxError;
+    double achievedMaxError = 0.0;
+    double rmse = 0.0;
+    /// "error", "points" or "triangles": what stopped the refinement.
+    std::string refineStop;
+    std::uint64_t openHoleCells = 0;
+    std::uint64_t holeTriangles = 0;
+    std::uint64_t uncoveredCells = 0;
+    /// Triangles removed by BuildOptions::maxEdge.
+    std::uint64_t longEdgeTriangles = 0;
     BuildTimings timings;
 
     /// Per input, in command-line order.
@@ -165,10 +187,13 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
 /// triangulation {method, threads, history_bytes_per_point}, timings {read, triangulate,
 /// validate, write, total, reproject} in seconds, validated; then source_crs {name, code},
 /// target_crs {name, code}, zone, reprojected, z_factor, inputs [{path, kind, crs {name, code},
-/// records, filtered_out, skipped_cells, points, duplicates, reprojected}], notices [...].
+/// records, filtered_out, skipped_cells, points, duplicates, reprojected}], notices [...];
+/// after a refinement also refine {max_error, achieved_max_error, rmse, points, triangles,
+/// stop, open_hole_cells, hole_triangles, uncovered_cells}; with maxEdge, long_edge_triangles.
 std::string toJson(const BuildReport& report);
 
-/// One human-readable line: points, duplicates, triangles and seconds per phase.
+/// One human-readable line: points, duplicates, triangles and seconds per phase (after a
+/// refinement: points, triangles, achieved max error and RMSE).
 std::string toSummaryLine(const BuildReport& report);
 
 /// One line per input ("input 1: a.las (las, EPSG:2992): 110000 records, 83893 filtered out,

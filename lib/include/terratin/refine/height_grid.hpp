@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// A DEM held once in memory for terrain simplification: one float32 elevation per cell,
+/// NaN for a cell without data, and the affine geotransform that places cell centres.
+
+#include "terratin/geometry/point.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace terratin {
+
+/// A raster band as a regular grid of elevations.
+///
+/// Cells are numbered row-major from the first stored row and column: cell = row * width + col.
+/// `z[cell]` is the elevation in the band's vertical units, or NaN when the cell has no data
+/// (nodata, masked out or NaN in the source): NaN is the validity mask, so the grid costs 4
+/// bytes per cell. Elevations are float32: exact for Int16, UInt16, Byte and Float32 bands and
+/// for integers up to 2^24; a Float64 or scaled band is rounded to the nearest float32 (well
+/// under a millimetre for terrain), and the TIN's vertices carry exactly that value.
+struct HeightGrid {
+    int width = 0;
+    int height = 0;
+    /// GDAL's affine geotransform: x = c[0] + col*c[1] + row*c[2], y = c[3] + col*c[4] +
+    /// row*c[5], (col, row) in pixels from the corner of the first stored cell. CRS units.
+    std::array<double, 6> geoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+    /// width * height elevations, row-major; NaN = no data.
+    std::vector<float> z;
+
+    /// Georeferenced centre of cell (row, col): the transform at (col + 0.5, row + 0.5),
+    /// evaluated as (c[0] + px*c[1]) + py*c[2] and (c[3] + px*c[4]) + py*c[5], bit-identical
+    /// to io::GeoTransform::cellCentre and to the points of io::readRasterPoints.
+    [[nodiscard]] Point2 cellCentre(std::int64_t row, std::int64_t col) const {
+        const double px = static_cast<double>(col) + 0.5;
+        const double py = static_cast<double>(row) + 0.5;
+        const std::array<double, 6>& c = geoTransform;
+        return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5]};
+    }
+    [[nodiscard]] Point2 cellCentre(std::uint64_t cell) const {
+        const auto w = static_cast<std::uint64_t>(width);
+        return cellCentre(static_cast<std::int64_t>(cell / w), static_cast<std::int64_t>(cell % w));
+    }
+    [[nodiscard]] std::size_t cellCount() const {
+        return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    }
+    [[nodiscard]] bool isValid(std::size_t cell) const { return !std::isnan(z[cell]); }
+    /// Cells with data. O(width * height).
+    [[nodiscard]] std::size_t validCount() const;
+};
+
+} // namespace terratin

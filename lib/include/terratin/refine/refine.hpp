@@ -1,0 +1,118 @@
+#pragma once
+/// @file
+/// Terrain simplification: an error-bounded, exactly Delaunay TIN from a HeightGrid, by greedy
+/// insertion in the manner of M. Garland & P. S. Heckbert, "Fast Polygonal Approximation of
+/// Terrains and Height Fields" (CMU-CS-95-181, 1995), made parallel by inserting several
+/// far-apart points at once (the selective parallel insertion of Puppo, Davis, DeMenthon &
+/// Teng, cited in Kohout & Kolingerova's section 2).
+///
+/// Notation: a cell's error is |z(cell) - T(cell)|, the vertical distance between its
+/// elevation and the TIN's linear interpolation T at its centre, in the grid's z units.
+/// T is evaluated in double in pixel coordinates (col, row), where the cell centres are exact
+/// integers; since the geotransform is affine, this is the same linear function as in CRS
+/// coordinates (a recomputation from CRS coordinates differs only by rounding, ~1e-12 of z).
+
+#include "terratin/progress.hpp"
+#include "terratin/refine/height_grid.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+namespace terratin {
+
+/// How much to simplify. With no limit at all every valid cell becomes a vertex.
+struct RefineOptions {
+    /// Target vertical tolerance E, z units, >= 0: refinement stops when every valid cell
+    /// covered by the TIN is within E of it (error <= E; a cell exactly E away is kept out).
+    std::optional<double> maxError;
+    /// Stop before the TIN has more than this many vertices. The convex hull of the valid
+    /// cells is always kept, so a smaller limit still gives the hull's corners.
+    std::optional<std::size_t> maxPoints;
+    /// Stop before the TIN has more than this many triangles (counted before the triangles
+    /// over holes are dropped, so the output has at most as many).
+    std::optional<std::size_t> maxTriangles;
+    /// Hardware threads for insertion and scans; 0 = all. The TIN does not depend on it.
+    unsigned threads = 0;
+    /// Candidates taken from the priority queue per round; those whose insertions touch
+    /// disjoint triangles are inserted together (in parallel). Fixed, so that the result does
+    /// not depend on the thread count; 1 gives strict one-at-a-time greedy insertion.
+    std::size_t roundCandidates = 256;
+    /// Nodata regions (8-connected) of at most this many cells may be covered by triangles;
+    /// larger ones stay open: no triangle covers the centre of one of their cells.
+    std::size_t maxHole = 1;
+    /// Cover every hole (interpolate across nodata), ignoring maxHole.
+    bool fillHoles = false;
+    /// Run validateDelaunay on the TIN before the triangles over holes are dropped and throw
+    /// terratin::Error when it is not exactly Delaunay.
+    bool validate = false;
+};
+
+/// Why refinement stopped.
+enum class RefineStop {
+    ErrorReached,  ///< every candidate within maxError (or every cell used)
+    PointLimit,    ///< maxPoints reached
+    TriangleLimit, ///< maxTriangles reached
+};
+
+/// The simplified TIN and how good it is, measured after the build over every valid cell.
+struct RefineResult {
+    /// Vertices: exact cell centres (HeightGrid::cellCentre) with the cells' elevations;
+    /// sourceIndex[v] = the vertex's cell index (row * width + col). Triangles over holes are
+    /// dropped (neighbour kNoNeighbour across them) and vertices only they used removed.
+    TinMesh mesh;
+    /// Largest error of a valid cell inside a kept triangle (checked cell by cell), z units.
+    double maxError = 0.0;
+    /// Root mean square of the errors of the covered valid cells (vertices count as 0). Summed
+    /// in triangle order, which depends on the threads: may differ in the last bits.
+    double rmse = 0.0;
+    /// Valid cells inside a kept triangle (each counted once) and valid cells in none.
+    std::size_t coveredCells = 0;
+    std::size_t uncoveredCells = 0;
+    /// Valid cells of the grid and nodata cells in holes left open (larger than maxHole).
+    std::size_t validCells = 0;
+    std::size_t openHoleCells = 0;
+    /// Triangles dropped because they covered an open hole's cell centre.
+    std::size_t droppedTriangles = 0;
+    /// Vertices of the convex hull the refinement started from.
+    std::size_t hullPoints = 0;
+    /// Insertion rounds and candidates deferred to a later round by a conflict.
+    std::size_t rounds = 0;
+    std::size_t deferredCandidates = 0;
+    RefineStop stop = RefineStop::ErrorReached;
+    unsigned threads = 1;
+    /// True when options.validate ran and passed.
+    bool validated = false;
+    /// Wall-clock seconds: greedy insertion, extraction and hole dropping, error check.
+    double insertSeconds = 0.0;
+    double extractSeconds = 0.0;
+    double checkSeconds = 0.0;
+    /// Bytes of the point-location history (DAG) at the end.
+    std::size_t historyBytes = 0;
+};
+
+/// "error", "points" or "triangles".
+const char* toString(RefineStop stop);
+
+/// Builds the simplified TIN of `grid`.
+///
+/// Starts from the convex hull of the valid cells (found from each row's first and last
+/// valid cell), so every valid cell is covered from the start; then repeatedly inserts the
+/// valid cell farthest from the TIN (ties: the lowest cell index), keeping the triangulation
+/// exactly Delaunay (exact predicates, symbolic auxiliary triangle), and rescans only the
+/// triangles an insertion created. A triangle that covers an open hole's cell and a valid
+/// non-vertex cell is refined first, so that after its removal the hole's edge follows the
+/// nodata. Postconditions: without a limit reached, every valid cell inside a kept triangle
+/// is within maxError (checked, else Error); the undropped triangulation is exactly Delaunay
+/// over the vertices; the same options give the same TIN for any thread count.
+///
+/// Throws InvalidInputError (empty grid, no valid cell, valid cells all collinear, more than
+/// 2^32 - 5 cells, negative or non-finite maxError), Cancelled when `progress` returns false,
+/// Error when a check fails. Complexity: O(cells log points) expected for the scans;
+/// memory: the grid, one byte per cell of flags, and O(points) for the triangulation.
+RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
+                    const ProgressCallback& progress = {});
+
+} // namespace terratin

@@ -1,0 +1,115 @@
+#include "error_check.hpp"
+
+#include "../triangulate/parallel_for.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace terratin::detail {
+
+namespace {
+
+// Pixel corners of every vertex, computed once (a division per vertex, not per triangle).
+std::vector<PixelCorner> pixelCorners(const TinMesh& mesh, std::int64_t width, unsigned threads) {
+    std::vector<PixelCorner> corners(mesh.vertexCount());
+    parallelFor(corners.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v) {
+            const auto cell = static_cast<std::int64_t>(mesh.sourceIndex[v]);
+            corners[v] = {cell % width, cell / width, mesh.vertices[v].z,
+                          static_cast<std::uint32_t>(v)};
+        }
+    });
+    return corners;
+}
+
+PixelTriangle triangleOf(const TinMesh& mesh, const std::vector<PixelCorner>& corners,
+                         std::size_t t) {
+    return {corners[mesh.triangles[3 * t]], corners[mesh.triangles[3 * t + 1]],
+            corners[mesh.triangles[3 * t + 2]]};
+}
+
+} // namespace
+
+std::vector<std::uint8_t> trianglesOverOpenHoles(const TinMesh& mesh, const GridView& grid,
+                                                 unsigned threads) {
+    std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
+    const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
+    parallelFor(drop.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            const PixelTriangle triangle = triangleOf(mesh, corners, t);
+            bool covers = false;
+            if (triangle.hasArea()) {
+                triangle.forEachRow(grid.width, grid.height, nullptr,
+                                    [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                        const std::uint8_t* flags = grid.flags + row * grid.width;
+                                        for (std::int64_t col = lo; col <= hi && !covers; ++col)
+                                            covers = (flags[col] & kCellOpenHole) != 0;
+                                    });
+            } else {
+                triangle.forEachOnSegment([&](std::int64_t col, std::int64_t row) {
+                    covers |= (grid.flags[row * grid.width + col] & kCellOpenHole) != 0;
+                });
+            }
+            drop[t] = covers ? 1 : 0;
+        }
+    });
+    return drop;
+}
+
+ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned threads) {
+    const std::size_t triangles = mesh.triangleCount();
+    std::vector<ErrorMeasure> blocks(parallelForThreads(triangles, threads));
+    const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
+    parallelFor(triangles, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        ErrorMeasure& measure = blocks[block];
+        for (std::size_t t = begin; t < end; ++t) {
+            const PixelTriangle triangle = triangleOf(mesh, corners, t);
+            if (!triangle.hasArea())
+                continue; // its cells lie on neighbouring triangles' edges (grid_scan.hpp)
+            // Edge i of `triangle` runs corner(i) -> corner(i+1); find the mesh's neighbour
+            // across it to decide whether this triangle owns the cells on it.
+            bool strict[3] = {false, false, false};
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t a = triangle.corner(i).id;
+                const std::uint32_t b = triangle.corner((i + 1) % 3).id;
+                for (int j = 0; j < 3; ++j) {
+                    const std::uint32_t p = mesh.triangles[3 * t + j];
+                    const std::uint32_t q = mesh.triangles[3 * t + (j + 1) % 3];
+                    if ((p == a && q == b) || (p == b && q == a))
+                        strict[i] = mesh.neighbours[3 * t + j] != kNoNeighbour &&
+                                    !triangle.ownsSharedEdge(i);
+                }
+            }
+            const double gradCol = triangle.gradCol();
+            triangle.forEachRowPair(
+                grid.width, grid.height, strict,
+                [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t ownedLo,
+                    std::int64_t ownedHi) {
+                    const std::uint8_t* flags = grid.flags + row * grid.width;
+                    const float* z = grid.z + row * grid.width;
+                    const double base = triangle.rowBase(row);
+                    for (std::int64_t col = lo; col <= hi; ++col) {
+                        if (flags[col] != 0)
+                            continue;
+                        const double error = std::fabs(static_cast<double>(z[col]) -
+                                                       (base + gradCol * static_cast<double>(col)));
+                        measure.maxError = std::max(measure.maxError, error);
+                        if (col >= ownedLo && col <= ownedHi) {
+                            measure.sumSquares += error * error;
+                            ++measure.coveredCells;
+                        }
+                    }
+                });
+        }
+    });
+    ErrorMeasure total;
+    for (const ErrorMeasure& block : blocks) {
+        total.maxError = std::max(total.maxError, block.maxError);
+        total.sumSquares += block.sumSquares;
+        total.coveredCells += block.coveredCells;
+    }
+    total.coveredCells += mesh.vertexCount();
+    return total;
+}
+
+} // namespace terratin::detail

@@ -1,0 +1,422 @@
+#include "greedy_refiner.hpp"
+
+#include "valid_hull.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <new>
+#include <string>
+
+namespace terratin::detail {
+
+namespace {
+
+constexpr double kHolePriority = std::numeric_limits<double>::infinity();
+
+// Progress (and the cancellation check) every this many rounds.
+constexpr std::size_t kProgressRounds = 16;
+
+bool isFiniteTriangle(const SymbolicPredicates& predicates, const DagNode& node) {
+    return predicates.isFinite(node.v[0]) && predicates.isFinite(node.v[1]) &&
+           predicates.isFinite(node.v[2]);
+}
+
+} // namespace
+
+GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& flags,
+                             const RefineOptions& options, RoundWorkers& workers)
+    : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers) {
+    m_view = {grid.width, grid.height, grid.z.data(), flags.data()};
+    m_threshold = options.maxError ? *options.maxError : -1.0;
+    std::size_t valid = 0;
+    for (const std::uint8_t flag : flags)
+        valid += (flag & kCellNoData) == 0 ? 1U : 0U;
+    m_capacity = valid;
+    if (options.maxPoints)
+        m_capacity = std::min(m_capacity, *options.maxPoints);
+}
+
+PixelCorner GreedyRefiner::corner(VertexId v) const {
+    const VertexPixel& pixel = m_vertexPixel[v];
+    return {pixel.col, pixel.row, static_cast<double>(pixel.z), v};
+}
+
+void GreedyRefiner::addVertex(std::uint32_t cell) {
+    const auto width = static_cast<std::uint32_t>(m_grid.width);
+    m_vertexCell.push_back(cell);
+    m_vertexPixel.push_back({static_cast<std::int32_t>(cell % width),
+                             static_cast<std::int32_t>(cell / width), m_grid.z[cell]});
+    m_flags[cell] |= kCellVertex;
+}
+
+bool GreedyRefiner::mayBeInCircle(const DagNode& node, VertexId vertex) const {
+    const SymbolicPredicates& predicates = m_triangulator->predicates();
+    if (!isFiniteTriangle(predicates, node))
+        return predicates.incircle(node.v[0], node.v[1], node.v[2], vertex) >= 0;
+    // Shewchuk's stage A evaluation of the in-circle determinant; anything not certainly
+    // negative (outside) counts as inside. The bound is twice the stage A error bound.
+    const Point2& d = m_points.get()[vertex];
+    const Point2& a = m_points.get()[node.v[0]];
+    const Point2& b = m_points.get()[node.v[1]];
+    const Point2& c = m_points.get()[node.v[2]];
+    const double adx = a.x - d.x;
+    const double bdx = b.x - d.x;
+    const double cdx = c.x - d.x;
+    const double ady = a.y - d.y;
+    const double bdy = b.y - d.y;
+    const double cdy = c.y - d.y;
+    const double bc = bdx * cdy - cdx * bdy;
+    const double ca = cdx * ady - adx * cdy;
+    const double ab = adx * bdy - bdx * ady;
+    const double aLift = adx * adx + ady * ady;
+    const double bLift = bdx * bdx + bdy * bdy;
+    const double cLift = cdx * cdx + cdy * cdy;
+    const double det = aLift * bc + bLift * ca + cLift * ab;
+    const double permanent = (std::fabs(bdx * cdy) + std::fabs(cdx * bdy)) * aLift +
+                             (std::fabs(cdx * ady) + std::fabs(adx * cdy)) * bLift +
+                             (std::fabs(adx * bdy) + std::fabs(bdx * ady)) * cLift;
+    return det >= -2.0 * predicates::detail::kIncircleErrorBoundA * permanent;
+}
+
+std::optional<GreedyRefiner::Candidate> GreedyRefiner::scan(NodeId id) const {
+    const DagNode& node = m_triangulator->node(id);
+    if (!isFiniteTriangle(m_triangulator->predicates(), node))
+        return std::nullopt;
+    const PixelTriangle triangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]));
+    if (!triangle.hasArea())
+        return std::nullopt; // its cells lie on the neighbours' edges (grid_scan.hpp)
+    double best = -1.0;
+    std::int64_t bestCell = 0;
+    bool coversHole = false;
+    const std::int64_t width = m_view.width;
+    const double gradCol = triangle.gradCol();
+    triangle.forEachRow(width, m_view.height, nullptr,
+                        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                            const float* z = m_view.z + row * width;
+                            const std::uint8_t* flags = m_view.flags + row * width;
+                            const double base = triangle.rowBase(row);
+                            for (std::int64_t col = lo; col <= hi; ++col) {
+                                if (flags[col] != 0) {
+                                    coversHole |= (flags[col] & kCellOpenHole) != 0;
+                                    continue;
+                                }
+                                const double error = std::fabs(
+                                    static_cast<double>(z[col]) -
+                                    (base + gradCol * static_cast<double>(col)));
+                                if (error > best) {
+                                    best = error;
+                                    bestCell = row * width + col;
+                                }
+                            }
+                        });
+    if (best < 0.0)
+        return std::nullopt; // no valid cell left to insert
+    const double priority = coversHole ? kHolePriority : best;
+    if (priority <= m_threshold)
+        return std::nullopt;
+    return Candidate{priority, static_cast<std::uint32_t>(bestCell), id};
+}
+
+// The queue is a 4-ary max-heap: half the levels of a binary heap, and the four children of a
+// node share one or two cache lines. With millions of entries, most of them stale by the time
+// they surface, its sift-downs are the refiner's main sequential cost.
+constexpr std::size_t kHeapArity = 4;
+
+void GreedyRefiner::push(const Candidate& candidate) {
+    std::size_t i = m_queue.size();
+    m_queue.push_back(candidate);
+    while (i > 0) {
+        const std::size_t parent = (i - 1) / kHeapArity;
+        if (!Lower{}(m_queue[parent], candidate))
+            break;
+        m_queue[i] = m_queue[parent];
+        i = parent;
+    }
+    m_queue[i] = candidate;
+}
+
+bool GreedyRefiner::popLive(Candidate& candidate) {
+    while (!m_queue.empty()) {
+        candidate = m_queue.front();
+        const Candidate last = m_queue.back();
+        m_queue.pop_back();
+        const std::size_t size = m_queue.size();
+        if (size > 0) {
+            std::size_t i = 0;
+            for (;;) {
+                const std::size_t first = kHeapArity * i + 1;
+                if (first >= size)
+                    break;
+                std::size_t best = first;
+                const std::size_t end = std::min(first + kHeapArity, size);
+                for (std::size_t child = first + 1; child < end; ++child)
+                    if (Lower{}(m_queue[best], m_queue[child]))
+                        best = child;
+                if (!Lower{}(last, m_queue[best]))
+                    break;
+                m_queue[i] = m_queue[best];
+                i = best;
+            }
+            m_queue[i] = last;
+        }
+        if (m_triangulator->node(candidate.node).isLeaf() &&
+            (m_flags[candidate.cell] & kCellVertex) == 0)
+            return true;
+    }
+    return false;
+}
+
+void GreedyRefiner::startFromHull() {
+    const std::vector<std::uint32_t> hull = validHullCells(m_grid);
+    // The hull is kept whatever the point limit. Raw storage: pages are touched only as
+    // points are chosen, so memory follows the output even though the triangulator must know
+    // its capacity (its symbolic vertex ids) up front. Point2 is an implicit-lifetime
+    // aggregate, so writing into malloc'd storage is valid.
+    // A round holds its candidates at ids past the chosen points while it finds their zones.
+    m_capacity = std::max(m_capacity, hull.size()) + std::max<std::size_t>(m_options.roundCandidates, 1);
+    m_points.reset(static_cast<Point2*>(std::malloc(m_capacity * sizeof(Point2))));
+    if (m_points == nullptr)
+        throw std::bad_alloc();
+    // The auxiliary triangle's finite corner must be the highest point ever inserted: the
+    // highest valid centre, always a hull corner.
+    std::size_t highest = 0;
+    for (std::size_t i = 0; i < hull.size(); ++i)
+        if (SymbolicPredicates::compareHeight(m_grid.cellCentre(hull[highest]),
+                                              m_grid.cellCentre(hull[i])) > 0)
+            highest = i;
+    m_vertexCell.reserve(std::min<std::size_t>(m_capacity, std::size_t{1} << 20));
+    m_vertexPixel.reserve(m_vertexCell.capacity());
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+        const std::uint32_t cell = hull[(highest + k) % hull.size()];
+        m_points.get()[k] = m_grid.cellCentre(cell);
+        addVertex(cell);
+    }
+    m_triangulator.emplace(std::span<const Point2>(m_points.get(), m_capacity), VertexId{0});
+    for (VertexId v = 1; v < hull.size(); ++v)
+        m_triangulator->insertAtLeaf(m_triangulator->locate(v), v);
+    m_hullPoints = hull.size();
+    m_triangles = hull.size() - 2;
+
+    // Candidates of the first triangles, scanned in parallel: they cover every valid cell.
+    std::vector<NodeId> leaves;
+    for (NodeId n = 0; n < m_triangulator->nodeCount(); ++n)
+        if (m_triangulator->node(n).isLeaf() &&
+            isFiniteTriangle(m_triangulator->predicates(), m_triangulator->node(n)))
+            leaves.push_back(n);
+    std::vector<std::vector<Candidate>> found(m_workers.size());
+    std::atomic<std::size_t> next{0};
+    m_workers.run([&](unsigned worker) {
+        for (std::size_t i = next++; i < leaves.size(); i = next++)
+            if (const std::optional<Candidate> candidate = scan(leaves[i]))
+                found[worker].push_back(*candidate);
+    });
+    for (const std::vector<Candidate>& list : found)
+        for (const Candidate& candidate : list)
+            push(candidate);
+    m_firstPriority = m_queue.empty() ? 0.0 : m_queue.front().priority;
+}
+
+void GreedyRefiner::findZone(VertexId vertex, NodeId start, Zone& zone) const {
+    const DagTriangulator& dag = *m_triangulator;
+    const SymbolicPredicates& predicates = dag.predicates();
+    zone.leaf = dag.walk(vertex, start);
+    // The cavity (the triangles the insertion may replace) first, then the ring around it.
+    std::vector<NodeId>& nodes = zone.nodes;
+    nodes.clear();
+    nodes.push_back(zone.leaf);
+    zone.growth = 2;
+    const int edge = dag.edgeContaining(zone.leaf, vertex);
+    if (edge >= 0) {
+        const NodeId beyond = dag.node(zone.leaf).link[static_cast<std::size_t>(edge)];
+        nodes.push_back(beyond);
+        // On a hull edge the triangle beyond is an auxiliary one: one new output triangle.
+        if (!isFiniteTriangle(predicates, dag.node(beyond)))
+            zone.growth = 1;
+    }
+    // Breadth-first over the cavity, which stays at the front of `nodes`: the ring members
+    // found so far are moved behind each newly found cavity member.
+    std::size_t cavityEnd = nodes.size();
+    for (std::size_t i = 0; i < cavityEnd; ++i) {
+        const DagNode& node = dag.node(nodes[i]);
+        for (const NodeId n : node.link) {
+            if (n == kNoNode || std::find(nodes.begin(), nodes.end(), n) != nodes.end())
+                continue;
+            nodes.push_back(n);
+            if (mayBeInCircle(dag.node(n), vertex))
+                std::swap(nodes[cavityEnd++], nodes.back());
+        }
+    }
+}
+
+bool GreedyRefiner::claimFree(const Zone& zone, std::uint32_t stamp) const {
+    for (const NodeId n : zone.nodes)
+        if (m_triangulator->node(n).owner.load(std::memory_order_relaxed) == stamp)
+            return false;
+    return true;
+}
+
+bool GreedyRefiner::claim(const Zone& zone, std::uint32_t stamp) {
+    DagTriangulator& dag = *m_triangulator;
+    for (const NodeId n : zone.nodes)
+        if (dag.node(n).owner.load(std::memory_order_relaxed) == stamp)
+            return false;
+    for (const NodeId n : zone.nodes)
+        dag.node(n).owner.store(stamp, std::memory_order_relaxed);
+    return true;
+}
+
+void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
+                           std::vector<Candidate>& out) {
+    DagTriangulator& dag = *m_triangulator;
+    const VertexId q = accepted.vertex;
+    const int edge = dag.edgeContaining(accepted.leaf, q);
+    if (edge >= 0)
+        dag.splitEdge(accepted.leaf, edge, q, pending);
+    else
+        dag.splitTriangle(accepted.leaf, q, pending);
+    dag.legalize(q, pending);
+    // The new triangles are the fan around q: descend from the split leaf to one of them,
+    // then turn around q through the neighbour links.
+    const NodeId first = dag.locate(q, accepted.leaf);
+    NodeId t = first;
+    do {
+        const DagNode& node = dag.node(t);
+        int i = 0;
+        while (node.v[static_cast<std::size_t>(i)] != q)
+            ++i;
+        if (const std::optional<Candidate> candidate = scan(t))
+            out.push_back(*candidate);
+        // The edge (q, v[i+1]) is opposite corner i+2.
+        t = node.link[static_cast<std::size_t>(previousCorner(i))];
+    } while (t != first);
+}
+
+double GreedyRefiner::progressFraction(double topPriority) const {
+    double fraction = 0.0;
+    if (m_options.maxPoints)
+        fraction = std::max(fraction, static_cast<double>(m_vertexCell.size()) /
+                                          static_cast<double>(*m_options.maxPoints));
+    if (m_options.maxTriangles)
+        fraction = std::max(fraction, static_cast<double>(m_triangles) /
+                                          static_cast<double>(*m_options.maxTriangles));
+    if (m_threshold > 0.0 && std::isfinite(topPriority) && m_firstPriority > m_threshold) {
+        // Errors fall roughly geometrically: progress on a log scale from the first to E.
+        fraction = std::max(fraction, std::log(m_firstPriority / std::max(topPriority, m_threshold)) /
+                                          std::log(m_firstPriority / m_threshold));
+    }
+    return std::clamp(fraction, 0.0, 1.0);
+}
+
+void GreedyRefiner::run(const ProgressCallback& progress) {
+    startFromHull();
+    const std::size_t roundCandidates = std::max<std::size_t>(m_options.roundCandidates, 1);
+    std::vector<Accepted> accepted;
+    std::vector<Candidate> waiting;
+    std::vector<std::vector<Candidate>> found(m_workers.size());
+    std::vector<PendingEdges> pending(m_workers.size());
+    bool limitReached = false;
+    std::vector<Candidate> popped;
+    std::vector<Zone> zones(roundCandidates);
+    while (!limitReached) {
+        // Pop the round's candidates and find, in parallel, the triangles each insertion can
+        // change (read-only on the DAG); the candidate j sits at vertex id base + j meanwhile.
+        accepted.clear();
+        waiting.clear();
+        popped.clear();
+        Candidate candidate{};
+        while (popped.size() < roundCandidates && popLive(candidate))
+            popped.push_back(candidate);
+        const auto base = static_cast<VertexId>(m_vertexCell.size());
+        for (std::size_t j = 0; j < popped.size(); ++j)
+            m_points.get()[base + j] = m_grid.cellCentre(popped[j].cell);
+        std::atomic<std::size_t> nextZone{0};
+        m_workers.run([&](unsigned) {
+            for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
+                findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
+        });
+
+        // Accept in priority order those whose triangles no earlier one claimed; the accepted
+        // points are renumbered base, base + 1, ... (each slot is rewritten only after the
+        // candidates before it are done with it).
+        const auto stamp = static_cast<std::uint32_t>(m_rounds + 1);
+        for (std::size_t j = 0; j < popped.size(); ++j) {
+            if (limitReached) {
+                waiting.push_back(popped[j]);
+                continue;
+            }
+            if (m_options.maxPoints && m_vertexCell.size() >= *m_options.maxPoints) {
+                m_stop = RefineStop::PointLimit;
+                limitReached = true;
+                waiting.push_back(popped[j]);
+                continue;
+            }
+            const Zone& zone = zones[j];
+            if (m_options.maxTriangles &&
+                m_triangles + static_cast<std::size_t>(zone.growth) > *m_options.maxTriangles &&
+                claimFree(zone, stamp)) {
+                m_stop = RefineStop::TriangleLimit;
+                limitReached = true;
+                waiting.push_back(popped[j]);
+                continue;
+            }
+            if (!claim(zone, stamp)) {
+                waiting.push_back(popped[j]);
+                continue;
+            }
+            const auto vertex = static_cast<VertexId>(m_vertexCell.size());
+            m_points.get()[vertex] = m_grid.cellCentre(popped[j].cell);
+            addVertex(popped[j].cell);
+            m_triangles += static_cast<std::size_t>(zone.growth);
+            accepted.push_back({vertex, zone.leaf});
+        }
+        m_deferred += waiting.size();
+        if (accepted.empty()) {
+            for (const Candidate& c : waiting)
+                push(c);
+            break;
+        }
+
+        // Insert: the accepted points are independent; workers take them one by one.
+        std::atomic<std::size_t> next{0};
+        m_workers.run([&](unsigned worker) {
+            for (std::size_t i = next++; i < accepted.size(); i = next++)
+                insert(accepted[i], pending[worker], found[worker]);
+        });
+        ++m_rounds;
+        for (const Candidate& c : waiting)
+            push(c);
+        for (std::vector<Candidate>& list : found) {
+            for (const Candidate& c : list)
+                push(c);
+            list.clear();
+        }
+
+        if (progress && m_rounds % kProgressRounds == 0) {
+            const double top = m_queue.empty() ? m_threshold : m_queue.front().priority;
+            if (!progress(progressFraction(top), "refining"))
+                throw Cancelled("Refiner: cancelled");
+        }
+    }
+}
+
+TinMesh GreedyRefiner::extract() const {
+    TinMesh mesh;
+    m_triangulator->extract(mesh.triangles, mesh.neighbours, m_workers.size());
+    const std::size_t count = m_vertexCell.size();
+    mesh.vertices.resize(count);
+    mesh.sourceIndex.resize(count);
+    for (std::size_t v = 0; v < count; ++v) {
+        const std::uint32_t cell = m_vertexCell[v];
+        const Point2& p = m_points.get()[v];
+        mesh.vertices[v] = {p.x, p.y, static_cast<double>(m_grid.z[cell])};
+        mesh.sourceIndex[v] = cell;
+    }
+    return mesh;
+}
+
+} // namespace terratin::detail

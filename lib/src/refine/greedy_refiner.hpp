@@ -1,0 +1,137 @@
+#pragma once
+/// @file
+/// The greedy insertion loop (Garland & Heckbert's "greedy insertion" with a priority queue of
+/// per-triangle candidates), in rounds of several non-conflicting insertions.
+///
+/// A round pops up to `roundCandidates` live candidates in priority order and, for each,
+/// finds the triangles its insertion can change: its Bowyer-Watson cavity (every triangle
+/// whose circumcircle contains the cell, cocircular included, found by a search from the
+/// triangle holding it; Lawson's flips never leave the cavity) plus the cavity's neighbours,
+/// whose links are rewritten. A candidate whose set meets an earlier accepted one waits for a
+/// later round. The accepted insertions touch disjoint triangles, so they commute: the
+/// workers insert them in any order and the triangulation is the same as inserting them one
+/// after the other, for any number of threads. Each worker then scans the new triangles
+/// around its points (the cells inside, the farthest from the new plane) and the candidates
+/// go back into the queue. A popped candidate is stale when its triangle is no longer a leaf
+/// of the DAG or its cell became a vertex (lazy invalidation).
+///
+/// Priorities: a triangle covering an open hole's cell and a valid non-vertex cell is
+/// refined before any error (priority +inf), so the triangles finally dropped over holes hold
+/// no valid cell that another triangle would not cover; otherwise the priority is the largest
+/// error, and only errors above the target become candidates. Ties: the lowest cell index.
+
+#include "grid_scan.hpp"
+#include "round_workers.hpp"
+
+#include "../triangulate/dag_triangulator.hpp"
+
+#include "terratin/progress.hpp"
+#include "terratin/refine/refine.hpp"
+
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace terratin::detail {
+
+class GreedyRefiner {
+public:
+    /// `flags` from makeCellFlags; the refiner marks vertices in it.
+    GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& flags,
+                  const RefineOptions& options, RoundWorkers& workers);
+
+    /// Runs to the target or a limit. Throws Cancelled when `progress` returns false.
+    void run(const ProgressCallback& progress);
+
+    /// The Delaunay triangulation of the chosen cells as a TinMesh (vertices at exact cell
+    /// centres, sourceIndex = cell index).
+    [[nodiscard]] TinMesh extract() const;
+
+    [[nodiscard]] RefineStop stop() const { return m_stop; }
+    [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
+    [[nodiscard]] std::size_t points() const { return m_vertexCell.size(); }
+    [[nodiscard]] std::size_t triangles() const { return m_triangles; }
+    [[nodiscard]] std::size_t rounds() const { return m_rounds; }
+    [[nodiscard]] std::size_t deferred() const { return m_deferred; }
+    [[nodiscard]] std::size_t historyBytes() const { return m_triangulator->memoryBytes(); }
+
+private:
+    struct Candidate {
+        double priority;
+        std::uint32_t cell;
+        NodeId node;
+    };
+    /// Heap order: the greatest priority on top, then the lowest cell.
+    struct Lower {
+        bool operator()(const Candidate& a, const Candidate& b) const {
+            return a.priority != b.priority ? a.priority < b.priority : a.cell > b.cell;
+        }
+    };
+    struct Accepted {
+        VertexId vertex;
+        NodeId leaf;
+    };
+    /// A vertex's cell in pixel coordinates and its elevation, for the scans.
+    struct VertexPixel {
+        std::int32_t col;
+        std::int32_t row;
+        float z;
+    };
+    struct FreeDeleter {
+        void operator()(Point2* p) const { std::free(p); }
+    };
+
+    void startFromHull();
+    [[nodiscard]] PixelCorner corner(VertexId v) const;
+    /// The candidate of a leaf, if it has one worth inserting.
+    [[nodiscard]] std::optional<Candidate> scan(NodeId node) const;
+    /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
+    struct Zone {
+        NodeId leaf = kNoNode;
+        /// Change in the number of output triangles: 2, or 1 on the hull.
+        int growth = 2;
+        std::vector<NodeId> nodes;
+    };
+    /// Fills `zone` for `vertex` (already in m_points), searching from the leaf `start`.
+    /// Reads the DAG only: safe from several threads while nothing edits it.
+    void findZone(VertexId vertex, NodeId start, Zone& zone) const;
+    /// Claims the zone's triangles for this round, unless an accepted insertion of the round
+    /// claimed one of them (then nothing is claimed).
+    bool claim(const Zone& zone, std::uint32_t stamp);
+    /// Whether claim would succeed, without claiming.
+    [[nodiscard]] bool claimFree(const Zone& zone, std::uint32_t stamp) const;
+    /// Inserts one accepted point and appends the candidates of its new triangles.
+    void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& out);
+    void push(const Candidate& candidate);
+    void addVertex(std::uint32_t cell);
+    /// Whether `vertex` may lie inside or on the circumcircle of the leaf `node`: exact for
+    /// auxiliary triangles, a floating-point test erring towards "yes" otherwise (a larger
+    /// claim is still a correct one, and grids make exact cocircularity tests common).
+    [[nodiscard]] bool mayBeInCircle(const DagNode& node, VertexId vertex) const;
+    bool popLive(Candidate& candidate);
+    [[nodiscard]] double progressFraction(double topPriority) const;
+
+    const HeightGrid& m_grid;
+    std::vector<std::uint8_t>& m_flags;
+    GridView m_view;
+    RefineOptions m_options;
+    RoundWorkers& m_workers;
+    /// Candidates at or below this are not inserted: maxError, or -1 to use every cell.
+    double m_threshold = -1.0;
+    std::size_t m_capacity = 0;
+    std::unique_ptr<Point2, FreeDeleter> m_points;
+    std::vector<std::uint32_t> m_vertexCell;
+    std::vector<VertexPixel> m_vertexPixel;
+    std::optional<DagTriangulator> m_triangulator;
+    std::vector<Candidate> m_queue;
+    std::size_t m_triangles = 0;
+    std::size_t m_hullPoints = 0;
+    std::size_t m_rounds = 0;
+    std::size_t m_deferred = 0;
+    double m_firstPriority = 0.0;
+    RefineStop m_stop = RefineStop::ErrorReached;
+};
+
+} // namespace terratin::detail

@@ -1,0 +1,258 @@
+#pragma once
+/// @file
+/// Visiting the cells whose centres lie in a triangle of cell centres, in pixel coordinates.
+///
+/// Notation: a cell centre is the integer point (col, row); a triangle's corners are cells
+/// a, b, c. In pixel space every decision is exact integer arithmetic: for each row the
+/// cells inside form one interval [lo, hi], the intersection of the three edges' half-planes.
+/// The TIN itself is built in CRS coordinates with exact predicates; the geotransform is
+/// affine, so a triangle with a nonzero pixel orientation keeps its orientation sign in CRS
+/// coordinates (rounding moves a centre by ~1e-16 of its coordinate, far less than a lattice
+/// triangle's area of at least half a cell). Only pixel-collinear corners (a zero-area pixel
+/// triangle, a CRS sliver on a rounded diagonal) are special: they interpolate nothing, and
+/// their cells lie on the edges of the neighbouring triangles, which scan them.
+///
+/// Cost: one integer division per edge per row, then a tight loop over the row's cells.
+
+#include "terratin/refine/height_grid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+
+namespace terratin::detail {
+
+/// Per-cell flags beside the grid: one byte per cell.
+enum CellFlag : std::uint8_t {
+    kCellNoData = 1,  ///< no elevation: never a vertex, never measured
+    kCellVertex = 2,  ///< already a vertex of the TIN (its error is 0)
+    kCellOpenHole = 4 ///< nodata cell of a hole larger than maxHole: no triangle may cover it
+};
+
+/// Read-only view of what the scans need.
+struct GridView {
+    std::int64_t width = 0;
+    std::int64_t height = 0;
+    const float* z = nullptr;
+    const std::uint8_t* flags = nullptr;
+};
+
+/// A corner of a triangle: the cell's pixel coordinates and elevation.
+struct PixelCorner {
+    std::int64_t col = 0;
+    std::int64_t row = 0;
+    double z = 0.0;
+    /// The caller's name for the corner (a vertex id), carried through the reordering.
+    std::uint32_t id = 0;
+};
+
+inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
+    std::int64_t q = a / b;
+    if ((a % b != 0) && ((a < 0) != (b < 0)))
+        --q;
+    return q;
+}
+inline std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
+
+/// One edge's constraint on the columns of successive rows (PixelTriangle::forEachRowPair):
+/// N(r) = n0 + (r - first) * step; with slope > 0 the row's cells satisfy x >= -floor(N /
+/// slope), with slope < 0 x <= floor(N / -slope), with slope 0 all or none (N >= 0).
+class EdgeWalk {
+public:
+    void start(std::int64_t slope, std::int64_t n0, std::int64_t step) {
+        m_slope = slope;
+        if (slope == 0) {
+            m_quotient = n0;
+            m_stepQuotient = step;
+            return;
+        }
+        m_divisor = slope > 0 ? slope : -slope;
+        m_quotient = floorDiv(n0, m_divisor);
+        m_remainder = n0 - m_quotient * m_divisor;
+        m_stepQuotient = floorDiv(step, m_divisor);
+        m_stepRemainder = step - m_stepQuotient * m_divisor;
+    }
+    void clip(std::int64_t& lo, std::int64_t& hi) const {
+        if (m_slope > 0)
+            lo = std::max(lo, -m_quotient);
+        else if (m_slope < 0)
+            hi = std::min(hi, m_quotient);
+        else if (m_quotient < 0)
+            hi = -1; // the row lies beyond this horizontal edge
+    }
+    void advance() {
+        m_quotient += m_stepQuotient;
+        if (m_slope == 0)
+            return;
+        m_remainder += m_stepRemainder;
+        if (m_remainder >= m_divisor) {
+            m_remainder -= m_divisor;
+            ++m_quotient;
+        }
+    }
+
+private:
+    std::int64_t m_slope = 0;
+    std::int64_t m_divisor = 1;
+    /// floor(N / divisor) (N itself for a horizontal edge) and N - quotient * divisor.
+    std::int64_t m_quotient = 0;
+    std::int64_t m_remainder = 0;
+    std::int64_t m_stepQuotient = 0;
+    std::int64_t m_stepRemainder = 0;
+};
+
+/// A triangle of cell centres prepared for row-by-row visits and linear interpolation.
+class PixelTriangle {
+public:
+    /// Corners in any order. The corner with the smallest cell index becomes the base of the
+    /// interpolation, so that the same triangle always gives bit-identical values.
+    PixelTriangle(PixelCorner a, PixelCorner b, PixelCorner c) {
+        const auto key = [](const PixelCorner& p) { return std::pair(p.row, p.col); };
+        if (key(b) < key(a))
+            std::swap(a, b);
+        if (key(c) < key(a))
+            std::swap(a, c);
+        m_corner = {a, b, c};
+        const std::int64_t bc = b.col - a.col;
+        const std::int64_t br = b.row - a.row;
+        const std::int64_t cc = c.col - a.col;
+        const std::int64_t cr = c.row - a.row;
+        m_det = bc * cr - cc * br;
+        if (m_det != 0) {
+            const double det = static_cast<double>(m_det);
+            const double dzb = b.z - a.z;
+            const double dzc = c.z - a.z;
+            m_gradCol = (dzb * static_cast<double>(cr) - dzc * static_cast<double>(br)) / det;
+            m_gradRow = (dzc * static_cast<double>(bc) - dzb * static_cast<double>(cc)) / det;
+        }
+        m_rowMin = std::min({a.row, b.row, c.row});
+        m_rowMax = std::max({a.row, b.row, c.row});
+    }
+
+    /// False for pixel-collinear corners (zero pixel area).
+    [[nodiscard]] bool hasArea() const { return m_det != 0; }
+    [[nodiscard]] const PixelCorner& corner(int i) const {
+        return m_corner[static_cast<std::size_t>(i)];
+    }
+
+    /// Elevation of the plane through the corners at (col, row), for the row base given by
+    /// rowBase(row): rowBase + gradCol * col.
+    [[nodiscard]] double rowBase(std::int64_t row) const {
+        const PixelCorner& a = m_corner[0];
+        return a.z + m_gradRow * static_cast<double>(row - a.row) -
+               m_gradCol * static_cast<double>(a.col);
+    }
+    [[nodiscard]] double gradCol() const { return m_gradCol; }
+
+    /// Calls visit(row, lo, hi) for each row of the grid with cells inside the closed
+    /// triangle, [lo, hi] the inclusive column interval, clipped to the grid. When
+    /// `strictEdge` is given, the cells on edge i (corner(i) to corner(i+1)) are left out
+    /// where strictEdge[i] is true (see ownsSharedEdge). Requires hasArea().
+    template <class Visit>
+    void forEachRow(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
+                    Visit&& visit) const {
+        forEachRowPair(gridWidth, gridHeight, strictEdge,
+                       [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t,
+                           std::int64_t) { visit(row, lo, hi); });
+    }
+
+    /// Like forEachRow without `strictEdge`, and gives as well the sub-interval [ownedLo,
+    /// ownedHi] of the row's cells left when the edges marked in `strictEdge` are excluded
+    /// (empty when ownedLo > ownedHi). `strictEdge` may be null (then both intervals agree).
+    template <class Visit>
+    void forEachRowPair(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
+                        Visit&& visit) const {
+        // Edge i runs from corner i to corner i+1; a cell (x, r) is inside when
+        // sgn * orient(p, q, (x, r)) >= t (t = 0 closed, 1 to leave the edge's cells out), with
+        //   orient(p, q, (x, r)) = (q.col - p.col)(r - p.row) - (q.row - p.row)(x - p.col).
+        // As a condition on x: slope * x >= bound(r), slope = -sgn (q.row - p.row), where
+        // bound(r) = t - sgn * ((q.col - p.col)(r - p.row) + (q.row - p.row) p.col) changes by
+        // a constant from row to row. Writing N(r) = -bound(r): slope > 0 gives x >= -floor(N /
+        // slope), slope < 0 gives x <= floor(N / -slope), slope == 0 needs N(r) >= 0. The floor
+        // divisions are carried from row to row with a remainder (Bresenham), exactly.
+        const std::int64_t sgn = m_det > 0 ? 1 : -1;
+        const std::int64_t rowFirst = std::max<std::int64_t>(m_rowMin, 0);
+        const std::int64_t rowLast = std::min<std::int64_t>(m_rowMax, gridHeight - 1);
+        if (rowFirst > rowLast)
+            return;
+        EdgeWalk closed[3];
+        EdgeWalk owned[3];
+        for (int i = 0; i < 3; ++i) {
+            const PixelCorner& p = m_corner[static_cast<std::size_t>(i)];
+            const PixelCorner& q = m_corner[static_cast<std::size_t>((i + 1) % 3)];
+            const std::int64_t slope = -sgn * (q.row - p.row);
+            const std::int64_t k = (q.col - p.col) * (rowFirst - p.row) + (q.row - p.row) * p.col;
+            const std::int64_t step = sgn * (q.col - p.col);
+            closed[i].start(slope, sgn * k, step);
+            const std::int64_t t = strictEdge != nullptr && strictEdge[i] ? 1 : 0;
+            owned[i].start(slope, sgn * k - t, step);
+        }
+        for (std::int64_t r = rowFirst; r <= rowLast; ++r) {
+            std::int64_t lo = 0;
+            std::int64_t hi = gridWidth - 1;
+            for (const EdgeWalk& edge : closed)
+                edge.clip(lo, hi);
+            if (lo <= hi) {
+                std::int64_t ownedLo = lo;
+                std::int64_t ownedHi = hi;
+                if (strictEdge != nullptr)
+                    for (const EdgeWalk& edge : owned)
+                        edge.clip(ownedLo, ownedHi);
+                visit(r, lo, hi, ownedLo, ownedHi);
+            }
+            for (EdgeWalk& edge : closed)
+                edge.advance();
+            if (strictEdge != nullptr)
+                for (EdgeWalk& edge : owned)
+                    edge.advance();
+        }
+    }
+
+    /// Calls visit(col, row) for every lattice point on the segment of a triangle without
+    /// pixel area (from its two extreme corners), clipped to nothing: the corners are cells.
+    template <class Visit>
+    void forEachOnSegment(Visit&& visit) const {
+        PixelCorner from = m_corner[0];
+        PixelCorner to = m_corner[0];
+        const auto key = [](const PixelCorner& p) { return std::pair(p.row, p.col); };
+        for (const PixelCorner& p : m_corner) {
+            if (key(p) < key(from))
+                from = p;
+            if (key(to) < key(p))
+                to = p;
+        }
+        const std::int64_t dc = to.col - from.col;
+        const std::int64_t dr = to.row - from.row;
+        const std::int64_t steps = std::gcd(dc < 0 ? -dc : dc, dr);
+        if (steps == 0) {
+            visit(from.col, from.row);
+            return;
+        }
+        for (std::int64_t s = 0; s <= steps; ++s)
+            visit(from.col + dc / steps * s, from.row + dr / steps * s);
+    }
+
+    /// Whether this triangle owns the cells on its edge i (corner i to corner i+1) when a
+    /// neighbour shares it. Two triangles on either side of an edge traverse it in opposite
+    /// directions when both are taken counter-clockwise in pixel space; the one for which it
+    /// runs row-increasing (or column-increasing along a row) owns it. Requires hasArea().
+    [[nodiscard]] bool ownsSharedEdge(int i) const {
+        const PixelCorner& p = m_corner[static_cast<std::size_t>(i)];
+        const PixelCorner& q = m_corner[static_cast<std::size_t>((i + 1) % 3)];
+        const bool increasing = q.row > p.row || (q.row == p.row && q.col > p.col);
+        return increasing == (m_det > 0);
+    }
+
+private:
+    std::array<PixelCorner, 3> m_corner;
+    std::int64_t m_det = 0;
+    double m_gradCol = 0.0;
+    double m_gradRow = 0.0;
+    std::int64_t m_rowMin = 0;
+    std::int64_t m_rowMax = 0;
+};
+
+} // namespace terratin::detail

@@ -1,0 +1,120 @@
+#include "terratin/refine/refine.hpp"
+
+#include "cell_flags.hpp"
+#include "error_check.hpp"
+#include "greedy_refiner.hpp"
+#include "round_workers.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_validation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <thread>
+
+namespace terratin {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double lap(Clock::time_point& start) {
+    const Clock::time_point now = Clock::now();
+    const double seconds = std::chrono::duration<double>(now - start).count();
+    start = now;
+    return seconds;
+}
+
+// Vertex ids are 32-bit and the triangulator needs two more for its symbolic vertices; cell
+// indices are 32-bit in TinMesh::sourceIndex.
+constexpr std::uint64_t kMaxCells = (std::uint64_t{1} << 32U) - 5;
+
+void checkInput(const HeightGrid& grid, const RefineOptions& options) {
+    if (grid.width <= 0 || grid.height <= 0)
+        throw InvalidInputError("Refiner: the grid is empty");
+    if (grid.z.size() != grid.cellCount())
+        throw InvalidInputError("Refiner: the grid has " + std::to_string(grid.z.size()) +
+                                " elevations for " + std::to_string(grid.cellCount()) + " cells");
+    if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxCells)
+        throw InvalidInputError("Refiner: more than 2^32 - 5 cells; split the raster");
+    if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
+        throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
+}
+
+} // namespace
+
+const char* toString(RefineStop stop) {
+    switch (stop) {
+    case RefineStop::ErrorReached:
+        return "error";
+    case RefineStop::PointLimit:
+        return "points";
+    case RefineStop::TriangleLimit:
+        return "triangles";
+    }
+    return "unknown";
+}
+
+RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
+                    const ProgressCallback& progress) {
+    checkInput(grid, options);
+    RefineResult result;
+    Clock::time_point phase = Clock::now();
+    const unsigned threads =
+        options.threads != 0 ? options.threads : std::max(1U, std::thread::hardware_concurrency());
+    result.threads = threads;
+
+    std::vector<std::uint8_t> flags =
+        detail::makeCellFlags(grid, options.maxHole, options.fillHoles, result.openHoleCells);
+    const detail::GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
+
+    detail::RoundWorkers workers(threads);
+    detail::GreedyRefiner refiner(grid, flags, options, workers);
+    refiner.run(progress);
+    result.stop = refiner.stop();
+    result.hullPoints = refiner.hullPoints();
+    result.rounds = refiner.rounds();
+    result.deferredCandidates = refiner.deferred();
+    result.historyBytes = refiner.historyBytes();
+    result.insertSeconds = lap(phase);
+
+    result.mesh = refiner.extract();
+    if (options.validate) {
+        const MeshValidation validation = validateDelaunay(result.mesh);
+        if (!validation.ok())
+            throw Error("Refiner: the TIN is not an exact Delaunay triangulation: " +
+                        (validation.problems.empty() ? std::string("unknown problem")
+                                                     : validation.problems.front()));
+        result.validated = true;
+    }
+    if (result.openHoleCells > 0) {
+        const std::vector<std::uint8_t> drop =
+            detail::trianglesOverOpenHoles(result.mesh, view, threads);
+        result.droppedTriangles = dropTriangles(result.mesh, drop);
+    }
+    result.extractSeconds = lap(phase);
+
+    // The guarantee, measured over every valid cell.
+    const detail::ErrorMeasure measure = detail::measureErrors(result.mesh, view, threads);
+    result.maxError = measure.maxError;
+    result.coveredCells = measure.coveredCells;
+    result.rmse = measure.coveredCells > 0
+                      ? std::sqrt(measure.sumSquares / static_cast<double>(measure.coveredCells))
+                      : 0.0;
+    for (const std::uint8_t flag : flags)
+        result.validCells += (flag & detail::kCellNoData) == 0 ? 1U : 0U;
+    result.uncoveredCells = result.validCells - std::min(result.validCells, result.coveredCells);
+    if (options.maxError && result.stop == RefineStop::ErrorReached &&
+        result.maxError > *options.maxError)
+        throw Error("Refiner: check failed: a covered cell is " + std::to_string(result.maxError) +
+                    " from the TIN, more than the maximum error " +
+                    std::to_string(*options.maxError));
+    result.checkSeconds = lap(phase);
+    if (progress)
+        progress(1.0, "refined");
+    return result;
+}
+
+} // namespace terratin

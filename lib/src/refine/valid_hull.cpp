@@ -1,0 +1,70 @@
+#include "valid_hull.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+
+namespace terratin::detail {
+
+std::vector<std::uint32_t> validHullCells(const HeightGrid& grid) {
+    struct Candidate {
+        Point2 p;
+        std::uint32_t cell;
+    };
+    std::vector<Candidate> candidates;
+    const auto width = static_cast<std::size_t>(grid.width);
+    for (std::size_t row = 0; row < static_cast<std::size_t>(grid.height); ++row) {
+        const float* z = grid.z.data() + row * width;
+        std::size_t first = 0;
+        while (first < width && std::isnan(z[first]))
+            ++first;
+        if (first == width)
+            continue;
+        std::size_t last = width - 1;
+        while (std::isnan(z[last]))
+            --last;
+        for (const std::size_t col : {first, last}) {
+            const auto cell = static_cast<std::uint32_t>(row * width + col);
+            candidates.push_back({grid.cellCentre(cell), cell});
+            if (first == last)
+                break;
+        }
+    }
+    if (candidates.empty())
+        throw InvalidInputError("Refiner: the grid has no valid cell");
+
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+        return a.p.x != b.p.x ? a.p.x < b.p.x : a.p.y < b.p.y;
+    });
+    // Two cells never share a centre (the geotransform is invertible), except through
+    // rounding of a degenerate transform: drop exact repeats.
+    candidates.erase(std::unique(candidates.begin(), candidates.end(),
+                                 [](const Candidate& a, const Candidate& b) { return a.p == b.p; }),
+                     candidates.end());
+    std::vector<Candidate> hull(2 * candidates.size() + 1);
+    std::size_t k = 0;
+    const auto turnsLeft = [&](const Candidate& c) {
+        return predicates::orient2d(hull[k - 2].p, hull[k - 1].p, c.p) > 0.0;
+    };
+    for (const Candidate& c : candidates) {
+        while (k >= 2 && !turnsLeft(c))
+            --k;
+        hull[k++] = c;
+    }
+    const std::size_t lowerSize = k + 1;
+    for (auto it = candidates.rbegin() + 1; it != candidates.rend(); ++it) {
+        while (k >= lowerSize && !turnsLeft(*it))
+            --k;
+        hull[k++] = *it;
+    }
+    if (k < 4) // the chain closes on its first point: fewer than three corners
+        throw InvalidInputError("Refiner: the valid cells are all collinear; a TIN needs area");
+    std::vector<std::uint32_t> cells;
+    cells.reserve(k - 1);
+    for (std::size_t i = 0; i + 1 < k; ++i)
+        cells.push_back(hull[i].cell);
+    return cells;
+}
+
+} // namespace terratin::detail

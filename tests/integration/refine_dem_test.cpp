@@ -1,0 +1,114 @@
+// Refinement of real DEMs from ../shared/dems (skipped when absent): the grid reader agrees
+// with the point reader cell by cell, and the max-error guarantee, the holes and the thread
+// invariance hold on real nodata patterns.
+
+#include "refine_test_grids.hpp"
+
+#include "terratin/io/height_grid_reader.hpp"
+#include "terratin/io/raster_reader.hpp"
+#include "terratin/refine/refine.hpp"
+#include "terratin/triangulate/mesh_validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <utility>
+
+namespace terratin {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string sharedDem(const std::string& name) {
+    return (fs::path(TERRATIN_SHARED_DEMS) / name).string();
+}
+
+#define SKIP_WITHOUT(path)                                                                         \
+    if (!fs::exists(path))                                                                         \
+    GTEST_SKIP() << "shared DEM not present: " << (path)
+
+TEST(RefineDem, GridReaderMatchesPointReader_CellByCell) {
+    for (const char* name : {"gdalraster__storml_elev_orig.tif", "terra__elev.tif",
+                             "pyterra__dgm5.tif"}) {
+        const std::string path = sharedDem(name);
+        SKIP_WITHOUT(path);
+        const io::HeightGridRaster raster = io::readHeightGrid(path, {});
+        const io::RasterPoints points = io::readRasterPoints(path, {});
+        ASSERT_EQ(raster.skippedCells, points.skippedCells) << name;
+        std::size_t valid = 0;
+        for (std::size_t cell = 0; cell < raster.grid.cellCount(); ++cell)
+            valid += raster.grid.isValid(cell) ? 1U : 0U;
+        ASSERT_EQ(valid, points.points.size());
+        for (std::size_t i = 0; i < points.points.size(); ++i) {
+            const std::uint64_t cell = points.cellIndex[i];
+            const Point2 centre = raster.grid.cellCentre(cell);
+            ASSERT_EQ(centre.x, points.points[i].x) << name << " cell " << cell;
+            ASSERT_EQ(centre.y, points.points[i].y) << name << " cell " << cell;
+            ASSERT_EQ(static_cast<double>(raster.grid.z[cell]), points.points[i].z);
+        }
+        EXPECT_EQ(raster.crsWkt, points.crsWkt);
+    }
+}
+
+TEST(RefineDem, EveryValidCellWithinMaxError_AndHolesWhereTheNodataIs) {
+    // terra__elev.tif has 1 km cells of hilly terrain: 2 m would need almost every cell.
+    for (const auto& [name, maxError] : {std::pair("gdalraster__storml_elev_orig.tif", 2.0),
+                                         std::pair("terra__elev.tif", 20.0)}) {
+        const std::string path = sharedDem(name);
+        SKIP_WITHOUT(path);
+        const HeightGrid grid = io::readHeightGrid(path, {}).grid;
+        RefineOptions options;
+        options.maxError = maxError;
+        options.threads = 2;
+        options.validate = true;
+        const RefineResult result = refine(grid, options);
+        EXPECT_TRUE(result.validated);
+        EXPECT_LE(result.maxError, maxError) << name;
+        EXPECT_LT(result.mesh.vertexCount(), grid.validCount() / 2) << name;
+        const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, options.maxHole);
+        EXPECT_LE(check.maxError, maxError + 1e-6) << name;
+        EXPECT_EQ(check.coveredOpenHoleCells, 0U) << name;
+        EXPECT_EQ(check.uncoveredValid, result.uncoveredCells) << name;
+        test::expectEmptyCircumcircles(result.mesh);
+    }
+}
+
+TEST(RefineDem, SameVertexCountForOneAndTwoThreads) {
+    const std::string path = sharedDem("terra__elev_vinschgau.tif");
+    SKIP_WITHOUT(path);
+    const HeightGrid grid = io::readHeightGrid(path, {}).grid;
+    RefineOptions options;
+    options.maxError = 10.0;
+    options.threads = 1;
+    const RefineResult one = refine(grid, options);
+    options.threads = 2;
+    const RefineResult two = refine(grid, options);
+    EXPECT_EQ(one.mesh.vertexCount(), two.mesh.vertexCount());
+    EXPECT_EQ(one.mesh.triangleCount(), two.mesh.triangleCount());
+    EXPECT_EQ(one.maxError, two.maxError);
+    EXPECT_LE(two.maxError, 10.0);
+}
+
+TEST(RefineDem, LimitsRespected_OnARealDem) {
+    const std::string path = sharedDem("whiteboxR__DEM.tif");
+    SKIP_WITHOUT(path);
+    const HeightGrid grid = io::readHeightGrid(path, {}).grid;
+    RefineOptions options;
+    options.maxError = 0.0;
+    options.maxPoints = 2000;
+    options.threads = 2;
+    const RefineResult points = refine(grid, options);
+    EXPECT_EQ(points.stop, RefineStop::PointLimit);
+    EXPECT_LE(points.mesh.vertexCount(), 2000U);
+    options.maxPoints.reset();
+    options.maxTriangles = 3000;
+    const RefineResult triangles = refine(grid, options);
+    EXPECT_EQ(triangles.stop, RefineStop::TriangleLimit);
+    EXPECT_LE(triangles.mesh.triangleCount(), 3000U);
+}
+
+} // namespace
+} // namespace terratin

@@ -1,0 +1,80 @@
+// Parallel refinement: rounds of non-conflicting insertions give the same TIN for any thread
+// count, and rounds barely change the point count against one-at-a-time greedy insertion.
+
+#include "refine_test_grids.hpp"
+
+#include "terratin/refine/refine.hpp"
+#include "terratin/triangulate/mesh_validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace terratin {
+namespace {
+
+std::vector<std::uint32_t> sortedCells(const TinMesh& mesh) {
+    std::vector<std::uint32_t> cells(mesh.sourceIndex.begin(), mesh.sourceIndex.end());
+    std::sort(cells.begin(), cells.end());
+    return cells;
+}
+
+TEST(RefineParallel, SameTinForOneTwoAndFourThreads) {
+    HeightGrid grid = test::roughTerrain(160, 120, 17);
+    for (int row = 50; row < 58; ++row)
+        for (int col = 70; col < 75; ++col)
+            grid.z[static_cast<std::size_t>(row) * 160U + static_cast<std::size_t>(col)] =
+                std::nanf("");
+    RefineOptions options;
+    options.maxError = 1.0;
+    options.validate = true;
+    options.threads = 1;
+    const RefineResult one = refine(grid, options);
+    for (const unsigned threads : {2U, 4U}) {
+        options.threads = threads;
+        const RefineResult many = refine(grid, options);
+        EXPECT_EQ(many.mesh.vertexCount(), one.mesh.vertexCount()) << threads << " threads";
+        EXPECT_EQ(many.mesh.triangleCount(), one.mesh.triangleCount());
+        EXPECT_EQ(sortedCells(many.mesh), sortedCells(one.mesh));
+        EXPECT_EQ(many.maxError, one.maxError);
+        // The squares are summed in triangle order, which follows the threads' allocation
+        // order: the RMSE may differ in its last bits, never more.
+        EXPECT_NEAR(many.rmse, one.rmse, 1e-12 * one.rmse);
+        EXPECT_LE(many.maxError, 1.0);
+    }
+}
+
+TEST(RefineParallel, RoundsCostFewPointsAgainstStrictGreedy) {
+    const HeightGrid grid = test::roughTerrain(128, 128, 4);
+    RefineOptions options;
+    options.maxError = 1.5;
+    options.threads = 2;
+    options.roundCandidates = 1;
+    const RefineResult strict = refine(grid, options);
+    options.roundCandidates = 256;
+    const RefineResult rounds = refine(grid, options);
+    EXPECT_EQ(strict.deferredCandidates, 0U);
+    EXPECT_LE(rounds.maxError, 1.5);
+    const double ratio = static_cast<double>(rounds.mesh.vertexCount()) /
+                         static_cast<double>(strict.mesh.vertexCount());
+    EXPECT_NEAR(ratio, 1.0, 0.03) << rounds.mesh.vertexCount() << " vs "
+                                  << strict.mesh.vertexCount();
+    EXPECT_LT(rounds.rounds, strict.rounds / 10);
+}
+
+TEST(RefineParallel, LimitsGiveTheSameTinForAnyThreadCount) {
+    const HeightGrid grid = test::roughTerrain(100, 100, 23);
+    RefineOptions options;
+    options.maxPoints = 700;
+    options.threads = 1;
+    const RefineResult one = refine(grid, options);
+    options.threads = 3;
+    const RefineResult three = refine(grid, options);
+    EXPECT_EQ(one.mesh.vertexCount(), 700U);
+    EXPECT_EQ(sortedCells(one.mesh), sortedCells(three.mesh));
+}
+
+} // namespace
+} // namespace terratin

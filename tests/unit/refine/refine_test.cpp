@@ -1,0 +1,191 @@
+// Greedy refinement on grids made in the test: what a plane, a spike and a ridge need, the
+// max-error guarantee checked independently of the refiner, limits, and exactness.
+
+#include "refine_test_grids.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/refine/refine.hpp"
+#include "terratin/triangulate/mesh_validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace terratin {
+namespace {
+
+using test::makeGrid;
+
+RefineOptions withError(double maxError, unsigned threads = 1) {
+    RefineOptions options;
+    options.maxError = maxError;
+    options.threads = threads;
+    options.validate = true;
+    return options;
+}
+
+TEST(Refine, PlaneNeedsOnlyItsCorners) {
+    const HeightGrid grid = makeGrid(40, 30, [](int row, int col) {
+        return 2.0 * col - 3.0 * row + 100.0;
+    });
+    const RefineResult result = refine(grid, withError(0.01));
+    EXPECT_EQ(result.mesh.vertexCount(), 4U);
+    EXPECT_EQ(result.mesh.triangleCount(), 2U);
+    EXPECT_LE(result.maxError, 1e-9);
+    EXPECT_EQ(result.coveredCells, 40U * 30U);
+    EXPECT_EQ(result.uncoveredCells, 0U);
+    EXPECT_TRUE(result.validated);
+    test::expectWithinError(result.mesh, grid, 0.01);
+}
+
+TEST(Refine, SingleSpikeAddsOnePoint_WhenItsNeighboursLieOnTheHull) {
+    // On a 3 x 3 grid the spike's neighbours lie on the hull edges between flat corners.
+    const HeightGrid grid = makeGrid(3, 3, [](int row, int col) {
+        return row == 1 && col == 1 ? 250.0 : 12.0;
+    });
+    const RefineResult result = refine(grid, withError(0.5));
+    ASSERT_EQ(result.mesh.vertexCount(), 5U);
+    EXPECT_EQ(result.mesh.sourceIndex.back(), 4U);
+    EXPECT_EQ(result.maxError, 0.0);
+}
+
+TEST(Refine, SingleSpikeIsKept_AndOnlyItsNeighbourhoodIsAdded) {
+    // In a wide flat grid the spike is the first point inserted; the cone it makes is wrong
+    // right beside it, so its four edge neighbours follow (the diagonal ones then lie on flat
+    // triangles): 4 corners + 1 + 4.
+    const HeightGrid grid = makeGrid(33, 21, [](int row, int col) {
+        return row == 10 && col == 17 ? 250.0 : 12.0;
+    });
+    const RefineResult result = refine(grid, withError(0.5));
+    EXPECT_EQ(result.mesh.vertexCount(), 9U);
+    const auto spike = static_cast<std::uint32_t>(10 * 33 + 17);
+    EXPECT_EQ(result.mesh.sourceIndex[4], spike);
+    EXPECT_EQ(result.maxError, 0.0);
+    test::expectWithinError(result.mesh, grid, 0.5);
+    // A tolerance above the spike's height needs nothing but the corners.
+    EXPECT_EQ(refine(grid, withError(240.0)).mesh.vertexCount(), 4U);
+}
+
+TEST(Refine, RidgeIsKept_WhenTheTerrainIsPiecewisePlanar) {
+    // A tent along column 20: two planes meeting on the ridge line. The ridge's two ends are
+    // the only points besides the corners, and the ridge line is an edge of the TIN.
+    const HeightGrid grid = makeGrid(41, 25, [](int, int col) { return 50.0 - 5.0 * std::abs(col - 20); });
+    const RefineResult result = refine(grid, withError(0.01));
+    EXPECT_EQ(result.mesh.vertexCount(), 6U);
+    const std::vector<std::uint32_t> cells(result.mesh.sourceIndex.begin(),
+                                           result.mesh.sourceIndex.end());
+    EXPECT_NE(std::find(cells.begin(), cells.end(), 20U), cells.end());
+    EXPECT_NE(std::find(cells.begin(), cells.end(), 24U * 41U + 20U), cells.end());
+    EXPECT_LE(result.maxError, 1e-9);
+}
+
+TEST(Refine, EveryValidCellWithinMaxError_OnRoughTerrain) {
+    const HeightGrid grid = test::roughTerrain(96, 80, 7);
+    for (const double maxError : {0.25, 2.0, 10.0}) {
+        const RefineResult result = refine(grid, withError(maxError));
+        EXPECT_EQ(result.stop, RefineStop::ErrorReached);
+        EXPECT_LE(result.maxError, maxError);
+        EXPECT_GT(result.rmse, 0.0);
+        EXPECT_LE(result.rmse, result.maxError);
+        EXPECT_EQ(result.uncoveredCells, 0U);
+        test::expectWithinError(result.mesh, grid, maxError);
+        EXPECT_TRUE(validateDelaunay(result.mesh).ok());
+    }
+}
+
+TEST(Refine, FewerPoints_WhenTheToleranceGrows) {
+    const HeightGrid grid = test::roughTerrain(96, 80, 3);
+    std::size_t previous = grid.cellCount() + 1;
+    for (const double maxError : {0.1, 1.0, 5.0, 20.0}) {
+        const RefineResult result = refine(grid, withError(maxError));
+        EXPECT_LT(result.mesh.vertexCount(), previous) << "E = " << maxError;
+        previous = result.mesh.vertexCount();
+    }
+}
+
+TEST(Refine, EveryValidCellUsed_WithoutAnyLimit) {
+    const HeightGrid grid = test::roughTerrain(20, 17, 5);
+    RefineOptions options;
+    options.threads = 1;
+    options.validate = true;
+    const RefineResult result = refine(grid, options);
+    EXPECT_EQ(result.mesh.vertexCount(), grid.cellCount());
+    EXPECT_EQ(result.maxError, 0.0);
+}
+
+TEST(Refine, PointLimitRespected) {
+    const HeightGrid grid = test::roughTerrain(64, 64, 11);
+    RefineOptions options = withError(0.0);
+    options.maxPoints = 150;
+    const RefineResult result = refine(grid, options);
+    EXPECT_EQ(result.stop, RefineStop::PointLimit);
+    EXPECT_EQ(result.mesh.vertexCount(), 150U);
+    EXPECT_GT(result.maxError, 0.0);
+}
+
+TEST(Refine, TriangleLimitRespected) {
+    const HeightGrid grid = test::roughTerrain(64, 64, 12);
+    RefineOptions options = withError(0.0);
+    options.maxTriangles = 201;
+    const RefineResult result = refine(grid, options);
+    EXPECT_EQ(result.stop, RefineStop::TriangleLimit);
+    EXPECT_LE(result.mesh.triangleCount(), 201U);
+    EXPECT_GE(result.mesh.triangleCount(), 199U);
+}
+
+TEST(Refine, FirstLimitReachedStops) {
+    const HeightGrid grid = test::roughTerrain(64, 64, 13);
+    RefineOptions options = withError(3.0);
+    options.maxPoints = 40;
+    options.maxTriangles = 1000;
+    const RefineResult result = refine(grid, options);
+    EXPECT_EQ(result.stop, RefineStop::PointLimit);
+    EXPECT_EQ(result.mesh.vertexCount(), 40U);
+}
+
+TEST(Refine, PointLimitBelowTheHullKeepsTheHull) {
+    const HeightGrid grid = test::roughTerrain(30, 30, 1);
+    RefineOptions options;
+    options.maxPoints = 2;
+    options.threads = 1;
+    const RefineResult result = refine(grid, options);
+    EXPECT_EQ(result.mesh.vertexCount(), 4U);
+    EXPECT_EQ(result.stop, RefineStop::PointLimit);
+}
+
+TEST(Refine, ExactDelaunay_WithRotatedNonSquareAndBottomUpGeotransforms) {
+    for (const std::array<double, 6>& transform :
+         {std::array<double, 6>{500000.5, 30.0, 0.0, 5000000.0, 0.0, -30.0},
+          std::array<double, 6>{-71.99958333, 1.0 / 1200, 0.0, 45.0, 0.0, -1.0 / 1200},
+          std::array<double, 6>{1000.0, 5.0, 0.0, 2000.0, 0.0, 7.5},
+          std::array<double, 6>{350000.0, 25.0, 4.0, 4200000.0, 3.0, -25.0}}) {
+        HeightGrid grid = test::roughTerrain(50, 40, 21);
+        grid.geoTransform = transform;
+        const RefineResult result = refine(grid, withError(1.0));
+        EXPECT_TRUE(result.validated);
+        EXPECT_LE(result.maxError, 1.0);
+        EXPECT_EQ(result.uncoveredCells, 0U);
+        test::expectWithinError(result.mesh, grid, 1.0);
+    }
+}
+
+TEST(Refine, Throws_WhenTheInputIsUnusable) {
+    HeightGrid empty;
+    EXPECT_THROW(refine(empty, {}), InvalidInputError);
+    HeightGrid noData = makeGrid(5, 5, [](int, int) { return std::nan(""); });
+    EXPECT_THROW(refine(noData, {}), InvalidInputError);
+    HeightGrid oneRow = makeGrid(5, 5, [](int row, int) { return row == 2 ? 1.0 : std::nan(""); });
+    EXPECT_THROW(refine(oneRow, {}), InvalidInputError);
+    const HeightGrid fine = test::roughTerrain(5, 5, 1);
+    EXPECT_THROW(refine(fine, withError(-1.0)), InvalidInputError);
+}
+
+TEST(Refine, CancelledByProgress) {
+    const HeightGrid grid = test::roughTerrain(128, 128, 2);
+    RefineOptions options = withError(0.0);
+    EXPECT_THROW(refine(grid, options, [](double, std::string_view) { return false; }), Cancelled);
+}
+
+} // namespace
+} // namespace terratin

@@ -1,0 +1,147 @@
+#include "refine_test_grids.hpp"
+
+#include "terratin/geometry/predicates.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace terratin::test {
+
+HeightGrid makeGrid(int width, int height, const std::function<double(int, int)>& z) {
+    HeightGrid grid;
+    grid.width = width;
+    grid.height = height;
+    grid.geoTransform = {0.0, 1.0, 0.0, 0.0, 0.0, -1.0};
+    grid.z.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    for (int row = 0; row < height; ++row)
+        for (int col = 0; col < width; ++col)
+            grid.z[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
+                   static_cast<std::size_t>(col)] = static_cast<float>(z(row, col));
+    return grid;
+}
+
+HeightGrid roughTerrain(int width, int height, std::uint32_t seed) {
+    return makeGrid(width, height, [seed](int row, int col) {
+        std::uint32_t h = seed * 2654435761U ^ static_cast<std::uint32_t>(row) * 40503U ^
+                          static_cast<std::uint32_t>(col) * 2246822519U;
+        h ^= h >> 15;
+        h *= 2246822519U;
+        h ^= h >> 13;
+        const double noise = static_cast<double>(h % 1000U) / 1000.0;
+        const double x = col * 0.11 + seed;
+        const double y = row * 0.07;
+        // Whole metres and a noise in 0.25 m steps: float32-exact like an Int16 DEM.
+        return std::round(120.0 + 80.0 * std::sin(x) * std::cos(y) + 40.0 * std::sin(0.3 * x + y)) +
+               std::round(noise * 12.0) * 0.25;
+    });
+}
+
+namespace {
+Point2 planar(const Point3& p) { return {p.x, p.y}; }
+} // namespace
+
+CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::size_t maxHole) {
+    CoverageCheck check;
+    const std::size_t cells = grid.cellCount();
+    std::vector<std::uint8_t> covered(cells, 0);
+    std::vector<Point2> centre(cells);
+    for (std::size_t cell = 0; cell < cells; ++cell)
+        centre[cell] = grid.cellCentre(cell);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
+        const Point3& b = mesh.vertices[mesh.triangles[3 * t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[3 * t + 2]];
+        const double xMin = std::min({a.x, b.x, c.x});
+        const double xMax = std::max({a.x, b.x, c.x});
+        const double yMin = std::min({a.y, b.y, c.y});
+        const double yMax = std::max({a.y, b.y, c.y});
+        const double area = predicates::orient2d(planar(a), planar(b), planar(c));
+        for (std::size_t cell = 0; cell < cells; ++cell) {
+            const Point2& p = centre[cell];
+            if (p.x < xMin || p.x > xMax || p.y < yMin || p.y > yMax)
+                continue;
+            const double wa = predicates::orient2d(planar(b), planar(c), p);
+            const double wb = predicates::orient2d(planar(c), planar(a), p);
+            const double wc = predicates::orient2d(planar(a), planar(b), p);
+            if (wa < 0.0 || wb < 0.0 || wc < 0.0)
+                continue;
+            covered[cell] = 1;
+            if (std::isnan(grid.z[cell]))
+                continue;
+            // Barycentric weights recomputed in double (the predicates' values are only signs).
+            const auto twice = [](const Point2& u, const Point2& v, const Point2& w) {
+                return (v.x - u.x) * (w.y - u.y) - (v.y - u.y) * (w.x - u.x);
+            };
+            const double total = twice(planar(a), planar(b), planar(c));
+            const double z = (twice(planar(b), planar(c), p) * a.z +
+                              twice(planar(c), planar(a), p) * b.z +
+                              twice(planar(a), planar(b), p) * c.z) /
+                             total;
+            (void)area;
+            check.maxError = std::max(check.maxError, std::fabs(z - grid.z[cell]));
+        }
+    }
+    // Holes: 8-connected nodata regions.
+    std::vector<int> region(cells, -1);
+    std::vector<std::size_t> sizes;
+    for (std::size_t seed = 0; seed < cells; ++seed) {
+        if (!std::isnan(grid.z[seed]) || region[seed] >= 0)
+            continue;
+        const int id = static_cast<int>(sizes.size());
+        std::vector<std::size_t> stack{seed};
+        region[seed] = id;
+        std::size_t size = 0;
+        while (!stack.empty()) {
+            const std::size_t cell = stack.back();
+            stack.pop_back();
+            ++size;
+            const int row = static_cast<int>(cell / static_cast<std::size_t>(grid.width));
+            const int col = static_cast<int>(cell % static_cast<std::size_t>(grid.width));
+            for (int dr = -1; dr <= 1; ++dr)
+                for (int dc = -1; dc <= 1; ++dc) {
+                    const int r = row + dr;
+                    const int c = col + dc;
+                    if (r < 0 || c < 0 || r >= grid.height || c >= grid.width)
+                        continue;
+                    const std::size_t n = static_cast<std::size_t>(r) * grid.width + c;
+                    if (std::isnan(grid.z[n]) && region[n] < 0) {
+                        region[n] = id;
+                        stack.push_back(n);
+                    }
+                }
+        }
+        sizes.push_back(size);
+    }
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+        if (std::isnan(grid.z[cell])) {
+            if (covered[cell] && sizes[static_cast<std::size_t>(region[cell])] > maxHole)
+                ++check.coveredOpenHoleCells;
+        } else if (!covered[cell]) {
+            ++check.uncoveredValid;
+        }
+    }
+    return check;
+}
+
+void expectWithinError(const TinMesh& mesh, const HeightGrid& grid, double maxError) {
+    const CoverageCheck check = checkCoverage(mesh, grid, grid.cellCount());
+    EXPECT_LE(check.maxError, maxError + 1e-6);
+    EXPECT_EQ(check.uncoveredValid, 0U);
+}
+
+void expectEmptyCircumcircles(const TinMesh& mesh) {
+    std::size_t violations = 0;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const Point2 a = planar(mesh.vertices[mesh.triangles[3 * t]]);
+        const Point2 b = planar(mesh.vertices[mesh.triangles[3 * t + 1]]);
+        const Point2 c = planar(mesh.vertices[mesh.triangles[3 * t + 2]]);
+        for (const Point3& v : mesh.vertices)
+            if (predicates::incircle(a, b, c, planar(v)) > 0.0)
+                ++violations;
+    }
+    EXPECT_EQ(violations, 0U);
+}
+
+} // namespace terratin::test

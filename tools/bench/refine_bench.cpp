@@ -1,0 +1,96 @@
+#include "refine_bench.hpp"
+
+#include "process_memory.hpp"
+#include "stats.hpp"
+
+#include "terratin/io/height_grid_reader.hpp"
+#include "terratin/refine/refine.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace terratin::bench {
+
+namespace {
+
+struct RefineCase {
+    const char* label;
+    const char* file;
+    std::vector<double> tolerances;
+};
+
+// The table: SRTM3 N44W072 (White Mountains) and Mt Hood (UTM 30 m, nodata frame).
+const std::vector<RefineCase>& refineCases() {
+    static const std::vector<RefineCase> cases = {
+        {"N44W072", "srtmpy__N44W072/N44W072.hgt", {1.0, 5.0, 10.0}},
+        {"Mt Hood", "gdalraster__lf_elev_220_mt_hood_utm.tif", {1.0, 5.0}},
+    };
+    return cases;
+}
+
+} // namespace
+
+int runRefineBench(const BenchOptions& options) {
+    const std::vector<unsigned> threads =
+        options.threadsGiven ? options.threads : std::vector<unsigned>{1, 2};
+    if (options.csv)
+        std::printf("dem,cells,valid,max_error_m,threads,points,triangles,hole_triangles,"
+                    "achieved_max_error_m,rmse_m,seconds,speedup,peak_mib\n");
+    else
+        std::printf("%-8s %9s %6s %3s %9s %9s %9s %8s %7s %8s %6s %8s\n", "DEM", "cells", "E [m]",
+                    "thr", "points", "triangles", "holes", "max err", "RMSE", "time [s]", "speed",
+                    "peak MiB");
+    for (const RefineCase& refineCase : refineCases()) {
+        const std::filesystem::path path =
+            std::filesystem::path(options.demDirectory) / refineCase.file;
+        if (!std::filesystem::exists(path)) {
+            std::fprintf(stderr, "terratin-bench: %s not found, skipped\n", path.c_str());
+            continue;
+        }
+        const io::HeightGridRaster raster = io::readHeightGrid(path.string(), {});
+        const std::size_t valid = raster.grid.validCount();
+        for (const double tolerance : refineCase.tolerances) {
+            std::optional<double> oneThread;
+            for (const unsigned threadCount : threads) {
+                RefineOptions refineOptions;
+                refineOptions.maxError = tolerance;
+                refineOptions.threads = threadCount;
+                std::vector<double> seconds;
+                std::vector<double> peaks;
+                RefineResult result;
+                PeakMemoryProbe probe;
+                for (unsigned run = 0; run < options.runs; ++run) {
+                    probe.start();
+                    const Stopwatch stopwatch;
+                    result = refine(raster.grid, refineOptions);
+                    seconds.push_back(stopwatch.seconds());
+                    if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
+                        peaks.push_back(static_cast<double>(*peak));
+                }
+                const double time = median(seconds);
+                if (!oneThread)
+                    oneThread = time;
+                const double peakMiB = peaks.empty() ? -1.0 : median(peaks) / (1024.0 * 1024.0);
+                if (options.csv)
+                    std::printf("%s,%zu,%zu,%g,%u,%zu,%zu,%zu,%.3f,%.3f,%.4f,%.2f,%.1f\n",
+                                refineCase.label, raster.grid.cellCount(), valid, tolerance,
+                                threadCount, result.mesh.vertexCount(),
+                                result.mesh.triangleCount(), result.droppedTriangles,
+                                result.maxError, result.rmse, time, *oneThread / time, peakMiB);
+                else
+                    std::printf("%-8s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f\n",
+                                refineCase.label, raster.grid.cellCount(), tolerance, threadCount,
+                                result.mesh.vertexCount(), result.mesh.triangleCount(),
+                                result.droppedTriangles, result.maxError, result.rmse, time,
+                                *oneThread / time, peakMiB);
+                std::fflush(stdout);
+            }
+        }
+    }
+    return 0;
+}
+
+} // namespace terratin::bench
