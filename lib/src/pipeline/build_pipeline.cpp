@@ -40,7 +40,7 @@ ProgressCallback phaseProgress(const ProgressCallback& progress, double start, d
 void checkOutputPath(const BuildOptions& options) {
     namespace fs = std::filesystem;
     std::error_code error;
-    if (fs::exists(options.output, error) && !options.overwrite)
+    if (fs::exists(options.output, error) && !options.overwrite && !options.appendLayer)
         throw InvalidInputError("Output: '" + options.output.string() +
                                 "' already exists; use --overwrite to replace it");
     const fs::path directory =
@@ -64,8 +64,18 @@ void describeCrs(const std::string& wkt, BuildReport& report) {
         report.crsCode = std::string(authority) + ":" + code;
 }
 
-std::string formatName(io::TinFormat format) {
-    return format == io::TinFormat::GeoPackage ? "GPKG" : "ESRI Shapefile";
+std::string formatName(io::TinFormat format) { return std::string(io::tinFormatName(format)); }
+
+// The raster cell of every vertex, for the GeoPackage nodes layer.
+std::vector<io::RasterCell> vertexCells(const TinMesh& mesh, const io::RasterPoints& raster) {
+    std::vector<io::RasterCell> cells(mesh.vertexCount());
+    const auto width = static_cast<std::uint64_t>(raster.width);
+    for (std::size_t v = 0; v < cells.size(); ++v) {
+        const std::uint64_t cell = raster.cellIndex[mesh.sourceIndex[v]];
+        cells[v] = {static_cast<std::int64_t>(cell / width),
+                    static_cast<std::int64_t>(cell % width)};
+    }
+    return cells;
 }
 
 std::string jsonString(const std::string& text) {
@@ -103,6 +113,17 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     const Clock::time_point start = Clock::now();
     const io::TinFormat format = options.format ? *options.format
                                                 : io::tinFormatFromPath(options.output);
+    io::TinWriteOptions writeOptions;
+    writeOptions.format = format;
+    writeOptions.overwrite = options.overwrite;
+    writeOptions.layerName = options.layerName;
+    writeOptions.attributes = options.attributes;
+    writeOptions.nodes = options.nodes;
+    writeOptions.edges = options.edges;
+    writeOptions.appendLayer = options.appendLayer;
+    writeOptions.spatialIndex = options.spatialIndex;
+    writeOptions.qgisStyle = options.qgisStyle;
+    io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
     checkOutputPath(options);
 
     BuildReport report;
@@ -148,14 +169,18 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     }
 
     phase = Clock::now();
-    io::TinWriteOptions writeOptions;
-    writeOptions.format = format;
-    writeOptions.overwrite = options.overwrite;
     writeOptions.crsWkt = raster.crsWkt;
-    writeOptions.layerName = options.layerName;
-    io::writeTin(triangulation.mesh, options.output, writeOptions,
-                 phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
+    if (options.nodes)
+        writeOptions.vertexCells = vertexCells(triangulation.mesh, raster);
+    const io::TinWriteResult written =
+        io::writeTin(triangulation.mesh, options.output, writeOptions,
+                     phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
     report.timings.write = secondsSince(phase);
+    report.writeFeatures = written.features;
+    report.writeFeaturesPerSecond =
+        report.timings.write > 0.0
+            ? static_cast<double>(written.features) / report.timings.write
+            : 0.0;
     report.timings.total = secondsSince(start);
     if (progress)
         progress(1.0, "done");
@@ -182,7 +207,9 @@ std::string toJson(const BuildReport& report) {
          << ", \"triangulate\": " << report.timings.triangulate
          << ", \"validate\": " << report.timings.validate
          << ", \"write\": " << report.timings.write << ", \"total\": " << report.timings.total
-         << "}, \"validated\": " << (report.validated ? "true" : "false") << "}";
+         << "}, \"validated\": " << (report.validated ? "true" : "false")
+         << ", \"writing\": {\"features\": " << report.writeFeatures
+         << ", \"features_per_second\": " << report.writeFeaturesPerSecond << "}}";
     return json.str();
 }
 
@@ -190,12 +217,13 @@ std::string toSummaryLine(const BuildReport& report) {
     char line[512];
     std::snprintf(line, sizeof line,
                   "%llu points (%llu duplicates, %llu nodata cells skipped) -> %llu triangles; "
-                  "read %.2f s, triangulate %.2f s, write %.2f s, total %.2f s",
+                  "read %.2f s, triangulate %.2f s, write %.2f s (%.0f features/s), total %.2f s",
                   static_cast<unsigned long long>(report.points),
                   static_cast<unsigned long long>(report.duplicates),
                   static_cast<unsigned long long>(report.skippedCells),
                   static_cast<unsigned long long>(report.triangles), report.timings.read,
-                  report.timings.triangulate, report.timings.write, report.timings.total);
+                  report.timings.triangulate, report.timings.write,
+                  report.writeFeaturesPerSecond, report.timings.total);
     return line;
 }
 

@@ -19,7 +19,8 @@ struct BuildOptions {
     /// A raster GDAL can open.
     std::string input;
     std::filesystem::path output;
-    /// Output format; when unset it follows the output's extension (.gpkg, .shp).
+    /// Output format; when unset it follows the output's extension (.gpkg .shp .fgb .2dm .ply
+    /// .obj .xml .landxml).
     std::optional<io::TinFormat> format;
     /// 1-based raster band.
     int band = 1;
@@ -30,6 +31,17 @@ struct BuildOptions {
     bool validate = false;
     /// Name of the triangle layer in the output.
     std::string layerName = "tin";
+    /// Triangle attribute columns of the vector formats.
+    io::AttributeSet attributes = io::AttributeSet::All;
+    /// GeoPackage: also a nodes layer (with the source raster row / col) and an edges layer.
+    bool nodes = false;
+    bool edges = false;
+    /// GeoPackage: add the layers to an existing GeoPackage (other layers untouched).
+    bool appendLayer = false;
+    /// GeoPackage / FlatGeobuf: build the spatial index (the slow part of a GeoPackage).
+    bool spatialIndex = true;
+    /// Vector formats: write a QGIS .qml style beside the output.
+    bool qgisStyle = false;
 };
 
 /// Wall-clock seconds per phase.
@@ -63,6 +75,10 @@ struct BuildReport {
     double historyBytesPerPoint = 0.0;
     bool validated = false;
     BuildTimings timings;
+    /// Features (vector formats, all layers) or records (mesh formats: vertices + faces)
+    /// written, and their rate over the write phase.
+    std::uint64_t writeFeatures = 0;
+    double writeFeaturesPerSecond = 0.0;
 };
 
 /// Runs the build. Before reading anything it refuses an existing output without
@@ -74,7 +90,7 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
 
 /// The report as one JSON object: input, output, format, crs {name, code}, counts {...},
 /// triangulation {method, threads, history_bytes_per_point}, timings {read, triangulate,
-/// validate, write, total} in seconds, validated.
+/// validate, write, total} in seconds, validated, writing {features, features_per_second}.
 std::string toJson(const BuildReport& report);
 
 /// One human-readable line: points, duplicates, triangles and seconds per phase.
