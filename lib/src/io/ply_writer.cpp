@@ -35,8 +35,10 @@ std::uint64_t writePly(const TinMesh& mesh, const MeshFileInfo& info, BufferedFi
     header += info.softwareVersion;
     header += '\n';
     if (!info.crs.empty()) {
+        // MDAL hands the rest of the line to QGIS, which reads it as WKT: "EPSG:26910" alone
+        // leaves the mesh layer without CRS (checked with QGIS 3.22).
         header += "comment crs ";
-        header += info.crs.shortText();
+        header += info.crs.wkt;
         header += '\n';
     }
     header += "element vertex " + std::to_string(vertexCount) +

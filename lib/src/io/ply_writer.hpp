@@ -3,7 +3,7 @@
 /// PlyWriter: a TinMesh as a binary little-endian Stanford PLY.
 ///
 ///   ply / format binary_little_endian 1.0
-///   comment crs <EPSG:code or one-line WKT>     (MDAL reads the rest of this line as the CRS)
+///   comment crs <one-line WKT>     (MDAL reads the rest of this line as the CRS)
 ///   element vertex V: property double x, y, z   (exact coordinates)
 ///   element face T: property list uchar int vertex_indices   (0-based, counter-clockwise)
 /// The bytes are little-endian whatever the host.

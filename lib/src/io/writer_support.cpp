@@ -16,12 +16,6 @@ void reportProgress(std::string_view stage, const ProgressCallback& progress, do
                         " was not written");
 }
 
-std::string CrsSummary::shortText() const {
-    if (!epsgCode.empty())
-        return "EPSG:" + epsgCode;
-    return wkt;
-}
-
 CrsSummary summariseCrs(std::string_view stage, const std::string& wkt) {
     CrsSummary summary;
     if (wkt.empty())

@@ -66,8 +66,6 @@ struct CrsSummary {
     double metresPerUnit = 1.0;
 
     [[nodiscard]] bool empty() const { return wkt.empty(); }
-    /// "EPSG:26910" when identified, else the one-line WKT; empty without CRS.
-    [[nodiscard]] std::string shortText() const;
 };
 
 /// Parses `wkt` (empty: no CRS). Throws CrsError "<stage>: the output CRS is not valid WKT".
