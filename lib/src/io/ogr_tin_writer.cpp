@@ -23,7 +23,11 @@
 /// - Why one transaction rather than a commit every 100k features: a Ctrl-C rolls one
 ///   transaction back in milliseconds, and in a new database SQLite journals only the pages
 ///   that existed when it began, so the journal stays tiny and memory flat.
-/// - FlatGeobuf's packed Hilbert R-tree is built by GDAL when the file is closed.
+/// - FlatGeobuf's packed Hilbert R-tree is built by GDAL when the file is closed: it sorts the
+///   features (recomputing both Hilbert keys in every comparison) and copies each from a
+///   temporary file, about 6-7 s for 1.57 M triangles here whatever the order the features
+///   arrive in (measured with input already in GDAL's own Hilbert order: no faster).
+///   TinWriteOptions::spatialIndex = false streams the file directly, several times faster.
 ///
 /// A Shapefile's and a FlatGeobuf's layer is named after its file; TinWriteOptions::layerName
 /// applies to GeoPackage only.
