@@ -12,6 +12,7 @@ readonly packages=(
   g++ cmake ninja-build pkg-config
   libgdal-dev gdal-bin libproj-dev libgeographiclib-dev libboost-program-options-dev libtbb-dev
   googletest libgtest-dev
+  libxml2-dev libxml2-utils
 )
 
 # Only for 'fuzz': clang and its libFuzzer runtime.

@@ -56,6 +56,16 @@ small_sample() {
   gdal_translate -q -srcwin 90 90 40 40 "$sample" small.tif || fail "gdal_translate failed"
 }
 
+# feature_count_of FILE LAYER
+feature_count_of() {
+  ogrinfo -ro -so "$1" "$2" 2>/dev/null | sed -n 's/^Feature Count: //p' | head -1
+}
+
+# The triangle and vertex counts of the JSON report in out.txt.
+report_count() {
+  sed -n "s/.*\"$1\": \([0-9]*\).*/\1/p" out.txt
+}
+
 case "$case_name" in
   help)
     run 0 --help
@@ -340,6 +350,94 @@ case "$case_name" in
     run 0 build "$sample" -o cut.gpkg --max-error 5 --max-edge 200 --json --quiet
     grep -q '"long_edge_triangles"' out.txt || fail "JSON report lacks long_edge_triangles"
     [ "$(feature_count cut.gpkg)" -lt "$(feature_count all.gpkg)" ] || fail "nothing dropped"
+    ;;
+  build_flatgeobuf)
+    run 0 build "$sample" -o tin.fgb --json --quiet
+    [ "$(feature_count tin.fgb)" = "$(report_count triangles)" ] || fail "feature count differs"
+    ogrinfo -ro -so -al tin.fgb | grep -q 'Geometry: 3D Polygon' || fail "not Polygon Z"
+    ogrinfo -ro -so -al tin.fgb | grep -q 'slope_pct: Real' || fail "attributes missing"
+    grep -q '"format": "FlatGeobuf"' out.txt || fail "format not reported"
+    grep -q '"features_per_second": [1-9]' out.txt || fail "no write rate in the report"
+    expect_no_leftovers
+    ;;
+  build_2dm)
+    run 0 build "$sample" -o tin.2dm --json --quiet
+    head -1 tin.2dm | grep -qx 'MESH2D' || fail "no MESH2D header"
+    [ "$(grep -c '^ND ' tin.2dm)" = "$(report_count vertices)" ] || fail "ND count differs"
+    [ "$(grep -c '^E3T ' tin.2dm)" = "$(report_count triangles)" ] || fail "E3T count differs"
+    expect_no_leftovers
+    ;;
+  build_ply)
+    run 0 build "$sample" -o tin.ply --json --quiet
+    head -c 400 tin.ply | grep -aq 'format binary_little_endian 1.0' || fail "not binary PLY"
+    head -c 2000 tin.ply | grep -aq "element vertex $(report_count vertices)" || fail "vertex count"
+    head -c 2000 tin.ply | grep -aq "element face $(report_count triangles)" || fail "face count"
+    head -c 2000 tin.ply | grep -aq 'comment crs PROJCS\["WGS 84 / UTM zone 33N"' || fail "no CRS comment"
+    expect_no_leftovers
+    ;;
+  build_obj)
+    run 0 build "$sample" -o tin.obj --json --quiet
+    [ "$(grep -c '^v ' tin.obj)" = "$(report_count vertices)" ] || fail "v count differs"
+    [ "$(grep -c '^f ' tin.obj)" = "$(report_count triangles)" ] || fail "f count differs"
+    grep -q '^# terratin-origin ' tin.obj || fail "no local origin recorded"
+    grep -q '^# CRS: .*EPSG:32633' tin.obj || fail "no CRS comment"
+    ;;
+  build_landxml)
+    run 0 build "$sample" -o tin.xml --json --quiet
+    xmllint --noout tin.xml || fail "not well-formed XML"
+    ns='http://www.landxml.org/schema/LandXML-1.2'
+    points=$(xmllint --xpath "count(//*[local-name()='P' and namespace-uri()='$ns'])" tin.xml)
+    faces=$(xmllint --xpath "count(//*[local-name()='F' and namespace-uri()='$ns'])" tin.xml)
+    [ "$points" = "$(report_count vertices)" ] || fail "P count $points"
+    [ "$faces" = "$(report_count triangles)" ] || fail "F count $faces"
+    xmllint --xpath "string(//*[local-name()='Definition']/@surfType)" tin.xml | grep -qx TIN ||
+      fail "not a TIN surface"
+    run 0 build "$sample" -o tin.landxml --format landxml --quiet
+    xmllint --noout tin.landxml || fail "--format landxml not well-formed"
+    ;;
+  gpkg_nodes_and_edges)
+    run 0 build "$sample" -o tin.gpkg --nodes --edges --no-spatial-index --json --quiet
+    [ "$(feature_count_of tin.gpkg nodes)" = "$(report_count vertices)" ] || fail "nodes count"
+    ogrinfo -ro -so tin.gpkg nodes | grep -q 'row: Integer64' || fail "nodes lack row"
+    ogrinfo -ro -so tin.gpkg edges | grep -q 'Geometry: 3D Line String' || fail "edges not LineString Z"
+    ogrinfo -ro -so tin.gpkg edges | grep -q 'tri_right: Integer64' || fail "edges lack triangles"
+    # Every cell of the 320 x 240 sample is valid: row / col span the raster.
+    ogrinfo -ro tin.gpkg -sql 'SELECT MIN(row), MAX(row), MIN(col), MAX(col) FROM nodes' |
+      grep -q '= 239' || fail "row range"
+    ;;
+  append_layer)
+    run 0 build "$sample" -o tin.gpkg --layer first --no-spatial-index --quiet
+    before=$(ogrinfo -ro -al -q tin.gpkg first | md5sum)
+    run 0 build "$sample" -o tin.gpkg --layer second --append-layer --no-spatial-index --quiet
+    [ "$(ogrinfo -ro -q tin.gpkg | grep -c 'Polygon')" = 2 ] || fail "not two layers"
+    [ "$(ogrinfo -ro -al -q tin.gpkg first | md5sum)" = "$before" ] || fail "first layer changed"
+    run 1 build "$sample" -o tin.gpkg --layer second --append-layer --quiet
+    expect_one_error_line "second"
+    run 2 build "$sample" -o tin.fgb --append-layer --quiet
+    expect_one_error_line "GeoPackage"
+    expect_no_leftovers
+    ;;
+  qgis_style)
+    run 0 build "$sample" -o tin.gpkg --qgis-style --no-spatial-index --quiet
+    [ -s tin.qml ] || fail "no tin.qml"
+    xmllint --noout tin.qml || fail "tin.qml is not well-formed"
+    grep -q 'attr="z_mean"' tin.qml || fail "style does not colour by z_mean"
+    run 2 build "$sample" -o tin.ply --qgis-style --quiet
+    expect_one_error_line "qgis-style"
+    ;;
+  attributes_basic)
+    run 0 build "$sample" -o tin.gpkg --attributes basic --no-spatial-index --quiet
+    ogrinfo -ro -so -al tin.gpkg | grep -q 'aspect_deg: Real' || fail "basic attribute missing"
+    ! ogrinfo -ro -so -al tin.gpkg | grep -q 'slope_pct' || fail "an 'all' attribute was written"
+    run 2 build "$sample" -o tin2.gpkg --attributes many
+    expect_one_error_line "attributes"
+    ;;
+  geopackage_only_options_refused)
+    run 2 build "$sample" -o tin.shp --nodes
+    expect_one_error_line "GeoPackage"
+    run 2 build "$sample" -o tin.2dm --edges
+    expect_one_error_line "GeoPackage"
+    [ ! -e tin.shp ] && [ ! -e tin.2dm ] || fail "output written despite the usage error"
     ;;
   *)
     fail "unknown case"

@@ -23,8 +23,9 @@ constexpr const char* kDescription =
     "Builds an exactly Delaunay TIN from a DEM raster (any format GDAL reads: GeoTIFF, VRT,\n"
     "DTED, HGT, ASCII grid...). Every valid cell centre becomes a vertex with the cell's\n"
     "elevation; nodata, masked and NaN cells are skipped. The output holds one Polygon Z\n"
-    "triangle per feature with z_min z_max z_mean slope_deg aspect_deg area_2d, in the\n"
-    "input's CRS.\n\n"
+    "triangle per feature with z1 z2 z3 z_min z_max z_mean slope_deg slope_pct aspect_deg\n"
+    "area_2d area_3d nx ny nz (GeoPackage, Shapefile, FlatGeobuf), in the input's CRS, or\n"
+    "the mesh itself (2DM, PLY, OBJ, LandXML).\n\n"
     "Point clouds too: LAS 1.0-1.4 (.las, uncompressed), delimited text (.xyz .txt .csv...:\n"
     "x y z per line, separated by spaces, ',', ';' or '|', optional header line) and any OGR\n"
     "point layer (GeoPackage, Shapefile, GeoJSON...). Several inputs are merged after being\n"
@@ -132,9 +133,11 @@ po::options_description buildOptionsDescription() {
     // clang-format off
     options.add_options()
         ("output,o", po::value<std::string>()->value_name("OUTPUT"),
-         "output file (.gpkg or .shp); written under a temporary name, renamed when complete")
-        ("format,f", po::value<std::string>()->value_name("GPKG|SHP"),
-         "output format (default: from the output's extension)")
+         "output file (.gpkg .shp .fgb .2dm .ply .obj .xml); written under a temporary name, "
+         "renamed when complete")
+        ("format,f", po::value<std::string>()->value_name("FORMAT"),
+         "output format: gpkg, shp, fgb, 2dm, ply, obj, landxml (default: from the output's "
+         "extension)")
         ("band,b", po::value<int>()->default_value(1)->value_name("N"), "raster band, from 1")
         ("seed", po::value<std::uint64_t>()->default_value(1)->value_name("S"),
          "seed of the randomized insertion order (same seed, same TIN)")
@@ -167,7 +170,18 @@ po::options_description buildOptionsDescription() {
         ("max-edge", po::value<double>()->value_name("L"),
          "drop triangles with an edge longer than L (CRS units), e.g. across point-cloud gaps")
         ("layer", po::value<std::string>()->default_value("tin")->value_name("NAME"),
-         "name of the triangle layer")
+         "name of the triangle layer (GeoPackage; the mesh / surface name in 2DM, OBJ, LandXML)")
+        ("attributes", po::value<std::string>()->default_value("all")->value_name("SET"),
+         "triangle attributes: none, basic (z_min z_max z_mean slope_deg aspect_deg area_2d) "
+         "or all")
+        ("nodes", "GeoPackage: add a Point Z layer of the vertices with their raster row / col")
+        ("edges", "GeoPackage: add a LineString Z layer of the edges with their two triangles")
+        ("append-layer",
+         "GeoPackage: add the layers to an existing GeoPackage, keeping its other layers")
+        ("no-spatial-index",
+         "GeoPackage / FlatGeobuf: skip the spatial index (much faster GeoPackage writing)")
+        ("qgis-style", "write a QGIS style (.qml) beside the output: triangles coloured by "
+         "z_mean on a terrain ramp")
         ("class", po::value<std::vector<std::string>>()->composing()->value_name("C[,C...]"),
          "LAS: keep only these classification codes (2 = ground); repeatable")
         ("returns", po::value<std::string>()->default_value("all")->value_name("WHICH"),
@@ -307,11 +321,28 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     build.layerName = values["layer"].as<std::string>();
     build.overwrite = values.count("overwrite") > 0;
     build.validate = values.count("validate") > 0;
-    // A format that cannot be named or inferred is a command-line mistake (status 2).
+    build.nodes = values.count("nodes") > 0;
+    build.edges = values.count("edges") > 0;
+    build.appendLayer = values.count("append-layer") > 0;
+    build.spatialIndex = values.count("no-spatial-index") == 0;
+    build.qgisStyle = values.count("qgis-style") > 0;
+    // A format that cannot be named or inferred, or output options that contradict it, are
+    // command-line mistakes (status 2).
     try {
         build.format = values.count("format")
                            ? io::parseTinFormat(values["format"].as<std::string>())
                            : io::tinFormatFromPath(build.output);
+        build.attributes = io::parseAttributeSet(values["attributes"].as<std::string>());
+        io::TinWriteOptions writeOptions;
+        writeOptions.format = *build.format;
+        writeOptions.layerName = build.layerName;
+        writeOptions.attributes = build.attributes;
+        writeOptions.nodes = build.nodes;
+        writeOptions.edges = build.edges;
+        writeOptions.appendLayer = build.appendLayer;
+        writeOptions.spatialIndex = build.spatialIndex;
+        writeOptions.qgisStyle = build.qgisStyle;
+        io::checkTinWriteOptions(writeOptions);
     } catch (const Error& error) {
         throw UsageError(error.what());
     }

@@ -4,12 +4,15 @@
 /// Notation: with e1 = b - a and e2 = c - a, the normal is n = e1 x e2. For the plane
 /// z = p x + q y + r through the triangle, p = -nx / nz and q = -ny / nz, so the downhill
 /// direction -(p, q) is parallel to (nx, ny) once n is turned to point up (nz > 0). Then
-///   slope  = atan(|grad z|) = atan2(hypot(nx, ny), nz)
-///   aspect = atan2(east, north) of the downhill direction = atan2(nx, ny), clockwise from
-///            grid north (the usual GIS convention, e.g. Burrough & McDonnell, "Principles of
-///            Geographical Information Systems", 1998, ch. 8)
-///   area2d = |nz| / 2.
+///   slope     = atan(|grad z|) = atan2(hypot(nx, ny), nz)
+///   slope_pct = 100 |grad z|   = 100 hypot(nx, ny) / nz
+///   aspect    = atan2(east, north) of the downhill direction = atan2(nx, ny), clockwise from
+///               grid north (the usual GIS convention, e.g. Burrough & McDonnell, "Principles
+///               of Geographical Information Systems", 1998, ch. 8)
+///   area2d    = |nz| / 2,   area3d = |n| / 2,   unit normal = n / |n|.
 /// Turning n up makes every result independent of the corner order (CW or CCW).
+/// Every quantity is a correctly rounded operation (or hypot / atan2) of the exact-as-possible
+/// cross product, so Pythagorean test triangles give exact areas, normals and percentages.
 
 #include "terratin/geometry/triangle_attributes.hpp"
 
@@ -25,6 +28,9 @@ constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
 TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, const Point3& c) {
     TriangleAttributes attributes;
+    attributes.z1 = a.z;
+    attributes.z2 = b.z;
+    attributes.z3 = c.z;
     attributes.zMin = std::min({a.z, b.z, c.z});
     attributes.zMax = std::max({a.z, b.z, c.z});
     attributes.zMean = (a.z + b.z + c.z) / 3.0;
@@ -42,23 +48,35 @@ TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, c
     double ny = e1z * e2x - e1x * e2z;
     double nz = e1x * e2y - e1y * e2x;
 
-    // No planimetric extent (collinear in x, y): the plane is vertical or undefined, so slope
-    // and aspect have no meaning; the header documents slope 0, aspect -1, area 0.
-    if (nz == 0.0) {
-        attributes.slopeDeg = 0.0;
-        attributes.aspectDeg = -1.0;
-        attributes.area2d = 0.0;
-        return attributes;
-    }
-    if (nz < 0.0) {
+    // Up, or for a vertical plane the first non-zero component positive: a canonical sign
+    // that does not depend on the corner order.
+    if (nz < 0.0 || (nz == 0.0 && (nx < 0.0 || (nx == 0.0 && ny < 0.0)))) {
         nx = -nx;
         ny = -ny;
         nz = -nz;
     }
+    const double horizontal = std::hypot(nx, ny);
+    const double length = std::hypot(horizontal, nz);
+    attributes.area3d = 0.5 * length;
+    if (length > 0.0) {
+        attributes.nx = nx / length;
+        attributes.ny = ny / length;
+        attributes.nz = nz / length;
+    }
+
+    // No planimetric extent (collinear in x, y): the plane is vertical or undefined, so slope
+    // and aspect have no meaning; the header documents slope 0, aspect -1, area 0.
+    if (nz == 0.0) {
+        attributes.slopeDeg = 0.0;
+        attributes.slopePct = 0.0;
+        attributes.aspectDeg = -1.0;
+        attributes.area2d = 0.0;
+        return attributes;
+    }
 
     attributes.area2d = 0.5 * nz;
-    const double horizontal = std::hypot(nx, ny);
     attributes.slopeDeg = std::atan2(horizontal, nz) * kDegreesPerRadian;
+    attributes.slopePct = 100.0 * (horizontal / nz);
 
     // Exact comparison on purpose: a horizontal triangle (all z equal) gives nx = ny = 0
     // exactly, and any tilt at all, however small, has a well-defined downhill direction.

@@ -138,6 +138,7 @@ PointCloud readInput(const std::string& path, const InputReadOptions& options,
         cloud.kind = InputKind::Raster;
         cloud.points = std::move(raster.points);
         cloud.cellIndex = std::move(raster.cellIndex);
+        cloud.rasterWidth = static_cast<std::uint64_t>(raster.width);
         cloud.crsWkt = std::move(raster.crsWkt);
         cloud.recordsRead =
             static_cast<std::uint64_t>(raster.width) * static_cast<std::uint64_t>(raster.height);

@@ -47,7 +47,7 @@ ProgressCallback phaseProgress(const ProgressCallback& progress, double start, d
 void checkOutputPath(const BuildOptions& options) {
     namespace fs = std::filesystem;
     std::error_code error;
-    if (fs::exists(options.output, error) && !options.overwrite)
+    if (fs::exists(options.output, error) && !options.overwrite && !options.appendLayer)
         throw InvalidInputError("Output: '" + options.output.string() +
                                 "' already exists; use --overwrite to replace it");
     const fs::path directory =
@@ -71,8 +71,29 @@ void describeCrs(const std::string& wkt, BuildReport& report) {
         report.crsCode = std::string(authority) + ":" + code;
 }
 
-std::string formatName(io::TinFormat format) {
-    return format == io::TinFormat::GeoPackage ? "GPKG" : "ESRI Shapefile";
+std::string formatName(io::TinFormat format) { return std::string(io::tinFormatName(format)); }
+
+// The raster cell of every vertex, for the GeoPackage nodes layer: `cellOf(source)` is the
+// row-major cell index of input point `source`.
+template <class CellOf>
+std::vector<io::RasterCell> vertexCells(const TinMesh& mesh, std::uint64_t width, CellOf cellOf) {
+    std::vector<io::RasterCell> cells(mesh.vertexCount());
+    for (std::size_t v = 0; v < cells.size(); ++v) {
+        const std::uint64_t cell = cellOf(mesh.sourceIndex[v]);
+        cells[v] = {static_cast<std::int64_t>(cell / width),
+                    static_cast<std::int64_t>(cell % width)};
+    }
+    return cells;
+}
+
+// The nodes' cells when the TIN comes from one raster (row and column have no meaning for
+// point clouds, nor across several rasters); empty otherwise.
+std::vector<io::RasterCell> vertexCells(const TinMesh& mesh,
+                                        const detail::GatheredInputs& gathered) {
+    if (gathered.rasterWidth == 0)
+        return {};
+    return vertexCells(mesh, gathered.rasterWidth,
+                       [&](std::uint32_t source) { return gathered.cellIndex[source]; });
 }
 
 std::string jsonString(const std::string& text) {
@@ -113,19 +134,23 @@ std::string jsonNumber(double value) {
     return std::string(text, end.ptr);
 }
 
-void writeMesh(const TinMesh& mesh, const BuildOptions& options, io::TinFormat format,
-               const std::string& crsWkt, const ProgressCallback& progress) {
-    io::TinWriteOptions writeOptions;
-    writeOptions.format = format;
-    writeOptions.overwrite = options.overwrite;
-    writeOptions.crsWkt = crsWkt;
-    writeOptions.layerName = options.layerName;
-    io::writeTin(mesh, options.output, writeOptions,
-                 phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
+// The write phase's figures and the total; the last progress call.
+BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
+                         Clock::time_point writeStart, Clock::time_point start,
+                         const ProgressCallback& progress) {
+    report.timings.write = secondsSince(writeStart);
+    report.writeFeatures = written.features;
+    report.writeFeaturesPerSecond =
+        report.timings.write > 0.0 ? static_cast<double>(written.features) / report.timings.write
+                                   : 0.0;
+    report.timings.total = secondsSince(start);
+    if (progress)
+        progress(1.0, "done");
+    return report;
 }
 
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
-BuildReport runRefineBuild(const BuildOptions& options, io::TinFormat format,
+BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
                            const ProgressCallback& progress, BuildReport report,
                            Clock::time_point start) {
     // The refiner works on the raster's own grid, so the point-cloud and CRS options, which
@@ -159,6 +184,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinFormat format,
     refineOptions.validate = options.validate;
     RefineResult result = refine(raster.grid, refineOptions,
                                  phaseProgress(progress, kReadShare, kTriangulateShare));
+    const int gridWidth = raster.grid.width;
     raster.grid = {}; // the mesh holds its own vertices
     report.refined = true;
     report.targetMaxError = refineOptions.maxError;
@@ -182,12 +208,15 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinFormat format,
     report.timings.triangulate = secondsSince(phase);
 
     phase = Clock::now();
-    writeMesh(result.mesh, options, format, raster.crsWkt, progress);
-    report.timings.write = secondsSince(phase);
-    report.timings.total = secondsSince(start);
-    if (progress)
-        progress(1.0, "done");
-    return report;
+    writeOptions.crsWkt = raster.crsWkt;
+    if (options.nodes) // the refiner's sourceIndex is the cell index
+        writeOptions.vertexCells =
+            vertexCells(result.mesh, static_cast<std::uint64_t>(gridWidth),
+                        [](std::uint32_t cell) { return std::uint64_t{cell}; });
+    const io::TinWriteResult written =
+        io::writeTin(result.mesh, options.output, writeOptions,
+                     phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
+    return finishReport(std::move(report), written, phase, start, progress);
 }
 
 } // namespace
@@ -196,6 +225,17 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     const Clock::time_point start = Clock::now();
     const io::TinFormat format = options.format ? *options.format
                                                 : io::tinFormatFromPath(options.output);
+    io::TinWriteOptions writeOptions;
+    writeOptions.format = format;
+    writeOptions.overwrite = options.overwrite;
+    writeOptions.layerName = options.layerName;
+    writeOptions.attributes = options.attributes;
+    writeOptions.nodes = options.nodes;
+    writeOptions.edges = options.edges;
+    writeOptions.appendLayer = options.appendLayer;
+    writeOptions.spatialIndex = options.spatialIndex;
+    writeOptions.qgisStyle = options.qgisStyle;
+    io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
     checkOutputPath(options);
 
     BuildReport report;
@@ -207,7 +247,7 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     report.output = options.output.string();
     report.format = formatName(format);
     if (options.refine)
-        return runRefineBuild(options, format, progress, std::move(report), start);
+        return runRefineBuild(options, writeOptions, progress, std::move(report), start);
 
     Clock::time_point phase = Clock::now();
     detail::GatheredInputs gathered =
@@ -247,18 +287,13 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     }
 
     phase = Clock::now();
-    io::TinWriteOptions writeOptions;
-    writeOptions.format = format;
-    writeOptions.overwrite = options.overwrite;
     writeOptions.crsWkt = gathered.crsWkt;
-    writeOptions.layerName = options.layerName;
-    io::writeTin(triangulation.mesh, options.output, writeOptions,
-                 phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
-    report.timings.write = secondsSince(phase);
-    report.timings.total = secondsSince(start);
-    if (progress)
-        progress(1.0, "done");
-    return report;
+    if (options.nodes)
+        writeOptions.vertexCells = vertexCells(triangulation.mesh, gathered);
+    const io::TinWriteResult written =
+        io::writeTin(triangulation.mesh, options.output, writeOptions,
+                     phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
+    return finishReport(std::move(report), written, phase, start, progress);
 }
 
 std::string toJson(const BuildReport& report) {
@@ -322,7 +357,8 @@ std::string toJson(const BuildReport& report) {
     }
     if (report.longEdgeTriangles > 0)
         json << ", \"long_edge_triangles\": " << report.longEdgeTriangles;
-    json << "}";
+    json << ", \"writing\": {\"features\": " << report.writeFeatures
+         << ", \"features_per_second\": " << report.writeFeaturesPerSecond << "}}";
     return json.str();
 }
 
@@ -341,12 +377,13 @@ std::string toSummaryLine(const BuildReport& report) {
     }
     std::snprintf(line, sizeof line,
                   "%llu points (%llu duplicates, %llu nodata cells skipped) -> %llu triangles; "
-                  "read %.2f s, triangulate %.2f s, write %.2f s, total %.2f s",
+                  "read %.2f s, triangulate %.2f s, write %.2f s (%.0f features/s), total %.2f s",
                   static_cast<unsigned long long>(report.points),
                   static_cast<unsigned long long>(report.duplicates),
                   static_cast<unsigned long long>(report.skippedCells),
                   static_cast<unsigned long long>(report.triangles), report.timings.read,
-                  report.timings.triangulate, report.timings.write, report.timings.total);
+                  report.timings.triangulate, report.timings.write,
+                  report.writeFeaturesPerSecond, report.timings.total);
     std::string text = line;
     if (report.filteredOut > 0)
         text += "; " + std::to_string(report.filteredOut) + " records filtered out";

@@ -208,6 +208,8 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
     gathered.offsets.push_back(0);
     if (clouds.size() == 1) {
         gathered.points = std::move(clouds.front().points);
+        gathered.rasterWidth = clouds.front().rasterWidth;
+        gathered.cellIndex = std::move(clouds.front().cellIndex);
     } else {
         std::size_t total = 0;
         for (const io::PointCloud& cloud : clouds)

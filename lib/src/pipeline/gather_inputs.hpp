@@ -21,6 +21,10 @@ struct GatheredInputs {
     std::vector<std::size_t> offsets;
     /// The CRS of `points` (and of the output), empty when the inputs have none.
     std::string crsWkt;
+    /// When the only input is a raster: its width and the row-major cell index of each point
+    /// (for the nodes layer's row / col); 0 and empty otherwise.
+    std::uint64_t rasterWidth = 0;
+    std::vector<std::uint64_t> cellIndex;
 };
 
 /// Reads, reprojects and merges options.inputPaths(); fills report.inputs (all but

@@ -145,5 +145,89 @@ TEST(TriangleAttributes, SlopeApproaches90_WhenPlaneIsNearlyVertical) {
     EXPECT_NEAR(attributes.aspectDeg, 0.0, kAngleToleranceDeg);
 }
 
+// A 3-4-5 tilted plane where every attribute is exact in floating point: legs of 20 m, the
+// corners 9 m and 12 m above the first, so the normal is (-180, -240, 400) with length 500
+// (horizontal part 300 = 3/4 of 400). UTM-like offsets make the edge differences the test.
+struct ExactTiltedPlane {
+    static constexpr double kX0 = 500000.0;
+    static constexpr double kY0 = 5000000.0;
+    static constexpr double kZ0 = 1000.0;
+    Point3 a{kX0, kY0, kZ0};
+    Point3 b{kX0 + 20.0, kY0, kZ0 + 9.0};
+    Point3 c{kX0, kY0 + 20.0, kZ0 + 12.0};
+};
+
+TEST(TriangleAttributesExact, AreasNormalAndSlopePercentAreExact_WhenPlaneIsTilted345) {
+    const ExactTiltedPlane plane;
+    const auto attributes = computeTriangleAttributes(plane.a, plane.b, plane.c);
+    EXPECT_EQ(attributes.area2d, 200.0);
+    EXPECT_EQ(attributes.area3d, 250.0); // 3D area = 2D area / cos(slope) = 200 / 0.8
+    EXPECT_EQ(attributes.nx, -0.36);
+    EXPECT_EQ(attributes.ny, -0.48);
+    EXPECT_EQ(attributes.nz, 0.8);
+    EXPECT_EQ(attributes.slopePct, 75.0); // rise over run 3/4
+    EXPECT_EQ(attributes.slopeDeg, std::atan2(3.0, 4.0) * kDegreesPerRadian);
+    // Uphill is north-east (z grows with x and y), so the plane faces south-west:
+    // downhill (-0.36, -0.48) is atan2(-3, -4) clockwise from north, + 360.
+    EXPECT_EQ(attributes.aspectDeg, std::atan2(-3.0, -4.0) * kDegreesPerRadian + 360.0);
+    EXPECT_NEAR(attributes.aspectDeg, 216.86989764584402, 1e-12);
+    EXPECT_EQ(attributes.z1, 1000.0);
+    EXPECT_EQ(attributes.z2, 1009.0);
+    EXPECT_EQ(attributes.z3, 1012.0);
+    EXPECT_EQ(attributes.zMin, 1000.0);
+    EXPECT_EQ(attributes.zMax, 1012.0);
+    EXPECT_EQ(attributes.zMean, 3021.0 / 3.0);
+}
+
+TEST(TriangleAttributesExact, EveryAttributeButCornerZIsTheSame_WhenCornersAreClockwise) {
+    const ExactTiltedPlane plane;
+    const auto ccw = computeTriangleAttributes(plane.a, plane.b, plane.c);
+    const auto cw = computeTriangleAttributes(plane.a, plane.c, plane.b);
+    EXPECT_EQ(cw.area2d, ccw.area2d);
+    EXPECT_EQ(cw.area3d, ccw.area3d);
+    EXPECT_EQ(cw.nx, ccw.nx);
+    EXPECT_EQ(cw.ny, ccw.ny);
+    EXPECT_EQ(cw.nz, ccw.nz);
+    EXPECT_EQ(cw.slopePct, ccw.slopePct);
+    EXPECT_EQ(cw.slopeDeg, ccw.slopeDeg);
+    EXPECT_EQ(cw.aspectDeg, ccw.aspectDeg);
+    EXPECT_EQ(cw.z2, ccw.z3); // corner z follow the corners as given
+    EXPECT_EQ(cw.z3, ccw.z2);
+}
+
+TEST(TriangleAttributesExact, NormalIsUpAndAreasEqual_WhenTriangleIsFlat) {
+    const auto attributes =
+        computeTriangleAttributes({500000.0, 5000000.0, 7.0}, {500010.0, 5000000.0, 7.0},
+                                  {500000.0, 5000010.0, 7.0});
+    EXPECT_EQ(attributes.nx, 0.0);
+    EXPECT_EQ(attributes.ny, 0.0);
+    EXPECT_EQ(attributes.nz, 1.0);
+    EXPECT_EQ(attributes.area2d, 50.0);
+    EXPECT_EQ(attributes.area3d, 50.0);
+    EXPECT_EQ(attributes.slopePct, 0.0);
+    EXPECT_EQ(attributes.aspectDeg, -1.0);
+}
+
+TEST(TriangleAttributesExact, SlopePercentIs100_WhenSlopeIs45Degrees) {
+    const auto attributes = attributesOf(onPlane(0.0, 1.0));
+    EXPECT_EQ(attributes.slopePct, 100.0);
+    EXPECT_EQ(attributes.area3d, 50.0 * std::sqrt(2.0));
+    EXPECT_NEAR(attributes.slopeDeg, 45.0, kAngleToleranceDeg);
+    EXPECT_EQ(attributes.aspectDeg, 180.0);
+}
+
+TEST(TriangleAttributesExact, VerticalPlaneHasHorizontalNormalAndNoSlope_WhenCollinearInPlan) {
+    // Corners on the line y = x in plan, z varying: a vertical triangle of 3D area
+    // |(1,1,5) x (2,2,1)| / 2 = |(-9, 9, 0)| / 2.
+    const auto attributes =
+        computeTriangleAttributes({0.0, 0.0, 0.0}, {1.0, 1.0, 5.0}, {2.0, 2.0, 1.0});
+    EXPECT_EQ(attributes.area2d, 0.0);
+    EXPECT_EQ(attributes.area3d, 0.5 * std::hypot(9.0, 9.0));
+    EXPECT_EQ(attributes.nz, 0.0);
+    EXPECT_DOUBLE_EQ(attributes.nx, std::sqrt(0.5)); // first non-zero component positive
+    EXPECT_DOUBLE_EQ(attributes.ny, -std::sqrt(0.5));
+    EXPECT_EQ(attributes.slopePct, 0.0);
+}
+
 } // namespace
 } // namespace terratin

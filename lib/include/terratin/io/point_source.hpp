@@ -33,6 +33,8 @@ struct PointCloud {
     std::vector<Point3> points;
     /// Rasters only: row * width + col of each point (strictly increasing); empty otherwise.
     std::vector<std::uint64_t> cellIndex;
+    /// Rasters only: the width in cells; 0 otherwise.
+    std::uint64_t rasterWidth = 0;
     /// The input's CRS as WKT, empty when the file declares none.
     std::string crsWkt;
     /// Records the file holds: LAS point records, text data lines, OGR features, raster cells.

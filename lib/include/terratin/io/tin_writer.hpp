@@ -1,45 +1,102 @@
 #pragma once
 /// @file
-/// OgrTinWriter: a TinMesh as Polygon Z triangles in a GeoPackage or an ESRI Shapefile.
+/// writeTin: the one entry point that writes a TinMesh in any output format.
 
+#include "terratin/io/tin_format.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace terratin::io {
 
-/// Output vector formats.
-enum class TinFormat { GeoPackage, Shapefile };
+/// Which triangle attributes the vector formats carry.
+enum class AttributeSet {
+    /// Geometry only.
+    None,
+    /// z_min z_max z_mean slope_deg aspect_deg area_2d.
+    Basic,
+    /// z1 z2 z3 z_min z_max z_mean slope_deg slope_pct aspect_deg area_2d area_3d nx ny nz.
+    All,
+};
 
-/// Parses "GPKG" / "SHP" (case-insensitive, also the GDAL driver names "GeoPackage" and
-/// "ESRI Shapefile"); throws InvalidInputError for anything else.
-TinFormat parseTinFormat(const std::string& name);
+/// Parses none | basic | all (case-insensitive); throws InvalidInputError otherwise.
+AttributeSet parseAttributeSet(const std::string& name);
 
-/// The format implied by the file extension (.gpkg, .shp); throws InvalidInputError when the
-/// extension is not one of them.
-TinFormat tinFormatFromPath(const std::filesystem::path& path);
+/// The raster cell a vertex came from (for the GeoPackage nodes layer), 0-based.
+struct RasterCell {
+    std::int64_t row = 0;
+    std::int64_t col = 0;
+};
 
 /// How to write.
 struct TinWriteOptions {
     TinFormat format = TinFormat::GeoPackage;
-    /// Replace an existing output; without it an existing output is an error.
+    /// Replace an existing output (with appendLayer: replace existing layers of the same names).
     bool overwrite = false;
     /// CRS of the vertices as WKT; empty writes no CRS.
     std::string crsWkt;
-    /// Name of the triangle layer.
+    /// Name of the triangle layer (GeoPackage; FlatGeobuf and Shapefile name the layer after
+    /// the file). The node and edge layers are "nodes" and "edges" when it is "tin", else
+    /// "<layerName>_nodes" and "<layerName>_edges".
     std::string layerName = "tin";
+    /// Attribute columns of the triangles (vector formats; the mesh formats carry none).
+    AttributeSet attributes = AttributeSet::All;
+    /// GeoPackage only: a Point Z layer of the vertices (fid and id = vertex number from 1,
+    /// and row / col when vertexCells is given).
+    bool nodes = false;
+    /// GeoPackage only: a LineString Z layer of the edges (node_from, node_to, tri_left,
+    /// tri_right = triangle fids, tri_right NULL on the hull, length = 3D length in CRS units).
+    bool edges = false;
+    /// GeoPackage only: add the layers to an existing GeoPackage, leaving its other layers as
+    /// they are (a new file is created when it does not exist).
+    bool appendLayer = false;
+    /// GeoPackage only: build the R-tree spatial index (one pass after the inserts). Without it
+    /// the file is valid and QGIS reads it, but spatial filters scan every row.
+    bool spatialIndex = true;
+    /// Vector formats: also write "<output without extension>.qml", a QGIS style that colours
+    /// the triangles by z_mean on a terrain ramp (needs attributes basic or all).
+    bool qgisStyle = false;
+    /// For a DEM input: vertexCells[v] is the raster cell of vertex v (size = vertex count);
+    /// empty otherwise.
+    std::vector<RasterCell> vertexCells;
+    /// Software version written into LandXML's Application element.
+    std::string softwareVersion = "0.1.0";
 };
 
-/// Writes one Polygon Z feature per triangle (closed counter-clockwise ring, vertex z =
-/// elevation) with the attributes z_min z_max z_mean slope_deg aspect_deg area_2d.
-/// The data are written under a temporary name in the output's directory and renamed into
-/// place only when complete: on any failure (or Cancelled) the temporary files are removed and
-/// an existing output is left untouched. Throws IoError, InvalidInputError (existing output
-/// without `overwrite`, empty mesh, a Shapefile past its 2 GB limits), CrsError (unusable
-/// `crsWkt`), Cancelled. A GeoPackage without CRS is labelled "Undefined Cartesian SRS".
-void writeTin(const TinMesh& mesh, const std::filesystem::path& output,
-              const TinWriteOptions& options, const ProgressCallback& progress = {});
+/// What was written.
+struct TinWriteResult {
+    /// Features (vector formats: triangles + nodes + edges) or elements (mesh formats:
+    /// vertices + faces) written.
+    std::uint64_t features = 0;
+};
+
+/// Throws InvalidInputError when the options contradict each other or the format (nodes,
+/// edges, appendLayer or spatialIndex=false outside GeoPackage; qgisStyle with a mesh format
+/// or without attributes; vertexCells of the wrong size is checked by writeTin).
+void checkTinWriteOptions(const TinWriteOptions& options);
+
+/// Writes the mesh in options.format.
+/// Vector formats: one Polygon Z feature per triangle (closed counter-clockwise ring, vertex
+/// z = elevation; a Shapefile stores it clockwise, as its specification demands) with the
+/// attributes of options.attributes, plus the optional node / edge layers and QGIS style.
+/// Mesh formats: see two_dm_writer, ply_writer, obj_writer, landxml_writer (vertex numbers
+/// are from 1 in 2DM, OBJ and LandXML, from 0 in PLY; faces counter-clockwise).
+/// Atomicity: every file is written under a temporary name in the output's directory and
+/// renamed into place only when complete; on any failure (or Cancelled) the temporaries are
+/// removed and an existing output is left untouched (with appendLayer the existing GeoPackage
+/// is copied, the copy extended, and renamed over the original).
+/// Throws IoError, InvalidInputError (existing output without `overwrite`, empty mesh, a
+/// Shapefile past its 2 GB limits, contradictory options), CrsError (unusable `crsWkt`),
+/// Cancelled. A GeoPackage without CRS is labelled "Undefined Cartesian SRS".
+TinWriteResult writeTin(const TinMesh& mesh, const std::filesystem::path& output,
+                        const TinWriteOptions& options, const ProgressCallback& progress = {});
+
+/// Name of the node / edge layer that goes with the triangle layer `layerName`.
+std::string nodeLayerName(const std::string& layerName);
+std::string edgeLayerName(const std::string& layerName);
 
 } // namespace terratin::io

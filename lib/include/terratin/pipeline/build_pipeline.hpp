@@ -27,7 +27,8 @@ struct BuildOptions {
     /// see io::detectInputKind. When set, `input` is ignored.
     std::vector<std::string> inputs;
     std::filesystem::path output;
-    /// Output format; when unset it follows the output's extension (.gpkg, .shp).
+    /// Output format; when unset it follows the output's extension (.gpkg .shp .fgb .2dm .ply
+    /// .obj .xml .landxml).
     std::optional<io::TinFormat> format;
     /// 1-based raster band.
     int band = 1;
@@ -79,6 +80,17 @@ struct BuildOptions {
     /// Drop the triangles with an edge longer than this (planimetric, CRS units) from the final
     /// TIN, whatever built it (meant for point clouds, whose hull bridges gaps).
     std::optional<double> maxEdge;
+    /// Triangle attribute columns of the vector formats.
+    io::AttributeSet attributes = io::AttributeSet::All;
+    /// GeoPackage: also a nodes layer (with the source raster row / col) and an edges layer.
+    bool nodes = false;
+    bool edges = false;
+    /// GeoPackage: add the layers to an existing GeoPackage (other layers untouched).
+    bool appendLayer = false;
+    /// GeoPackage / FlatGeobuf: build the spatial index (the slow part of a GeoPackage).
+    bool spatialIndex = true;
+    /// Vector formats: write a QGIS .qml style beside the output.
+    bool qgisStyle = false;
 };
 
 /// Wall-clock seconds per phase.
@@ -167,6 +179,10 @@ struct BuildReport {
     double zFactor = 1.0;
     /// Notices given during the run (see BuildOptions::notice).
     std::vector<std::string> notices;
+    /// Features (vector formats, all layers) or records (mesh formats: vertices + faces)
+    /// written, and their rate over the write phase.
+    std::uint64_t writeFeatures = 0;
+    double writeFeaturesPerSecond = 0.0;
 };
 
 /// Runs the build. Before reading anything it refuses an existing output without
@@ -189,7 +205,8 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
 /// target_crs {name, code}, zone, reprojected, z_factor, inputs [{path, kind, crs {name, code},
 /// records, filtered_out, skipped_cells, points, duplicates, reprojected}], notices [...];
 /// after a refinement also refine {max_error, achieved_max_error, rmse, points, triangles,
-/// stop, open_hole_cells, hole_triangles, uncovered_cells}; with maxEdge, long_edge_triangles.
+/// stop, open_hole_cells, hole_triangles, uncovered_cells}; with maxEdge, long_edge_triangles;
+/// writing {features, features_per_second}.
 std::string toJson(const BuildReport& report);
 
 /// One human-readable line: points, duplicates, triangles and seconds per phase (after a

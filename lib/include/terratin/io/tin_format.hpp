@@ -1,0 +1,39 @@
+#pragma once
+/// @file
+/// The output formats of a TIN, by name and by file extension.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace terratin::io {
+
+/// Output formats. The first three are written through OGR as Polygon Z features; the others
+/// are mesh formats written by terratin itself.
+enum class TinFormat {
+    GeoPackage, ///< .gpkg, OGR "GPKG"
+    Shapefile,  ///< .shp, OGR "ESRI Shapefile"
+    FlatGeobuf, ///< .fgb, OGR "FlatGeobuf"
+    TwoDm,      ///< .2dm, SMS / MDAL 2D mesh (MESH2D, ND, E3T)
+    Ply,        ///< .ply, binary little-endian Stanford PLY
+    Obj,        ///< .obj, Wavefront OBJ with a local origin
+    LandXml,    ///< .xml / .landxml, LandXML 1.2 TIN surface
+};
+
+/// Parses a format name, case-insensitive: gpkg (or GeoPackage), shp (or "ESRI Shapefile"),
+/// fgb (or FlatGeobuf), 2dm, ply, obj, landxml (or xml).
+/// Throws InvalidInputError, listing the accepted names, for anything else.
+TinFormat parseTinFormat(const std::string& name);
+
+/// The format implied by the file extension (.gpkg .shp .fgb .2dm .ply .obj .xml .landxml,
+/// case-insensitive); throws InvalidInputError when the extension is none of them.
+TinFormat tinFormatFromPath(const std::filesystem::path& path);
+
+/// A short display name: "GPKG", "ESRI Shapefile", "FlatGeobuf", "2DM", "PLY", "OBJ",
+/// "LandXML" (the GDAL driver name for the OGR formats).
+std::string_view tinFormatName(TinFormat format);
+
+/// True for the formats written through OGR (GeoPackage, Shapefile, FlatGeobuf).
+bool isOgrFormat(TinFormat format);
+
+} // namespace terratin::io

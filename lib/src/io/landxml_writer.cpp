@@ -1,0 +1,158 @@
+#include "landxml_writer.hpp"
+
+#include "terratin/geometry/triangle_attributes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <string>
+
+namespace terratin::io::detail {
+
+namespace {
+
+/// Relative tolerance when recognising a foot in the CRS's unit: the international foot is
+/// 0.3048 m exactly and the US survey foot 1200/3937 m; they differ by 2e-6 relative, far
+/// more than the rounding in a WKT's printed factor.
+constexpr double kUnitTolerance = 1e-9;
+
+constexpr double kInternationalFootM = 0.3048;
+constexpr double kUsSurveyFootM = 1200.0 / 3937.0;
+
+std::string unitsElement(const CrsSummary& crs) {
+    const auto near = [&](double metres) {
+        return std::fabs(crs.metresPerUnit - metres) <= kUnitTolerance * metres;
+    };
+    if (near(kUsSurveyFootM) || near(kInternationalFootM)) {
+        const char* linear = near(kUsSurveyFootM) ? "USSurveyFoot" : "foot";
+        return std::string("<Units><Imperial areaUnit=\"squareFoot\" linearUnit=\"") + linear +
+               "\" volumeUnit=\"cubicFeet\" temperatureUnit=\"fahrenheit\" "
+               "pressureUnit=\"inchHG\"/></Units>\n";
+    }
+    return "<Units><Metric areaUnit=\"squareMeter\" linearUnit=\"meter\" "
+           "volumeUnit=\"cubicMeter\" temperatureUnit=\"celsius\" "
+           "pressureUnit=\"milliBars\"/></Units>\n";
+}
+
+} // namespace
+
+std::string xmlEscaped(std::string_view text) {
+    std::string escaped;
+    escaped.reserve(text.size());
+    for (const char ch : text) {
+        switch (ch) {
+        case '&':
+            escaped += "&amp;";
+            break;
+        case '<':
+            escaped += "&lt;";
+            break;
+        case '>':
+            escaped += "&gt;";
+            break;
+        case '"':
+            escaped += "&quot;";
+            break;
+        case '\'':
+            escaped += "&apos;";
+            break;
+        default:
+            escaped += ch;
+        }
+    }
+    return escaped;
+}
+
+std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
+                           const ProgressTicker& ticker) {
+    const std::uint64_t vertexCount = mesh.vertexCount();
+    const std::uint64_t triangleCount = mesh.triangleCount();
+
+    // Surface statistics for the Definition element.
+    double area2d = 0.0;
+    double area3d = 0.0;
+    for (std::uint64_t t = 0; t < triangleCount; ++t) {
+        const TriangleAttributes attributes = computeTriangleAttributes(
+            mesh.vertices[mesh.triangles[3 * t]], mesh.vertices[mesh.triangles[3 * t + 1]],
+            mesh.vertices[mesh.triangles[3 * t + 2]]);
+        area2d += attributes.area2d;
+        area3d += attributes.area3d;
+    }
+    const auto [lowest, highest] = std::minmax_element(
+        mesh.vertices.begin(), mesh.vertices.end(),
+        [](const Point3& a, const Point3& b) { return a.z < b.z; });
+
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char date[16];
+    char time[16];
+    std::strftime(date, sizeof date, "%Y-%m-%d", &utc);
+    std::strftime(time, sizeof time, "%H:%M:%S", &utc);
+
+    file.text("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+              "<LandXML xmlns=\"http://www.landxml.org/schema/LandXML-1.2\" "
+              "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+              "xsi:schemaLocation=\"http://www.landxml.org/schema/LandXML-1.2 "
+              "http://www.landxml.org/schema/LandXML-1.2/LandXML-1.2.xsd\" "
+              "version=\"1.2\" date=\"");
+    file.text(date);
+    file.text("\" time=\"");
+    file.text(time);
+    file.text("\">\n");
+    file.text(unitsElement(info.crs));
+    if (!info.crs.empty()) {
+        file.text("<CoordinateSystem name=\"");
+        file.text(xmlEscaped(info.crs.name));
+        file.put('"');
+        if (!info.crs.epsgCode.empty()) {
+            file.text(" epsgCode=\"");
+            file.text(info.crs.epsgCode);
+            file.put('"');
+        }
+        file.text(" ogcWktCode=\"");
+        file.text(xmlEscaped(info.crs.wkt));
+        file.text("\"/>\n");
+    }
+    file.text("<Application name=\"terratin\" manufacturer=\"terratin\" version=\"");
+    file.text(xmlEscaped(info.softwareVersion));
+    file.text("\"/>\n<Surfaces>\n<Surface name=\"");
+    file.text(xmlEscaped(info.name));
+    file.text("\">\n<Definition surfType=\"TIN\" area2DSurf=\"");
+    file.number(area2d);
+    file.text("\" area3DSurf=\"");
+    file.number(area3d);
+    file.text("\" elevMax=\"");
+    file.number(highest->z);
+    file.text("\" elevMin=\"");
+    file.number(lowest->z);
+    file.text("\">\n<Pnts>\n");
+    for (std::uint64_t v = 0; v < vertexCount; ++v) {
+        ticker.tick(v, "Writing points");
+        const Point3& p = mesh.vertices[v];
+        file.text("<P id=\"");
+        file.number(v + 1);
+        file.text("\">");
+        file.number(p.y);
+        file.put(' ');
+        file.number(p.x);
+        file.put(' ');
+        file.number(p.z);
+        file.text("</P>\n");
+    }
+    file.text("</Pnts>\n<Faces>\n");
+    for (std::uint64_t t = 0; t < triangleCount; ++t) {
+        ticker.tick(vertexCount + t, "Writing faces");
+        file.text("<F>");
+        for (int k = 0; k < 3; ++k) {
+            if (k > 0)
+                file.put(' ');
+            file.number(std::uint64_t{mesh.triangles[3 * t + k]} + 1);
+        }
+        file.text("</F>\n");
+    }
+    file.text("</Faces>\n</Definition>\n</Surface>\n</Surfaces>\n</LandXML>\n");
+    return vertexCount + triangleCount;
+}
+
+} // namespace terratin::io::detail

@@ -1,0 +1,96 @@
+#include "terratin/io/tin_format.hpp"
+
+#include "terratin/error.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <utility>
+
+namespace terratin::io {
+
+namespace {
+
+constexpr std::string_view kStage = "TinFormat";
+
+std::string toLower(std::string_view text) {
+    std::string lower(text);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    return lower;
+}
+
+constexpr std::array<std::pair<std::string_view, TinFormat>, 12> kNames = {{
+    {"gpkg", TinFormat::GeoPackage},
+    {"geopackage", TinFormat::GeoPackage},
+    {"shp", TinFormat::Shapefile},
+    {"esri shapefile", TinFormat::Shapefile},
+    {"fgb", TinFormat::FlatGeobuf},
+    {"flatgeobuf", TinFormat::FlatGeobuf},
+    {"2dm", TinFormat::TwoDm},
+    {"ply", TinFormat::Ply},
+    {"obj", TinFormat::Obj},
+    {"landxml", TinFormat::LandXml},
+    {"xml", TinFormat::LandXml},
+    {"mesh2d", TinFormat::TwoDm},
+}};
+
+constexpr std::array<std::pair<std::string_view, TinFormat>, 8> kExtensions = {{
+    {".gpkg", TinFormat::GeoPackage},
+    {".shp", TinFormat::Shapefile},
+    {".fgb", TinFormat::FlatGeobuf},
+    {".2dm", TinFormat::TwoDm},
+    {".ply", TinFormat::Ply},
+    {".obj", TinFormat::Obj},
+    {".xml", TinFormat::LandXml},
+    {".landxml", TinFormat::LandXml},
+}};
+
+} // namespace
+
+TinFormat parseTinFormat(const std::string& name) {
+    const std::string lower = toLower(name);
+    for (const auto& [known, format] : kNames)
+        if (lower == known)
+            return format;
+    throw InvalidInputError(std::string(kStage) + ": unknown output format '" + name +
+                            "'; use gpkg, shp, fgb, 2dm, ply, obj or landxml");
+}
+
+TinFormat tinFormatFromPath(const std::filesystem::path& path) {
+    const std::string extension = toLower(path.extension().string());
+    for (const auto& [known, format] : kExtensions)
+        if (extension == known)
+            return format;
+    throw InvalidInputError(std::string(kStage) + ": cannot tell the output format of '" +
+                            path.string() +
+                            "' from its extension; use .gpkg .shp .fgb .2dm .ply .obj .xml "
+                            "(or --format)");
+}
+
+std::string_view tinFormatName(TinFormat format) {
+    switch (format) {
+    case TinFormat::GeoPackage:
+        return "GPKG";
+    case TinFormat::Shapefile:
+        return "ESRI Shapefile";
+    case TinFormat::FlatGeobuf:
+        return "FlatGeobuf";
+    case TinFormat::TwoDm:
+        return "2DM";
+    case TinFormat::Ply:
+        return "PLY";
+    case TinFormat::Obj:
+        return "OBJ";
+    case TinFormat::LandXml:
+        return "LandXML";
+    }
+    return "unknown";
+}
+
+bool isOgrFormat(TinFormat format) {
+    return format == TinFormat::GeoPackage || format == TinFormat::Shapefile ||
+           format == TinFormat::FlatGeobuf;
+}
+
+} // namespace terratin::io
