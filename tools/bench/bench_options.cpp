@@ -114,7 +114,8 @@ po::options_description benchOptionsDescription() {
          "batch method: capacity of the queue to the inserting thread")
         ("help-when-full", "batch method: searchers finish queued locations on a full queue")
         ("peer-limit", po::value<double>()->default_value(10.0)->value_name("SECONDS"),
-         "a CGAL or GDAL run longer than this is not repeated, nor run at larger sizes of "
+         "a CGAL or GDAL run longer than this (or that would be, extrapolated linearly from the "
+         "previous size) is not repeated, nor run at larger sizes of "
          "that distribution")
         ("no-cgal", "do not run CGAL")
         ("no-gdal", "do not run GDAL (slow and memory-hungry above a few million points)")

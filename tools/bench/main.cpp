@@ -85,8 +85,12 @@ constexpr double kNoLimitSeconds = std::numeric_limits<double>::infinity();
 /// A peer, and whether it proved too slow on the current distribution.
 struct PeerSlot {
     std::unique_ptr<Peer> peer;
-    /// The size at which one of its runs exceeded --peer-limit, on this distribution.
+    /// The size at which one of its runs exceeded --peer-limit, or would have by a linear
+    /// extrapolation from the last size measured, on this distribution.
     std::optional<std::size_t> tooSlowAt;
+    /// The last size measured on this distribution and its median seconds.
+    std::size_t lastSize = 0;
+    double lastSeconds = 0.0;
 };
 
 std::optional<double> perPoint(const std::vector<double>& bytes, std::size_t points) {
@@ -163,10 +167,16 @@ ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
     row.distribution = distribution;
     row.points = points.size();
     row.method = peer.name();
+    // A peer at least linear in N would overrun the limit at this size: one such run can
+    // take many minutes (qhull on the arc), so it is skipped like a slow one.
+    if (!slot.tooSlowAt && slot.lastSize > 0 &&
+        slot.lastSeconds * static_cast<double>(points.size()) / static_cast<double>(slot.lastSize) >
+            bench.peerLimitSeconds)
+        slot.tooSlowAt = slot.lastSize;
     if (slot.tooSlowAt) {
         row.unmeasured = "skipped";
         notes.push_back(groupName(distribution, points.size()) + ": " + row.method +
-                        " skipped, a run took over " + secondsText(bench.peerLimitSeconds) +
+                        " skipped, a run took (or would take) over " + secondsText(bench.peerLimitSeconds) +
                         " at N=" + std::to_string(*slot.tooSlowAt));
         return row;
     }
@@ -178,6 +188,8 @@ ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
         row.runs = static_cast<unsigned>(samples.seconds.size());
         row.seconds = median(samples.seconds);
         row.peakBytesPerPoint = perPoint(samples.peakBytes, points.size());
+        slot.lastSize = points.size();
+        slot.lastSeconds = *row.seconds;
         if (samples.seconds.back() > bench.peerLimitSeconds) {
             slot.tooSlowAt = points.size();
             notes.push_back(groupName(distribution, points.size()) + ": " + row.method + " ran " +
@@ -316,8 +328,10 @@ int runBench(const BenchOptions& bench) {
     for (std::size_t d = 0; d < bench.distributions.size(); ++d) {
         if (d > 0)
             table.printSeparator();
-        for (PeerSlot& slot : peers)
+        for (PeerSlot& slot : peers) {
             slot.tooSlowAt.reset();
+            slot.lastSize = 0;
+        }
         for (const std::size_t size : bench.sizes)
             runGroup(bench.distributions[d], size, bench, peers, table, notes);
     }
