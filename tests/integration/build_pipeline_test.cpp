@@ -11,6 +11,8 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include "temporary_directory.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,27 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path sharedDem(const std::string& name) { return fs::path(TERRATIN_SHARED_DEMS) / name; }
-
-class TemporaryDirectory {
-public:
-    TemporaryDirectory() {
-        m_path = fs::temp_directory_path() /
-                 ("terratin-it-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                  "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~TemporaryDirectory() {
-        std::error_code ignored;
-        fs::remove_all(m_path, ignored);
-    }
-    TemporaryDirectory(const TemporaryDirectory&) = delete;
-    TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-    [[nodiscard]] const fs::path& path() const { return m_path; }
-
-private:
-    fs::path m_path;
-};
+using test::TemporaryDirectory;
 
 // The raster band with its mask, as GDAL itself reports them.
 struct ReferenceRaster {

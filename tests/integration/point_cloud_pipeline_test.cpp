@@ -12,6 +12,8 @@
 #include <gdal_utils.h>
 #include <ogrsf_frmts.h>
 
+#include "temporary_directory.hpp"
+
 #include <gtest/gtest.h>
 
 #include <GeographicLib/UTMUPS.hpp>
@@ -30,28 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kSample = std::string(TERRATIN_SAMPLE_DEMS) + "/ridges_utm.tif";
-
-class TempDir {
-public:
-    TempDir()
-        : m_path(fs::temp_directory_path() /
-                 ("terratin_pc_" +
-                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(m_path, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    [[nodiscard]] fs::path file(const std::string& name) const { return m_path / name; }
-
-private:
-    fs::path m_path;
-};
+using TempDir = test::TemporaryDirectory;
 
 struct WrittenTin {
     std::vector<Point3> vertices; // distinct, in first-seen order

@@ -30,6 +30,10 @@ public:
     [[nodiscard]] std::filesystem::path operator/(const std::string& name) const {
         return m_path / name;
     }
+    /// The path of `name` in the directory, as text (for APIs that take strings).
+    [[nodiscard]] std::string file(const std::string& name) const {
+        return (m_path / name).string();
+    }
     /// Names of the entries in the directory.
     [[nodiscard]] std::set<std::string> entries() const {
         std::set<std::string> names;

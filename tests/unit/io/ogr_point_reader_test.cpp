@@ -10,6 +10,8 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include "temporary_directory.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,30 +23,7 @@ namespace terratin::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-class TempDir {
-public:
-    TempDir()
-        : m_path(fs::temp_directory_path() /
-                 ("terratin_ogr_" +
-                  std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(m_path, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    [[nodiscard]] std::string file(const std::string& name) const {
-        return (m_path / name).string();
-    }
-
-private:
-    fs::path m_path;
-};
+using TempDir = test::TemporaryDirectory;
 
 const std::vector<Point3> kPoints{
     {500000.5, 4900000.25, 101.5}, {500010.0, 4900000.0, 99.0}, {500005.0, 4900010.0, 120.75}};

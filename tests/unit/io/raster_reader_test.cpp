@@ -10,6 +10,8 @@
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
+#include "temporary_directory.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,35 +36,7 @@ using terratin::io::RasterPoints;
 using terratin::io::RasterReadOptions;
 using terratin::io::readRasterPoints;
 
-/// A fresh directory under the system temporary directory, removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        std::random_device device;
-        std::mt19937_64 random(device());
-        for (int attempt = 0; attempt < 100; ++attempt) {
-            fs::path candidate =
-                fs::temp_directory_path() / ("terratin_raster_reader_" + std::to_string(random()));
-            if (fs::create_directory(candidate)) {
-                m_path = candidate;
-                return;
-            }
-        }
-        throw std::runtime_error("cannot create a temporary directory");
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(m_path, ignored);
-    }
-    [[nodiscard]] std::string file(const std::string& name) const {
-        return (m_path / name).string();
-    }
-
-private:
-    fs::path m_path;
-};
+using TempDir = terratin::test::TemporaryDirectory;
 
 struct DatasetCloser {
     void operator()(void* dataset) const {
