@@ -215,14 +215,14 @@ void expectSameMesh(const ReadMesh& read, const TinMesh& mesh) {
     EXPECT_EQ(read.triangles, mesh.triangles);
 }
 
-TinMesh gridTin(int n) {
+TinMesh gridTin(int n, double baseZ) {
     TinMesh mesh;
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             const double dx = 10.0 * i;
             const double dy = 10.0 * j;
             mesh.vertices.push_back(
-                {500000.0 + dx, 5000000.0 + dy, 1234.5 + 0.1 * dx - 0.2 * dy + 0.001 * dx * dy});
+                {500000.0 + dx, 5000000.0 + dy, baseZ + 0.1 * dx - 0.2 * dy + 0.001 * dx * dy});
             mesh.sourceIndex.push_back(static_cast<std::uint32_t>(mesh.sourceIndex.size()));
         }
     const int cells = n - 1;

@@ -40,9 +40,10 @@ ReadMesh readObj(const std::filesystem::path& path);
 /// The TinMesh's vertices and triangles (the part every mesh format keeps).
 void expectSameMesh(const ReadMesh& read, const TinMesh& mesh);
 
-/// A small n x n grid TIN at UTM-like coordinates (500000, 5000000) + 10 m steps on a tilted,
-/// curved surface, counter-clockwise triangles, neighbours set (kNoNeighbour on the hull),
+/// A small n x n grid TIN at UTM-like coordinates (500000, 5000000) + 10 m steps on the
+/// saddle z = baseZ + 0.1 dx - 0.2 dy + 0.001 dx dy, counter-clockwise triangles (cell (i, j)
+/// holds A = (00, 10, 11) and B = (00, 11, 01)), neighbours set (kNoNeighbour on the hull),
 /// sourceIndex = identity.
-TinMesh gridTin(int n);
+TinMesh gridTin(int n, double baseZ = 1234.5);
 
 } // namespace terratin::test

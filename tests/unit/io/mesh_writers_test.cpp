@@ -10,6 +10,8 @@
 
 #include <ogr_spatialref.h>
 
+#include "ogr_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cpl_conv.h>
@@ -24,15 +26,7 @@ namespace {
 
 using test::TemporaryDirectory;
 
-std::string utm10nWkt() {
-    OGRSpatialReference srs;
-    EXPECT_EQ(srs.importFromEPSG(26910), OGRERR_NONE);
-    char* wkt = nullptr;
-    EXPECT_EQ(srs.exportToWkt(&wkt), OGRERR_NONE);
-    std::string result = wkt != nullptr ? wkt : "";
-    CPLFree(wkt);
-    return result;
-}
+using test::utm10nWkt;
 
 TinWriteOptions optionsFor(TinFormat format, std::string crsWkt = {}) {
     TinWriteOptions options;

@@ -20,6 +20,8 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 
+#include "ogr_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -41,15 +43,7 @@ const std::vector<std::string> kAllNames = {"z1",        "z2",        "z3",     
 const std::vector<std::string> kBasicNames = {"z_min",     "z_max",      "z_mean",
                                               "slope_deg", "aspect_deg", "area_2d"};
 
-std::string utm10nWkt() {
-    OGRSpatialReference srs;
-    EXPECT_EQ(srs.importFromEPSG(26910), OGRERR_NONE);
-    char* wkt = nullptr;
-    EXPECT_EQ(srs.exportToWkt(&wkt), OGRERR_NONE);
-    std::string result = wkt != nullptr ? wkt : "";
-    CPLFree(wkt);
-    return result;
-}
+using test::utm10nWkt;
 
 GDALDatasetUniquePtr openVector(const std::filesystem::path& path) {
     initialiseGdal();

@@ -10,6 +10,9 @@
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
+#include "ogr_test_support.hpp"
+#include "mesh_readers.hpp"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -42,49 +45,10 @@ double terrainZ(double dx, double dy) {
     return 100.0 + 0.1 * dx - 0.2 * dy + 0.001 * dx * dy;
 }
 
-/// An n x n grid of vertices on a saddle-shaped surface, 2 (n-1)^2 counter-clockwise
-/// triangles per the TinMesh conventions, neighbours set and kNoNeighbour on the hull.
-TinMesh gridMesh(int n) {
-    TinMesh mesh;
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            const double dx = kSpacingM * i;
-            const double dy = kSpacingM * j;
-            mesh.vertices.push_back({kOriginX + dx, kOriginY + dy, terrainZ(dx, dy)});
-            mesh.sourceIndex.push_back(static_cast<std::uint32_t>(mesh.sourceIndex.size()));
-        }
-    }
-    const int cells = n - 1;
-    auto vertex = [n](int i, int j) { return static_cast<std::uint32_t>(j * n + i); };
-    // Cell (i, j) holds triangle A = (00, 10, 11) and B = (00, 11, 01).
-    auto triA = [cells](int i, int j) { return 2 * (j * cells + i); };
-    auto triB = [cells](int i, int j) { return 2 * (j * cells + i) + 1; };
-    for (int j = 0; j < cells; ++j) {
-        for (int i = 0; i < cells; ++i) {
-            mesh.triangles.insert(mesh.triangles.end(),
-                                  {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1)});
-            mesh.neighbours.insert(mesh.neighbours.end(),
-                                   {j > 0 ? triB(i, j - 1) : kNoNeighbour,
-                                    i + 1 < cells ? triB(i + 1, j) : kNoNeighbour, triB(i, j)});
-            mesh.triangles.insert(mesh.triangles.end(),
-                                  {vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1)});
-            mesh.neighbours.insert(mesh.neighbours.end(),
-                                   {triA(i, j), j + 1 < cells ? triA(i, j + 1) : kNoNeighbour,
-                                    i > 0 ? triA(i - 1, j) : kNoNeighbour});
-        }
-    }
-    return mesh;
-}
+/// An n x n grid of vertices at (kOriginX, kOriginY) + kSpacingM steps on the saddle terrainZ.
+TinMesh gridMesh(int n) { return test::gridTin(n, terrainZ(0.0, 0.0)); }
 
-std::string utm10nWkt() {
-    OGRSpatialReference srs;
-    EXPECT_EQ(srs.importFromEPSG(26910), OGRERR_NONE);
-    char* wkt = nullptr;
-    EXPECT_EQ(srs.exportToWkt(&wkt), OGRERR_NONE);
-    std::string result = wkt != nullptr ? wkt : "";
-    CPLFree(wkt);
-    return result;
-}
+using test::utm10nWkt;
 
 std::string readBytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
