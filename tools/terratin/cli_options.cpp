@@ -333,16 +333,7 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
                            ? io::parseTinFormat(values["format"].as<std::string>())
                            : io::tinFormatFromPath(build.output);
         build.attributes = io::parseAttributeSet(values["attributes"].as<std::string>());
-        io::TinWriteOptions writeOptions;
-        writeOptions.format = *build.format;
-        writeOptions.layerName = build.layerName;
-        writeOptions.attributes = build.attributes;
-        writeOptions.nodes = build.nodes;
-        writeOptions.edges = build.edges;
-        writeOptions.appendLayer = build.appendLayer;
-        writeOptions.spatialIndex = build.spatialIndex;
-        writeOptions.qgisStyle = build.qgisStyle;
-        io::checkTinWriteOptions(writeOptions);
+        io::checkTinWriteOptions(tinWriteOptions(build, *build.format));
     } catch (const Error& error) {
         throw UsageError(error.what());
     }

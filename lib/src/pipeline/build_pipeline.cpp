@@ -183,10 +183,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
 
 } // namespace
 
-BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
-    const Clock::time_point start = Clock::now();
-    const io::TinFormat format = options.format ? *options.format
-                                                : io::tinFormatFromPath(options.output);
+io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat format) {
     io::TinWriteOptions writeOptions;
     writeOptions.format = format;
     writeOptions.overwrite = options.overwrite;
@@ -197,6 +194,14 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
     writeOptions.appendLayer = options.appendLayer;
     writeOptions.spatialIndex = options.spatialIndex;
     writeOptions.qgisStyle = options.qgisStyle;
+    return writeOptions;
+}
+
+BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
+    const Clock::time_point start = Clock::now();
+    const io::TinFormat format = options.format ? *options.format
+                                                : io::tinFormatFromPath(options.output);
+    io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
     io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
     checkOutputPath(options);
 

@@ -185,6 +185,12 @@ struct BuildReport {
     double writeFeaturesPerSecond = 0.0;
 };
 
+/// The writer's options for a build writing `format`: the output options of BuildOptions
+/// (overwrite, layer, attributes, nodes, edges, append, spatial index, style); the CRS and the
+/// vertices' raster cells are filled in once known. io::checkTinWriteOptions tells whether
+/// they contradict each other.
+io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat format);
+
 /// Runs the build. Before reading anything it refuses an existing output without
 /// `overwrite` (InvalidInputError) and a missing output directory (IoError); every error is a
 /// terratin::Error whose message names the stage; the output is written atomically (see
