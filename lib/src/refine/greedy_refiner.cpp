@@ -6,6 +6,7 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -17,6 +18,15 @@ namespace terratin::detail {
 namespace {
 
 constexpr double kHolePriority = std::numeric_limits<double>::infinity();
+
+/// One row of a triangle's cells: columns lo..hi.
+struct RowSpan {
+    std::int64_t row;
+    std::int64_t lo;
+    std::int64_t hi;
+};
+/// Rows whose cells are requested before the first of them is measured.
+constexpr std::size_t kScanBatchRows = 32;
 
 // Progress (and the cancellation check) every this many rounds.
 constexpr std::size_t kProgressRounds = 16;
@@ -83,7 +93,7 @@ bool GreedyRefiner::mayBeInCircle(const DagNode& node, VertexId vertex) const {
     return det >= -2.0 * predicates::detail::kIncircleErrorBoundA * permanent;
 }
 
-std::optional<GreedyRefiner::Candidate> GreedyRefiner::scan(NodeId id) const {
+std::optional<Candidate> GreedyRefiner::scan(NodeId id) const {
     const DagNode& node = m_triangulator->node(id);
     if (!isFiniteTriangle(m_triangulator->predicates(), node))
         return std::nullopt;
@@ -95,25 +105,41 @@ std::optional<GreedyRefiner::Candidate> GreedyRefiner::scan(NodeId id) const {
     bool coversHole = false;
     const std::int64_t width = m_view.width;
     const double gradCol = triangle.gradCol();
+    const auto measureRow = [&](const RowSpan& span) {
+        const float* z = m_view.z + span.row * width;
+        const std::uint8_t* flags = m_view.flags + span.row * width;
+        const double base = triangle.rowBase(span.row);
+        for (std::int64_t col = span.lo; col <= span.hi; ++col) {
+            if (flags[col] != 0) {
+                coversHole |= (flags[col] & kCellOpenHole) != 0;
+                continue;
+            }
+            const double error =
+                std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
+            if (error > best) {
+                best = error;
+                bestCell = span.row * width + col;
+            }
+        }
+    };
+    // The rows' intervals first, each row's cells requested from memory as it is found, then
+    // the measuring: a triangle's rows lie a raster row apart, so each is a cache miss, and
+    // this way they overlap instead of following one another.
+    std::array<RowSpan, kScanBatchRows> spans;
+    std::size_t count = 0;
     triangle.forEachRow(width, m_view.height, nullptr,
                         [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                            const float* z = m_view.z + row * width;
-                            const std::uint8_t* flags = m_view.flags + row * width;
-                            const double base = triangle.rowBase(row);
-                            for (std::int64_t col = lo; col <= hi; ++col) {
-                                if (flags[col] != 0) {
-                                    coversHole |= (flags[col] & kCellOpenHole) != 0;
-                                    continue;
-                                }
-                                const double error = std::fabs(
-                                    static_cast<double>(z[col]) -
-                                    (base + gradCol * static_cast<double>(col)));
-                                if (error > best) {
-                                    best = error;
-                                    bestCell = row * width + col;
-                                }
+                            __builtin_prefetch(m_view.z + row * width + lo);
+                            __builtin_prefetch(m_view.flags + row * width + lo);
+                            spans[count++] = {row, lo, hi};
+                            if (count == spans.size()) {
+                                for (const RowSpan& span : spans)
+                                    measureRow(span);
+                                count = 0;
                             }
                         });
+    for (std::size_t i = 0; i < count; ++i)
+        measureRow(spans[i]);
     if (best < 0.0)
         return std::nullopt; // no valid cell left to insert
     const double priority = coversHole ? kHolePriority : best;
@@ -122,53 +148,9 @@ std::optional<GreedyRefiner::Candidate> GreedyRefiner::scan(NodeId id) const {
     return Candidate{priority, static_cast<std::uint32_t>(bestCell), id};
 }
 
-// The queue is a 4-ary max-heap: half the levels of a binary heap, and the four children of a
-// node share one or two cache lines. With millions of entries, most of them stale by the time
-// they surface, its sift-downs are the refiner's main sequential cost.
-constexpr std::size_t kHeapArity = 4;
-
-void GreedyRefiner::push(const Candidate& candidate) {
-    std::size_t i = m_queue.size();
-    m_queue.push_back(candidate);
-    while (i > 0) {
-        const std::size_t parent = (i - 1) / kHeapArity;
-        if (!Lower{}(m_queue[parent], candidate))
-            break;
-        m_queue[i] = m_queue[parent];
-        i = parent;
-    }
-    m_queue[i] = candidate;
-}
-
-bool GreedyRefiner::popLive(Candidate& candidate) {
-    while (!m_queue.empty()) {
-        candidate = m_queue.front();
-        const Candidate last = m_queue.back();
-        m_queue.pop_back();
-        const std::size_t size = m_queue.size();
-        if (size > 0) {
-            std::size_t i = 0;
-            for (;;) {
-                const std::size_t first = kHeapArity * i + 1;
-                if (first >= size)
-                    break;
-                std::size_t best = first;
-                const std::size_t end = std::min(first + kHeapArity, size);
-                for (std::size_t child = first + 1; child < end; ++child)
-                    if (Lower{}(m_queue[best], m_queue[child]))
-                        best = child;
-                if (!Lower{}(last, m_queue[best]))
-                    break;
-                m_queue[i] = m_queue[best];
-                i = best;
-            }
-            m_queue[i] = last;
-        }
-        if (m_triangulator->node(candidate.node).isLeaf() &&
-            (m_flags[candidate.cell] & kCellVertex) == 0)
-            return true;
-    }
-    return false;
+bool GreedyRefiner::isLive(const Candidate& candidate) const {
+    return m_triangulator->node(candidate.node).isLeaf() &&
+           (m_flags[candidate.cell] & kCellVertex) == 0;
 }
 
 void GreedyRefiner::startFromHull() {
@@ -217,8 +199,8 @@ void GreedyRefiner::startFromHull() {
     });
     for (const std::vector<Candidate>& list : found)
         for (const Candidate& candidate : list)
-            push(candidate);
-    m_firstPriority = m_queue.empty() ? 0.0 : m_queue.front().priority;
+            m_queue.push(candidate);
+    m_firstPriority = m_queue.empty() ? 0.0 : m_queue.top().priority;
 }
 
 void GreedyRefiner::findZone(VertexId vertex, NodeId start, Zone& zone) const {
@@ -328,16 +310,18 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         accepted.clear();
         waiting.clear();
         popped.clear();
-        Candidate candidate{};
-        while (popped.size() < roundCandidates && popLive(candidate))
-            popped.push_back(candidate);
+        while (popped.size() < roundCandidates && !m_queue.empty())
+            popped.push_back(m_queue.pop());
         const auto base = static_cast<VertexId>(m_vertexCell.size());
         for (std::size_t j = 0; j < popped.size(); ++j)
             m_points.get()[base + j] = m_grid.cellCentre(popped[j].cell);
         std::atomic<std::size_t> nextZone{0};
         m_workers.run([&](unsigned) {
-            for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
-                findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
+            for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++) {
+                zones[j].stale = !isLive(popped[j]);
+                if (!zones[j].stale)
+                    findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
+            }
         });
 
         // Accept in priority order those whose triangles no earlier one claimed; the accepted
@@ -345,6 +329,8 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         // candidates before it are done with it).
         const auto stamp = static_cast<std::uint32_t>(m_rounds + 1);
         for (std::size_t j = 0; j < popped.size(); ++j) {
+            if (zones[j].stale)
+                continue;
             if (limitReached) {
                 waiting.push_back(popped[j]);
                 continue;
@@ -376,8 +362,11 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         }
         m_deferred += waiting.size();
         if (accepted.empty()) {
+            // Every candidate popped was stale: the next ones may not be.
+            if (!limitReached && waiting.empty() && !m_queue.empty())
+                continue;
             for (const Candidate& c : waiting)
-                push(c);
+                m_queue.push(c);
             break;
         }
 
@@ -389,15 +378,15 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         });
         ++m_rounds;
         for (const Candidate& c : waiting)
-            push(c);
+            m_queue.push(c);
         for (std::vector<Candidate>& list : found) {
             for (const Candidate& c : list)
-                push(c);
+                m_queue.push(c);
             list.clear();
         }
 
         if (progress && m_rounds % kProgressRounds == 0) {
-            const double top = m_queue.empty() ? m_threshold : m_queue.front().priority;
+            const double top = m_queue.empty() ? m_threshold : m_queue.top().priority;
             if (!progress(progressFraction(top), "refining"))
                 throw Cancelled("Refiner: cancelled");
         }

@@ -7,7 +7,8 @@
 /// finds the triangles its insertion can change: its Bowyer-Watson cavity (every triangle
 /// whose circumcircle contains the cell, cocircular included, found by a search from the
 /// triangle holding it; Lawson's flips never leave the cavity) plus the cavity's neighbours,
-/// whose links are rewritten. A candidate whose set meets an earlier accepted one waits for a
+/// whose links are rewritten (a candidate found stale meanwhile, see below, is dropped: the
+/// check is made here, in parallel, because each costs two cache misses). A candidate whose set meets an earlier accepted one waits for a
 /// later round. The accepted insertions touch disjoint triangles, so they commute: the
 /// workers insert them in any order and the triangulation is the same as inserting them one
 /// after the other, for any number of threads. Each worker then scans the new triangles
@@ -20,6 +21,7 @@
 /// no valid cell that another triangle would not cover; otherwise the priority is the largest
 /// error, and only errors above the target become candidates. Ties: the lowest cell index.
 
+#include "candidate_queue.hpp"
 #include "grid_scan.hpp"
 #include "round_workers.hpp"
 
@@ -58,17 +60,6 @@ public:
     [[nodiscard]] std::size_t historyBytes() const { return m_triangulator->memoryBytes(); }
 
 private:
-    struct Candidate {
-        double priority;
-        std::uint32_t cell;
-        NodeId node;
-    };
-    /// Heap order: the greatest priority on top, then the lowest cell.
-    struct Lower {
-        bool operator()(const Candidate& a, const Candidate& b) const {
-            return a.priority != b.priority ? a.priority < b.priority : a.cell > b.cell;
-        }
-    };
     struct Accepted {
         VertexId vertex;
         NodeId leaf;
@@ -89,11 +80,16 @@ private:
     [[nodiscard]] std::optional<Candidate> scan(NodeId node) const;
     /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
     struct Zone {
+        /// The candidate's triangle was split or its cell became a vertex since it was
+        /// queued: it is dropped (nothing else is set).
+        bool stale = false;
         NodeId leaf = kNoNode;
         /// Change in the number of output triangles: 2, or 1 on the hull.
         int growth = 2;
         std::vector<NodeId> nodes;
     };
+    /// Whether `candidate` still stands: its triangle is a leaf and its cell no vertex.
+    [[nodiscard]] bool isLive(const Candidate& candidate) const;
     /// Fills `zone` for `vertex` (already in m_points), searching from the leaf `start`.
     /// Reads the DAG only: safe from several threads while nothing edits it.
     void findZone(VertexId vertex, NodeId start, Zone& zone) const;
@@ -104,13 +100,11 @@ private:
     [[nodiscard]] bool claimFree(const Zone& zone, std::uint32_t stamp) const;
     /// Inserts one accepted point and appends the candidates of its new triangles.
     void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& out);
-    void push(const Candidate& candidate);
     void addVertex(std::uint32_t cell);
     /// Whether `vertex` may lie inside or on the circumcircle of the leaf `node`: exact for
     /// auxiliary triangles, a floating-point test erring towards "yes" otherwise (a larger
     /// claim is still a correct one, and grids make exact cocircularity tests common).
     [[nodiscard]] bool mayBeInCircle(const DagNode& node, VertexId vertex) const;
-    bool popLive(Candidate& candidate);
     [[nodiscard]] double progressFraction(double topPriority) const;
 
     const HeightGrid& m_grid;
@@ -125,7 +119,7 @@ private:
     std::vector<std::uint32_t> m_vertexCell;
     std::vector<VertexPixel> m_vertexPixel;
     std::optional<DagTriangulator> m_triangulator;
-    std::vector<Candidate> m_queue;
+    CandidateQueue m_queue;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
     std::size_t m_rounds = 0;

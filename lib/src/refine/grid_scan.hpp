@@ -57,6 +57,22 @@ inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
 }
 inline std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
 
+/// floorDiv for b > 0, through a double division where that is exact: with |a| < 2^53 the
+/// rounded quotient of a non-integer a / b stays more than 1 / b from the next integer, so
+/// its integer part is the exact one. A divsd pipelines; the 64-bit idiv it replaces does not, and
+/// a scan starts with six of them.
+inline std::int64_t floorDivPositive(std::int64_t a, std::int64_t b) {
+    constexpr std::int64_t kExactBound = std::int64_t{1} << 52;
+    if (a <= -kExactBound || a >= kExactBound || b >= kExactBound)
+        return floorDiv(a, b);
+    // Truncation, then the exact integer correction of a negative non-integer quotient
+    // (std::floor would be a libm call without SSE4.1).
+    auto q = static_cast<std::int64_t>(static_cast<double>(a) / static_cast<double>(b));
+    if (q * b > a)
+        --q;
+    return q;
+}
+
 /// One edge's constraint on the columns of successive rows (PixelTriangle::forEachRowPair):
 /// N(r) = n0 + (r - first) * step; with slope > 0 the row's cells satisfy x >= -floor(N /
 /// slope), with slope < 0 x <= floor(N / -slope), with slope 0 all or none (N >= 0).
@@ -70,9 +86,9 @@ public:
             return;
         }
         m_divisor = slope > 0 ? slope : -slope;
-        m_quotient = floorDiv(n0, m_divisor);
+        m_quotient = floorDivPositive(n0, m_divisor);
         m_remainder = n0 - m_quotient * m_divisor;
-        m_stepQuotient = floorDiv(step, m_divisor);
+        m_stepQuotient = floorDivPositive(step, m_divisor);
         m_stepRemainder = step - m_stepQuotient * m_divisor;
     }
     void clip(std::int64_t& lo, std::int64_t& hi) const {
@@ -187,8 +203,8 @@ public:
             const std::int64_t k = (q.col - p.col) * (rowFirst - p.row) + (q.row - p.row) * p.col;
             const std::int64_t step = sgn * (q.col - p.col);
             closed[i].start(slope, sgn * k, step);
-            const std::int64_t t = strictEdge != nullptr && strictEdge[i] ? 1 : 0;
-            owned[i].start(slope, sgn * k - t, step);
+            if (strictEdge != nullptr)
+                owned[i].start(slope, sgn * k - (strictEdge[i] ? 1 : 0), step);
         }
         for (std::int64_t r = rowFirst; r <= rowLast; ++r) {
             std::int64_t lo = 0;

@@ -1,0 +1,125 @@
+#pragma once
+/// @file
+/// The refiner's priority queue of insertion candidates: greatest priority first, then the
+/// lowest cell, exactly as a heap would order them, but cheap for millions of entries.
+///
+/// A binary or 4-ary heap of a million candidates misses the cache on every level of each
+/// pop, and most popped candidates are stale (their triangle was split since), so the pops
+/// were the refiner's largest sequential cost. Here candidates are first sorted into buckets
+/// by the leading bits of their priority (as a float: 8 exponent and 7 mantissa bits, so a
+/// bucket spans under 1% of its priorities), which costs one append per push. Only the
+/// highest non-empty bucket is kept as a heap; it holds a few thousand entries, which stay in
+/// cache. Priorities are never negative, so the float's bit pattern orders like its value.
+
+#include "../triangulate/dag_triangulator.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <vector>
+
+namespace terratin::detail {
+
+struct Candidate {
+    double priority;
+    std::uint32_t cell;
+    NodeId node;
+};
+
+class CandidateQueue {
+public:
+    CandidateQueue() : m_buckets(kBuckets) {}
+
+    [[nodiscard]] bool empty() const { return m_size == 0; }
+    [[nodiscard]] std::size_t size() const { return m_size; }
+
+    void push(const Candidate& candidate) {
+        const std::uint32_t bucket = bucketOf(candidate.priority);
+        ++m_size;
+        if (!m_topHeap.empty() && bucket >= m_top) {
+            m_topHeap.push_back(candidate);
+            std::push_heap(m_topHeap.begin(), m_topHeap.end(), Lower{});
+            return;
+        }
+        m_buckets[bucket].push_back(candidate);
+        markFull(bucket);
+    }
+
+    /// The greatest candidate; requires !empty().
+    [[nodiscard]] const Candidate& top() {
+        settleTop();
+        return m_topHeap.front();
+    }
+
+    /// Removes and returns the greatest candidate; requires !empty().
+    Candidate pop() {
+        settleTop();
+        std::pop_heap(m_topHeap.begin(), m_topHeap.end(), Lower{});
+        const Candidate candidate = m_topHeap.back();
+        m_topHeap.pop_back();
+        --m_size;
+        return candidate;
+    }
+
+private:
+    /// Heap order: the greatest priority on top, then the lowest cell.
+    struct Lower {
+        bool operator()(const Candidate& a, const Candidate& b) const {
+            return a.priority != b.priority ? a.priority < b.priority : a.cell > b.cell;
+        }
+    };
+
+    static constexpr std::size_t kBucketBits = 15; // positive floats' leading 16 bits
+    static constexpr std::size_t kBuckets = std::size_t{1} << kBucketBits;
+    static constexpr std::size_t kWords = kBuckets / 64;
+
+    /// Monotone: rounding to float never reverses an order, and for non-negative floats
+    /// (+inf included) the bit pattern grows with the value.
+    static std::uint32_t bucketOf(double priority) {
+        const auto bits = std::bit_cast<std::uint32_t>(static_cast<float>(priority));
+        return bits >> (32 - 1 - kBucketBits);
+    }
+
+    void markFull(std::uint32_t bucket) {
+        m_full[bucket / 64] |= std::uint64_t{1} << (bucket % 64);
+        m_summary[bucket / 64 / 64] |= std::uint64_t{1} << (bucket / 64 % 64);
+    }
+    void markEmpty(std::uint32_t bucket) {
+        std::uint64_t& word = m_full[bucket / 64];
+        word &= ~(std::uint64_t{1} << (bucket % 64));
+        if (word == 0)
+            m_summary[bucket / 64 / 64] &= ~(std::uint64_t{1} << (bucket / 64 % 64));
+    }
+    /// The highest bucket holding candidates outside the top heap; requires one.
+    [[nodiscard]] std::uint32_t highestFull() const {
+        std::size_t s = m_summary.size() - 1;
+        while (m_summary[s] == 0)
+            --s;
+        const std::size_t word =
+            s * 64 + 63 - static_cast<std::size_t>(std::countl_zero(m_summary[s]));
+        return static_cast<std::uint32_t>(
+            word * 64 + 63 - static_cast<std::size_t>(std::countl_zero(m_full[word])));
+    }
+
+    /// Refills an empty top heap from the highest full bucket. Invariant: every candidate of a
+    /// bucket at or above m_top is in the top heap while it is not empty (a candidate pushed
+    /// above the bucket being consumed, which a split triangle can produce, joins the heap).
+    void settleTop() {
+        if (!m_topHeap.empty())
+            return;
+        m_top = highestFull();
+        std::swap(m_topHeap, m_buckets[m_top]);
+        markEmpty(m_top);
+        std::make_heap(m_topHeap.begin(), m_topHeap.end(), Lower{});
+    }
+
+    std::vector<std::vector<Candidate>> m_buckets;
+    std::array<std::uint64_t, kWords> m_full{};
+    std::array<std::uint64_t, kWords / 64> m_summary{};
+    std::vector<Candidate> m_topHeap;
+    std::uint32_t m_top = 0;
+    std::size_t m_size = 0;
+};
+
+} // namespace terratin::detail
