@@ -7,9 +7,13 @@
 /// pop, and most popped candidates are stale (their triangle was split since), so the pops
 /// were the refiner's largest sequential cost. Here candidates are first sorted into buckets
 /// by the leading bits of their priority (as a float: 8 exponent and 7 mantissa bits, so a
-/// bucket spans under 1% of its priorities), which costs one append per push. Only the
-/// highest non-empty bucket is kept as a heap; it holds a few thousand entries, which stay in
-/// cache. Priorities are never negative, so the float's bit pattern orders like its value.
+/// bucket spans an eighth of an octave), which costs one append per push. Only the highest
+/// non-empty bucket is kept as a heap; it holds thousands of entries, which stay in cache.
+/// Priorities are never negative, so the float's bit pattern orders like its value.
+///
+/// ShardedCandidateQueue gives each worker a queue of its own to push into while the
+/// workers run, and pops the greatest of the shards' tops: the same order, whichever shard
+/// holds a candidate, so the refinement does not depend on the thread count through it.
 
 #include "../triangulate/dag_triangulator.hpp"
 
@@ -27,7 +31,16 @@ struct Candidate {
     NodeId node;
 };
 
-class CandidateQueue {
+/// Heap order: the greatest priority on top, then the lowest cell.
+struct Lower {
+    bool operator()(const Candidate& a, const Candidate& b) const {
+        return a.priority != b.priority ? a.priority < b.priority : a.cell > b.cell;
+    }
+};
+
+/// Cache-line aligned: the shards of ShardedCandidateQueue are pushed to by different
+/// threads, and the size changes with every push.
+class alignas(64) CandidateQueue {
 public:
     CandidateQueue() : m_buckets(kBuckets) {}
 
@@ -63,16 +76,11 @@ public:
     }
 
 private:
-    /// Heap order: the greatest priority on top, then the lowest cell.
-    struct Lower {
-        bool operator()(const Candidate& a, const Candidate& b) const {
-            return a.priority != b.priority ? a.priority < b.priority : a.cell > b.cell;
-        }
-    };
-
-    static constexpr std::size_t kBucketBits = 15; // positive floats' leading 16 bits
+    /// A float's 8 exponent bits and 3 leading mantissa bits (its sign is always 0).
+    static constexpr std::size_t kBucketBits = 11;
     static constexpr std::size_t kBuckets = std::size_t{1} << kBucketBits;
     static constexpr std::size_t kWords = kBuckets / 64;
+    static constexpr std::size_t kSummaryWords = (kWords + 63) / 64;
 
     /// Monotone: rounding to float never reverses an order, and for non-negative floats
     /// (+inf included) the bit pattern grows with the value.
@@ -116,10 +124,39 @@ private:
 
     std::vector<std::vector<Candidate>> m_buckets;
     std::array<std::uint64_t, kWords> m_full{};
-    std::array<std::uint64_t, kWords / 64> m_summary{};
+    std::array<std::uint64_t, kSummaryWords> m_summary{};
     std::vector<Candidate> m_topHeap;
     std::uint32_t m_top = 0;
     std::size_t m_size = 0;
+};
+
+class ShardedCandidateQueue {
+public:
+    explicit ShardedCandidateQueue(unsigned shards) : m_shards(shards == 0 ? 1 : shards) {}
+
+    /// Thread-safe for distinct shards.
+    void push(unsigned shard, const Candidate& candidate) { m_shards[shard].push(candidate); }
+
+    [[nodiscard]] bool empty() const {
+        return std::all_of(m_shards.begin(), m_shards.end(),
+                           [](const CandidateQueue& queue) { return queue.empty(); });
+    }
+    /// The greatest candidate; requires !empty().
+    [[nodiscard]] const Candidate& top() { return m_shards[topShard()].top(); }
+    /// Removes and returns the greatest candidate; requires !empty().
+    Candidate pop() { return m_shards[topShard()].pop(); }
+
+private:
+    [[nodiscard]] std::size_t topShard() {
+        std::size_t best = m_shards.size();
+        for (std::size_t i = 0; i < m_shards.size(); ++i)
+            if (!m_shards[i].empty() &&
+                (best == m_shards.size() || Lower{}(m_shards[best].top(), m_shards[i].top())))
+                best = i;
+        return best;
+    }
+
+    std::vector<CandidateQueue> m_shards;
 };
 
 } // namespace terratin::detail

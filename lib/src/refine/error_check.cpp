@@ -63,6 +63,11 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
     parallelFor(triangles, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         ErrorMeasure& measure = blocks[block];
         for (std::size_t t = begin; t < end; ++t) {
+            // Corners are looked up by vertex number, at random: ask for them ahead.
+            constexpr std::size_t kAhead = 8;
+            if (t + kAhead < end)
+                for (std::size_t k = 0; k < 3; ++k)
+                    __builtin_prefetch(&corners[mesh.triangles[3 * (t + kAhead) + k]]);
             const PixelTriangle triangle = triangleOf(mesh, corners, t);
             if (!triangle.hasArea())
                 continue; // its cells lie on neighbouring triangles' edges (grid_scan.hpp)

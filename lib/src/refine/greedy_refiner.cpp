@@ -19,6 +19,12 @@ namespace {
 
 constexpr double kHolePriority = std::numeric_limits<double>::infinity();
 
+/// Candidates popped ahead of their stale check (GreedyRefiner::popLive).
+constexpr std::size_t kLookAhead = 8;
+
+/// Triangles around a new vertex scanned in one batch.
+constexpr std::size_t kMaxFan = 16;
+
 /// One row of a triangle's cells: columns lo..hi.
 struct RowSpan {
     std::int64_t row;
@@ -40,7 +46,8 @@ bool isFiniteTriangle(const SymbolicPredicates& predicates, const DagNode& node)
 
 GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& flags,
                              const RefineOptions& options, RoundWorkers& workers)
-    : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers) {
+    : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers),
+      m_queue(workers.size()) {
     m_view = {grid.width, grid.height, grid.z.data(), flags.data()};
     m_threshold = options.maxError ? *options.maxError : -1.0;
     std::size_t valid = 0;
@@ -153,6 +160,34 @@ bool GreedyRefiner::isLive(const Candidate& candidate) const {
            (m_flags[candidate.cell] & kCellVertex) == 0;
 }
 
+void GreedyRefiner::popLive(std::size_t count, std::vector<Candidate>& out) {
+    // Each check reads the candidate's triangle and flag, two cache misses at random places:
+    // candidates are popped kLookAhead ahead of their check and their memory requested then,
+    // so the misses overlap. The ones popped but not checked go back.
+    std::array<Candidate, kLookAhead> ahead;
+    std::size_t head = 0;
+    std::size_t size = 0;
+    const auto popAhead = [&] {
+        const Candidate candidate = m_queue.pop();
+        __builtin_prefetch(&m_triangulator->node(candidate.node));
+        __builtin_prefetch(&m_flags[candidate.cell]);
+        ahead[(head + size++) % kLookAhead] = candidate;
+    };
+    while (size < kLookAhead && !m_queue.empty())
+        popAhead();
+    while (out.size() < count && size > 0) {
+        const Candidate candidate = ahead[head];
+        head = (head + 1) % kLookAhead;
+        --size;
+        if (!m_queue.empty())
+            popAhead();
+        if (isLive(candidate))
+            out.push_back(candidate);
+    }
+    for (; size > 0; --size, head = (head + 1) % kLookAhead)
+        m_queue.push(0, ahead[head]);
+}
+
 void GreedyRefiner::startFromHull() {
     const std::vector<std::uint32_t> hull = validHullCells(m_grid);
     // The hull is kept whatever the point limit. Raw storage: pages are touched only as
@@ -190,16 +225,11 @@ void GreedyRefiner::startFromHull() {
         if (m_triangulator->node(n).isLeaf() &&
             isFiniteTriangle(m_triangulator->predicates(), m_triangulator->node(n)))
             leaves.push_back(n);
-    std::vector<std::vector<Candidate>> found(m_workers.size());
     std::atomic<std::size_t> next{0};
     m_workers.run([&](unsigned worker) {
         for (std::size_t i = next++; i < leaves.size(); i = next++)
-            if (const std::optional<Candidate> candidate = scan(leaves[i]))
-                found[worker].push_back(*candidate);
+            scanInto(leaves[i], worker);
     });
-    for (const std::vector<Candidate>& list : found)
-        for (const Candidate& candidate : list)
-            m_queue.push(candidate);
     m_firstPriority = m_queue.empty() ? 0.0 : m_queue.top().priority;
 }
 
@@ -252,8 +282,7 @@ bool GreedyRefiner::claim(const Zone& zone, std::uint32_t stamp) {
     return true;
 }
 
-void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
-                           std::vector<Candidate>& out) {
+void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending, unsigned worker) {
     DagTriangulator& dag = *m_triangulator;
     const VertexId q = accepted.vertex;
     const int edge = dag.edgeContaining(accepted.leaf, q);
@@ -264,6 +293,10 @@ void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
     dag.legalize(q, pending);
     // The new triangles are the fan around q: descend from the split leaf to one of them,
     // then turn around q through the neighbour links.
+    // The fan is collected first and its corners' pixels requested together: they are
+    // scattered (vertices are numbered in insertion order), and legalize did not touch them.
+    std::array<NodeId, kMaxFan> fan;
+    std::size_t fanSize = 0;
     const NodeId first = dag.locate(q, accepted.leaf);
     NodeId t = first;
     do {
@@ -271,11 +304,27 @@ void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
         int i = 0;
         while (node.v[static_cast<std::size_t>(i)] != q)
             ++i;
-        if (const std::optional<Candidate> candidate = scan(t))
-            out.push_back(*candidate);
+        if (fanSize < fan.size())
+            fan[fanSize++] = t;
+        for (const VertexId v : node.v)
+            if (v < m_vertexPixel.size())
+                __builtin_prefetch(&m_vertexPixel[v]);
         // The edge (q, v[i+1]) is opposite corner i+2.
         t = node.link[static_cast<std::size_t>(previousCorner(i))];
+        if (fanSize == fan.size() && t != first) {
+            // A very high degree: scan what was collected and go on one by one.
+            for (const NodeId n : fan)
+                scanInto(n, worker);
+            fanSize = 0;
+        }
     } while (t != first);
+    for (std::size_t k = 0; k < fanSize; ++k)
+        scanInto(fan[k], worker);
+}
+
+void GreedyRefiner::scanInto(NodeId node, unsigned worker) {
+    if (const std::optional<Candidate> candidate = scan(node))
+        m_queue.push(worker, *candidate);
 }
 
 double GreedyRefiner::progressFraction(double topPriority) const {
@@ -299,8 +348,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
     const std::size_t roundCandidates = std::max<std::size_t>(m_options.roundCandidates, 1);
     std::vector<Accepted> accepted;
     std::vector<Candidate> waiting;
-    std::vector<std::vector<Candidate>> found(m_workers.size());
-    std::vector<PendingEdges> pending(m_workers.size());
+    std::vector<WorkerPending> pending(m_workers.size());
     bool limitReached = false;
     std::vector<Candidate> popped;
     std::vector<Zone> zones(roundCandidates);
@@ -310,18 +358,14 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         accepted.clear();
         waiting.clear();
         popped.clear();
-        while (popped.size() < roundCandidates && !m_queue.empty())
-            popped.push_back(m_queue.pop());
+        popLive(roundCandidates, popped);
         const auto base = static_cast<VertexId>(m_vertexCell.size());
         for (std::size_t j = 0; j < popped.size(); ++j)
             m_points.get()[base + j] = m_grid.cellCentre(popped[j].cell);
         std::atomic<std::size_t> nextZone{0};
         m_workers.run([&](unsigned) {
-            for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++) {
-                zones[j].stale = !isLive(popped[j]);
-                if (!zones[j].stale)
-                    findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
-            }
+            for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
+                findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
         });
 
         // Accept in priority order those whose triangles no earlier one claimed; the accepted
@@ -329,8 +373,6 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         // candidates before it are done with it).
         const auto stamp = static_cast<std::uint32_t>(m_rounds + 1);
         for (std::size_t j = 0; j < popped.size(); ++j) {
-            if (zones[j].stale)
-                continue;
             if (limitReached) {
                 waiting.push_back(popped[j]);
                 continue;
@@ -362,11 +404,8 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         }
         m_deferred += waiting.size();
         if (accepted.empty()) {
-            // Every candidate popped was stale: the next ones may not be.
-            if (!limitReached && waiting.empty() && !m_queue.empty())
-                continue;
             for (const Candidate& c : waiting)
-                m_queue.push(c);
+                m_queue.push(0, c);
             break;
         }
 
@@ -374,16 +413,11 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         std::atomic<std::size_t> next{0};
         m_workers.run([&](unsigned worker) {
             for (std::size_t i = next++; i < accepted.size(); i = next++)
-                insert(accepted[i], pending[worker], found[worker]);
+                insert(accepted[i], pending[worker].edges, worker);
         });
         ++m_rounds;
         for (const Candidate& c : waiting)
-            m_queue.push(c);
-        for (std::vector<Candidate>& list : found) {
-            for (const Candidate& c : list)
-                m_queue.push(c);
-            list.clear();
-        }
+            m_queue.push(0, c);
 
         if (progress && m_rounds % kProgressRounds == 0) {
             const double top = m_queue.empty() ? m_threshold : m_queue.top().priority;

@@ -7,8 +7,7 @@
 /// finds the triangles its insertion can change: its Bowyer-Watson cavity (every triangle
 /// whose circumcircle contains the cell, cocircular included, found by a search from the
 /// triangle holding it; Lawson's flips never leave the cavity) plus the cavity's neighbours,
-/// whose links are rewritten (a candidate found stale meanwhile, see below, is dropped: the
-/// check is made here, in parallel, because each costs two cache misses). A candidate whose set meets an earlier accepted one waits for a
+/// whose links are rewritten. A candidate whose set meets an earlier accepted one waits for a
 /// later round. The accepted insertions touch disjoint triangles, so they commute: the
 /// workers insert them in any order and the triangulation is the same as inserting them one
 /// after the other, for any number of threads. Each worker then scans the new triangles
@@ -78,11 +77,12 @@ private:
     [[nodiscard]] PixelCorner corner(VertexId v) const;
     /// The candidate of a leaf, if it has one worth inserting.
     [[nodiscard]] std::optional<Candidate> scan(NodeId node) const;
+    /// scan(node), its candidate pushed to the worker's shard of the queue.
+    void scanInto(NodeId node, unsigned worker);
     /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
-    struct Zone {
-        /// The candidate's triangle was split or its cell became a vertex since it was
-        /// queued: it is dropped (nothing else is set).
-        bool stale = false;
+    /// Cache-line aligned: the workers fill neighbouring zones, and a zone's vector header
+    /// changes with every push_back; sharing a line would bounce it between the cores.
+    struct alignas(64) Zone {
         NodeId leaf = kNoNode;
         /// Change in the number of output triangles: 2, or 1 on the hull.
         int growth = 2;
@@ -90,6 +90,10 @@ private:
     };
     /// Whether `candidate` still stands: its triangle is a leaf and its cell no vertex.
     [[nodiscard]] bool isLive(const Candidate& candidate) const;
+    /// Appends the next `count` live candidates in queue order (fewer if it runs out), and
+    /// drops the stale ones met on the way. Rounds are made of live candidates only: counting
+    /// stale ones would make a round's content depend on the order of equal candidates.
+    void popLive(std::size_t count, std::vector<Candidate>& out);
     /// Fills `zone` for `vertex` (already in m_points), searching from the leaf `start`.
     /// Reads the DAG only: safe from several threads while nothing edits it.
     void findZone(VertexId vertex, NodeId start, Zone& zone) const;
@@ -98,8 +102,12 @@ private:
     bool claim(const Zone& zone, std::uint32_t stamp);
     /// Whether claim would succeed, without claiming.
     [[nodiscard]] bool claimFree(const Zone& zone, std::uint32_t stamp) const;
-    /// Inserts one accepted point and appends the candidates of its new triangles.
-    void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& out);
+    /// A worker's legalisation stack, on a cache line of its own (see Zone).
+    struct alignas(64) WorkerPending {
+        PendingEdges edges;
+    };
+    /// Inserts one accepted point and queues the candidates of its new triangles.
+    void insert(const Accepted& accepted, PendingEdges& pending, unsigned worker);
     void addVertex(std::uint32_t cell);
     /// Whether `vertex` may lie inside or on the circumcircle of the leaf `node`: exact for
     /// auxiliary triangles, a floating-point test erring towards "yes" otherwise (a larger
@@ -119,7 +127,7 @@ private:
     std::vector<std::uint32_t> m_vertexCell;
     std::vector<VertexPixel> m_vertexPixel;
     std::optional<DagTriangulator> m_triangulator;
-    CandidateQueue m_queue;
+    ShardedCandidateQueue m_queue;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
     std::size_t m_rounds = 0;

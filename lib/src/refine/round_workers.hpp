@@ -1,11 +1,18 @@
 #pragma once
 /// @file
 /// A fixed team of threads that runs one task per round, for the refiner's many short
-/// parallel rounds (hundreds of microseconds each): starting threads every round would cost
-/// tens of microseconds, so the team waits at a barrier between rounds instead.
+/// parallel rounds (hundreds of microseconds each, thousands of them).
+///
+/// Starting threads every round would cost tens of microseconds, so the team stays. Between
+/// rounds the threads spin briefly before they sleep: the calling thread's sequential work
+/// between two rounds (popping the next candidates) is shorter than waking a sleeping thread,
+/// which on a virtual machine can take as long as the round itself. A thread that finds no
+/// round after the spin sleeps on the round counter (std::atomic::wait), so the team costs
+/// nothing while the caller does something else.
 
-#include <barrier>
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -15,18 +22,40 @@
 
 namespace terratin::detail {
 
+/// One iteration of a spin-wait: tells the core (and a hypervisor) that this thread waits.
+inline void spinPause() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    asm volatile("yield");
+#endif
+}
+
+/// Waits until `value` differs from `old`: spins `spins` times, then sleeps on it.
+template <class T>
+T awaitChange(const std::atomic<T>& value, T old, int spins) {
+    for (int i = 0; i < spins; ++i) {
+        const T now = value.load(std::memory_order_acquire);
+        if (now != old)
+            return now;
+        spinPause();
+    }
+    value.wait(old, std::memory_order_acquire);
+    return value.load(std::memory_order_acquire);
+}
+
 class RoundWorkers {
 public:
     /// `threads` in all, the calling thread included (at least 1).
-    explicit RoundWorkers(unsigned threads)
-        : m_threads(threads == 0 ? 1 : threads), m_start(m_threads), m_end(m_threads) {
+    explicit RoundWorkers(unsigned threads) : m_threads(threads == 0 ? 1 : threads) {
         m_others.reserve(m_threads - 1);
         for (unsigned i = 1; i < m_threads; ++i)
             m_others.emplace_back([this, i] { loop(i); });
     }
     ~RoundWorkers() {
-        m_stop = true; // published by the barrier
-        m_start.arrive_and_wait();
+        m_stop.store(true, std::memory_order_relaxed);
+        m_round.fetch_add(1, std::memory_order_release);
+        m_round.notify_all();
         m_others.clear(); // joins
     }
     RoundWorkers(const RoundWorkers&) = delete;
@@ -42,22 +71,30 @@ public:
             return;
         }
         m_task = &task;
-        m_start.arrive_and_wait();
+        m_running.store(m_threads - 1, std::memory_order_relaxed);
+        m_round.fetch_add(1, std::memory_order_release); // publishes m_task
+        m_round.notify_all();
         runGuarded(0);
-        m_end.arrive_and_wait();
+        for (unsigned left = m_running.load(std::memory_order_acquire); left != 0;)
+            left = awaitChange(m_running, left, kSpins);
         m_task = nullptr;
         if (m_failure)
             std::rethrow_exception(std::exchange(m_failure, nullptr));
     }
 
 private:
+    /// About 50-100 microseconds of spinning before a thread sleeps.
+    static constexpr int kSpins = 2000;
+
     void loop(unsigned index) {
+        std::uint64_t seen = 0;
         for (;;) {
-            m_start.arrive_and_wait();
-            if (m_stop)
+            seen = awaitChange(m_round, seen, kSpins);
+            if (m_stop.load(std::memory_order_relaxed))
                 return;
             runGuarded(index);
-            m_end.arrive_and_wait();
+            if (m_running.fetch_sub(1, std::memory_order_acq_rel) == 1)
+                m_running.notify_one();
         }
     }
     void runGuarded(unsigned index) {
@@ -71,10 +108,12 @@ private:
     }
 
     unsigned m_threads;
-    std::barrier<> m_start;
-    std::barrier<> m_end;
+    /// Incremented by the caller to start a round (and to stop the team).
+    std::atomic<std::uint64_t> m_round{0};
+    /// Workers other than the caller still running the current round.
+    std::atomic<unsigned> m_running{0};
+    std::atomic<bool> m_stop{false};
     const std::function<void(unsigned)>* m_task = nullptr;
-    bool m_stop = false;
     std::mutex m_failureMutex;
     std::exception_ptr m_failure;
     std::vector<std::jthread> m_others;
