@@ -7,13 +7,10 @@
 /// pop, and most popped candidates are stale (their triangle was split since), so the pops
 /// were the refiner's largest sequential cost. Here candidates are first sorted into buckets
 /// by the leading bits of their priority (as a float: 8 exponent and 7 mantissa bits, so a
-/// bucket spans an eighth of an octave), which costs one append per push. Only the highest
+/// bucket spans 1/32 of an octave), which costs one append per push. Only the highest
 /// non-empty bucket is kept as a heap; it holds thousands of entries, which stay in cache.
 /// Priorities are never negative, so the float's bit pattern orders like its value.
-///
-/// ShardedCandidateQueue gives each worker a queue of its own to push into while the
-/// workers run, and pops the greatest of the shards' tops: the same order, whichever shard
-/// holds a candidate, so the refinement does not depend on the thread count through it.
+
 
 #include "../triangulate/dag_triangulator.hpp"
 
@@ -38,9 +35,7 @@ struct Lower {
     }
 };
 
-/// Cache-line aligned: the shards of ShardedCandidateQueue are pushed to by different
-/// threads, and the size changes with every push.
-class alignas(64) CandidateQueue {
+class CandidateQueue {
 public:
     CandidateQueue() : m_buckets(kBuckets) {}
 
@@ -76,8 +71,8 @@ public:
     }
 
 private:
-    /// A float's 8 exponent bits and 3 leading mantissa bits (its sign is always 0).
-    static constexpr std::size_t kBucketBits = 11;
+    /// A float's 8 exponent bits and 5 leading mantissa bits (its sign is always 0).
+    static constexpr std::size_t kBucketBits = 13;
     static constexpr std::size_t kBuckets = std::size_t{1} << kBucketBits;
     static constexpr std::size_t kWords = kBuckets / 64;
     static constexpr std::size_t kSummaryWords = (kWords + 63) / 64;
@@ -128,35 +123,6 @@ private:
     std::vector<Candidate> m_topHeap;
     std::uint32_t m_top = 0;
     std::size_t m_size = 0;
-};
-
-class ShardedCandidateQueue {
-public:
-    explicit ShardedCandidateQueue(unsigned shards) : m_shards(shards == 0 ? 1 : shards) {}
-
-    /// Thread-safe for distinct shards.
-    void push(unsigned shard, const Candidate& candidate) { m_shards[shard].push(candidate); }
-
-    [[nodiscard]] bool empty() const {
-        return std::all_of(m_shards.begin(), m_shards.end(),
-                           [](const CandidateQueue& queue) { return queue.empty(); });
-    }
-    /// The greatest candidate; requires !empty().
-    [[nodiscard]] const Candidate& top() { return m_shards[topShard()].top(); }
-    /// Removes and returns the greatest candidate; requires !empty().
-    Candidate pop() { return m_shards[topShard()].pop(); }
-
-private:
-    [[nodiscard]] std::size_t topShard() {
-        std::size_t best = m_shards.size();
-        for (std::size_t i = 0; i < m_shards.size(); ++i)
-            if (!m_shards[i].empty() &&
-                (best == m_shards.size() || Lower{}(m_shards[best].top(), m_shards[i].top())))
-                best = i;
-        return best;
-    }
-
-    std::vector<CandidateQueue> m_shards;
 };
 
 } // namespace terratin::detail

@@ -46,8 +46,7 @@ bool isFiniteTriangle(const SymbolicPredicates& predicates, const DagNode& node)
 
 GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& flags,
                              const RefineOptions& options, RoundWorkers& workers)
-    : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers),
-      m_queue(workers.size()) {
+    : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers) {
     m_view = {grid.width, grid.height, grid.z.data(), flags.data()};
     m_threshold = options.maxError ? *options.maxError : -1.0;
     std::size_t valid = 0;
@@ -185,7 +184,24 @@ void GreedyRefiner::popLive(std::size_t count, std::vector<Candidate>& out) {
             out.push_back(candidate);
     }
     for (; size > 0; --size, head = (head + 1) % kLookAhead)
-        m_queue.push(0, ahead[head]);
+        m_queue.push(ahead[head]);
+}
+
+void GreedyRefiner::mergeLive(std::size_t count, std::vector<Candidate>& early,
+                              std::vector<Candidate>& out) {
+    std::size_t i = 0;
+    while (out.size() < count) {
+        const bool fromQueue =
+            !m_queue.empty() && (i == early.size() || Lower{}(early[i], m_queue.top()));
+        if (!fromQueue && i == early.size())
+            break;
+        const Candidate candidate = fromQueue ? m_queue.pop() : early[i++];
+        if (isLive(candidate))
+            out.push_back(candidate);
+    }
+    for (; i < early.size(); ++i)
+        m_queue.push(early[i]);
+    early.clear();
 }
 
 void GreedyRefiner::startFromHull() {
@@ -225,11 +241,15 @@ void GreedyRefiner::startFromHull() {
         if (m_triangulator->node(n).isLeaf() &&
             isFiniteTriangle(m_triangulator->predicates(), m_triangulator->node(n)))
             leaves.push_back(n);
+    std::vector<WorkerScratch> scratch(m_workers.size());
     std::atomic<std::size_t> next{0};
     m_workers.run([&](unsigned worker) {
         for (std::size_t i = next++; i < leaves.size(); i = next++)
-            scanInto(leaves[i], worker);
+            scanInto(leaves[i], scratch[worker].found);
     });
+    for (const WorkerScratch& output : scratch)
+        for (const Candidate& candidate : output.found)
+            m_queue.push(candidate);
     m_firstPriority = m_queue.empty() ? 0.0 : m_queue.top().priority;
 }
 
@@ -282,7 +302,8 @@ bool GreedyRefiner::claim(const Zone& zone, std::uint32_t stamp) {
     return true;
 }
 
-void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending, unsigned worker) {
+void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
+                           std::vector<Candidate>& found) {
     DagTriangulator& dag = *m_triangulator;
     const VertexId q = accepted.vertex;
     const int edge = dag.edgeContaining(accepted.leaf, q);
@@ -314,17 +335,17 @@ void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending, unsi
         if (fanSize == fan.size() && t != first) {
             // A very high degree: scan what was collected and go on one by one.
             for (const NodeId n : fan)
-                scanInto(n, worker);
+                scanInto(n, found);
             fanSize = 0;
         }
     } while (t != first);
     for (std::size_t k = 0; k < fanSize; ++k)
-        scanInto(fan[k], worker);
+        scanInto(fan[k], found);
 }
 
-void GreedyRefiner::scanInto(NodeId node, unsigned worker) {
+void GreedyRefiner::scanInto(NodeId node, std::vector<Candidate>& found) const {
     if (const std::optional<Candidate> candidate = scan(node))
-        m_queue.push(worker, *candidate);
+        found.push_back(*candidate);
 }
 
 double GreedyRefiner::progressFraction(double topPriority) const {
@@ -348,17 +369,21 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
     const std::size_t roundCandidates = std::max<std::size_t>(m_options.roundCandidates, 1);
     std::vector<Accepted> accepted;
     std::vector<Candidate> waiting;
-    std::vector<WorkerPending> pending(m_workers.size());
+    std::vector<WorkerScratch> scratch(m_workers.size());
     bool limitReached = false;
     std::vector<Candidate> popped;
+    // Candidates popped while the previous round inserted (see below), in queue order.
+    std::vector<Candidate> early;
     std::vector<Zone> zones(roundCandidates);
     while (!limitReached) {
-        // Pop the round's candidates and find, in parallel, the triangles each insertion can
-        // change (read-only on the DAG); the candidate j sits at vertex id base + j meanwhile.
+        // The round's candidates: the first live ones of the early ones merged with the queue,
+        // which holds everything the last round found. Then find, in parallel, the triangles
+        // each insertion can change (read-only on the DAG); the candidate j sits at vertex id
+        // base + j meanwhile.
         accepted.clear();
         waiting.clear();
         popped.clear();
-        popLive(roundCandidates, popped);
+        mergeLive(roundCandidates, early, popped);
         const auto base = static_cast<VertexId>(m_vertexCell.size());
         for (std::size_t j = 0; j < popped.size(); ++j)
             m_points.get()[base + j] = m_grid.cellCentre(popped[j].cell);
@@ -405,22 +430,36 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         m_deferred += waiting.size();
         if (accepted.empty()) {
             for (const Candidate& c : waiting)
-                m_queue.push(0, c);
+                m_queue.push(c);
             break;
         }
 
-        // Insert: the accepted points are independent; workers take them one by one.
+        // Insert: the accepted points are independent; workers take them one by one and keep
+        // the candidates they find. Meanwhile the calling thread first pops the next round's
+        // likely candidates, the refiner's one sequential job, so that it overlaps the
+        // insertions: whatever this round finds and the checks made then are merged in next
+        // round by mergeLive, so the rounds are exactly what popping afterwards would give.
         std::atomic<std::size_t> next{0};
         m_workers.run([&](unsigned worker) {
+            if (worker == 0 && !limitReached)
+                popLive(roundCandidates, early);
+            WorkerScratch& own = scratch[worker];
             for (std::size_t i = next++; i < accepted.size(); i = next++)
-                insert(accepted[i], pending[worker].edges, worker);
+                insert(accepted[i], own.edges, own.found);
         });
         ++m_rounds;
         for (const Candidate& c : waiting)
-            m_queue.push(0, c);
+            m_queue.push(c);
+        for (WorkerScratch& own : scratch) {
+            for (const Candidate& c : own.found)
+                m_queue.push(c);
+            own.found.clear();
+        }
 
         if (progress && m_rounds % kProgressRounds == 0) {
-            const double top = m_queue.empty() ? m_threshold : m_queue.top().priority;
+            double top = early.empty() ? m_threshold : early.front().priority;
+            if (!m_queue.empty())
+                top = std::max(top, m_queue.top().priority);
             if (!progress(progressFraction(top), "refining"))
                 throw Cancelled("Refiner: cancelled");
         }

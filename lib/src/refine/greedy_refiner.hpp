@@ -77,8 +77,8 @@ private:
     [[nodiscard]] PixelCorner corner(VertexId v) const;
     /// The candidate of a leaf, if it has one worth inserting.
     [[nodiscard]] std::optional<Candidate> scan(NodeId node) const;
-    /// scan(node), its candidate pushed to the worker's shard of the queue.
-    void scanInto(NodeId node, unsigned worker);
+    /// scan(node), its candidate appended to `found`.
+    void scanInto(NodeId node, std::vector<Candidate>& found) const;
     /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
     /// Cache-line aligned: the workers fill neighbouring zones, and a zone's vector header
     /// changes with every push_back; sharing a line would bounce it between the cores.
@@ -94,6 +94,9 @@ private:
     /// drops the stale ones met on the way. Rounds are made of live candidates only: counting
     /// stale ones would make a round's content depend on the order of equal candidates.
     void popLive(std::size_t count, std::vector<Candidate>& out);
+    /// Like popLive, from `early` (candidates popped before, in queue order) merged with the
+    /// queue; the early ones not taken go back into the queue and `early` is cleared.
+    void mergeLive(std::size_t count, std::vector<Candidate>& early, std::vector<Candidate>& out);
     /// Fills `zone` for `vertex` (already in m_points), searching from the leaf `start`.
     /// Reads the DAG only: safe from several threads while nothing edits it.
     void findZone(VertexId vertex, NodeId start, Zone& zone) const;
@@ -102,12 +105,14 @@ private:
     bool claim(const Zone& zone, std::uint32_t stamp);
     /// Whether claim would succeed, without claiming.
     [[nodiscard]] bool claimFree(const Zone& zone, std::uint32_t stamp) const;
-    /// A worker's legalisation stack, on a cache line of its own (see Zone).
-    struct alignas(64) WorkerPending {
+    /// A worker's legalisation stack and the candidates it found, on cache lines of their
+    /// own (see Zone).
+    struct alignas(64) WorkerScratch {
         PendingEdges edges;
+        std::vector<Candidate> found;
     };
-    /// Inserts one accepted point and queues the candidates of its new triangles.
-    void insert(const Accepted& accepted, PendingEdges& pending, unsigned worker);
+    /// Inserts one accepted point and appends the candidates of its new triangles to `found`.
+    void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& found);
     void addVertex(std::uint32_t cell);
     /// Whether `vertex` may lie inside or on the circumcircle of the leaf `node`: exact for
     /// auxiliary triangles, a floating-point test erring towards "yes" otherwise (a larger
@@ -127,7 +132,7 @@ private:
     std::vector<std::uint32_t> m_vertexCell;
     std::vector<VertexPixel> m_vertexPixel;
     std::optional<DagTriangulator> m_triangulator;
-    ShardedCandidateQueue m_queue;
+    CandidateQueue m_queue;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
     std::size_t m_rounds = 0;

@@ -1,6 +1,7 @@
 #include "terratin/refine/refine.hpp"
 
 #include "cell_flags.hpp"
+#include "cell_order.hpp"
 #include "error_check.hpp"
 #include "greedy_refiner.hpp"
 #include "round_workers.hpp"
@@ -81,6 +82,7 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     result.insertSeconds = lap(phase);
 
     result.mesh = refiner.extract();
+    detail::orderByCell(result.mesh);
     if (options.validate) {
         const MeshValidation validation = validateDelaunay(result.mesh);
         if (!validation.ok())
