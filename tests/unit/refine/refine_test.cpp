@@ -46,21 +46,25 @@ TEST(Refine, SingleSpikeAddsOnePoint_WhenItsNeighboursLieOnTheHull) {
     });
     const RefineResult result = refine(grid, withError(0.5));
     ASSERT_EQ(result.mesh.vertexCount(), 5U);
-    EXPECT_EQ(result.mesh.sourceIndex.back(), 4U);
+    // The corners and the spike, in raster order.
+    EXPECT_EQ(result.mesh.sourceIndex, (std::vector<std::uint32_t>{0, 2, 4, 6, 8}));
     EXPECT_EQ(result.maxError, 0.0);
 }
 
 TEST(Refine, SingleSpikeIsKept_AndOnlyItsNeighbourhoodIsAdded) {
     // In a wide flat grid the spike is the first point inserted; the cone it makes is wrong
-    // right beside it, so its four edge neighbours follow (the diagonal ones then lie on flat
-    // triangles): 4 corners + 1 + 4.
+    // right beside it, so four points around it follow: 4 corners + 1 + 4.
     const HeightGrid grid = makeGrid(33, 21, [](int row, int col) {
         return row == 10 && col == 17 ? 250.0 : 12.0;
     });
     const RefineResult result = refine(grid, withError(0.5));
     EXPECT_EQ(result.mesh.vertexCount(), 9U);
-    const auto spike = static_cast<std::uint32_t>(10 * 33 + 17);
-    EXPECT_EQ(result.mesh.sourceIndex[4], spike);
+    const auto has = [&](std::uint32_t row, std::uint32_t col) {
+        return std::binary_search(result.mesh.sourceIndex.begin(), result.mesh.sourceIndex.end(),
+                                  row * 33 + col); // vertices come in raster order
+    };
+    EXPECT_TRUE(has(10, 17));
+    EXPECT_TRUE(has(0, 0) && has(0, 32) && has(20, 0) && has(20, 32));
     EXPECT_EQ(result.maxError, 0.0);
     test::expectWithinError(result.mesh, grid, 0.5);
     // A tolerance above the spike's height needs nothing but the corners.
@@ -92,6 +96,29 @@ TEST(Refine, EveryValidCellWithinMaxError_OnRoughTerrain) {
         test::expectWithinError(result.mesh, grid, maxError);
         EXPECT_TRUE(validateDelaunay(result.mesh).ok());
     }
+}
+
+TEST(Refine, TinComesInRasterOrder) {
+    // Vertices by cell, triangles by their lowest corner, neighbours renumbered with them.
+    const HeightGrid grid = test::roughTerrain(96, 80, 11);
+    RefineOptions options = withError(1.0);
+    options.threads = 2;
+    const RefineResult result = refine(grid, options);
+    const TinMesh& mesh = result.mesh;
+    EXPECT_TRUE(std::is_sorted(mesh.sourceIndex.begin(), mesh.sourceIndex.end()));
+    EXPECT_EQ(std::adjacent_find(mesh.sourceIndex.begin(), mesh.sourceIndex.end()),
+              mesh.sourceIndex.end());
+    std::vector<std::uint32_t> lowest;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        lowest.push_back(std::min({mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                                   mesh.triangles[3 * t + 2]}));
+    EXPECT_TRUE(std::is_sorted(lowest.begin(), lowest.end()));
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        const std::size_t cell = mesh.sourceIndex[v];
+        EXPECT_EQ(mesh.vertices[v].z, static_cast<double>(grid.z[cell]));
+    }
+    EXPECT_TRUE(validateDelaunay(mesh).ok()); // twins, orientation, Euler, empty circles
+    test::expectWithinError(mesh, grid, 1.0);
 }
 
 TEST(Refine, FewerPoints_WhenTheToleranceGrows) {
