@@ -71,6 +71,9 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
             const PixelTriangle triangle = triangleOf(mesh, corners, t);
             if (!triangle.hasArea())
                 continue; // its cells lie on neighbouring triangles' edges (grid_scan.hpp)
+            if (triangle.coversOnlyCorners())
+                continue; // vertices, counted below
+
             // Edge i of `triangle` runs corner(i) -> corner(i+1); find the mesh's neighbour
             // across it to decide whether this triangle owns the cells on it.
             bool strict[3] = {false, false, false};

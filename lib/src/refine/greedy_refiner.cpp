@@ -106,6 +106,8 @@ std::optional<Candidate> GreedyRefiner::scan(NodeId id) const {
     const PixelTriangle triangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]));
     if (!triangle.hasArea())
         return std::nullopt; // its cells lie on the neighbours' edges (grid_scan.hpp)
+    if (triangle.coversOnlyCorners())
+        return std::nullopt; // vertices, no other cell
     double best = -1.0;
     std::int64_t bestCell = 0;
     bool coversHole = false;

@@ -150,6 +150,10 @@ public:
 
     /// False for pixel-collinear corners (zero pixel area).
     [[nodiscard]] bool hasArea() const { return m_det != 0; }
+    /// True when the closed triangle holds no cell but its corners: by Pick's theorem a
+    /// lattice triangle of area 1/2 has no lattice point inside or on its edges besides its
+    /// corners. A quarter of the triangles a fine refinement scans are such.
+    [[nodiscard]] bool coversOnlyCorners() const { return m_det == 1 || m_det == -1; }
     [[nodiscard]] const PixelCorner& corner(int i) const {
         return m_corner[static_cast<std::size_t>(i)];
     }

@@ -1,0 +1,138 @@
+// The refiner's internal building blocks against brute force: the exact row intervals of a
+// lattice triangle, Pick's shortcut for triangles holding only their corners, the floor
+// division behind the intervals, and the candidate queue's order.
+
+#include "candidate_queue.hpp"
+#include "grid_scan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace terratin::detail {
+namespace {
+
+using Cell = std::pair<std::int64_t, std::int64_t>; // (row, col)
+
+std::int64_t orient(const PixelCorner& p, const PixelCorner& q, std::int64_t col,
+                    std::int64_t row) {
+    return (q.col - p.col) * (row - p.row) - (q.row - p.row) * (col - p.col);
+}
+
+/// Every cell of a width x height grid inside or on the triangle, by orientation tests.
+std::set<Cell> cellsByBruteForce(const PixelCorner& a, const PixelCorner& b,
+                                 const PixelCorner& c, std::int64_t width, std::int64_t height) {
+    std::set<Cell> cells;
+    for (std::int64_t row = 0; row < height; ++row)
+        for (std::int64_t col = 0; col < width; ++col) {
+            const std::int64_t ab = orient(a, b, col, row);
+            const std::int64_t bc = orient(b, c, col, row);
+            const std::int64_t ca = orient(c, a, col, row);
+            if ((ab >= 0 && bc >= 0 && ca >= 0) || (ab <= 0 && bc <= 0 && ca <= 0))
+                cells.insert({row, col});
+        }
+    return cells;
+}
+
+TEST(GridScan, RowsHoldExactlyTheCellsOfTheClosedTriangle) {
+    std::mt19937 random(5);
+    std::uniform_int_distribution<std::int64_t> coordinate(-3, 24);
+    constexpr std::int64_t kWidth = 20;
+    constexpr std::int64_t kHeight = 17;
+    int onlyCorners = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const PixelCorner a{coordinate(random), coordinate(random), 0.0, 0};
+        const PixelCorner b{coordinate(random), coordinate(random), 0.0, 1};
+        const PixelCorner c{coordinate(random), coordinate(random), 0.0, 2};
+        const PixelTriangle triangle(a, b, c);
+        if (!triangle.hasArea())
+            continue;
+        std::set<Cell> visited;
+        triangle.forEachRow(kWidth, kHeight, nullptr,
+                            [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                for (std::int64_t col = lo; col <= hi; ++col)
+                                    EXPECT_TRUE(visited.insert({row, col}).second);
+                            });
+        EXPECT_EQ(visited, cellsByBruteForce(a, b, c, kWidth, kHeight));
+        // Pick's theorem: area 1/2 <=> no lattice point but the corners (on an unclipped grid).
+        const std::set<Cell> all = cellsByBruteForce(a, b, c, 64, 64);
+        const std::array<PixelCorner, 3> corners{a, b, c};
+        const bool inGrid = std::all_of(corners.begin(), corners.end(), [](const PixelCorner& p) {
+            return p.col >= 0 && p.row >= 0;
+        });
+        if (inGrid) {
+            EXPECT_EQ(triangle.coversOnlyCorners(), all.size() == 3U);
+            onlyCorners += triangle.coversOnlyCorners() ? 1 : 0;
+        }
+    }
+    EXPECT_GT(onlyCorners, 0);
+}
+
+TEST(GridScan, FloorDivisionIsExact) {
+    std::mt19937_64 random(9);
+    const std::int64_t bound = std::int64_t{1} << 40;
+    std::uniform_int_distribution<std::int64_t> numerator(-bound, bound);
+    std::uniform_int_distribution<std::int64_t> divisor(1, 1 << 20);
+    for (int trial = 0; trial < 200000; ++trial) {
+        const std::int64_t a = trial % 3 == 0 ? numerator(random) % 1000 : numerator(random);
+        const std::int64_t b = trial % 5 == 0 ? divisor(random) % 7 + 1 : divisor(random);
+        EXPECT_EQ(floorDivPositive(a, b), floorDiv(a, b)) << a << " / " << b;
+        // Exact multiples, and one either side of them.
+        const std::int64_t multiple = (a / b) * b;
+        for (const std::int64_t n : {multiple - 1, multiple, multiple + 1})
+            ASSERT_EQ(floorDivPositive(n, b), floorDiv(n, b)) << n << " / " << b;
+    }
+    // Past the double-exact range the integer path is taken.
+    const std::int64_t huge = (std::int64_t{1} << 60) + 12345;
+    EXPECT_EQ(floorDivPositive(huge, 7), floorDiv(huge, 7));
+    EXPECT_EQ(floorDivPositive(-huge, 7), floorDiv(-huge, 7));
+}
+
+TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> priority(0.0, 2000.0);
+    std::vector<Candidate> reference;
+    CandidateQueue queue;
+    const auto pushBoth = [&](const Candidate& candidate) {
+        reference.push_back(candidate);
+        queue.push(candidate);
+    };
+    const auto popBoth = [&] {
+        const auto greatest = std::max_element(reference.begin(), reference.end(), Lower{});
+        const Candidate expected = *greatest;
+        reference.erase(greatest);
+        ASSERT_FALSE(queue.empty());
+        EXPECT_EQ(queue.top().priority, expected.priority);
+        const Candidate got = queue.pop();
+        EXPECT_EQ(got.priority, expected.priority);
+        EXPECT_EQ(got.cell, expected.cell);
+    };
+    // Pushes interleaved with pops, some above the bucket being consumed, ties on priority
+    // broken by the cell, zero and infinite priorities.
+    std::uint32_t cell = 0;
+    for (int step = 0; step < 4000; ++step) {
+        double value = priority(random);
+        if (step % 17 == 0)
+            value = 42.0;
+        if (step % 101 == 0)
+            value = 0.0;
+        if (step % 211 == 0)
+            value = std::numeric_limits<double>::infinity();
+        pushBoth({value, (cell++ * 7919U) % 100003U, 0});
+        if (step % 3 == 2)
+            popBoth();
+    }
+    while (!reference.empty())
+        popBoth();
+    EXPECT_TRUE(queue.empty());
+}
+
+} // namespace
+} // namespace terratin::detail
