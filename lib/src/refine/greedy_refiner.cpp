@@ -25,15 +25,6 @@ constexpr std::size_t kLookAhead = 8;
 /// Triangles around a new vertex scanned in one batch.
 constexpr std::size_t kMaxFan = 16;
 
-/// One row of a triangle's cells: columns lo..hi.
-struct RowSpan {
-    std::int64_t row;
-    std::int64_t lo;
-    std::int64_t hi;
-};
-/// Rows whose cells are requested before the first of them is measured.
-constexpr std::size_t kScanBatchRows = 32;
-
 // Progress (and the cancellation check) every this many rounds.
 constexpr std::size_t kProgressRounds = 16;
 
@@ -99,61 +90,45 @@ bool GreedyRefiner::mayBeInCircle(const DagNode& node, VertexId vertex) const {
     return det >= -2.0 * predicates::detail::kIncircleErrorBoundA * permanent;
 }
 
-std::optional<Candidate> GreedyRefiner::scan(NodeId id) const {
+bool GreedyRefiner::prepareScan(NodeId id, TriangleScan& scan) const {
     const DagNode& node = m_triangulator->node(id);
     if (!isFiniteTriangle(m_triangulator->predicates(), node))
-        return std::nullopt;
-    const PixelTriangle triangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]));
-    if (!triangle.hasArea())
-        return std::nullopt; // its cells lie on the neighbours' edges (grid_scan.hpp)
-    if (triangle.coversOnlyCorners())
-        return std::nullopt; // vertices, no other cell
-    double best = -1.0;
-    std::int64_t bestCell = 0;
-    bool coversHole = false;
-    const std::int64_t width = m_view.width;
-    const double gradCol = triangle.gradCol();
-    const auto measureRow = [&](const RowSpan& span) {
-        const float* z = m_view.z + span.row * width;
-        const std::uint8_t* flags = m_view.flags + span.row * width;
-        const double base = triangle.rowBase(span.row);
-        for (std::int64_t col = span.lo; col <= span.hi; ++col) {
-            if (flags[col] != 0) {
-                coversHole |= (flags[col] & kCellOpenHole) != 0;
-                continue;
-            }
-            const double error =
-                std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
-            if (error > best) {
-                best = error;
-                bestCell = span.row * width + col;
-            }
-        }
-    };
-    // The rows' intervals first, each row's cells requested from memory as it is found, then
-    // the measuring: a triangle's rows lie a raster row apart, so each is a cache miss, and
-    // this way they overlap instead of following one another.
-    std::array<RowSpan, kScanBatchRows> spans;
-    std::size_t count = 0;
-    triangle.forEachRow(width, m_view.height, nullptr,
-                        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                            __builtin_prefetch(m_view.z + row * width + lo);
-                            __builtin_prefetch(m_view.flags + row * width + lo);
-                            spans[count++] = {row, lo, hi};
-                            if (count == spans.size()) {
-                                for (const RowSpan& span : spans)
-                                    measureRow(span);
-                                count = 0;
-                            }
-                        });
-    for (std::size_t i = 0; i < count; ++i)
-        measureRow(spans[i]);
-    if (best < 0.0)
+        return false;
+    return scan.prepare(PixelTriangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2])),
+                        m_view);
+}
+
+std::optional<Candidate> GreedyRefiner::candidateOf(NodeId id, const ScanResult& result) const {
+    if (result.best < 0.0)
         return std::nullopt; // no valid cell left to insert
-    const double priority = coversHole ? kHolePriority : best;
+    const double priority = result.coversHole ? kHolePriority : result.best;
     if (priority <= m_threshold)
         return std::nullopt;
-    return Candidate{priority, static_cast<std::uint32_t>(bestCell), id};
+    return Candidate{priority, static_cast<std::uint32_t>(result.bestCell), id};
+}
+
+void GreedyRefiner::scanInto(NodeId id, std::vector<Candidate>& found) const {
+    TriangleScan scan;
+    if (!prepareScan(id, scan))
+        return;
+    if (const std::optional<Candidate> candidate = candidateOf(id, scan.measure(m_view)))
+        found.push_back(*candidate);
+}
+
+void GreedyRefiner::scanAllInto(std::span<const NodeId> triangles,
+                                std::vector<Candidate>& found) const {
+    std::array<TriangleScan, kMaxFan> scans;
+    std::array<bool, kMaxFan> prepared{};
+    for (std::size_t begin = 0; begin < triangles.size(); begin += kMaxFan) {
+        const std::size_t count = std::min(kMaxFan, triangles.size() - begin);
+        for (std::size_t k = 0; k < count; ++k)
+            prepared[k] = prepareScan(triangles[begin + k], scans[k]);
+        for (std::size_t k = 0; k < count; ++k)
+            if (prepared[k])
+                if (const std::optional<Candidate> candidate =
+                        candidateOf(triangles[begin + k], scans[k].measure(m_view)))
+                    found.push_back(*candidate);
+    }
 }
 
 bool GreedyRefiner::isLive(const Candidate& candidate) const {
@@ -316,8 +291,9 @@ void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
     dag.legalize(q, pending);
     // The new triangles are the fan around q: descend from the split leaf to one of them,
     // then turn around q through the neighbour links.
-    // The fan is collected first and its corners' pixels requested together: they are
-    // scattered (vertices are numbered in insertion order), and legalize did not touch them.
+    // The fan is collected first and its corners' pixels requested together (they are
+    // scattered: vertices are numbered in insertion order, and legalize did not touch them),
+    // then its triangles are scanned together (triangle_scan.hpp).
     std::array<NodeId, kMaxFan> fan;
     std::size_t fanSize = 0;
     const NodeId first = dag.locate(q, accepted.leaf);
@@ -335,19 +311,12 @@ void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
         // The edge (q, v[i+1]) is opposite corner i+2.
         t = node.link[static_cast<std::size_t>(previousCorner(i))];
         if (fanSize == fan.size() && t != first) {
-            // A very high degree: scan what was collected and go on one by one.
-            for (const NodeId n : fan)
-                scanInto(n, found);
+            // A very high degree: scan what was collected and go on.
+            scanAllInto(fan, found);
             fanSize = 0;
         }
     } while (t != first);
-    for (std::size_t k = 0; k < fanSize; ++k)
-        scanInto(fan[k], found);
-}
-
-void GreedyRefiner::scanInto(NodeId node, std::vector<Candidate>& found) const {
-    if (const std::optional<Candidate> candidate = scan(node))
-        found.push_back(*candidate);
+    scanAllInto(std::span<const NodeId>(fan.data(), fanSize), found);
 }
 
 double GreedyRefiner::progressFraction(double topPriority) const {

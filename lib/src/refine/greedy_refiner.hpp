@@ -22,6 +22,7 @@
 
 #include "candidate_queue.hpp"
 #include "grid_scan.hpp"
+#include "triangle_scan.hpp"
 #include "round_workers.hpp"
 
 #include "../triangulate/dag_triangulator.hpp"
@@ -33,6 +34,7 @@
 #include <cstdlib>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace terratin::detail {
@@ -75,10 +77,14 @@ private:
 
     void startFromHull();
     [[nodiscard]] PixelCorner corner(VertexId v) const;
-    /// The candidate of a leaf, if it has one worth inserting.
-    [[nodiscard]] std::optional<Candidate> scan(NodeId node) const;
-    /// scan(node), its candidate appended to `found`.
+    /// Prepares the scan of a leaf (see TriangleScan); false when it has nothing to measure.
+    bool prepareScan(NodeId node, TriangleScan& scan) const;
+    /// The candidate of a leaf from its scan, if it has one worth inserting.
+    [[nodiscard]] std::optional<Candidate> candidateOf(NodeId node, const ScanResult& result) const;
+    /// Scans a leaf and appends its candidate, if any, to `found`.
     void scanInto(NodeId node, std::vector<Candidate>& found) const;
+    /// scanInto for several leaves, whose memory requests overlap (kMaxFan at a time).
+    void scanAllInto(std::span<const NodeId> nodes, std::vector<Candidate>& found) const;
     /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
     /// Cache-line aligned: the workers fill neighbouring zones, and a zone's vector header
     /// changes with every push_back; sharing a line would bounce it between the cores.
