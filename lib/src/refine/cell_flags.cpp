@@ -9,10 +9,10 @@ namespace {
 constexpr std::uint8_t kSeen = 0x80;
 } // namespace
 
-std::vector<std::uint8_t> makeCellFlags(const HeightGrid& grid, std::size_t maxHole,
+CellFlags makeCellFlags(const HeightGrid& grid, std::size_t maxHole,
                                         bool fillHoles, std::size_t& openHoleCells) {
     const std::size_t cells = grid.cellCount();
-    std::vector<std::uint8_t> flags(cells, 0);
+    CellFlags flags(cells, 0);
     bool anyNoData = false;
     for (std::size_t cell = 0; cell < cells; ++cell) {
         if (std::isnan(grid.z[cell])) {

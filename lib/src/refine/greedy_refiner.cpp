@@ -35,7 +35,7 @@ bool isFiniteTriangle(const SymbolicPredicates& predicates, const DagNode& node)
 
 } // namespace
 
-GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& flags,
+GreedyRefiner::GreedyRefiner(const HeightGrid& grid, CellFlags& flags,
                              const RefineOptions& options, RoundWorkers& workers)
     : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers) {
     m_view = {grid.width, grid.height, grid.z.data(), flags.data()};
@@ -186,12 +186,10 @@ void GreedyRefiner::startFromHull() {
     // The hull is kept whatever the point limit. Raw storage: pages are touched only as
     // points are chosen, so memory follows the output even though the triangulator must know
     // its capacity (its symbolic vertex ids) up front. Point2 is an implicit-lifetime
-    // aggregate, so writing into malloc'd storage is valid.
+    // aggregate, so writing into malloc'd storage is valid. On huge pages (huge_pages.hpp).
     // A round holds its candidates at ids past the chosen points while it finds their zones.
     m_capacity = std::max(m_capacity, hull.size()) + std::max<std::size_t>(m_options.roundCandidates, 1);
-    m_points.reset(static_cast<Point2*>(std::malloc(m_capacity * sizeof(Point2))));
-    if (m_points == nullptr)
-        throw std::bad_alloc();
+    m_points.reset(static_cast<Point2*>(allocateOnHugePages(m_capacity * sizeof(Point2))));
     // The auxiliary triangle's finite corner must be the highest point ever inserted: the
     // highest valid centre, always a hull corner.
     std::size_t highest = 0;

@@ -21,6 +21,7 @@
 /// error, and only errors above the target become candidates. Ties: the lowest cell index.
 
 #include "candidate_queue.hpp"
+#include "cell_flags.hpp"
 #include "grid_scan.hpp"
 #include "triangle_scan.hpp"
 #include "round_workers.hpp"
@@ -42,7 +43,7 @@ namespace terratin::detail {
 class GreedyRefiner {
 public:
     /// `flags` from makeCellFlags; the refiner marks vertices in it.
-    GreedyRefiner(const HeightGrid& grid, std::vector<std::uint8_t>& flags,
+    GreedyRefiner(const HeightGrid& grid, CellFlags& flags,
                   const RefineOptions& options, RoundWorkers& workers);
 
     /// Runs to the target or a limit. Throws Cancelled when `progress` returns false.
@@ -127,7 +128,7 @@ private:
     [[nodiscard]] double progressFraction(double topPriority) const;
 
     const HeightGrid& m_grid;
-    std::vector<std::uint8_t>& m_flags;
+    CellFlags& m_flags;
     GridView m_view;
     RefineOptions m_options;
     RoundWorkers& m_workers;

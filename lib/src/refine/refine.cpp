@@ -67,7 +67,7 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
         options.threads != 0 ? options.threads : std::max(1U, std::thread::hardware_concurrency());
     result.threads = threads;
 
-    std::vector<std::uint8_t> flags =
+    detail::CellFlags flags =
         detail::makeCellFlags(grid, options.maxHole, options.fillHoles, result.openHoleCells);
     const detail::GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
 

@@ -1,17 +1,15 @@
 #include "node_arena.hpp"
 
+#include "terratin/huge_pages.hpp"
+
 #include <cstdlib>
 #include <new>
 #include <stdexcept>
 
-#include <sys/mman.h>
-
 namespace terratin::detail {
 
 namespace {
-// Transparent huge pages are 2 MiB on x86-64 and arm64; aligning chunks to them lets the kernel
-// back each chunk with few large pages.
-constexpr std::size_t kHugePageBytes = std::size_t{2} << 20U;
+// Chunks are on huge pages (huge_pages.hpp): the triangulator reads them at random.
 constexpr std::size_t kChunkBytes = NodeArena::kChunkNodes * sizeof(DagNode);
 static_assert(NodeArena::kChunkNodes % NodeArena::kBlockNodes == 0,
               "a block must never straddle two chunks");
@@ -47,13 +45,7 @@ DagNode* NodeArena::chunkFor(std::size_t chunk) {
     nodes = m_chunks[chunk].load(std::memory_order_acquire);
     if (nodes != nullptr)
         return nodes;
-    void* memory = std::aligned_alloc(kHugePageBytes, (kChunkBytes + kHugePageBytes - 1) /
-                                                          kHugePageBytes * kHugePageBytes);
-    if (memory == nullptr)
-        throw std::bad_alloc();
-    // Only advice: without transparent huge pages the chunk simply uses normal pages.
-    madvise(memory, kChunkBytes, MADV_HUGEPAGE);
-    nodes = static_cast<DagNode*>(memory);
+    nodes = static_cast<DagNode*>(allocateOnHugePages(kChunkBytes));
     m_chunks[chunk].store(nodes, std::memory_order_release);
     m_chunkCount.fetch_add(1, std::memory_order_relaxed);
     return nodes;

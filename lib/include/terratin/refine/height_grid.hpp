@@ -4,6 +4,7 @@
 /// NaN for a cell without data, and the affine geotransform that places cell centres.
 
 #include "terratin/geometry/point.hpp"
+#include "terratin/huge_pages.hpp"
 
 #include <array>
 #include <cmath>
@@ -27,8 +28,9 @@ struct HeightGrid {
     /// GDAL's affine geotransform: x = c[0] + col*c[1] + row*c[2], y = c[3] + col*c[4] +
     /// row*c[5], (col, row) in pixels from the corner of the first stored cell. CRS units.
     std::array<double, 6> geoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-    /// width * height elevations, row-major; NaN = no data.
-    std::vector<float> z;
+    /// width * height elevations, row-major; NaN = no data. On huge pages: the refiner reads
+    /// them a triangle's rows at a time, all over the raster.
+    std::vector<float, HugePageAllocator<float>> z;
 
     /// Georeferenced centre of cell (row, col): the transform at (col + 0.5, row + 0.5),
     /// evaluated as (c[0] + px*c[1]) + py*c[2] and (c[3] + px*c[4]) + py*c[5], bit-identical
