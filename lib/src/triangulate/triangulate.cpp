@@ -1,5 +1,7 @@
 #include "terratin/triangulate/triangulate.hpp"
 
+#include "terratin/huge_pages.hpp"
+
 #include "batch_insertion.hpp"
 #include "circumcircle_insertion.hpp"
 #include "dag_triangulator.hpp"
@@ -52,7 +54,8 @@ unsigned resolveSearchers(unsigned requested, std::size_t points, unsigned threa
 // in every predicate; numbered this way, consecutive insertions read neighbouring memory
 // instead of jumping across the whole array.
 struct InsertionPlan {
-    std::vector<Point2> local;
+    /// On huge pages (huge_pages.hpp): predicates read older vertices all over the array.
+    std::vector<Point2, HugePageAllocator<Point2>> local;
     /// preparedIndex[v]: the index in PreparedPoints of vertex v.
     std::vector<std::uint32_t> preparedIndex;
     /// 1, 2, ..., n-1: every vertex but the auxiliary corner, in the new numbering.
