@@ -161,8 +161,9 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     report.threads = result.threads;
     report.points = result.mesh.vertexCount();
     report.vertices = result.mesh.vertexCount();
+    // The refiner keeps no history: its triangulation's bytes take the place.
     report.historyBytesPerPoint =
-        static_cast<double>(result.historyBytes) /
+        static_cast<double>(result.meshBytes) /
         static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
     if (options.maxEdge)
         report.longEdgeTriangles = dropLongEdgeTriangles(result.mesh, *options.maxEdge);

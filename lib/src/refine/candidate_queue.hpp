@@ -12,7 +12,7 @@
 /// Priorities are never negative, so the float's bit pattern orders like its value.
 
 
-#include "../triangulate/dag_triangulator.hpp"
+#include "refine_mesh.hpp"
 
 #include <algorithm>
 #include <array>
@@ -25,7 +25,9 @@ namespace terratin::detail {
 struct Candidate {
     double priority;
     std::uint32_t cell;
-    NodeId node;
+    /// The triangle whose scan found the cell, and its version then (RefineMesh).
+    TriId triangle;
+    std::uint32_t version;
 };
 
 /// Heap order: the greatest priority on top, then the lowest cell.

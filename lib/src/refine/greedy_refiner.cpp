@@ -28,10 +28,6 @@ constexpr std::size_t kMaxFan = 16;
 // Progress (and the cancellation check) every this many rounds.
 constexpr std::size_t kProgressRounds = 16;
 
-bool isFiniteTriangle(const SymbolicPredicates& predicates, const DagNode& node) {
-    return predicates.isFinite(node.v[0]) && predicates.isFinite(node.v[1]) &&
-           predicates.isFinite(node.v[2]);
-}
 
 } // namespace
 
@@ -61,10 +57,7 @@ void GreedyRefiner::addVertex(std::uint32_t cell) {
     m_flags[cell] |= kCellVertex;
 }
 
-bool GreedyRefiner::mayBeInCircle(const DagNode& node, VertexId vertex) const {
-    const SymbolicPredicates& predicates = m_triangulator->predicates();
-    if (!isFiniteTriangle(predicates, node))
-        return predicates.incircle(node.v[0], node.v[1], node.v[2], vertex) >= 0;
+bool GreedyRefiner::mayBeInCircle(const MeshTriangle& node, VertexId vertex) const {
     // Shewchuk's stage A evaluation of the in-circle determinant; anything not certainly
     // negative (outside) counts as inside. The bound is twice the stage A error bound.
     const Point2& d = m_points.get()[vertex];
@@ -90,24 +83,23 @@ bool GreedyRefiner::mayBeInCircle(const DagNode& node, VertexId vertex) const {
     return det >= -2.0 * predicates::detail::kIncircleErrorBoundA * permanent;
 }
 
-bool GreedyRefiner::prepareScan(NodeId id, TriangleScan& scan) const {
-    const DagNode& node = m_triangulator->node(id);
-    if (!isFiniteTriangle(m_triangulator->predicates(), node))
-        return false;
+bool GreedyRefiner::prepareScan(TriId id, TriangleScan& scan) const {
+    const MeshTriangle& node = m_mesh->triangle(id);
     return scan.prepare(PixelTriangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2])),
                         m_view);
 }
 
-std::optional<Candidate> GreedyRefiner::candidateOf(NodeId id, const ScanResult& result) const {
+std::optional<Candidate> GreedyRefiner::candidateOf(TriId id, const ScanResult& result) const {
     if (result.best < 0.0)
         return std::nullopt; // no valid cell left to insert
     const double priority = result.coversHole ? kHolePriority : result.best;
     if (priority <= m_threshold)
         return std::nullopt;
-    return Candidate{priority, static_cast<std::uint32_t>(result.bestCell), id};
+    return Candidate{priority, static_cast<std::uint32_t>(result.bestCell), id,
+                     m_mesh->version(id)};
 }
 
-void GreedyRefiner::scanInto(NodeId id, std::vector<Candidate>& found) const {
+void GreedyRefiner::scanInto(TriId id, std::vector<Candidate>& found) const {
     TriangleScan scan;
     if (!prepareScan(id, scan))
         return;
@@ -115,7 +107,7 @@ void GreedyRefiner::scanInto(NodeId id, std::vector<Candidate>& found) const {
         found.push_back(*candidate);
 }
 
-void GreedyRefiner::scanAllInto(std::span<const NodeId> triangles,
+void GreedyRefiner::scanAllInto(std::span<const TriId> triangles,
                                 std::vector<Candidate>& found) const {
     std::array<TriangleScan, kMaxFan> scans;
     std::array<bool, kMaxFan> prepared{};
@@ -132,7 +124,7 @@ void GreedyRefiner::scanAllInto(std::span<const NodeId> triangles,
 }
 
 bool GreedyRefiner::isLive(const Candidate& candidate) const {
-    return m_triangulator->node(candidate.node).isLeaf() &&
+    return m_mesh->version(candidate.triangle) == candidate.version &&
            (m_flags[candidate.cell] & kCellVertex) == 0;
 }
 
@@ -145,7 +137,7 @@ void GreedyRefiner::popLive(std::size_t count, std::vector<Candidate>& out) {
     std::size_t size = 0;
     const auto popAhead = [&] {
         const Candidate candidate = m_queue.pop();
-        __builtin_prefetch(&m_triangulator->node(candidate.node));
+        __builtin_prefetch(&m_mesh->triangle(candidate.triangle));
         __builtin_prefetch(&m_flags[candidate.cell]);
         ahead[(head + size++) % kLookAhead] = candidate;
     };
@@ -184,38 +176,32 @@ void GreedyRefiner::mergeLive(std::size_t count, std::vector<Candidate>& early,
 void GreedyRefiner::startFromHull() {
     const std::vector<std::uint32_t> hull = validHullCells(m_grid);
     // The hull is kept whatever the point limit. Raw storage: pages are touched only as
-    // points are chosen, so memory follows the output even though the triangulator must know
-    // its capacity (its symbolic vertex ids) up front. Point2 is an implicit-lifetime
+    // points are chosen, so memory follows the output even though the mesh must know its
+    // capacity up front. Point2 is an implicit-lifetime
     // aggregate, so writing into malloc'd storage is valid. On huge pages (huge_pages.hpp).
     // A round holds its candidates at ids past the chosen points while it finds their zones.
     m_capacity = std::max(m_capacity, hull.size()) + std::max<std::size_t>(m_options.roundCandidates, 1);
     m_points.reset(static_cast<Point2*>(allocateOnHugePages(m_capacity * sizeof(Point2))));
-    // The auxiliary triangle's finite corner must be the highest point ever inserted: the
-    // highest valid centre, always a hull corner.
-    std::size_t highest = 0;
-    for (std::size_t i = 0; i < hull.size(); ++i)
-        if (SymbolicPredicates::compareHeight(m_grid.cellCentre(hull[highest]),
-                                              m_grid.cellCentre(hull[i])) > 0)
-            highest = i;
     m_vertexCell.reserve(std::min<std::size_t>(m_capacity, std::size_t{1} << 20));
     m_vertexPixel.reserve(m_vertexCell.capacity());
+    std::vector<VertexId> hullVertices(hull.size());
     for (std::size_t k = 0; k < hull.size(); ++k) {
-        const std::uint32_t cell = hull[(highest + k) % hull.size()];
-        m_points.get()[k] = m_grid.cellCentre(cell);
-        addVertex(cell);
+        m_points.get()[k] = m_grid.cellCentre(hull[k]);
+        addVertex(hull[k]);
+        hullVertices[k] = static_cast<VertexId>(k);
     }
-    m_triangulator.emplace(std::span<const Point2>(m_points.get(), m_capacity), VertexId{0});
-    for (VertexId v = 1; v < hull.size(); ++v)
-        m_triangulator->insertAtLeaf(m_triangulator->locate(v), v);
+    // At most 2n - 2 - h triangles for n points, h of them on the hull.
+    m_mesh.emplace(std::span<const Point2>(m_points.get(), m_capacity), 2 * m_capacity,
+                   m_workers.size());
+    m_mesh->startFromHull(hullVertices);
     m_hullPoints = hull.size();
     m_triangles = hull.size() - 2;
 
     // Candidates of the first triangles, scanned in parallel: they cover every valid cell.
-    std::vector<NodeId> leaves;
-    for (NodeId n = 0; n < m_triangulator->nodeCount(); ++n)
-        if (m_triangulator->node(n).isLeaf() &&
-            isFiniteTriangle(m_triangulator->predicates(), m_triangulator->node(n)))
-            leaves.push_back(n);
+    std::vector<TriId> leaves;
+    for (TriId t = 0; t < m_mesh->slotCount(); ++t)
+        if (m_mesh->inUse(t))
+            leaves.push_back(t);
     std::vector<WorkerScratch> scratch(m_workers.size());
     std::atomic<std::size_t> next{0};
     m_workers.run([&](unsigned worker) {
@@ -228,93 +214,64 @@ void GreedyRefiner::startFromHull() {
     m_firstPriority = m_queue.empty() ? 0.0 : m_queue.top().priority;
 }
 
-void GreedyRefiner::findZone(VertexId vertex, NodeId start, Zone& zone) const {
-    const DagTriangulator& dag = *m_triangulator;
-    const SymbolicPredicates& predicates = dag.predicates();
-    zone.leaf = dag.walk(vertex, start);
+void GreedyRefiner::findZone(VertexId vertex, TriId start, Zone& zone) const {
+    const RefineMesh& mesh = *m_mesh;
+    zone.leaf = mesh.walk(vertex, start);
     // The cavity (the triangles the insertion may replace) first, then the ring around it.
-    std::vector<NodeId>& nodes = zone.nodes;
+    std::vector<TriId>& nodes = zone.nodes;
     nodes.clear();
     nodes.push_back(zone.leaf);
     zone.growth = 2;
-    const int edge = dag.edgeContaining(zone.leaf, vertex);
+    const int edge = mesh.edgeContaining(zone.leaf, vertex);
     if (edge >= 0) {
-        const NodeId beyond = dag.node(zone.leaf).link[static_cast<std::size_t>(edge)];
-        nodes.push_back(beyond);
-        // On a hull edge the triangle beyond is an auxiliary one: one new output triangle.
-        if (!isFiniteTriangle(predicates, dag.node(beyond)))
-            zone.growth = 1;
+        const TriId beyond = mesh.triangle(zone.leaf).n[static_cast<std::size_t>(edge)];
+        if (beyond == kNoTriangle)
+            zone.growth = 1; // on the hull: one new output triangle
+        else
+            nodes.push_back(beyond);
     }
     // Breadth-first over the cavity, which stays at the front of `nodes`: the ring members
     // found so far are moved behind each newly found cavity member.
     std::size_t cavityEnd = nodes.size();
     for (std::size_t i = 0; i < cavityEnd; ++i) {
-        const DagNode& node = dag.node(nodes[i]);
-        for (const NodeId n : node.link) {
-            if (n == kNoNode || std::find(nodes.begin(), nodes.end(), n) != nodes.end())
+        const MeshTriangle& node = mesh.triangle(nodes[i]);
+        for (const TriId n : node.n) {
+            if (n == kNoTriangle || std::find(nodes.begin(), nodes.end(), n) != nodes.end())
                 continue;
             nodes.push_back(n);
-            if (mayBeInCircle(dag.node(n), vertex))
+            if (mayBeInCircle(mesh.triangle(n), vertex))
                 std::swap(nodes[cavityEnd++], nodes.back());
         }
     }
 }
 
 bool GreedyRefiner::claimFree(const Zone& zone, std::uint32_t stamp) const {
-    for (const NodeId n : zone.nodes)
-        if (m_triangulator->node(n).owner.load(std::memory_order_relaxed) == stamp)
+    for (const TriId n : zone.nodes)
+        if (m_mesh->owner(n) == stamp)
             return false;
     return true;
 }
 
 bool GreedyRefiner::claim(const Zone& zone, std::uint32_t stamp) {
-    DagTriangulator& dag = *m_triangulator;
-    for (const NodeId n : zone.nodes)
-        if (dag.node(n).owner.load(std::memory_order_relaxed) == stamp)
+    for (const TriId n : zone.nodes)
+        if (m_mesh->owner(n) == stamp)
             return false;
-    for (const NodeId n : zone.nodes)
-        dag.node(n).owner.store(stamp, std::memory_order_relaxed);
+    for (const TriId n : zone.nodes)
+        m_mesh->owner(n) = stamp;
     return true;
 }
 
-void GreedyRefiner::insert(const Accepted& accepted, PendingEdges& pending,
-                           std::vector<Candidate>& found) {
-    DagTriangulator& dag = *m_triangulator;
-    const VertexId q = accepted.vertex;
-    const int edge = dag.edgeContaining(accepted.leaf, q);
-    if (edge >= 0)
-        dag.splitEdge(accepted.leaf, edge, q, pending);
-    else
-        dag.splitTriangle(accepted.leaf, q, pending);
-    dag.legalize(q, pending);
-    // The new triangles are the fan around q: descend from the split leaf to one of them,
-    // then turn around q through the neighbour links.
-    // The fan is collected first and its corners' pixels requested together (they are
-    // scattered: vertices are numbered in insertion order, and legalize did not touch them),
-    // then its triangles are scanned together (triangle_scan.hpp).
-    std::array<NodeId, kMaxFan> fan;
-    std::size_t fanSize = 0;
-    const NodeId first = dag.locate(q, accepted.leaf);
-    NodeId t = first;
-    do {
-        const DagNode& node = dag.node(t);
-        int i = 0;
-        while (node.v[static_cast<std::size_t>(i)] != q)
-            ++i;
-        if (fanSize < fan.size())
-            fan[fanSize++] = t;
-        for (const VertexId v : node.v)
-            if (v < m_vertexPixel.size())
-                __builtin_prefetch(&m_vertexPixel[v]);
-        // The edge (q, v[i+1]) is opposite corner i+2.
-        t = node.link[static_cast<std::size_t>(previousCorner(i))];
-        if (fanSize == fan.size() && t != first) {
-            // A very high degree: scan what was collected and go on.
-            scanAllInto(fan, found);
-            fanSize = 0;
-        }
-    } while (t != first);
-    scanAllInto(std::span<const NodeId>(fan.data(), fanSize), found);
+void GreedyRefiner::insert(const Accepted& accepted, WorkerScratch& scratch) {
+    // The new triangles are the fan around the point. Its corners' pixels are requested
+    // together (they are scattered: vertices are numbered in insertion order, and the flips
+    // did not touch them), then its triangles are scanned together (triangle_scan.hpp).
+    std::vector<TriId>& fan = scratch.fan;
+    fan.clear();
+    m_mesh->insert(accepted.vertex, accepted.leaf, scratch.mesh, fan);
+    for (const TriId t : fan)
+        for (const VertexId v : m_mesh->triangle(t).v)
+            __builtin_prefetch(&m_vertexPixel[v]);
+    scanAllInto(fan, scratch.found);
 }
 
 double GreedyRefiner::progressFraction(double topPriority) const {
@@ -347,7 +304,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
     while (!limitReached) {
         // The round's candidates: the first live ones of the early ones merged with the queue,
         // which holds everything the last round found. Then find, in parallel, the triangles
-        // each insertion can change (read-only on the DAG); the candidate j sits at vertex id
+        // each insertion can change (read-only on the mesh); the candidate j sits at vertex id
         // base + j meanwhile.
         accepted.clear();
         waiting.clear();
@@ -359,7 +316,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         std::atomic<std::size_t> nextZone{0};
         m_workers.run([&](unsigned) {
             for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
-                findZone(base + static_cast<VertexId>(j), popped[j].node, zones[j]);
+                findZone(base + static_cast<VertexId>(j), popped[j].triangle, zones[j]);
         });
 
         // Accept in priority order those whose triangles no earlier one claimed; the accepted
@@ -414,7 +371,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
                 popLive(roundCandidates, early);
             WorkerScratch& own = scratch[worker];
             for (std::size_t i = next++; i < accepted.size(); i = next++)
-                insert(accepted[i], own.edges, own.found);
+                insert(accepted[i], own);
         });
         ++m_rounds;
         for (const Candidate& c : waiting)
@@ -437,7 +394,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
 
 TinMesh GreedyRefiner::extract() const {
     TinMesh mesh;
-    m_triangulator->extract(mesh.triangles, mesh.neighbours, m_workers.size());
+    m_mesh->extract(mesh.triangles, mesh.neighbours);
     const std::size_t count = m_vertexCell.size();
     mesh.vertices.resize(count);
     mesh.sourceIndex.resize(count);

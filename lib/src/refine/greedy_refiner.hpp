@@ -12,8 +12,8 @@
 /// workers insert them in any order and the triangulation is the same as inserting them one
 /// after the other, for any number of threads. Each worker then scans the new triangles
 /// around its points (the cells inside, the farthest from the new plane) and the candidates
-/// go back into the queue. A popped candidate is stale when its triangle is no longer a leaf
-/// of the DAG or its cell became a vertex (lazy invalidation).
+/// go back into the queue. A popped candidate is stale when its triangle's slot changed since
+/// (RefineMesh versions) or its cell became a vertex (lazy invalidation).
 ///
 /// Priorities: a triangle covering an open hole's cell and a valid non-vertex cell is
 /// refined before any error (priority +inf), so the triangles finally dropped over holes hold
@@ -26,7 +26,7 @@
 #include "triangle_scan.hpp"
 #include "round_workers.hpp"
 
-#include "../triangulate/dag_triangulator.hpp"
+#include "refine_mesh.hpp"
 
 #include "terratin/progress.hpp"
 #include "terratin/refine/refine.hpp"
@@ -59,12 +59,12 @@ public:
     [[nodiscard]] std::size_t triangles() const { return m_triangles; }
     [[nodiscard]] std::size_t rounds() const { return m_rounds; }
     [[nodiscard]] std::size_t deferred() const { return m_deferred; }
-    [[nodiscard]] std::size_t historyBytes() const { return m_triangulator->memoryBytes(); }
+    [[nodiscard]] std::size_t meshBytes() const { return m_mesh->memoryBytes(); }
 
 private:
     struct Accepted {
         VertexId vertex;
-        NodeId leaf;
+        TriId leaf;
     };
     /// A vertex's cell in pixel coordinates and its elevation, for the scans.
     struct VertexPixel {
@@ -78,24 +78,25 @@ private:
 
     void startFromHull();
     [[nodiscard]] PixelCorner corner(VertexId v) const;
-    /// Prepares the scan of a leaf (see TriangleScan); false when it has nothing to measure.
-    bool prepareScan(NodeId node, TriangleScan& scan) const;
-    /// The candidate of a leaf from its scan, if it has one worth inserting.
-    [[nodiscard]] std::optional<Candidate> candidateOf(NodeId node, const ScanResult& result) const;
-    /// Scans a leaf and appends its candidate, if any, to `found`.
-    void scanInto(NodeId node, std::vector<Candidate>& found) const;
+    /// Prepares the scan of a triangle (see TriangleScan); false when it has nothing to
+    /// measure.
+    bool prepareScan(TriId node, TriangleScan& scan) const;
+    /// The candidate of a triangle from its scan, if it has one worth inserting.
+    [[nodiscard]] std::optional<Candidate> candidateOf(TriId node, const ScanResult& result) const;
+    /// Scans a triangle and appends its candidate, if any, to `found`.
+    void scanInto(TriId node, std::vector<Candidate>& found) const;
     /// scanInto for several leaves, whose memory requests overlap (kMaxFan at a time).
-    void scanAllInto(std::span<const NodeId> nodes, std::vector<Candidate>& found) const;
-    /// The triangles inserting a point can change: the leaf holding it, the cavity, the ring.
+    void scanAllInto(std::span<const TriId> nodes, std::vector<Candidate>& found) const;
+    /// The triangles inserting a point can change: the one holding it, the cavity, the ring.
     /// Cache-line aligned: the workers fill neighbouring zones, and a zone's vector header
     /// changes with every push_back; sharing a line would bounce it between the cores.
     struct alignas(64) Zone {
-        NodeId leaf = kNoNode;
+        TriId leaf = kNoTriangle;
         /// Change in the number of output triangles: 2, or 1 on the hull.
         int growth = 2;
-        std::vector<NodeId> nodes;
+        std::vector<TriId> nodes;
     };
-    /// Whether `candidate` still stands: its triangle is a leaf and its cell no vertex.
+    /// Whether `candidate` still stands: its triangle unchanged and its cell no vertex.
     [[nodiscard]] bool isLive(const Candidate& candidate) const;
     /// Appends the next `count` live candidates in queue order (fewer if it runs out), and
     /// drops the stale ones met on the way. Rounds are made of live candidates only: counting
@@ -104,9 +105,9 @@ private:
     /// Like popLive, from `early` (candidates popped before, in queue order) merged with the
     /// queue; the early ones not taken go back into the queue and `early` is cleared.
     void mergeLive(std::size_t count, std::vector<Candidate>& early, std::vector<Candidate>& out);
-    /// Fills `zone` for `vertex` (already in m_points), searching from the leaf `start`.
-    /// Reads the DAG only: safe from several threads while nothing edits it.
-    void findZone(VertexId vertex, NodeId start, Zone& zone) const;
+    /// Fills `zone` for `vertex` (already in m_points), searching from the triangle `start`.
+    /// Reads the mesh only: safe from several threads while nothing edits it.
+    void findZone(VertexId vertex, TriId start, Zone& zone) const;
     /// Claims the zone's triangles for this round, unless an accepted insertion of the round
     /// claimed one of them (then nothing is claimed).
     bool claim(const Zone& zone, std::uint32_t stamp);
@@ -115,16 +116,18 @@ private:
     /// A worker's legalisation stack and the candidates it found, on cache lines of their
     /// own (see Zone).
     struct alignas(64) WorkerScratch {
-        PendingEdges edges;
+        RefineMesh::Scratch mesh;
+        std::vector<TriId> fan;
         std::vector<Candidate> found;
     };
-    /// Inserts one accepted point and appends the candidates of its new triangles to `found`.
-    void insert(const Accepted& accepted, PendingEdges& pending, std::vector<Candidate>& found);
+    /// Inserts one accepted point and appends the candidates of its new triangles to
+    /// scratch.found.
+    void insert(const Accepted& accepted, WorkerScratch& scratch);
     void addVertex(std::uint32_t cell);
-    /// Whether `vertex` may lie inside or on the circumcircle of the leaf `node`: exact for
-    /// auxiliary triangles, a floating-point test erring towards "yes" otherwise (a larger
-    /// claim is still a correct one, and grids make exact cocircularity tests common).
-    [[nodiscard]] bool mayBeInCircle(const DagNode& node, VertexId vertex) const;
+    /// Whether `vertex` may lie inside or on the circumcircle of `node`: a floating-point test
+    /// erring towards "yes" (a larger claim is still a correct one, and grids make exact
+    /// cocircularity tests common).
+    [[nodiscard]] bool mayBeInCircle(const MeshTriangle& node, VertexId vertex) const;
     [[nodiscard]] double progressFraction(double topPriority) const;
 
     const HeightGrid& m_grid;
@@ -138,7 +141,7 @@ private:
     std::unique_ptr<Point2, FreeDeleter> m_points;
     std::vector<std::uint32_t> m_vertexCell;
     std::vector<VertexPixel> m_vertexPixel;
-    std::optional<DagTriangulator> m_triangulator;
+    std::optional<RefineMesh> m_mesh;
     CandidateQueue m_queue;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;

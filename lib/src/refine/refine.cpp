@@ -78,7 +78,7 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     result.hullPoints = refiner.hullPoints();
     result.rounds = refiner.rounds();
     result.deferredCandidates = refiner.deferred();
-    result.historyBytes = refiner.historyBytes();
+    result.meshBytes = refiner.meshBytes();
     result.insertSeconds = lap(phase);
 
     result.mesh = refiner.extract();

@@ -125,7 +125,7 @@ TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
             value = 0.0;
         if (step % 211 == 0)
             value = std::numeric_limits<double>::infinity();
-        pushBoth({value, (cell++ * 7919U) % 100003U, 0});
+        pushBoth({value, (cell++ * 7919U) % 100003U, 0, 0});
         if (step % 3 == 2)
             popBoth();
     }

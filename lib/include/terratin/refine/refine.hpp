@@ -89,8 +89,8 @@ struct RefineResult {
     double insertSeconds = 0.0;
     double extractSeconds = 0.0;
     double checkSeconds = 0.0;
-    /// Bytes of the point-location history (DAG) at the end.
-    std::size_t historyBytes = 0;
+    /// Bytes reserved for the triangulation's triangles (pages are touched only as used).
+    std::size_t meshBytes = 0;
 };
 
 /// "error", "points" or "triangles".
