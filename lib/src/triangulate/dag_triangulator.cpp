@@ -40,13 +40,6 @@ DagTriangulator::DagTriangulator(std::span<const Point2> points)
             {kNoNode, kNoNode, kNoNode}, 0);
 }
 
-DagTriangulator::DagTriangulator(std::span<const Point2> points, VertexId highest)
-    : m_predicates(points), m_highest(highest) {
-    const NodeId root = m_nodes.allocate(1);
-    setLeaf(root, {m_highest, m_predicates.farLeft(), m_predicates.farRight()},
-            {kNoNode, kNoNode, kNoNode}, 0);
-}
-
 void DagTriangulator::setLeaf(NodeId id, std::array<VertexId, 3> v, std::array<NodeId, 3> link,
                               std::uint32_t owner) {
     DagNode& node = m_nodes[id];

@@ -43,11 +43,6 @@ public:
     /// triangulator. The highest point becomes the finite corner of the auxiliary triangle
     /// and is inserted by construction.
     explicit DagTriangulator(std::span<const Point2> points);
-    /// For callers that choose the points while inserting (terrain refinement): `highest`
-    /// must be the point highestOf would pick among every point that will ever be inserted.
-    /// Only points[highest] is read here; any other entry is read only once it is inserted,
-    /// so the caller may fill the span as it goes.
-    DagTriangulator(std::span<const Point2> points, VertexId highest);
 
     /// The finite corner of the auxiliary triangle (already part of the triangulation).
     [[nodiscard]] VertexId highestVertex() const { return m_highest; }
