@@ -9,6 +9,9 @@ namespace terratin::detail {
 
 namespace {
 
+/// Triangles a thread takes at a time.
+constexpr std::size_t kCheckChunk = 4096;
+
 // Pixel corners of every vertex, computed once (a division per vertex, not per triangle).
 std::vector<PixelCorner> pixelCorners(const TinMesh& mesh, std::int64_t width, unsigned threads) {
     std::vector<PixelCorner> corners(mesh.vertexCount());
@@ -34,7 +37,8 @@ std::vector<std::uint8_t> trianglesOverOpenHoles(const TinMesh& mesh, const Grid
                                                  unsigned threads) {
     std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
     const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
-    parallelFor(drop.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+    parallelForChunks(drop.size(), threads, kCheckChunk, [&](unsigned, std::size_t begin,
+                                                              std::size_t end) {
         for (std::size_t t = begin; t < end; ++t) {
             const PixelTriangle triangle = triangleOf(mesh, corners, t);
             bool covers = false;
@@ -60,7 +64,9 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
     const std::size_t triangles = mesh.triangleCount();
     std::vector<ErrorMeasure> blocks(parallelForThreads(triangles, threads));
     const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
-    parallelFor(triangles, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+    // Chunks, not halves: triangles differ in size by orders of magnitude (flat ground).
+    parallelForChunks(triangles, threads, kCheckChunk, [&](unsigned block, std::size_t begin,
+                                                          std::size_t end) {
         ErrorMeasure& measure = blocks[block];
         for (std::size_t t = begin; t < end; ++t) {
             // Corners are looked up by vertex number, at random: ask for them ahead.

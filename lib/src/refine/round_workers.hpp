@@ -11,6 +11,7 @@
 /// nothing while the caller does something else.
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -31,14 +32,18 @@ inline void spinPause() {
 #endif
 }
 
-/// Waits until `value` differs from `old`: spins `spins` times, then sleeps on it.
+/// Waits until `value` differs from `old`: spins for up to `spin`, then sleeps on it.
 template <class T>
-T awaitChange(const std::atomic<T>& value, T old, int spins) {
-    for (int i = 0; i < spins; ++i) {
+T awaitChange(const std::atomic<T>& value, T old, std::chrono::microseconds spin) {
+    const auto deadline = std::chrono::steady_clock::now() + spin;
+    for (unsigned i = 1;; ++i) {
         const T now = value.load(std::memory_order_acquire);
         if (now != old)
             return now;
         spinPause();
+        // A pause takes from 10 to 150 cycles depending on the processor: spin by the clock.
+        if (i % 16 == 0 && std::chrono::steady_clock::now() > deadline)
+            break;
     }
     value.wait(old, std::memory_order_acquire);
     return value.load(std::memory_order_acquire);
@@ -83,8 +88,8 @@ public:
     }
 
 private:
-    /// About 50-100 microseconds of spinning before a thread sleeps.
-    static constexpr int kSpins = 2000;
+    /// Spinning before a thread sleeps: longer than the caller's work between two rounds.
+    static constexpr std::chrono::microseconds kSpins{300};
 
     void loop(unsigned index) {
         std::uint64_t seen = 0;

@@ -5,6 +5,7 @@
 /// over millions of elements, so starting threads costs microseconds against milliseconds.
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -54,6 +55,20 @@ void parallelFor(std::size_t count, unsigned threads, Body&& body) {
     }
     if (failure)
         std::rethrow_exception(failure);
+}
+
+/// Like parallelFor, but the threads take chunks of `chunk` elements in turn, for loops whose
+/// elements cost unevenly (a large triangle holds many cells, a small one few): body(block,
+/// begin, end) is called for each chunk, `block` naming the thread (0 to
+/// parallelForThreads(count, threads) - 1), so per-thread results need no lock.
+template <class Body>
+void parallelForChunks(std::size_t count, unsigned threads, std::size_t chunk, Body&& body) {
+    std::atomic<std::size_t> next{0};
+    parallelFor(count, threads, [&](unsigned block, std::size_t, std::size_t) {
+        for (std::size_t begin = next.fetch_add(chunk); begin < count;
+             begin = next.fetch_add(chunk))
+            body(block, begin, std::min(count, begin + chunk));
+    });
 }
 
 } // namespace terratin::detail
