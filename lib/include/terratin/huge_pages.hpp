@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <memory>
 #include <new>
+#include <utility>
 
 namespace terratin {
 
@@ -20,9 +21,49 @@ namespace terratin {
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20U;
 inline constexpr std::size_t kHugePageThreshold = std::size_t{1} << 20U;
 
-/// `bytes` of storage, huge-page aligned and advised when at least kHugePageThreshold
-/// (rounded up to whole huge pages); release with std::free. Throws std::bad_alloc.
+/// `bytes` of uninitialised storage, on huge pages when at least kHugePageThreshold; release
+/// it with releaseHugePages(memory, bytes). Large blocks are reserved address space
+/// (MAP_NORESERVE on Linux): only pages touched take memory, so a capacity sized for the
+/// worst case costs nothing until used, and the kernel's overcommit check does not refuse
+/// it. Throws std::bad_alloc.
 void* allocateOnHugePages(std::size_t bytes);
+void releaseHugePages(void* memory, std::size_t bytes) noexcept;
+
+/// An owned array of `count` T on huge pages (allocateOnHugePages), elements uninitialised:
+/// for implicit-lifetime types the caller writes before reading.
+template <class T>
+class HugePageBuffer {
+public:
+    HugePageBuffer() = default;
+    explicit HugePageBuffer(std::size_t count)
+        : m_data(static_cast<T*>(allocateOnHugePages(count * sizeof(T)))), m_count(count) {}
+    ~HugePageBuffer() { release(); }
+    HugePageBuffer(const HugePageBuffer&) = delete;
+    HugePageBuffer& operator=(const HugePageBuffer&) = delete;
+    HugePageBuffer(HugePageBuffer&& other) noexcept
+        : m_data(std::exchange(other.m_data, nullptr)), m_count(std::exchange(other.m_count, 0)) {}
+    HugePageBuffer& operator=(HugePageBuffer&& other) noexcept {
+        if (this != &other) {
+            release();
+            m_data = std::exchange(other.m_data, nullptr);
+            m_count = std::exchange(other.m_count, 0);
+        }
+        return *this;
+    }
+
+    [[nodiscard]] T* data() const { return m_data; }
+    [[nodiscard]] std::size_t size() const { return m_count; }
+    [[nodiscard]] T& operator[](std::size_t i) const { return m_data[i]; }
+
+private:
+    void release() {
+        if (m_data != nullptr)
+            releaseHugePages(m_data, m_count * sizeof(T));
+        m_data = nullptr;
+    }
+    T* m_data = nullptr;
+    std::size_t m_count = 0;
+};
 
 /// A std::allocator that puts allocations of kHugePageThreshold bytes or more on huge pages.
 template <class T>
@@ -42,7 +83,7 @@ struct HugePageAllocator {
         if (n * sizeof(T) < kHugePageThreshold)
             std::allocator<T>{}.deallocate(p, n);
         else
-            std::free(p);
+            releaseHugePages(p, n * sizeof(T));
     }
     friend bool operator==(const HugePageAllocator& /*a*/, const HugePageAllocator& /*b*/) {
         return true;

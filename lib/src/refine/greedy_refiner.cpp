@@ -60,10 +60,10 @@ void GreedyRefiner::addVertex(std::uint32_t cell) {
 bool GreedyRefiner::mayBeInCircle(const MeshTriangle& node, VertexId vertex) const {
     // Shewchuk's stage A evaluation of the in-circle determinant; anything not certainly
     // negative (outside) counts as inside. The bound is twice the stage A error bound.
-    const Point2& d = m_points.get()[vertex];
-    const Point2& a = m_points.get()[node.v[0]];
-    const Point2& b = m_points.get()[node.v[1]];
-    const Point2& c = m_points.get()[node.v[2]];
+    const Point2& d = m_points.data()[vertex];
+    const Point2& a = m_points.data()[node.v[0]];
+    const Point2& b = m_points.data()[node.v[1]];
+    const Point2& c = m_points.data()[node.v[2]];
     const double adx = a.x - d.x;
     const double bdx = b.x - d.x;
     const double cdx = c.x - d.x;
@@ -175,23 +175,23 @@ void GreedyRefiner::mergeLive(std::size_t count, std::vector<Candidate>& early,
 
 void GreedyRefiner::startFromHull() {
     const std::vector<std::uint32_t> hull = validHullCells(m_grid);
-    // The hull is kept whatever the point limit. Raw storage: pages are touched only as
-    // points are chosen, so memory follows the output even though the mesh must know its
-    // capacity up front. Point2 is an implicit-lifetime
-    // aggregate, so writing into malloc'd storage is valid. On huge pages (huge_pages.hpp).
-    // A round holds its candidates at ids past the chosen points while it finds their zones.
+    // The hull is kept whatever the point limit. Reserved storage (huge_pages.hpp): pages are
+    // touched only as points are chosen, so memory follows the output although the capacity
+    // is the worst case. Point2 is an implicit-lifetime aggregate, so writing into the raw
+    // storage is valid. A round holds its candidates at ids past the chosen points while it
+    // finds their zones.
     m_capacity = std::max(m_capacity, hull.size()) + std::max<std::size_t>(m_options.roundCandidates, 1);
-    m_points.reset(static_cast<Point2*>(allocateOnHugePages(m_capacity * sizeof(Point2))));
+    m_points = HugePageBuffer<Point2>(m_capacity);
     m_vertexCell.reserve(std::min<std::size_t>(m_capacity, std::size_t{1} << 20));
     m_vertexPixel.reserve(m_vertexCell.capacity());
     std::vector<VertexId> hullVertices(hull.size());
     for (std::size_t k = 0; k < hull.size(); ++k) {
-        m_points.get()[k] = m_grid.cellCentre(hull[k]);
+        m_points.data()[k] = m_grid.cellCentre(hull[k]);
         addVertex(hull[k]);
         hullVertices[k] = static_cast<VertexId>(k);
     }
     // At most 2n - 2 - h triangles for n points, h of them on the hull.
-    m_mesh.emplace(std::span<const Point2>(m_points.get(), m_capacity), 2 * m_capacity,
+    m_mesh.emplace(std::span<const Point2>(m_points.data(), m_capacity), 2 * m_capacity,
                    m_workers.size());
     m_mesh->startFromHull(hullVertices);
     m_hullPoints = hull.size();
@@ -312,7 +312,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         mergeLive(roundCandidates, early, popped);
         const auto base = static_cast<VertexId>(m_vertexCell.size());
         for (std::size_t j = 0; j < popped.size(); ++j)
-            m_points.get()[base + j] = m_grid.cellCentre(popped[j].cell);
+            m_points.data()[base + j] = m_grid.cellCentre(popped[j].cell);
         std::atomic<std::size_t> nextZone{0};
         m_workers.run([&](unsigned) {
             for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
@@ -348,7 +348,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
                 continue;
             }
             const auto vertex = static_cast<VertexId>(m_vertexCell.size());
-            m_points.get()[vertex] = m_grid.cellCentre(popped[j].cell);
+            m_points.data()[vertex] = m_grid.cellCentre(popped[j].cell);
             addVertex(popped[j].cell);
             m_triangles += static_cast<std::size_t>(zone.growth);
             accepted.push_back({vertex, zone.leaf});
@@ -400,7 +400,7 @@ TinMesh GreedyRefiner::extract() const {
     mesh.sourceIndex.resize(count);
     for (std::size_t v = 0; v < count; ++v) {
         const std::uint32_t cell = m_vertexCell[v];
-        const Point2& p = m_points.get()[v];
+        const Point2& p = m_points.data()[v];
         mesh.vertices[v] = {p.x, p.y, static_cast<double>(m_grid.z[cell])};
         mesh.sourceIndex[v] = cell;
     }

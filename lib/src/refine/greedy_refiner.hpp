@@ -72,9 +72,6 @@ private:
         std::int32_t row;
         float z;
     };
-    struct FreeDeleter {
-        void operator()(Point2* p) const { std::free(p); }
-    };
 
     void startFromHull();
     [[nodiscard]] PixelCorner corner(VertexId v) const;
@@ -138,7 +135,7 @@ private:
     /// Candidates at or below this are not inserted: maxError, or -1 to use every cell.
     double m_threshold = -1.0;
     std::size_t m_capacity = 0;
-    std::unique_ptr<Point2, FreeDeleter> m_points;
+    HugePageBuffer<Point2> m_points;
     std::vector<std::uint32_t> m_vertexCell;
     std::vector<VertexPixel> m_vertexPixel;
     std::optional<RefineMesh> m_mesh;

@@ -19,8 +19,6 @@ constexpr int previous(int i) { return i == 0 ? 2 : i - 1; }
 
 } // namespace
 
-void RefineMesh::FreeDeleter::operator()(MeshTriangle* p) const { std::free(p); }
-
 RefineMesh::RefineMesh(std::span<const Point2> points, std::size_t maxTriangles,
                        unsigned threads)
     : m_points(points),
@@ -28,8 +26,7 @@ RefineMesh::RefineMesh(std::span<const Point2> points, std::size_t maxTriangles,
     if (m_capacity >= kNoTriangle)
         throw std::length_error("Refiner: more than 2^32 - 1 triangles");
     // Pages are touched only as blocks are taken, so memory follows the triangles in use.
-    m_triangles.reset(
-        static_cast<MeshTriangle*>(allocateOnHugePages(m_capacity * sizeof(MeshTriangle))));
+    m_triangles = HugePageBuffer<MeshTriangle>(m_capacity);
 }
 
 TriId RefineMesh::allocate(Scratch& scratch) {

@@ -25,6 +25,7 @@
 #include "../triangulate/node_arena.hpp"
 
 #include "terratin/geometry/point.hpp"
+#include "terratin/huge_pages.hpp"
 
 #include <array>
 #include <atomic>
@@ -104,10 +105,7 @@ private:
 
     std::span<const Point2> m_points;
     std::size_t m_capacity = 0;
-    struct FreeDeleter {
-        void operator()(MeshTriangle* p) const;
-    };
-    std::unique_ptr<MeshTriangle[], FreeDeleter> m_triangles;
+    HugePageBuffer<MeshTriangle> m_triangles;
     std::atomic<TriId> m_nextSlot{0};
 };
 

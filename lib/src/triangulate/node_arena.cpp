@@ -34,7 +34,7 @@ NodeArena::NodeArena()
 
 NodeArena::~NodeArena() {
     for (std::size_t i = 0; i < kMaxChunks; ++i)
-        std::free(m_chunks[i].load(std::memory_order_relaxed));
+        releaseHugePages(m_chunks[i].load(std::memory_order_relaxed), kChunkBytes);
 }
 
 DagNode* NodeArena::chunkFor(std::size_t chunk) {
