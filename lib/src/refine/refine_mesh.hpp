@@ -90,7 +90,8 @@ public:
 
     /// The triangles in use, in slot order, with neighbours as indices into that order.
     void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours) const;
-    [[nodiscard]] std::size_t memoryBytes() const { return m_capacity * sizeof(MeshTriangle); }
+    /// Bytes of the slots handed out (the reserved capacity beyond is untouched).
+    [[nodiscard]] std::size_t memoryBytes() const { return slotCount() * sizeof(MeshTriangle); }
 
 private:
     static constexpr VertexId kNoVertex = 0xFFFFFFFFU;

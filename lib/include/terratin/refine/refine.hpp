@@ -89,7 +89,7 @@ struct RefineResult {
     double insertSeconds = 0.0;
     double extractSeconds = 0.0;
     double checkSeconds = 0.0;
-    /// Bytes reserved for the triangulation's triangles (pages are touched only as used).
+    /// Bytes of the triangulation's triangles.
     std::size_t meshBytes = 0;
 };
 
