@@ -321,6 +321,7 @@ case "$case_name" in
     grep -q '500 points' out.txt || fail "summary does not give the 500 points"
     grep -q 'max error' out.txt || fail "summary lacks the max error"
     grep -q 'RMSE' out.txt || fail "summary lacks the RMSE"
+    grep -q 'CRS: .*EPSG:' out.txt || fail "summary lacks the raster's CRS"
     ;;
   refine_limits)
     run 0 build "$sample" -o tin.gpkg --max-error 0 --max-triangles 300 --json --quiet

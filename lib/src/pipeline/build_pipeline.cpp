@@ -137,6 +137,9 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     report.rasterCells = raster.grid.cellCount();
     report.skippedCells = raster.skippedCells;
     describeCrs(raster.crsWkt, report);
+    // The TIN stays in the raster's CRS: source and target are the same.
+    report.sourceCrsName = report.crsName;
+    report.sourceCrsCode = report.crsCode;
     report.timings.read = secondsSince(phase);
 
     phase = Clock::now();
