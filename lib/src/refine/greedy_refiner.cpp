@@ -10,7 +10,6 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <new>
 #include <string>
 
 namespace terratin::detail {
@@ -27,7 +26,6 @@ constexpr std::size_t kMaxFan = 16;
 
 // Progress (and the cancellation check) every this many rounds.
 constexpr std::size_t kProgressRounds = 16;
-
 
 } // namespace
 
@@ -60,10 +58,10 @@ void GreedyRefiner::addVertex(std::uint32_t cell) {
 bool GreedyRefiner::mayBeInCircle(const MeshTriangle& node, VertexId vertex) const {
     // Shewchuk's stage A evaluation of the in-circle determinant; anything not certainly
     // negative (outside) counts as inside. The bound is twice the stage A error bound.
-    const Point2& d = m_points.data()[vertex];
-    const Point2& a = m_points.data()[node.v[0]];
-    const Point2& b = m_points.data()[node.v[1]];
-    const Point2& c = m_points.data()[node.v[2]];
+    const Point2& d = m_points[vertex];
+    const Point2& a = m_points[node.v[0]];
+    const Point2& b = m_points[node.v[1]];
+    const Point2& c = m_points[node.v[2]];
     const double adx = a.x - d.x;
     const double bdx = b.x - d.x;
     const double cdx = c.x - d.x;
@@ -186,7 +184,7 @@ void GreedyRefiner::startFromHull() {
     m_vertexPixel.reserve(m_vertexCell.capacity());
     std::vector<VertexId> hullVertices(hull.size());
     for (std::size_t k = 0; k < hull.size(); ++k) {
-        m_points.data()[k] = m_grid.cellCentre(hull[k]);
+        m_points[k] = m_grid.cellCentre(hull[k]);
         addVertex(hull[k]);
         hullVertices[k] = static_cast<VertexId>(k);
     }
@@ -312,7 +310,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         mergeLive(roundCandidates, early, popped);
         const auto base = static_cast<VertexId>(m_vertexCell.size());
         for (std::size_t j = 0; j < popped.size(); ++j)
-            m_points.data()[base + j] = m_grid.cellCentre(popped[j].cell);
+            m_points[base + j] = m_grid.cellCentre(popped[j].cell);
         std::atomic<std::size_t> nextZone{0};
         m_workers.run([&](unsigned) {
             for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
@@ -348,7 +346,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
                 continue;
             }
             const auto vertex = static_cast<VertexId>(m_vertexCell.size());
-            m_points.data()[vertex] = m_grid.cellCentre(popped[j].cell);
+            m_points[vertex] = m_grid.cellCentre(popped[j].cell);
             addVertex(popped[j].cell);
             m_triangles += static_cast<std::size_t>(zone.growth);
             accepted.push_back({vertex, zone.leaf});
@@ -400,7 +398,7 @@ TinMesh GreedyRefiner::extract() const {
     mesh.sourceIndex.resize(count);
     for (std::size_t v = 0; v < count; ++v) {
         const std::uint32_t cell = m_vertexCell[v];
-        const Point2& p = m_points.data()[v];
+        const Point2& p = m_points[v];
         mesh.vertices[v] = {p.x, p.y, static_cast<double>(m_grid.z[cell])};
         mesh.sourceIndex[v] = cell;
     }
