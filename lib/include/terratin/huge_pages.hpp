@@ -11,7 +11,6 @@
 
 #include <cstddef>
 #include <cstdlib>
-#include <memory>
 #include <new>
 #include <utility>
 
@@ -75,16 +74,9 @@ struct HugePageAllocator {
     explicit HugePageAllocator(const HugePageAllocator<U>& /*other*/) noexcept {}
 
     [[nodiscard]] T* allocate(std::size_t n) {
-        if (n * sizeof(T) < kHugePageThreshold)
-            return std::allocator<T>{}.allocate(n);
         return static_cast<T*>(allocateOnHugePages(n * sizeof(T)));
     }
-    void deallocate(T* p, std::size_t n) noexcept {
-        if (n * sizeof(T) < kHugePageThreshold)
-            std::allocator<T>{}.deallocate(p, n);
-        else
-            releaseHugePages(p, n * sizeof(T));
-    }
+    void deallocate(T* p, std::size_t n) noexcept { releaseHugePages(p, n * sizeof(T)); }
     friend bool operator==(const HugePageAllocator& /*a*/, const HugePageAllocator& /*b*/) {
         return true;
     }

@@ -52,16 +52,17 @@ void orderByCell(TinMesh& mesh) {
         corner = newVertex[corner];
 
     // Triangles by their lowest corner (counting sort: one bucket per vertex).
-    std::vector<std::uint32_t> start(vertexCount + 1, 0);
+    std::vector<std::uint32_t> lowest(triangleCount);
     for (std::size_t t = 0; t < triangleCount; ++t)
-        ++start[std::min({mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                          mesh.triangles[3 * t + 2]}) +
-                1];
+        lowest[t] = std::min({mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                              mesh.triangles[3 * t + 2]});
+    std::vector<std::uint32_t> start(vertexCount + 1, 0);
+    for (const std::uint32_t corner : lowest)
+        ++start[corner + 1];
     std::partial_sum(start.begin(), start.end(), start.begin());
     std::vector<std::int32_t> newTriangle(triangleCount);
     for (std::size_t t = 0; t < triangleCount; ++t)
-        newTriangle[t] = static_cast<std::int32_t>(start[std::min(
-            {mesh.triangles[3 * t], mesh.triangles[3 * t + 1], mesh.triangles[3 * t + 2]})]++);
+        newTriangle[t] = static_cast<std::int32_t>(start[lowest[t]]++);
     std::vector<std::uint32_t> triangles(mesh.triangles.size());
     std::vector<std::int32_t> neighbours(mesh.neighbours.size());
     for (std::size_t t = 0; t < triangleCount; ++t) {

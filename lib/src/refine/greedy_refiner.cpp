@@ -251,9 +251,8 @@ bool GreedyRefiner::claimFree(const Zone& zone, std::uint32_t stamp) const {
 }
 
 bool GreedyRefiner::claim(const Zone& zone, std::uint32_t stamp) {
-    for (const TriId n : zone.nodes)
-        if (m_mesh->owner(n) == stamp)
-            return false;
+    if (!claimFree(zone, stamp))
+        return false;
     for (const TriId n : zone.nodes)
         m_mesh->owner(n) = stamp;
     return true;

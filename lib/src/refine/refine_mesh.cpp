@@ -75,36 +75,47 @@ void RefineMesh::startFromHull(std::span<const VertexId> hull) {
             {kNoTriangle, i + 1 < fanSize ? fan[i + 1] : kNoTriangle,
              i > 0 ? fan[i - 1] : kNoTriangle});
     }
+    // Unlike an insertion's, any edge of a flipped pair may now be illegal: all four outer
+    // edges go back on the stack.
     std::vector<std::pair<TriId, int>> edges;
     for (std::size_t i = 0; i + 1 < fanSize; ++i)
         edges.emplace_back(fan[i], 1);
     while (!edges.empty()) {
         const auto [t, e] = edges.back();
         edges.pop_back();
-        const MeshTriangle& triangle = m_triangles[t];
-        const TriId u = triangle.n[static_cast<std::size_t>(e)];
-        if (u == kNoTriangle)
-            continue;
-        int f = 0;
-        while (m_triangles[u].n[static_cast<std::size_t>(f)] != t)
-            ++f;
-        const VertexId p = triangle.v[static_cast<std::size_t>(e)];
-        const VertexId x = triangle.v[static_cast<std::size_t>(next(e))];
-        const VertexId y = triangle.v[static_cast<std::size_t>(previous(e))];
-        const VertexId d = m_triangles[u].v[static_cast<std::size_t>(f)];
-        if (predicates::incircle(point(p), point(x), point(y), point(d)) <= 0.0)
-            continue;
-        const TriId tx = triangle.n[static_cast<std::size_t>(next(e))];     // across (y, p)
-        const TriId ty = triangle.n[static_cast<std::size_t>(previous(e))]; // across (p, x)
-        const TriId uy = m_triangles[u].n[static_cast<std::size_t>(next(f))];     // (x, d)
-        const TriId ux = m_triangles[u].n[static_cast<std::size_t>(previous(f))]; // (d, y)
-        set(t, {p, x, d}, {uy, u, ty});
-        set(u, {p, d, y}, {ux, tx, t});
-        relink(uy, u, t);
-        relink(tx, t, u);
-        for (const auto& edge : {std::pair{t, 0}, std::pair{t, 2}, std::pair{u, 0}, std::pair{u, 1}})
-            edges.push_back(edge);
+        const TriId u = flipIfIllegal(t, e);
+        if (u != kNoTriangle)
+            for (const auto& edge :
+                 {std::pair{t, 0}, std::pair{t, 2}, std::pair{u, 0}, std::pair{u, 1}})
+                edges.push_back(edge);
     }
+}
+
+TriId RefineMesh::flipIfIllegal(TriId t, int e) {
+    const MeshTriangle& triangle = m_triangles[t];
+    const TriId u = triangle.n[static_cast<std::size_t>(e)];
+    if (u == kNoTriangle)
+        return kNoTriangle;
+    const MeshTriangle& beyond = m_triangles[u];
+    int f = 0;
+    while (beyond.n[static_cast<std::size_t>(f)] != t)
+        ++f;
+    // t = (p, x, y) from corner e, u = (d, y, x) from corner f.
+    const VertexId p = triangle.v[static_cast<std::size_t>(e)];
+    const VertexId x = triangle.v[static_cast<std::size_t>(next(e))];
+    const VertexId y = triangle.v[static_cast<std::size_t>(previous(e))];
+    const VertexId d = beyond.v[static_cast<std::size_t>(f)];
+    if (predicates::incircle(point(p), point(x), point(y), point(d)) <= 0.0)
+        return kNoTriangle;
+    const TriId tx = triangle.n[static_cast<std::size_t>(next(e))];     // across (y, p)
+    const TriId ty = triangle.n[static_cast<std::size_t>(previous(e))]; // across (p, x)
+    const TriId uy = beyond.n[static_cast<std::size_t>(next(f))];       // across (x, d)
+    const TriId ux = beyond.n[static_cast<std::size_t>(previous(f))];   // across (d, y)
+    set(t, {p, x, d}, {uy, u, ty});
+    set(u, {p, d, y}, {ux, tx, t});
+    relink(uy, u, t);
+    relink(tx, t, u);
+    return u;
 }
 
 TriId RefineMesh::walk(VertexId p, TriId start) const {
@@ -202,32 +213,17 @@ int RefineMesh::insert(VertexId p, TriId t, Scratch& scratch, std::vector<TriId>
 }
 
 void RefineMesh::legalize(Scratch& scratch) {
+    // Only the edges opposite the new point can become illegal; flipped triangles keep it
+    // first, so their new edges opposite it are edge 0 of both.
     std::vector<std::pair<TriId, int>>& pending = scratch.pending;
     while (!pending.empty()) {
         const TriId t = pending.back().first;
         pending.pop_back();
-        const MeshTriangle& triangle = m_triangles[t];
-        const TriId u = triangle.n[0];
-        if (u == kNoTriangle)
-            continue;
-        const auto [p, x, y] = triangle.v;
-        const MeshTriangle& beyond = m_triangles[u];
-        int f = 0;
-        while (beyond.n[static_cast<std::size_t>(f)] != t)
-            ++f;
-        const VertexId d = beyond.v[static_cast<std::size_t>(f)];
-        if (predicates::incircle(point(p), point(x), point(y), point(d)) <= 0.0)
-            continue;
-        const TriId tx = triangle.n[1];                                          // (y, p)
-        const TriId ty = triangle.n[2];                                          // (p, x)
-        const TriId uy = beyond.n[static_cast<std::size_t>(next(f))];            // (x, d)
-        const TriId ux = beyond.n[static_cast<std::size_t>(previous(f))];        // (d, y)
-        set(t, {p, x, d}, {uy, u, ty});
-        set(u, {p, d, y}, {ux, tx, t});
-        relink(uy, u, t);
-        relink(tx, t, u);
-        pending.emplace_back(t, 0);
-        pending.emplace_back(u, 0);
+        const TriId u = flipIfIllegal(t, 0);
+        if (u != kNoTriangle) {
+            pending.emplace_back(t, 0);
+            pending.emplace_back(u, 0);
+        }
     }
 }
 

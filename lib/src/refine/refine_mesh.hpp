@@ -31,7 +31,6 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -102,6 +101,11 @@ private:
     void relink(TriId in, TriId from, TriId to);
     /// Lawson's flips for the edges queued in scratch.pending (each opposite p, at v[0]).
     void legalize(Scratch& scratch);
+    /// Flips the edge of t opposite corner e when the point beyond it is strictly inside t's
+    /// circumcircle. Afterwards t = (p, x, d) and the neighbour = (p, d, y), p being t's corner
+    /// e, x and y the edge's ends and d the point beyond. Returns the neighbour, or
+    /// kNoTriangle when nothing was flipped.
+    TriId flipIfIllegal(TriId t, int e);
     [[nodiscard]] const Point2& point(VertexId v) const { return m_points[v]; }
 
     std::span<const Point2> m_points;
