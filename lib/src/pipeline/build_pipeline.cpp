@@ -1,7 +1,7 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
 #include "gather_inputs.hpp"
-#include "terratin/crs/reprojection.hpp"
+#include "refine_placement.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
 #include "terratin/io/height_grid_reader.hpp"
@@ -115,40 +115,36 @@ BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
 BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
                            const ProgressCallback& progress, BuildReport report,
                            Clock::time_point start) {
-    // The refiner works on the raster's own grid, so the point-cloud and CRS options, which
-    // move points off that grid, do not combine with it (yet): refuse them clearly.
+    // The refiner works on one raster's grid; scaling z would change what E means.
     const std::vector<std::string> paths = options.inputPaths();
     if (paths.size() != 1)
         throw InvalidInputError("Simplification (--max-error...) takes exactly one raster input");
-    if (!options.targetSrs.empty() || !options.sourceSrs.empty() || options.zFactor != 1.0)
-        throw InvalidInputError("Simplification (--max-error...) does not combine with --s_srs, "
-                                "--t_srs or --z-factor; reproject or scale the DEM first "
-                                "(gdalwarp -t_srs, gdal_calc)");
+    if (options.zFactor != 1.0)
+        throw InvalidInputError("Simplification (--max-error...) does not combine with "
+                                "--z-factor; scale the DEM first (gdal_calc)");
     Clock::time_point phase = Clock::now();
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
     io::HeightGridRaster raster =
         io::readHeightGrid(paths.front(), readOptions, phaseProgress(progress, 0.0, kReadShare));
-    if (!options.keepGeographic && crs::describeCrs(raster.crsWkt).geographic)
-        throw InvalidInputError(
-            "Simplification (--max-error...) of a raster in geographic coordinates would measure "
-            "distances in degrees: reproject it first (gdalwarp -t_srs EPSG:...) or pass "
-            "--keep-geographic");
     report.rasterCells = raster.grid.cellCount();
     report.skippedCells = raster.skippedCells;
-    describeCrs(raster.crsWkt, report);
-    // The TIN stays in the raster's CRS: source and target are the same.
-    report.sourceCrsName = report.crsName;
-    report.sourceCrsCode = report.crsCode;
     report.timings.read = secondsSince(phase);
+    // A geographic raster is refined in its UTM zone, at its cells' projected positions.
+    const detail::RefinePlacement placement =
+        detail::placeRefinedCells(options, raster.grid, raster.crsWkt, report);
+    describeCrs(placement.targetWkt, report);
 
     phase = Clock::now();
     RefineOptions refineOptions = *options.refine;
     if (refineOptions.threads == 0)
         refineOptions.threads = options.triangulation.threads;
     refineOptions.validate = options.validate;
-    RefineResult result = refine(raster.grid, refineOptions,
-                                 phaseProgress(progress, kReadShare, kTriangulateShare));
+    const ProgressCallback refineProgress = phaseProgress(progress, kReadShare, kTriangulateShare);
+    RefineResult result =
+        placement.positions.empty()
+            ? refine(raster.grid, refineOptions, refineProgress)
+            : refine(raster.grid, placement.positions, refineOptions, refineProgress);
     const int gridWidth = raster.grid.width;
     raster.grid = {}; // the mesh holds its own vertices
     report.refined = true;
@@ -174,7 +170,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     report.timings.triangulate = secondsSince(phase);
 
     phase = Clock::now();
-    writeOptions.crsWkt = raster.crsWkt;
+    writeOptions.crsWkt = placement.targetWkt;
     if (options.nodes) // the refiner's sourceIndex is the cell index
         writeOptions.vertexCells =
             vertexCells(result.mesh, static_cast<std::uint64_t>(gridWidth),

@@ -34,19 +34,6 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-void notify(const BuildOptions& options, BuildReport& report, const std::string& text) {
-    report.notices.push_back(text);
-    if (options.notice)
-        options.notice(text);
-}
-
-std::string crsLabel(const crs::CrsDescription& description) {
-    if (description.name.empty())
-        return "no CRS";
-    return description.code.empty() ? description.name
-                                    : description.name + " [" + description.code + "]";
-}
-
 /// Centre of the bounding box of every point, in the (common geographic) CRS of the points.
 Point2 boundingBoxCentre(const std::vector<io::PointCloud>& clouds) {
     double minX = std::numeric_limits<double>::infinity();
@@ -74,6 +61,32 @@ void reprojectInto(io::PointCloud& cloud, std::string& cloudCrs, const std::stri
 }
 
 } // namespace
+
+void notify(const BuildOptions& options, BuildReport& report, const std::string& text) {
+    report.notices.push_back(text);
+    if (options.notice)
+        options.notice(text);
+}
+
+std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
+                         const std::string& geographicWkt, Point2 centre) {
+    const crs::UtmZone zone = crs::standardUtmZone(centre.x, centre.y);
+    const std::string geographicName = crs::describeCrs(geographicWkt).name;
+    const std::string target = crs::utmZoneCrs(zone, geographicWkt);
+    report.zone = zone.name();
+    const crs::CrsDescription projected = crs::describeCrs(target);
+    const std::string label = projected.code.empty()
+                                  ? projected.name
+                                  : projected.name + " [" + projected.code + "]";
+    char centreText[96];
+    std::snprintf(centreText, sizeof centreText, "%.6f, %.6f", centre.x, centre.y);
+    notify(options, report,
+           "the input is geographic (" + geographicName + "); projecting it to " + zone.name() +
+               " (" + label + "), the zone of its centre (" + centreText +
+               "); use --t_srs to choose another CRS or --keep-geographic "
+               "to triangulate in degrees");
+    return target;
+}
 
 GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
                             const ProgressCallback& progress) {
@@ -164,19 +177,7 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
         // and project to its zone on the same datum.
         for (std::size_t i = 0; i < clouds.size(); ++i)
             reprojectInto(clouds[i], cloudCrs[i], target, report.inputs[i]);
-        const Point2 centre = boundingBoxCentre(clouds);
-        const crs::UtmZone zone = crs::standardUtmZone(centre.x, centre.y);
-        const std::string geographicName = crs::describeCrs(target).name;
-        target = crs::utmZoneCrs(zone, target);
-        report.zone = zone.name();
-        const crs::CrsDescription projected = crs::describeCrs(target);
-        char centreText[96];
-        std::snprintf(centreText, sizeof centreText, "%.6f, %.6f", centre.x, centre.y);
-        notify(options, report,
-               "the input is geographic (" + geographicName + "); projecting it to " + zone.name() +
-                   " (" + crsLabel(projected) + "), the zone of its centre (" + centreText +
-                   "); use --t_srs to choose another CRS or --keep-geographic "
-                   "to triangulate in degrees");
+        target = zoneOfCentre(options, report, target, boundingBoxCentre(clouds));
     }
 
     // Units: z is never converted; say so when x, y change units and z is left alone.

@@ -33,6 +33,15 @@ struct GatheredInputs {
 GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
                             const ProgressCallback& progress);
 
+/// Keeps `text` in report.notices and passes it to options.notice.
+void notify(const BuildOptions& options, BuildReport& report, const std::string& text);
+
+/// The UTM/UPS zone (GeographicLib's standard zone) of `centre`, longitude and latitude in
+/// degrees in `geographicWkt`, as a projected CRS on the same datum (WKT2); sets report.zone
+/// and gives the notice that says so. Throws CrsError for an unusable CRS or centre.
+std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
+                         const std::string& geographicWkt, Point2 centre);
+
 /// Fills report.inputs[i].duplicates from the mesh's sourceIndex: the points of input i that
 /// did not become a vertex.
 void countDuplicatesPerInput(const std::vector<std::size_t>& offsets,

@@ -1,5 +1,6 @@
 #include "greedy_refiner.hpp"
 
+#include "located_check.hpp"
 #include "valid_hull.hpp"
 
 #include "terratin/error.hpp"
@@ -29,9 +30,11 @@ constexpr std::size_t kProgressRounds = 16;
 
 } // namespace
 
-GreedyRefiner::GreedyRefiner(const HeightGrid& grid, CellFlags& flags,
-                             const RefineOptions& options, RoundWorkers& workers)
-    : m_grid(grid), m_flags(flags), m_options(options), m_workers(workers) {
+GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::span<const Point2> positions,
+                             CellFlags& flags, const RefineOptions& options,
+                             RoundWorkers& workers)
+    : m_grid(grid), m_positions(positions), m_flags(flags), m_options(options),
+      m_workers(workers) {
     m_view = {grid.width, grid.height, grid.z.data(), flags.data()};
     m_threshold = options.maxError ? *options.maxError : -1.0;
     std::size_t valid = 0;
@@ -172,7 +175,7 @@ void GreedyRefiner::mergeLive(std::size_t count, std::vector<Candidate>& early,
 }
 
 void GreedyRefiner::startFromHull() {
-    const std::vector<std::uint32_t> hull = validHullCells(m_grid);
+    const std::vector<std::uint32_t> hull = validHullCells(m_grid, m_positions);
     // The hull is kept whatever the point limit. Reserved storage (huge_pages.hpp): pages are
     // touched only as points are chosen, so memory follows the output although the capacity
     // is the worst case. Point2 is an implicit-lifetime aggregate, so writing into the raw
@@ -184,7 +187,7 @@ void GreedyRefiner::startFromHull() {
     m_vertexPixel.reserve(m_vertexCell.capacity());
     std::vector<VertexId> hullVertices(hull.size());
     for (std::size_t k = 0; k < hull.size(); ++k) {
-        m_points[k] = m_grid.cellCentre(hull[k]);
+        m_points[k] = position(hull[k]);
         addVertex(hull[k]);
         hullVertices[k] = static_cast<VertexId>(k);
     }
@@ -289,6 +292,12 @@ double GreedyRefiner::progressFraction(double topPriority) const {
 
 void GreedyRefiner::run(const ProgressCallback& progress) {
     startFromHull();
+    runRounds(progress);
+    if (!m_positions.empty())
+        completeAtPositions(progress);
+}
+
+void GreedyRefiner::runRounds(const ProgressCallback& progress) {
     const std::size_t roundCandidates = std::max<std::size_t>(m_options.roundCandidates, 1);
     std::vector<Accepted> accepted;
     std::vector<Candidate> waiting;
@@ -309,7 +318,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
         mergeLive(roundCandidates, early, popped);
         const auto base = static_cast<VertexId>(m_vertexCell.size());
         for (std::size_t j = 0; j < popped.size(); ++j)
-            m_points[base + j] = m_grid.cellCentre(popped[j].cell);
+            m_points[base + j] = position(popped[j].cell);
         std::atomic<std::size_t> nextZone{0};
         m_workers.run([&](unsigned) {
             for (std::size_t j = nextZone++; j < popped.size(); j = nextZone++)
@@ -345,7 +354,7 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
                 continue;
             }
             const auto vertex = static_cast<VertexId>(m_vertexCell.size());
-            m_points[vertex] = m_grid.cellCentre(popped[j].cell);
+            m_points[vertex] = position(popped[j].cell);
             addVertex(popped[j].cell);
             m_triangles += static_cast<std::size_t>(zone.growth);
             accepted.push_back({vertex, zone.leaf});
@@ -386,6 +395,30 @@ void GreedyRefiner::run(const ProgressCallback& progress) {
             if (!progress(progressFraction(top), "refining"))
                 throw Cancelled("Refiner: cancelled");
         }
+    }
+}
+
+void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
+    while (m_stop == RefineStop::ErrorReached) {
+        const TinMesh mesh = extract();
+        // extract() lists the slots in use in slot order: the slot of each mesh triangle.
+        std::vector<TriId> slots;
+        slots.reserve(mesh.triangleCount());
+        for (TriId t = 0; t < m_mesh->slotCount(); ++t)
+            if (m_mesh->inUse(t))
+                slots.push_back(t);
+        const std::vector<CellToInsert> cells =
+            cellsToInsertAt(mesh, m_view, m_positions, m_threshold, m_workers.size());
+        if (cells.empty())
+            return;
+        // They become candidates like the scans' ones: the rounds insert them, rescan what
+        // changed and go on until the scans find nothing more.
+        ++m_completionPasses;
+        for (const CellToInsert& cell : cells) {
+            const TriId slot = slots[cell.triangle];
+            m_queue.push(Candidate{cell.priority, cell.cell, slot, m_mesh->version(slot)});
+        }
+        runRounds(progress);
     }
 }
 

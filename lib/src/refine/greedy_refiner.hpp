@@ -42,15 +42,16 @@ namespace terratin::detail {
 
 class GreedyRefiner {
 public:
-    /// `flags` from makeCellFlags; the refiner marks vertices in it.
-    GreedyRefiner(const HeightGrid& grid, CellFlags& flags,
+    /// `flags` from makeCellFlags; the refiner marks vertices in it. `positions`: where each
+    /// cell lies in the TIN (refine's positions), or empty for the grid's cell centres.
+    GreedyRefiner(const HeightGrid& grid, std::span<const Point2> positions, CellFlags& flags,
                   const RefineOptions& options, RoundWorkers& workers);
 
     /// Runs to the target or a limit. Throws Cancelled when `progress` returns false.
     void run(const ProgressCallback& progress);
 
-    /// The Delaunay triangulation of the chosen cells as a TinMesh (vertices at exact cell
-    /// centres, sourceIndex = cell index).
+    /// The Delaunay triangulation of the chosen cells as a TinMesh (vertices at the cells'
+    /// positions, sourceIndex = cell index).
     [[nodiscard]] TinMesh extract() const;
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
@@ -59,6 +60,8 @@ public:
     [[nodiscard]] std::size_t triangles() const { return m_triangles; }
     [[nodiscard]] std::size_t rounds() const { return m_rounds; }
     [[nodiscard]] std::size_t deferred() const { return m_deferred; }
+    /// Passes of completeAtPositions (0 without positions).
+    [[nodiscard]] std::size_t completionPasses() const { return m_completionPasses; }
     [[nodiscard]] std::size_t meshBytes() const { return m_mesh->memoryBytes(); }
 
 private:
@@ -74,6 +77,19 @@ private:
     };
 
     void startFromHull();
+    /// Where `cell` lies in the TIN.
+    [[nodiscard]] Point2 position(std::uint32_t cell) const {
+        return m_positions.empty() ? m_grid.cellCentre(cell) : m_positions[cell];
+    }
+    /// Insertion rounds until the queue is empty or a limit is reached.
+    void runRounds(const ProgressCallback& progress);
+    /// With positions, the rounds' pixel-space scans only approximate the TIN's triangles
+    /// (the map from pixels to positions bends straight lines, and shifts errors by up to a
+    /// millimetre on a 90 m grid). This queues what the exact check of located_check.hpp
+    /// still finds and runs the rounds again, pass after pass, until the check finds nothing
+    /// or a limit is reached. Each pass checks the whole TIN, so the result stays the same
+    /// for any thread count.
+    void completeAtPositions(const ProgressCallback& progress);
     [[nodiscard]] PixelCorner corner(VertexId v) const;
     /// Prepares the scan of a triangle (see TriangleScan); false when it has nothing to
     /// measure.
@@ -128,6 +144,7 @@ private:
     [[nodiscard]] double progressFraction(double topPriority) const;
 
     const HeightGrid& m_grid;
+    std::span<const Point2> m_positions;
     CellFlags& m_flags;
     GridView m_view;
     RefineOptions m_options;
@@ -144,6 +161,7 @@ private:
     std::size_t m_hullPoints = 0;
     std::size_t m_rounds = 0;
     std::size_t m_deferred = 0;
+    std::size_t m_completionPasses = 0;
     double m_firstPriority = 0.0;
     RefineStop m_stop = RefineStop::ErrorReached;
 };

@@ -4,6 +4,7 @@
 #include "cell_order.hpp"
 #include "error_check.hpp"
 #include "greedy_refiner.hpp"
+#include "located_check.hpp"
 #include "round_workers.hpp"
 
 #include "terratin/error.hpp"
@@ -32,7 +33,8 @@ double lap(Clock::time_point& start) {
 // indices are 32-bit in TinMesh::sourceIndex.
 constexpr std::uint64_t kMaxCells = (std::uint64_t{1} << 32U) - 5;
 
-void checkInput(const HeightGrid& grid, const RefineOptions& options) {
+void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
+                const RefineOptions& options) {
     if (grid.width <= 0 || grid.height <= 0)
         throw InvalidInputError("Refiner: the grid is empty");
     if (grid.z.size() != grid.cellCount())
@@ -42,7 +44,16 @@ void checkInput(const HeightGrid& grid, const RefineOptions& options) {
         throw InvalidInputError("Refiner: more than 2^32 - 5 cells; split the raster");
     if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
         throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
+    if (!positions.empty() && positions.size() != grid.cellCount())
+        throw InvalidInputError("Refiner: " + std::to_string(positions.size()) +
+                                " positions for " + std::to_string(grid.cellCount()) + " cells");
+    for (const Point2& p : positions)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y))
+            throw InvalidInputError("Refiner: a cell position is not finite");
 }
+
+RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
+                      const RefineOptions& options, const ProgressCallback& progress);
 
 } // namespace
 
@@ -60,7 +71,21 @@ const char* toString(RefineStop stop) {
 
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress) {
-    checkInput(grid, options);
+    return refineAt(grid, {}, options, progress);
+}
+
+RefineResult refine(const HeightGrid& grid, std::span<const Point2> positions,
+                    const RefineOptions& options, const ProgressCallback& progress) {
+    if (positions.empty())
+        throw InvalidInputError("Refiner: no cell positions given");
+    return refineAt(grid, positions, options, progress);
+}
+
+namespace {
+
+RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
+                      const RefineOptions& options, const ProgressCallback& progress) {
+    checkInput(grid, positions, options);
     RefineResult result;
     Clock::time_point phase = Clock::now();
     const unsigned threads =
@@ -72,12 +97,13 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     const detail::GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
 
     detail::RoundWorkers workers(threads);
-    detail::GreedyRefiner refiner(grid, flags, options, workers);
+    detail::GreedyRefiner refiner(grid, positions, flags, options, workers);
     refiner.run(progress);
     result.stop = refiner.stop();
     result.hullPoints = refiner.hullPoints();
     result.rounds = refiner.rounds();
     result.deferredCandidates = refiner.deferred();
+    result.completionPasses = refiner.completionPasses();
     result.meshBytes = refiner.meshBytes();
     result.insertSeconds = lap(phase);
 
@@ -91,15 +117,25 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                                                      : validation.problems.front()));
         result.validated = true;
     }
-    if (result.openHoleCells > 0) {
-        const std::vector<std::uint8_t> drop =
-            detail::trianglesOverOpenHoles(result.mesh, view, threads);
-        result.droppedTriangles = dropTriangles(result.mesh, drop);
-    }
+    // Holes are decided on the whole triangulation; with positions, so are the errors (the
+    // walks that locate cells need the triangles over holes).
+    std::vector<std::uint8_t> drop(result.mesh.triangleCount(), 0);
+    if (result.openHoleCells > 0)
+        drop = positions.empty()
+                   ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
+                   : detail::trianglesOverOpenHolesAt(result.mesh, view, positions, threads);
     result.extractSeconds = lap(phase);
+    detail::ErrorMeasure measure;
+    if (!positions.empty())
+        measure = detail::measureErrorsAt(result.mesh, drop, view, positions, threads);
+    result.checkSeconds = lap(phase);
+    if (result.openHoleCells > 0)
+        result.droppedTriangles = dropTriangles(result.mesh, drop);
+    result.extractSeconds += lap(phase);
 
     // The guarantee, measured over every valid cell.
-    const detail::ErrorMeasure measure = detail::measureErrors(result.mesh, view, threads);
+    if (positions.empty())
+        measure = detail::measureErrors(result.mesh, view, threads);
     result.maxError = measure.maxError;
     result.coveredCells = measure.coveredCells;
     result.rmse = measure.coveredCells > 0
@@ -113,10 +149,12 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
         throw Error("Refiner: check failed: a covered cell is " + std::to_string(result.maxError) +
                     " from the TIN, more than the maximum error " +
                     std::to_string(*options.maxError));
-    result.checkSeconds = lap(phase);
+    result.checkSeconds += lap(phase);
     if (progress)
         progress(1.0, "refined");
     return result;
 }
+
+} // namespace
 
 } // namespace terratin

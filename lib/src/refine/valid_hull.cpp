@@ -4,14 +4,19 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace terratin::detail {
 
-std::vector<std::uint32_t> validHullCells(const HeightGrid& grid) {
-    struct Candidate {
-        Point2 p;
-        std::uint32_t cell;
-    };
+namespace {
+
+struct Candidate {
+    Point2 p;
+    std::uint32_t cell;
+};
+
+// Each row's first and last valid cell.
+std::vector<Candidate> rowEnds(const HeightGrid& grid) {
     std::vector<Candidate> candidates;
     const auto width = static_cast<std::size_t>(grid.width);
     for (std::size_t row = 0; row < static_cast<std::size_t>(grid.height); ++row) {
@@ -31,6 +36,37 @@ std::vector<std::uint32_t> validHullCells(const HeightGrid& grid) {
                 break;
         }
     }
+    return candidates;
+}
+
+// The valid cells on the boundary of the valid area (a 4-neighbour outside or nodata).
+std::vector<Candidate> boundaryCells(const HeightGrid& grid, std::span<const Point2> positions) {
+    std::vector<Candidate> candidates;
+    const std::int64_t width = grid.width;
+    const std::int64_t height = grid.height;
+    const auto valid = [&](std::int64_t row, std::int64_t col) {
+        return row >= 0 && col >= 0 && row < height && col < width &&
+               grid.isValid(static_cast<std::size_t>(row * width + col));
+    };
+    for (std::int64_t row = 0; row < height; ++row)
+        for (std::int64_t col = 0; col < width; ++col) {
+            if (!valid(row, col))
+                continue;
+            if (valid(row - 1, col) && valid(row + 1, col) && valid(row, col - 1) &&
+                valid(row, col + 1))
+                continue;
+            const auto cell = static_cast<std::uint32_t>(row * width + col);
+            candidates.push_back({positions[cell], cell});
+        }
+    return candidates;
+}
+
+} // namespace
+
+std::vector<std::uint32_t> validHullCells(const HeightGrid& grid,
+                                          std::span<const Point2> positions) {
+    std::vector<Candidate> candidates =
+        positions.empty() ? rowEnds(grid) : boundaryCells(grid, positions);
     if (candidates.empty())
         throw InvalidInputError("Refiner: the grid has no valid cell");
 

@@ -2,19 +2,28 @@
 /// @file
 /// The convex hull of a grid's valid cell centres, the refiner's starting TIN.
 
+#include "terratin/geometry/point.hpp"
 #include "terratin/refine/height_grid.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace terratin::detail {
 
 /// Cells whose centres are the corners of the convex hull of the valid cells' centres in CRS
-/// coordinates (HeightGrid::cellCentre), counter-clockwise, without collinear points.
-/// Only each row's first and last valid cell can be a corner (every other cell of the row
-/// lies between them), so the hull is built from at most 2 * height candidates by Andrew's
-/// monotone chain with exact orientation tests. Throws InvalidInputError when there is no
-/// valid cell or all valid centres are collinear. O(cells) to find the candidates.
-std::vector<std::uint32_t> validHullCells(const HeightGrid& grid);
+/// coordinates (HeightGrid::cellCentre), or at `positions[cell]` when `positions` is not
+/// empty, counter-clockwise, without collinear points.
+/// With cell centres, only each row's first and last valid cell can be a corner (every other
+/// cell of the row lies between them), so the hull is built from at most 2 * height
+/// candidates by Andrew's monotone chain with exact orientation tests. With positions (a
+/// projection, which bends rows) the candidates are the valid cells with a 4-neighbour
+/// outside the grid or without data: any other cell lies inside the quadrilateral of its
+/// four neighbours' positions, by half a cell, for any map that is nearly affine at the
+/// scale of a cell, as every map projection is at DEM resolutions.
+/// Throws InvalidInputError when there is no valid cell or all valid centres are collinear.
+/// O(cells) to find the candidates.
+std::vector<std::uint32_t> validHullCells(const HeightGrid& grid,
+                                          std::span<const Point2> positions = {});
 
 } // namespace terratin::detail

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace terratin::test {
@@ -39,16 +40,74 @@ HeightGrid roughTerrain(int width, int height, std::uint32_t seed) {
 }
 
 namespace {
+
 Point2 planar(const Point3& p) { return {p.x, p.y}; }
+
+double twice(const Point2& u, const Point2& v, const Point2& w) {
+    return (v.x - u.x) * (w.y - u.y) - (v.y - u.y) * (w.x - u.x);
+}
+
+// Barycentric weights recomputed in double (the predicates' values are only signs).
+double barycentric(const Point3& a, const Point3& b, const Point3& c, const Point2& p) {
+    const double total = twice(planar(a), planar(b), planar(c));
+    return (twice(planar(b), planar(c), p) * a.z + twice(planar(c), planar(a), p) * b.z +
+            twice(planar(a), planar(b), p) * c.z) /
+           total;
+}
+
+// Whether triangle t's corner cells lie on one line of the grid (sourceIndex = cell index).
+bool collinearInGrid(const TinMesh& mesh, const HeightGrid& grid, std::size_t t) {
+    long long col[3];
+    long long row[3];
+    for (std::size_t i = 0; i < 3; ++i) {
+        const auto cell = static_cast<long long>(mesh.sourceIndex[mesh.triangles[3 * t + i]]);
+        col[i] = cell % grid.width;
+        row[i] = cell / grid.width;
+    }
+    return (col[1] - col[0]) * (row[2] - row[0]) == (col[2] - col[0]) * (row[1] - row[0]);
+}
+
+// A triangle with collinear corner cells is a segment (bent by a projection): the elevation
+// at p is the linear one between the corners on either side of p along it.
+double alongSegment(const TinMesh& mesh, std::size_t t, const Point2& p) {
+    std::array<Point3, 3> corners{mesh.vertices[mesh.triangles[3 * t]],
+                                  mesh.vertices[mesh.triangles[3 * t + 1]],
+                                  mesh.vertices[mesh.triangles[3 * t + 2]]};
+    // Order the corners along the segment: by distance from the farthest pair's first end.
+    std::size_t first = 0;
+    double longest = -1.0;
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t j = 0; j < 3; ++j) {
+            const double d = std::hypot(corners[i].x - corners[j].x, corners[i].y - corners[j].y);
+            if (d > longest) {
+                longest = d;
+                first = i;
+            }
+        }
+    const Point3 origin = corners[first];
+    const auto distance = [&origin](const Point3& q) {
+        return std::hypot(q.x - origin.x, q.y - origin.y);
+    };
+    std::sort(corners.begin(), corners.end(),
+              [&](const Point3& u, const Point3& v) { return distance(u) < distance(v); });
+    const double s = std::hypot(p.x - origin.x, p.y - origin.y);
+    const std::size_t k = s <= distance(corners[1]) ? 0 : 1;
+    const double from = distance(corners[k]);
+    const double to = distance(corners[k + 1]);
+    const double fraction = to > from ? std::clamp((s - from) / (to - from), 0.0, 1.0) : 0.0;
+    return corners[k].z + fraction * (corners[k + 1].z - corners[k].z);
+}
+
 } // namespace
 
-CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::size_t maxHole) {
+CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::size_t maxHole,
+                            std::span<const Point2> positions) {
     CoverageCheck check;
     const std::size_t cells = grid.cellCount();
     std::vector<std::uint8_t> covered(cells, 0);
     std::vector<Point2> centre(cells);
     for (std::size_t cell = 0; cell < cells; ++cell)
-        centre[cell] = grid.cellCentre(cell);
+        centre[cell] = positions.empty() ? grid.cellCentre(cell) : positions[cell];
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
         const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
         const Point3& b = mesh.vertices[mesh.triangles[3 * t + 1]];
@@ -57,7 +116,6 @@ CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::si
         const double xMax = std::max({a.x, b.x, c.x});
         const double yMin = std::min({a.y, b.y, c.y});
         const double yMax = std::max({a.y, b.y, c.y});
-        const double area = predicates::orient2d(planar(a), planar(b), planar(c));
         for (std::size_t cell = 0; cell < cells; ++cell) {
             const Point2& p = centre[cell];
             if (p.x < xMin || p.x > xMax || p.y < yMin || p.y > yMax)
@@ -70,16 +128,8 @@ CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::si
             covered[cell] = 1;
             if (std::isnan(grid.z[cell]))
                 continue;
-            // Barycentric weights recomputed in double (the predicates' values are only signs).
-            const auto twice = [](const Point2& u, const Point2& v, const Point2& w) {
-                return (v.x - u.x) * (w.y - u.y) - (v.y - u.y) * (w.x - u.x);
-            };
-            const double total = twice(planar(a), planar(b), planar(c));
-            const double z = (twice(planar(b), planar(c), p) * a.z +
-                              twice(planar(c), planar(a), p) * b.z +
-                              twice(planar(a), planar(b), p) * c.z) /
-                             total;
-            (void)area;
+            const double z = collinearInGrid(mesh, grid, t) ? alongSegment(mesh, t, p)
+                                                            : barycentric(a, b, c, p);
             check.maxError = std::max(check.maxError, std::fabs(z - grid.z[cell]));
         }
     }

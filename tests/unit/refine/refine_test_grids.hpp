@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace terratin::test {
@@ -30,7 +31,9 @@ struct CoverageCheck {
 
 /// Checks every cell of `grid` against every triangle of `mesh` holding its centre (closed,
 /// exact orientation in CRS coordinates): the interpolated elevation in CRS coordinates.
-CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::size_t maxHole);
+/// With `positions` (one per cell), the cells lie there instead of at their centres.
+CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::size_t maxHole,
+                            std::span<const Point2> positions = {});
 
 /// EXPECTs every covered valid cell within maxError (plus 1e-6 for the rounding of the CRS
 /// interpolation) and every valid cell covered.

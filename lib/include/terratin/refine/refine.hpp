@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 
 namespace terratin {
 
@@ -81,6 +82,9 @@ struct RefineResult {
     /// Insertion rounds and candidates deferred to a later round by a conflict.
     std::size_t rounds = 0;
     std::size_t deferredCandidates = 0;
+    /// With positions: passes of the exact completion that inserted cells the rounds'
+    /// approximate scans left above the target (0 without positions).
+    std::size_t completionPasses = 0;
     RefineStop stop = RefineStop::ErrorReached;
     unsigned threads = 1;
     /// True when options.validate ran and passed.
@@ -114,5 +118,23 @@ const char* toString(RefineStop stop);
 /// memory: the grid, one byte per cell of flags, and O(points) for the triangulation.
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress = {});
+
+/// refine() with the TIN in other coordinates than the grid's: the vertex of cell c lies at
+/// `positions[c]` (x, y; one entry per cell, nodata cells included, row-major), typically the
+/// cell centres reprojected from a geographic CRS to a UTM zone. The map from pixels to
+/// positions must be one-to-one and nearly affine at the scale of a cell (as a map
+/// projection is), not affine: the TIN is Delaunay in the positions' coordinates, and its
+/// straight edges are curves in the grid.
+///
+/// The rounds choose their points with the pixel-space scans (an approximation here); then
+/// every cell is located in the TIN exactly, at its position, and the cells still farther
+/// than maxError (or in a triangle over an open hole) are inserted, pass after pass, until
+/// none is left. The guarantee, the holes (no kept triangle holds the position of an open
+/// hole's cell) and the error report are all measured at the positions, and the
+/// postconditions of refine() hold there. Same exceptions as refine(), and
+/// InvalidInputError when `positions` is empty, has not one entry per cell or holds a
+/// non-finite value. Memory: 16 bytes per cell for `positions`, the caller's.
+RefineResult refine(const HeightGrid& grid, std::span<const Point2> positions,
+                    const RefineOptions& options, const ProgressCallback& progress = {});
 
 } // namespace terratin

@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// The CRS a simplified TIN is built in, and where each raster cell lies in it. Internal to
+/// the build pipeline.
+///
+/// The CRS decision is gatherInputs' (gather_inputs.cpp) for one raster: the raster's CRS or
+/// --s_srs is the source; the target is --t_srs, else the source, except that a geographic
+/// source becomes the UTM/UPS zone of the raster's centre unless --keep-geographic. When the
+/// target differs from the source, every cell centre is reprojected and the refiner works
+/// with those positions (refine(grid, positions, ...)).
+
+#include "terratin/geometry/point.hpp"
+#include "terratin/pipeline/build_pipeline.hpp"
+#include "terratin/refine/height_grid.hpp"
+
+#include <string>
+#include <vector>
+
+namespace terratin::detail {
+
+struct RefinePlacement {
+    /// The TIN's CRS (WKT2), empty when the raster has none and none was asked for.
+    std::string targetWkt;
+    /// The position of every cell in targetWkt, row-major; empty when the target is the
+    /// raster's own CRS (the refiner then uses the geotransform's cell centres).
+    std::vector<Point2> positions;
+};
+
+/// Decides the target CRS and reprojects the cell centres (x, y only, in parallel) when it is
+/// not the source. Fills the report's source and target CRS fields, zone, reprojected,
+/// notices and timings.reproject. Throws CrsError (an unreadable CRS, a raster without CRS
+/// asked to be reprojected, a cell PROJ cannot transform).
+RefinePlacement placeRefinedCells(const BuildOptions& options, const HeightGrid& grid,
+                                  const std::string& rasterWkt, BuildReport& report);
+
+} // namespace terratin::detail

@@ -1,0 +1,280 @@
+#include "located_check.hpp"
+
+#include "../triangulate/parallel_for.hpp"
+
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace terratin::detail {
+
+namespace {
+
+Point2 planar(const Point3& p) { return {p.x, p.y}; }
+
+/// Locates cells in a TinMesh by a visibility walk from the last triangle found, and gives
+/// the TIN's elevation there.
+class CellWalker {
+public:
+    CellWalker(const TinMesh& mesh, const GridView& grid, std::span<const Point2> positions)
+        : m_mesh(mesh), m_width(grid.width), m_positions(positions) {}
+
+    /// The triangle whose closed triangle holds q, or -1 when q is outside the hull (the
+    /// walk then stays at the hull, where the next cell most likely is).
+    std::int64_t locate(const Point2& q) {
+        const std::size_t triangles = m_mesh.triangleCount();
+        // A visibility walk on a Delaunay triangulation visits no triangle twice; more steps
+        // than triangles means the mesh broke its precondition.
+        for (std::size_t steps = 0; steps <= triangles; ++steps) {
+            int exit = -1;
+            for (int i = 0; i < 3 && exit < 0; ++i)
+                if (predicates::orient2d(corner(m_current, i), corner(m_current, (i + 1) % 3), q) <
+                    0.0)
+                    exit = i;
+            if (exit < 0)
+                return static_cast<std::int64_t>(m_current);
+            const std::int32_t across =
+                m_mesh.neighbours[3 * m_current + static_cast<std::size_t>(exit)];
+            if (across == kNoNeighbour)
+                return -1; // beyond a hull edge: outside the convex hull
+            m_current = static_cast<std::size_t>(across);
+        }
+        throw std::logic_error("Refiner: the point walk does not end; the TIN is not Delaunay");
+    }
+
+    /// Calls visit(s) for the triangle t holding q and, when q lies on one of its edges, for
+    /// the neighbour across it (closed triangles).
+    template <class Visit>
+    void forEachHolding(std::size_t t, const Point2& q, Visit&& visit) const {
+        visit(t);
+        for (int i = 0; i < 3; ++i) {
+            const std::int32_t across = m_mesh.neighbours[3 * t + static_cast<std::size_t>(i)];
+            if (across != kNoNeighbour &&
+                predicates::orient2d(corner(t, i), corner(t, (i + 1) % 3), q) == 0.0)
+                visit(static_cast<std::size_t>(across));
+        }
+    }
+
+    /// The TIN's elevation at the position of `cell`, which triangle t holds: its plane's, or
+    /// for a triangle whose corners are collinear in the grid, the linear interpolation along
+    /// that grid line between the two corners around the cell. Such a triangle is the
+    /// projection's bending of a straight row, column or diagonal (rounding can make it a
+    /// sliver of 1e-13 m^2 along a straight one, on the hull); its plane means nothing, and a
+    /// cell it holds lies on its grid line (any other cell is a whole cell away from it).
+    [[nodiscard]] double elevation(std::size_t t, std::size_t cell) const {
+        const std::array<Pixel, 3> corners{pixel(t, 0), pixel(t, 1), pixel(t, 2)};
+        const std::int64_t det = (corners[1].col - corners[0].col) * (corners[2].row - corners[0].row) -
+                                 (corners[2].col - corners[0].col) * (corners[1].row - corners[0].row);
+        if (det != 0)
+            return planeAt(t, m_positions[cell]);
+        return alongGridLine(corners, {static_cast<std::int64_t>(cell) % m_width,
+                                       static_cast<std::int64_t>(cell) / m_width, 0.0});
+    }
+
+private:
+    struct Pixel {
+        std::int64_t col;
+        std::int64_t row;
+        double z;
+    };
+
+    [[nodiscard]] Point2 corner(std::size_t t, int i) const {
+        return planar(m_mesh.vertices[m_mesh.triangles[3 * t + static_cast<std::size_t>(i)]]);
+    }
+    [[nodiscard]] Pixel pixel(std::size_t t, int i) const {
+        const std::uint32_t v = m_mesh.triangles[3 * t + static_cast<std::size_t>(i)];
+        const auto cell = static_cast<std::int64_t>(m_mesh.sourceIndex[v]);
+        return {cell % m_width, cell / m_width, m_mesh.vertices[v].z};
+    }
+
+    [[nodiscard]] double planeAt(std::size_t t, const Point2& q) const {
+        const Point3& a = m_mesh.vertices[m_mesh.triangles[3 * t]];
+        const Point3& b = m_mesh.vertices[m_mesh.triangles[3 * t + 1]];
+        const Point3& c = m_mesh.vertices[m_mesh.triangles[3 * t + 2]];
+        const double bx = b.x - a.x;
+        const double by = b.y - a.y;
+        const double cx = c.x - a.x;
+        const double cy = c.y - a.y;
+        const double qx = q.x - a.x;
+        const double qy = q.y - a.y;
+        const double twiceArea = bx * cy - by * cx;
+        const double weightB = (qx * cy - qy * cx) / twiceArea;
+        const double weightC = (bx * qy - by * qx) / twiceArea;
+        return a.z + weightB * (b.z - a.z) + weightC * (c.z - a.z);
+    }
+
+    /// Linear interpolation at q between the corners just before and after it along their
+    /// common grid line, parametrised by the line's longer pixel axis (exact integers).
+    static double alongGridLine(const std::array<Pixel, 3>& corners, const Pixel& q) {
+        std::int64_t spanCol = 0;
+        std::int64_t spanRow = 0;
+        for (const Pixel& p : corners) {
+            spanCol = std::max(spanCol, std::abs(p.col - corners[0].col));
+            spanRow = std::max(spanRow, std::abs(p.row - corners[0].row));
+        }
+        const auto along = [byCol = spanCol >= spanRow](const Pixel& p) {
+            return byCol ? p.col : p.row;
+        };
+        const Pixel* before = nullptr;
+        const Pixel* after = nullptr;
+        for (const Pixel& p : corners) {
+            if (along(p) <= along(q) && (before == nullptr || along(p) > along(*before)))
+                before = &p;
+            if (along(p) >= along(q) && (after == nullptr || along(p) < along(*after)))
+                after = &p;
+        }
+        if (before == nullptr)
+            return after->z;
+        if (after == nullptr || along(*after) == along(*before))
+            return before->z;
+        const double fraction = static_cast<double>(along(q) - along(*before)) /
+                                static_cast<double>(along(*after) - along(*before));
+        return before->z + fraction * (after->z - before->z);
+    }
+
+    const TinMesh& m_mesh;
+    std::int64_t m_width;
+    std::span<const Point2> m_positions;
+    std::size_t m_current = 0;
+};
+
+/// Calls visit(block, walker, cell, t) for every cell c with `wanted(flags[c])` that lies in
+/// the mesh (t: the triangle the walk found), the cells split into contiguous blocks, one
+/// walker each.
+template <class Wanted, class Visit>
+void forEachCellLocated(const TinMesh& mesh, const GridView& grid,
+                        std::span<const Point2> positions, unsigned threads, Wanted&& wanted,
+                        Visit&& visit) {
+    const auto cells = static_cast<std::size_t>(grid.width * grid.height);
+    if (positions.size() != cells)
+        throw std::invalid_argument("Refiner: one position per cell is needed");
+    parallelFor(cells, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        CellWalker walker(mesh, grid, positions);
+        for (std::size_t cell = begin; cell < end; ++cell) {
+            if (!wanted(grid.flags[cell]))
+                continue;
+            const std::int64_t t = walker.locate(positions[cell]);
+            if (t >= 0)
+                visit(block, walker, cell, static_cast<std::size_t>(t));
+        }
+    });
+}
+
+bool isMeasured(std::uint8_t flags) { return (flags & (kCellNoData | kCellVertex)) == 0; }
+
+} // namespace
+
+std::vector<std::uint8_t> trianglesOverOpenHolesAt(const TinMesh& mesh, const GridView& grid,
+                                                   std::span<const Point2> positions,
+                                                   unsigned threads) {
+    std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
+    // Different blocks may mark the same triangle: the flags are written through atomic_ref.
+    forEachCellLocated(
+        mesh, grid, positions, threads,
+        [](std::uint8_t flags) { return (flags & kCellOpenHole) != 0; },
+        [&](unsigned, const CellWalker& walker, std::size_t cell, std::size_t t) {
+            walker.forEachHolding(t, positions[cell], [&](std::size_t s) {
+                std::atomic_ref<std::uint8_t>(drop[s]).store(1, std::memory_order_relaxed);
+            });
+        });
+    return drop;
+}
+
+ErrorMeasure measureErrorsAt(const TinMesh& mesh, std::span<const std::uint8_t> drop,
+                             const GridView& grid, std::span<const Point2> positions,
+                             unsigned threads) {
+    const auto cells = static_cast<std::size_t>(grid.width * grid.height);
+    std::vector<ErrorMeasure> blocks(parallelForThreads(cells, threads));
+    forEachCellLocated(
+        mesh, grid, positions, threads, isMeasured,
+        [&](unsigned block, const CellWalker& walker, std::size_t cell, std::size_t t) {
+            ErrorMeasure& measure = blocks[block];
+            const Point2& q = positions[cell];
+            bool counted = false;
+            walker.forEachHolding(t, q, [&](std::size_t s) {
+                if (drop[s] != 0)
+                    return;
+                const double error =
+                    std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
+                measure.maxError = std::max(measure.maxError, error);
+                if (!counted) {
+                    measure.sumSquares += error * error;
+                    ++measure.coveredCells;
+                    counted = true;
+                }
+            });
+        });
+    ErrorMeasure total;
+    for (const ErrorMeasure& block : blocks) {
+        total.maxError = std::max(total.maxError, block.maxError);
+        total.sumSquares += block.sumSquares;
+        total.coveredCells += block.coveredCells;
+    }
+    // The vertices of kept triangles: exact, each once.
+    std::vector<std::uint8_t> kept(mesh.vertexCount(), 0);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        if (drop[t] == 0)
+            for (std::size_t i = 0; i < 3; ++i)
+                kept[mesh.triangles[3 * t + i]] = 1;
+    total.coveredCells += static_cast<std::size_t>(std::count(kept.begin(), kept.end(), 1));
+    return total;
+}
+
+std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& grid,
+                                          std::span<const Point2> positions, double threshold,
+                                          unsigned threads) {
+    const std::vector<std::uint8_t> overHole =
+        trianglesOverOpenHolesAt(mesh, grid, positions, threads);
+    struct Found {
+        std::uint32_t triangle;
+        std::uint32_t cell;
+        double error;
+    };
+    const auto cells = static_cast<std::size_t>(grid.width * grid.height);
+    std::vector<std::vector<Found>> blocks(parallelForThreads(cells, threads));
+    forEachCellLocated(
+        mesh, grid, positions, threads, isMeasured,
+        [&](unsigned block, const CellWalker& walker, std::size_t cell, std::size_t t) {
+            const Point2& q = positions[cell];
+            walker.forEachHolding(t, q, [&](std::size_t s) {
+                const double error =
+                    std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
+                if (overHole[s] != 0 || error > threshold)
+                    blocks[block].push_back({static_cast<std::uint32_t>(s),
+                                             static_cast<std::uint32_t>(cell), error});
+            });
+        });
+    std::vector<Found> found;
+    for (const std::vector<Found>& block : blocks)
+        found.insert(found.end(), block.begin(), block.end());
+    // Per triangle the farthest cell, ties to the lowest index: the result does not depend
+    // on how the cells were split between threads.
+    std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
+        if (a.triangle != b.triangle)
+            return a.triangle < b.triangle;
+        return a.error != b.error ? a.error > b.error : a.cell < b.cell;
+    });
+    std::vector<CellToInsert> result;
+    for (std::size_t i = 0; i < found.size(); ++i)
+        if (i == 0 || found[i].triangle != found[i - 1].triangle)
+            result.push_back({found[i].cell, found[i].triangle,
+                              overHole[found[i].triangle] != 0
+                                  ? std::numeric_limits<double>::infinity()
+                                  : found[i].error});
+    std::sort(result.begin(), result.end(), [](const CellToInsert& a, const CellToInsert& b) {
+        return a.cell != b.cell ? a.cell < b.cell : a.triangle < b.triangle;
+    });
+    result.erase(std::unique(result.begin(), result.end(),
+                             [](const CellToInsert& a, const CellToInsert& b) {
+                                 return a.cell == b.cell;
+                             }),
+                 result.end());
+    return result;
+}
+
+} // namespace terratin::detail
