@@ -66,6 +66,15 @@ report_count() {
   sed -n "s/.*\"$1\": \([0-9]*\).*/\1/p" out.txt
 }
 
+# report_at_most KEY LIMIT: fails unless the JSON report's number KEY is <= LIMIT.
+report_at_most() {
+  local value
+  value=$(sed -n "s/.*\"$1\": \([0-9.e+-]*\).*/\1/p" out.txt | head -1)
+  [ -n "$value" ] || fail "no $1 in the report"
+  awk -v v="$value" -v limit="$2" 'BEGIN { exit !(v + 0 <= limit + 0) }' ||
+    fail "$1 = $value, more than $2"
+}
+
 case "$case_name" in
   help)
     run 0 --help
@@ -337,14 +346,36 @@ case "$case_name" in
     # Combinations the refiner cannot honour are refused, not silently ignored.
     run 1 build "$sample" "$sample" -o tin.gpkg --max-error 5 --quiet
     expect_one_error_line "one raster input"
-    run 1 build "$sample" -o tin.gpkg --max-error 5 --t_srs EPSG:3857 --quiet
-    expect_one_error_line "t_srs"
-    gdal_create -q -of GTiff -outsize 30 20 -bands 1 -ot Int16 -burn 100 -a_srs EPSG:4326 \
-      -a_ullr -71.6 44.6 -71.5 44.5 geo.tif || fail "gdal_create failed"
-    run 1 build geo.tif -o tin.gpkg --max-error 5 --quiet
-    expect_one_error_line "geographic"
+    run 1 build "$sample" -o tin.gpkg --max-error 5 --z-factor 2 --quiet
+    expect_one_error_line "z-factor"
     [ ! -e tin.gpkg ] || fail "output written despite a refused combination"
-    run 0 build geo.tif -o deg.gpkg --max-error 5 --keep-geographic --quiet
+    ;;
+  refine_reprojected)
+    # A geographic DEM is simplified in its UTM zone, --t_srs in the CRS asked for.
+    small_sample
+    gdalwarp -q -t_srs EPSG:4326 small.tif geo.tif || fail "gdalwarp failed"
+    run 0 build geo.tif -o utm.gpkg --max-error 2 --validate
+    grep -q 'terratin: notice: .*UTM zone 33N' err.txt || fail "no notice of the zone"
+    run 0 build geo.tif -o utm.gpkg --max-error 2 --validate --json --quiet --overwrite
+    report_at_most achieved_max_error 2
+    ogrinfo -ro -so -al utm.gpkg | grep -q 'EPSG.*32633' || fail "output not in EPSG:32633"
+    run 0 build geo.tif -o deg.gpkg --max-error 2 --keep-geographic --quiet
+    ogrinfo -ro -so -al deg.gpkg | grep -q 'EPSG.*4326' || fail "output not in EPSG:4326"
+    run 0 build small.tif -o merc.gpkg --max-error 2 --t_srs EPSG:3857 --json --quiet --validate
+    grep -q '"reprojected": true' out.txt || fail "not reported as reprojected"
+    ogrinfo -ro -so -al merc.gpkg | grep -q 'EPSG.*3857' || fail "output not in EPSG:3857"
+    ;;
+  refine_everest_done_when)
+    # The command (without the R-tree, to keep the suite short): holes over the
+    # voids, every covered cell within 5 m, exactly Delaunay, in UTM zone 45N.
+    need_shared osgearth__mt_everest_90m.tif
+    run 0 build "$shared/osgearth__mt_everest_90m.tif" --max-error 5 -o everest.gpkg \
+      --no-spatial-index --validate --json --quiet
+    grep -q '"validated": true' out.txt || fail "not validated"
+    grep -q '"code": "EPSG:32645"' out.txt || fail "not in UTM zone 45N"
+    grep -q '"hole_triangles": [1-9]' out.txt || fail "no triangles dropped over the voids"
+    report_at_most achieved_max_error 5
+    [ "$(feature_count everest.gpkg)" = "$(report_count triangles)" ] || fail "feature count differs"
     ;;
   max_edge)
     run 0 build "$sample" -o all.gpkg --max-error 5 --json --quiet

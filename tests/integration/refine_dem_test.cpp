@@ -4,6 +4,8 @@
 
 #include "refine_test_grids.hpp"
 
+#include "terratin/crs/reprojection.hpp"
+#include "terratin/crs/utm_zone.hpp"
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/refine/refine.hpp"
@@ -16,6 +18,7 @@
 #include <filesystem>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace terratin {
 namespace {
@@ -24,6 +27,53 @@ namespace fs = std::filesystem;
 
 std::string sharedDem(const std::string& name) {
     return (fs::path(TERRATIN_SHARED_DEMS) / name).string();
+}
+
+// Every cell centre of `grid` (in `wkt`, geographic) projected to the UTM zone of the grid's
+// middle cell, the way the build pipeline does it.
+std::vector<Point2> utmPositions(const HeightGrid& grid, const std::string& wkt) {
+    const Point2 middle = grid.cellCentre(grid.height / 2, grid.width / 2);
+    const crs::UtmZone zone = crs::standardUtmZone(middle.x, middle.y);
+    const crs::Reprojector reprojector(wkt, crs::utmZoneCrs(zone, wkt));
+    std::vector<Point3> centres(grid.cellCount());
+    for (std::size_t cell = 0; cell < centres.size(); ++cell) {
+        const Point2 centre = grid.cellCentre(cell);
+        centres[cell] = {centre.x, centre.y, 0.0};
+    }
+    reprojector.transform(centres);
+    std::vector<Point2> positions(centres.size());
+    for (std::size_t cell = 0; cell < centres.size(); ++cell)
+        positions[cell] = {centres[cell].x, centres[cell].y};
+    return positions;
+}
+
+// The first size x size window (stepping by half a window) with between 2 % and 40 % of its
+// cells without data, as a grid of its own.
+HeightGrid windowWithNodata(const HeightGrid& grid, int size) {
+    for (int top = 0; top + size <= grid.height; top += size / 2)
+        for (int left = 0; left + size <= grid.width; left += size / 2) {
+            std::size_t nodata = 0;
+            for (int row = top; row < top + size; ++row)
+                for (int col = left; col < left + size; ++col)
+                    nodata += grid.isValid(static_cast<std::size_t>(row) * grid.width + col) ? 0U : 1U;
+            const double share = static_cast<double>(nodata) / (size * size);
+            if (share < 0.02 || share > 0.4)
+                continue;
+            HeightGrid window;
+            window.width = size;
+            window.height = size;
+            const Point2 corner = grid.cellCentre(top, left);
+            window.geoTransform = grid.geoTransform;
+            window.geoTransform[0] = corner.x - 0.5 * grid.geoTransform[1] - 0.5 * grid.geoTransform[2];
+            window.geoTransform[3] = corner.y - 0.5 * grid.geoTransform[4] - 0.5 * grid.geoTransform[5];
+            window.z.resize(window.cellCount());
+            for (int row = 0; row < size; ++row)
+                for (int col = 0; col < size; ++col)
+                    window.z[static_cast<std::size_t>(row) * size + col] =
+                        grid.z[static_cast<std::size_t>(row + top) * grid.width + col + left];
+            return window;
+        }
+    return {};
 }
 
 #define SKIP_WITHOUT(path)                                                                         \
@@ -108,6 +158,38 @@ TEST(RefineDem, LimitsRespected_OnARealDem) {
     const RefineResult triangles = refine(grid, options);
     EXPECT_EQ(triangles.stop, RefineStop::TriangleLimit);
     EXPECT_LE(triangles.mesh.triangleCount(), 3000U);
+}
+
+TEST(RefineDem, GeographicEverest_RefinedInItsUtmZone_WithHolesOverTheVoids) {
+    const std::string path = sharedDem("osgearth__mt_everest_90m.tif");
+    SKIP_WITHOUT(path);
+    const io::HeightGridRaster raster = io::readHeightGrid(path, {});
+    RefineOptions options;
+    options.maxError = 5.0;
+    options.threads = 2;
+    options.validate = true;
+    // The whole DEM: the refiner's own exact check over every cell (it throws on failure).
+    {
+        const std::vector<Point2> positions = utmPositions(raster.grid, raster.crsWkt);
+        const RefineResult result = refine(raster.grid, positions, options);
+        EXPECT_TRUE(result.validated);
+        EXPECT_LE(result.maxError, 5.0);
+        EXPECT_GT(result.openHoleCells, 0U);
+        EXPECT_GT(result.droppedTriangles, 0U);
+        EXPECT_LT(result.mesh.vertexCount(), raster.grid.validCount() * 2 / 3);
+    }
+    // A window with voids, checked cell by cell against every triangle by brute force.
+    const HeightGrid window = windowWithNodata(raster.grid, 90);
+    ASSERT_GT(window.cellCount(), 0U);
+    const std::vector<Point2> positions = utmPositions(window, raster.crsWkt);
+    const RefineResult result = refine(window, positions, options);
+    EXPECT_GT(result.droppedTriangles, 0U);
+    const test::CoverageCheck check =
+        test::checkCoverage(result.mesh, window, options.maxHole, positions);
+    EXPECT_LE(check.maxError, 5.0 + 1e-6);
+    EXPECT_EQ(check.coveredOpenHoleCells, 0U);
+    EXPECT_EQ(check.uncoveredValid, result.uncoveredCells);
+    test::expectEmptyCircumcircles(result.mesh);
 }
 
 } // namespace
