@@ -18,11 +18,14 @@ namespace {
 Point2 planar(const Point3& p) { return {p.x, p.y}; }
 
 /// Locates cells in a TinMesh by a visibility walk from the last triangle found, and gives
-/// the TIN's elevation there.
+/// the TIN's elevation there. Consecutive cells mostly lie in the same triangle, whose
+/// corners, links and plane are kept from one cell to the next.
 class CellWalker {
 public:
     CellWalker(const TinMesh& mesh, const GridView& grid, std::span<const Point2> positions)
-        : m_mesh(mesh), m_width(grid.width), m_positions(positions) {}
+        : m_mesh(mesh), m_width(grid.width), m_positions(positions) {
+        m_current = load(0);
+    }
 
     /// The triangle whose closed triangle holds q, or -1 when q is outside the hull (the
     /// walk then stays at the hull, where the next cell most likely is).
@@ -31,31 +34,35 @@ public:
         // A visibility walk on a Delaunay triangulation visits no triangle twice; more steps
         // than triangles means the mesh broke its precondition.
         for (std::size_t steps = 0; steps <= triangles; ++steps) {
+            const std::array<Point2, 3>& p = m_current.corners;
             int exit = -1;
-            for (int i = 0; i < 3 && exit < 0; ++i)
-                if (predicates::orient2d(corner(m_current, i), corner(m_current, (i + 1) % 3), q) <
-                    0.0)
+            m_onEdge = 0;
+            for (int i = 0; i < 3 && exit < 0; ++i) {
+                const double side = predicates::orient2d(p[static_cast<std::size_t>(i)],
+                                                         p[static_cast<std::size_t>((i + 1) % 3)], q);
+                if (side < 0.0)
                     exit = i;
+                else if (side == 0.0)
+                    m_onEdge |= 1U << static_cast<unsigned>(i);
+            }
             if (exit < 0)
-                return static_cast<std::int64_t>(m_current);
-            const std::int32_t across =
-                m_mesh.neighbours[3 * m_current + static_cast<std::size_t>(exit)];
+                return static_cast<std::int64_t>(m_current.id);
+            const std::int32_t across = m_current.neighbours[static_cast<std::size_t>(exit)];
             if (across == kNoNeighbour)
                 return -1; // beyond a hull edge: outside the convex hull
-            m_current = static_cast<std::size_t>(across);
+            m_current = load(static_cast<std::size_t>(across));
         }
         throw std::logic_error("Refiner: the point walk does not end; the TIN is not Delaunay");
     }
 
-    /// Calls visit(s) for the triangle t holding q and, when q lies on one of its edges, for
-    /// the neighbour across it (closed triangles).
+    /// Calls visit(s) for the triangle t that the last locate() found and, when the point lies
+    /// on one of its edges, for the neighbour across it (closed triangles).
     template <class Visit>
-    void forEachHolding(std::size_t t, const Point2& q, Visit&& visit) const {
+    void forEachHolding(std::size_t t, Visit&& visit) const {
         visit(t);
-        for (int i = 0; i < 3; ++i) {
-            const std::int32_t across = m_mesh.neighbours[3 * t + static_cast<std::size_t>(i)];
-            if (across != kNoNeighbour &&
-                predicates::orient2d(corner(t, i), corner(t, (i + 1) % 3), q) == 0.0)
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::int32_t across = m_current.neighbours[i];
+            if ((m_onEdge & (1U << i)) != 0 && across != kNoNeighbour)
                 visit(static_cast<std::size_t>(across));
         }
     }
@@ -67,13 +74,9 @@ public:
     /// sliver of 1e-13 m^2 along a straight one, on the hull); its plane means nothing, and a
     /// cell it holds lies on its grid line (any other cell is a whole cell away from it).
     [[nodiscard]] double elevation(std::size_t t, std::size_t cell) const {
-        const std::array<Pixel, 3> corners{pixel(t, 0), pixel(t, 1), pixel(t, 2)};
-        const std::int64_t det = (corners[1].col - corners[0].col) * (corners[2].row - corners[0].row) -
-                                 (corners[2].col - corners[0].col) * (corners[1].row - corners[0].row);
-        if (det != 0)
-            return planeAt(t, m_positions[cell]);
-        return alongGridLine(corners, {static_cast<std::int64_t>(cell) % m_width,
-                                       static_cast<std::int64_t>(cell) / m_width, 0.0});
+        if (t == m_current.id)
+            return elevation(m_current, cell);
+        return elevation(load(t), cell);
     }
 
 private:
@@ -82,30 +85,57 @@ private:
         std::int64_t row;
         double z;
     };
+    /// What the walk and the interpolation need of a triangle.
+    struct Triangle {
+        std::size_t id = 0;
+        std::array<Point2, 3> corners;
+        std::array<std::int32_t, 3> neighbours;
+        std::array<Pixel, 3> pixels;
+        bool collinearInGrid = false;
+        /// The plane: z = z0 + gradX (x - corners[0].x) + gradY (y - corners[0].y).
+        double z0 = 0.0;
+        double gradX = 0.0;
+        double gradY = 0.0;
+    };
 
-    [[nodiscard]] Point2 corner(std::size_t t, int i) const {
-        return planar(m_mesh.vertices[m_mesh.triangles[3 * t + static_cast<std::size_t>(i)]]);
-    }
-    [[nodiscard]] Pixel pixel(std::size_t t, int i) const {
-        const std::uint32_t v = m_mesh.triangles[3 * t + static_cast<std::size_t>(i)];
-        const auto cell = static_cast<std::int64_t>(m_mesh.sourceIndex[v]);
-        return {cell % m_width, cell / m_width, m_mesh.vertices[v].z};
-    }
-
-    [[nodiscard]] double planeAt(std::size_t t, const Point2& q) const {
-        const Point3& a = m_mesh.vertices[m_mesh.triangles[3 * t]];
-        const Point3& b = m_mesh.vertices[m_mesh.triangles[3 * t + 1]];
-        const Point3& c = m_mesh.vertices[m_mesh.triangles[3 * t + 2]];
-        const double bx = b.x - a.x;
-        const double by = b.y - a.y;
-        const double cx = c.x - a.x;
-        const double cy = c.y - a.y;
-        const double qx = q.x - a.x;
-        const double qy = q.y - a.y;
+    [[nodiscard]] Triangle load(std::size_t t) const {
+        Triangle triangle;
+        triangle.id = t;
+        std::array<Point3, 3> v;
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::uint32_t vertex = m_mesh.triangles[3 * t + i];
+            v[i] = m_mesh.vertices[vertex];
+            triangle.corners[i] = planar(v[i]);
+            triangle.neighbours[i] = m_mesh.neighbours[3 * t + i];
+            const auto cell = static_cast<std::int64_t>(m_mesh.sourceIndex[vertex]);
+            triangle.pixels[i] = {cell % m_width, cell / m_width, v[i].z};
+        }
+        const std::array<Pixel, 3>& px = triangle.pixels;
+        triangle.collinearInGrid = (px[1].col - px[0].col) * (px[2].row - px[0].row) ==
+                                   (px[2].col - px[0].col) * (px[1].row - px[0].row);
+        const double bx = v[1].x - v[0].x;
+        const double by = v[1].y - v[0].y;
+        const double bz = v[1].z - v[0].z;
+        const double cx = v[2].x - v[0].x;
+        const double cy = v[2].y - v[0].y;
+        const double cz = v[2].z - v[0].z;
         const double twiceArea = bx * cy - by * cx;
-        const double weightB = (qx * cy - qy * cx) / twiceArea;
-        const double weightC = (bx * qy - by * qx) / twiceArea;
-        return a.z + weightB * (b.z - a.z) + weightC * (c.z - a.z);
+        triangle.z0 = v[0].z;
+        if (!triangle.collinearInGrid) {
+            triangle.gradX = (bz * cy - cz * by) / twiceArea;
+            triangle.gradY = (cz * bx - bz * cx) / twiceArea;
+        }
+        return triangle;
+    }
+
+    [[nodiscard]] double elevation(const Triangle& triangle, std::size_t cell) const {
+        if (!triangle.collinearInGrid) {
+            const Point2& q = m_positions[cell];
+            return triangle.z0 + triangle.gradX * (q.x - triangle.corners[0].x) +
+                   triangle.gradY * (q.y - triangle.corners[0].y);
+        }
+        return alongGridLine(triangle.pixels, {static_cast<std::int64_t>(cell) % m_width,
+                                               static_cast<std::int64_t>(cell) / m_width, 0.0});
     }
 
     /// Linear interpolation at q between the corners just before and after it along their
@@ -140,7 +170,9 @@ private:
     const TinMesh& m_mesh;
     std::int64_t m_width;
     std::span<const Point2> m_positions;
-    std::size_t m_current = 0;
+    Triangle m_current;
+    /// Bit i: the last located point lies on edge i of m_current.
+    unsigned m_onEdge = 0;
 };
 
 /// Calls visit(block, walker, cell, t) for every cell c with `wanted(flags[c])` that lies in
@@ -177,8 +209,8 @@ std::vector<std::uint8_t> trianglesOverOpenHolesAt(const TinMesh& mesh, const Gr
     forEachCellLocated(
         mesh, grid, positions, threads,
         [](std::uint8_t flags) { return (flags & kCellOpenHole) != 0; },
-        [&](unsigned, const CellWalker& walker, std::size_t cell, std::size_t t) {
-            walker.forEachHolding(t, positions[cell], [&](std::size_t s) {
+        [&](unsigned, const CellWalker& walker, std::size_t, std::size_t t) {
+            walker.forEachHolding(t, [&](std::size_t s) {
                 std::atomic_ref<std::uint8_t>(drop[s]).store(1, std::memory_order_relaxed);
             });
         });
@@ -194,9 +226,8 @@ ErrorMeasure measureErrorsAt(const TinMesh& mesh, std::span<const std::uint8_t> 
         mesh, grid, positions, threads, isMeasured,
         [&](unsigned block, const CellWalker& walker, std::size_t cell, std::size_t t) {
             ErrorMeasure& measure = blocks[block];
-            const Point2& q = positions[cell];
             bool counted = false;
-            walker.forEachHolding(t, q, [&](std::size_t s) {
+            walker.forEachHolding(t, [&](std::size_t s) {
                 if (drop[s] != 0)
                     return;
                 const double error =
@@ -240,8 +271,7 @@ std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& g
     forEachCellLocated(
         mesh, grid, positions, threads, isMeasured,
         [&](unsigned block, const CellWalker& walker, std::size_t cell, std::size_t t) {
-            const Point2& q = positions[cell];
-            walker.forEachHolding(t, q, [&](std::size_t s) {
+            walker.forEachHolding(t, [&](std::size_t s) {
                 const double error =
                     std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
                 if (overHole[s] != 0 || error > threshold)
