@@ -4,7 +4,7 @@
 
 #include "refine_test_grids.hpp"
 
-#include "terratin/crs/reprojection.hpp"
+#include "terratin/crs/grid_projection.hpp"
 #include "terratin/crs/utm_zone.hpp"
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/raster_reader.hpp"
@@ -30,21 +30,11 @@ std::string sharedDem(const std::string& name) {
 }
 
 // Every cell centre of `grid` (in `wkt`, geographic) projected to the UTM zone of the grid's
-// middle cell, the way the build pipeline does it.
+// centre, as the build pipeline does it.
 std::vector<Point2> utmPositions(const HeightGrid& grid, const std::string& wkt) {
-    const Point2 middle = grid.cellCentre(grid.height / 2, grid.width / 2);
-    const crs::UtmZone zone = crs::standardUtmZone(middle.x, middle.y);
-    const crs::Reprojector reprojector(wkt, crs::utmZoneCrs(zone, wkt));
-    std::vector<Point3> centres(grid.cellCount());
-    for (std::size_t cell = 0; cell < centres.size(); ++cell) {
-        const Point2 centre = grid.cellCentre(cell);
-        centres[cell] = {centre.x, centre.y, 0.0};
-    }
-    reprojector.transform(centres);
-    std::vector<Point2> positions(centres.size());
-    for (std::size_t cell = 0; cell < centres.size(); ++cell)
-        positions[cell] = {centres[cell].x, centres[cell].y};
-    return positions;
+    const Point2 centre = grid.extentCentre();
+    return crs::projectCellCentres(grid, wkt,
+                                   crs::utmZoneCrs(crs::standardUtmZone(centre.x, centre.y), wkt));
 }
 
 // The first size x size window (stepping by half a window) with between 2 % and 40 % of its

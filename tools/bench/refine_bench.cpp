@@ -3,6 +3,8 @@
 #include "process_memory.hpp"
 #include "stats.hpp"
 
+#include "terratin/crs/grid_projection.hpp"
+#include "terratin/crs/utm_zone.hpp"
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/refine/refine.hpp"
 
@@ -20,15 +22,32 @@ struct RefineCase {
     const char* label;
     const char* file;
     std::vector<double> tolerances;
+    /// Refine a geographic DEM at its cells' positions in its UTM zone, as `terratin build`
+    /// does (the reprojection itself is not timed), instead of in its own coordinates.
+    bool inUtmZone = false;
 };
 
-// The table: SRTM3 N44W072 (White Mountains) and Mt Hood (UTM 30 m, nodata frame).
+// The table: SRTM3 N44W072 (White Mountains) and Mt Hood (UTM 30 m, nodata frame);
+// then the geographic DEMs the way the build refines them: N44W072 and Everest (voids) in
+// their UTM zones.
 const std::vector<RefineCase>& refineCases() {
     static const std::vector<RefineCase> cases = {
         {"N44W072", "srtmpy__N44W072/N44W072.hgt", {1.0, 5.0, 10.0}},
         {"Mt Hood", "gdalraster__lf_elev_220_mt_hood_utm.tif", {1.0, 5.0}},
+        {"N44W072 UTM", "srtmpy__N44W072/N44W072.hgt", {5.0}, true},
+        {"Everest UTM", "osgearth__mt_everest_90m.tif", {5.0}, true},
     };
     return cases;
+}
+
+// The cells' positions in the UTM zone of the DEM's centre, or none.
+std::vector<Point2> casePositions(const RefineCase& refineCase, const io::HeightGridRaster& raster) {
+    if (!refineCase.inUtmZone)
+        return {};
+    const Point2 centre = raster.grid.extentCentre();
+    return crs::projectCellCentres(
+        raster.grid, raster.crsWkt,
+        crs::utmZoneCrs(crs::standardUtmZone(centre.x, centre.y), raster.crsWkt));
 }
 
 } // namespace
@@ -40,7 +59,7 @@ int runRefineBench(const BenchOptions& options) {
         std::printf("dem,cells,valid,max_error_m,threads,points,triangles,hole_triangles,"
                     "achieved_max_error_m,rmse_m,seconds,speedup,peak_mib\n");
     else
-        std::printf("%-8s %9s %6s %3s %9s %9s %9s %8s %7s %8s %6s %8s\n", "DEM", "cells", "E [m]",
+        std::printf("%-11s %9s %6s %3s %9s %9s %9s %8s %7s %8s %6s %8s\n", "DEM", "cells", "E [m]",
                     "thr", "points", "triangles", "holes", "max err", "RMSE", "time [s]", "speed",
                     "peak MiB");
     for (const RefineCase& refineCase : refineCases()) {
@@ -52,6 +71,7 @@ int runRefineBench(const BenchOptions& options) {
         }
         const io::HeightGridRaster raster = io::readHeightGrid(path.string(), {});
         const std::size_t valid = raster.grid.validCount();
+        const std::vector<Point2> positions = casePositions(refineCase, raster);
         for (const double tolerance : refineCase.tolerances) {
             std::optional<double> oneThread;
             for (const unsigned threadCount : threads) {
@@ -65,7 +85,9 @@ int runRefineBench(const BenchOptions& options) {
                 for (unsigned run = 0; run < options.runs; ++run) {
                     probe.start();
                     const Stopwatch stopwatch;
-                    result = refine(raster.grid, refineOptions);
+                    result = positions.empty()
+                                 ? refine(raster.grid, refineOptions)
+                                 : refine(raster.grid, positions, refineOptions);
                     seconds.push_back(stopwatch.seconds());
                     if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
                         peaks.push_back(static_cast<double>(*peak));
@@ -81,7 +103,7 @@ int runRefineBench(const BenchOptions& options) {
                                 result.mesh.triangleCount(), result.droppedTriangles,
                                 result.maxError, result.rmse, time, *oneThread / time, peakMiB);
                 else
-                    std::printf("%-8s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f\n",
+                    std::printf("%-11s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f\n",
                                 refineCase.label, raster.grid.cellCount(), tolerance, threadCount,
                                 result.mesh.vertexCount(), result.mesh.triangleCount(),
                                 result.droppedTriangles, result.maxError, result.rmse, time,

@@ -45,6 +45,13 @@ struct HeightGrid {
         const auto w = static_cast<std::uint64_t>(width);
         return cellCentre(static_cast<std::int64_t>(cell / w), static_cast<std::int64_t>(cell % w));
     }
+    /// Georeferenced centre of the raster's extent (pixel (width / 2, height / 2)).
+    [[nodiscard]] Point2 extentCentre() const {
+        const double px = 0.5 * static_cast<double>(width);
+        const double py = 0.5 * static_cast<double>(height);
+        const std::array<double, 6>& c = geoTransform;
+        return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5]};
+    }
     [[nodiscard]] std::size_t cellCount() const {
         return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     }
