@@ -59,11 +59,7 @@ std::vector<std::array<std::uint32_t, 3>> cellTriangles(const TinMesh& mesh) {
 }
 
 RefineOptions options(double maxError, unsigned threads) {
-    RefineOptions result;
-    result.maxError = maxError;
-    result.threads = threads;
-    result.validate = true;
-    return result;
+    return test::validatedOptions(maxError, threads);
 }
 
 TEST(RefinePositions, EveryValidCellWithinMaxErrorAtItsPosition) {

@@ -18,11 +18,7 @@ namespace {
 using test::makeGrid;
 
 RefineOptions withError(double maxError, unsigned threads = 1) {
-    RefineOptions options;
-    options.maxError = maxError;
-    options.threads = threads;
-    options.validate = true;
-    return options;
+    return test::validatedOptions(maxError, threads);
 }
 
 TEST(Refine, PlaneNeedsOnlyItsCorners) {

@@ -23,6 +23,14 @@ HeightGrid makeGrid(int width, int height, const std::function<double(int, int)>
     return grid;
 }
 
+RefineOptions validatedOptions(double maxError, unsigned threads) {
+    RefineOptions options;
+    options.maxError = maxError;
+    options.threads = threads;
+    options.validate = true;
+    return options;
+}
+
 HeightGrid roughTerrain(int width, int height, std::uint32_t seed) {
     return makeGrid(width, height, [seed](int row, int col) {
         std::uint32_t h = seed * 2654435761U ^ static_cast<std::uint32_t>(row) * 40503U ^

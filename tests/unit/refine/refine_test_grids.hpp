@@ -3,6 +3,7 @@
 // the refiner (CRS coordinates, exact point-in-triangle tests, barycentric interpolation).
 
 #include "terratin/refine/height_grid.hpp"
+#include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <cstddef>
@@ -16,6 +17,9 @@ namespace terratin::test {
 /// A width x height grid with z(row, col) (NaN = nodata) and geotransform (0, 1, 0, 0, 0, -1)
 /// shifted so that cell centres are at (col + 0.5, -(row + 0.5)): north-up, y decreasing.
 HeightGrid makeGrid(int width, int height, const std::function<double(int row, int col)>& z);
+
+/// Options with `maxError`, `threads` and validation on, as most refinement tests want.
+RefineOptions validatedOptions(double maxError, unsigned threads = 1);
 
 /// Smooth hills plus deterministic pseudo-random noise (metres, 0..~300).
 HeightGrid roughTerrain(int width, int height, std::uint32_t seed);
