@@ -55,6 +55,12 @@ public:
         throw std::logic_error("Refiner: the point walk does not end; the TIN is not Delaunay");
     }
 
+    /// Continues the next walk from triangle t.
+    void restartAt(std::size_t t) {
+        if (t != m_current.id)
+            m_current = load(t);
+    }
+
     /// Calls visit(s) for the triangle t that the last locate() found and, when the point lies
     /// on one of its edges, for the neighbour across it (closed triangles).
     template <class Visit>
@@ -185,12 +191,26 @@ void forEachCellLocated(const TinMesh& mesh, const GridView& grid,
     const auto cells = static_cast<std::size_t>(grid.width * grid.height);
     if (positions.size() != cells)
         throw std::invalid_argument("Refiner: one position per cell is needed");
+    const auto width = static_cast<std::size_t>(grid.width);
     parallelFor(cells, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         CellWalker walker(mesh, grid, positions);
+        // Each row starts its walk where the previous one started, a row away, rather than
+        // at the previous row's far end.
+        std::int64_t rowStart = -1;
+        bool rowStartPending = true;
         for (std::size_t cell = begin; cell < end; ++cell) {
+            if (cell % width == 0) {
+                if (rowStart >= 0)
+                    walker.restartAt(static_cast<std::size_t>(rowStart));
+                rowStartPending = true;
+            }
             if (!wanted(grid.flags[cell]))
                 continue;
             const std::int64_t t = walker.locate(positions[cell]);
+            if (rowStartPending && t >= 0) {
+                rowStart = t;
+                rowStartPending = false;
+            }
             if (t >= 0)
                 visit(block, walker, cell, static_cast<std::size_t>(t));
         }
