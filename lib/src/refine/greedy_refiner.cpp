@@ -399,16 +399,48 @@ void GreedyRefiner::runRounds(const ProgressCallback& progress) {
 }
 
 void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
+    // Per cell, the slot and version of the triangle that held it at the last check
+    // (kNoTriangle: check it again), so that each check after the first looks only at the
+    // cells whose triangle the rounds changed (CheckMemo).
+    const std::size_t cellCount = m_grid.cellCount();
+    std::vector<TriId> cellSlot(cellCount, kNoTriangle);
+    std::vector<std::uint32_t> cellVersion(cellCount, 0);
+    std::vector<std::uint8_t> unchanged;
+    std::vector<std::int32_t> near;
+    std::vector<std::int32_t> located(cellCount, -1);
     while (m_stop == RefineStop::ErrorReached) {
         const TinMesh mesh = extract();
         // extract() lists the slots in use in slot order: the slot of each mesh triangle.
         std::vector<TriId> slots;
         slots.reserve(mesh.triangleCount());
+        std::vector<std::int32_t> indexOfSlot(m_mesh->slotCount(), -1);
         for (TriId t = 0; t < m_mesh->slotCount(); ++t)
-            if (m_mesh->inUse(t))
+            if (m_mesh->inUse(t)) {
+                indexOfSlot[t] = static_cast<std::int32_t>(slots.size());
                 slots.push_back(t);
+            }
+        if (m_completionPasses > 0) {
+            unchanged.resize(cellCount);
+            near.resize(cellCount);
+            for (std::size_t cell = 0; cell < cellCount; ++cell) {
+                const TriId slot = cellSlot[cell];
+                unchanged[cell] =
+                    slot != kNoTriangle && m_mesh->version(slot) == cellVersion[cell] ? 1 : 0;
+                near[cell] = slot != kNoTriangle ? indexOfSlot[slot] : -1;
+            }
+        }
+        std::fill(located.begin(), located.end(), -1);
+        const CheckMemo memo{unchanged, near, located};
         const std::vector<CellToInsert> cells =
-            cellsToInsertAt(mesh, m_view, m_positions, m_threshold, m_workers.size());
+            cellsToInsertAt(mesh, m_view, m_positions, m_threshold, m_workers.size(), &memo);
+        for (std::size_t cell = 0; cell < cellCount; ++cell) {
+            if (!unchanged.empty() && unchanged[cell] != 0)
+                continue;
+            cellSlot[cell] = located[cell] >= 0 ? slots[static_cast<std::size_t>(located[cell])]
+                                                : kNoTriangle;
+            if (cellSlot[cell] != kNoTriangle)
+                cellVersion[cell] = m_mesh->version(cellSlot[cell]);
+        }
         if (cells.empty())
             return;
         // They become candidates like the scans' ones: the rounds insert them, rescan what

@@ -55,6 +55,9 @@ public:
         throw std::logic_error("Refiner: the point walk does not end; the TIN is not Delaunay");
     }
 
+    /// Whether the last located point lies on an edge of its triangle.
+    [[nodiscard]] bool onEdge() const { return m_onEdge != 0; }
+
     /// Continues the next walk from triangle t.
     void restartAt(std::size_t t) {
         if (t != m_current.id)
@@ -183,14 +186,16 @@ private:
 
 /// Calls visit(block, walker, cell, t) for every cell c with `wanted(flags[c])` that lies in
 /// the mesh (t: the triangle the walk found), the cells split into contiguous blocks, one
-/// walker each.
+/// walker each. With a memo, the cells it marks unchanged are skipped, and the walk after a
+/// skip starts at the cell's `near` triangle.
 template <class Wanted, class Visit>
 void forEachCellLocated(const TinMesh& mesh, const GridView& grid,
                         std::span<const Point2> positions, unsigned threads, Wanted&& wanted,
-                        Visit&& visit) {
+                        Visit&& visit, const CheckMemo* memo = nullptr) {
     const auto cells = static_cast<std::size_t>(grid.width * grid.height);
     if (positions.size() != cells)
         throw std::invalid_argument("Refiner: one position per cell is needed");
+    const bool skipping = memo != nullptr && !memo->unchanged.empty();
     const auto width = static_cast<std::size_t>(grid.width);
     parallelFor(cells, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         CellWalker walker(mesh, grid, positions);
@@ -198,6 +203,7 @@ void forEachCellLocated(const TinMesh& mesh, const GridView& grid,
         // at the previous row's far end.
         std::int64_t rowStart = -1;
         bool rowStartPending = true;
+        bool skipped = false;
         for (std::size_t cell = begin; cell < end; ++cell) {
             if (cell % width == 0) {
                 if (rowStart >= 0)
@@ -206,6 +212,15 @@ void forEachCellLocated(const TinMesh& mesh, const GridView& grid,
             }
             if (!wanted(grid.flags[cell]))
                 continue;
+            if (skipping) {
+                if (memo->unchanged[cell] != 0) {
+                    skipped = true;
+                    continue;
+                }
+                if (skipped && memo->near[cell] >= 0)
+                    walker.restartAt(static_cast<std::size_t>(memo->near[cell]));
+                skipped = false;
+            }
             const std::int64_t t = walker.locate(positions[cell]);
             if (rowStartPending && t >= 0) {
                 rowStart = t;
@@ -278,7 +293,7 @@ ErrorMeasure measureErrorsAt(const TinMesh& mesh, std::span<const std::uint8_t> 
 
 std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& grid,
                                           std::span<const Point2> positions, double threshold,
-                                          unsigned threads) {
+                                          unsigned threads, const CheckMemo* memo) {
     const std::vector<std::uint8_t> overHole =
         trianglesOverOpenHolesAt(mesh, grid, positions, threads);
     struct Found {
@@ -291,6 +306,8 @@ std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& g
     forEachCellLocated(
         mesh, grid, positions, threads, isMeasured,
         [&](unsigned block, const CellWalker& walker, std::size_t cell, std::size_t t) {
+            if (memo != nullptr)
+                memo->located[cell] = walker.onEdge() ? -1 : static_cast<std::int32_t>(t);
             walker.forEachHolding(t, [&](std::size_t s) {
                 const double error =
                     std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
@@ -298,7 +315,8 @@ std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& g
                     blocks[block].push_back({static_cast<std::uint32_t>(s),
                                              static_cast<std::uint32_t>(cell), error});
             });
-        });
+        },
+        memo);
     std::vector<Found> found;
     for (const std::vector<Found>& block : blocks)
         found.insert(found.end(), block.begin(), block.end());

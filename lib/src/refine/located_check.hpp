@@ -53,12 +53,29 @@ struct CellToInsert {
     double priority = 0.0;
 };
 
+/// What one check of cellsToInsertAt passes to the next, so that the next looks only at the
+/// cells whose triangle changed in between: a cell strictly inside a triangle that is still
+/// there keeps its error and was not to be inserted (else its triangle would have been split),
+/// and every cell inside a new triangle was inside one that changed. Cells on an edge are
+/// always checked again (the triangle across may have changed).
+struct CheckMemo {
+    /// Per cell: 1 to skip it (its triangle is unchanged since the last check), else 0.
+    std::span<const std::uint8_t> unchanged;
+    /// Per cell: a triangle of the mesh near it, where its walk may start, or -1.
+    std::span<const std::int32_t> near;
+    /// Out, per cell checked: the triangle holding it strictly inside, or -1 (on an edge).
+    /// Cells not checked are left as they are.
+    std::span<std::int32_t> located;
+};
+
 /// The refiner's rule, checked exactly: for each triangle holding a valid non-vertex cell
 /// farther than `threshold` from it, or holding both such a cell (at any error) and an open
 /// hole's cell, its farthest such cell (ties: the lowest cell index). Sorted by cell index,
 /// each cell once. Empty when the TIN meets the guarantee.
+/// With `memo`, only the cells memo.unchanged does not mark are looked at, and memo.located
+/// is filled (memo.unchanged and memo.near may be empty: every cell is checked).
 std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& grid,
                                           std::span<const Point2> positions, double threshold,
-                                          unsigned threads);
+                                          unsigned threads, const CheckMemo* memo = nullptr);
 
 } // namespace terratin::detail
