@@ -9,8 +9,8 @@ namespace {
 constexpr std::uint8_t kSeen = 0x80;
 } // namespace
 
-CellFlags makeCellFlags(const HeightGrid& grid, std::size_t maxHole,
-                                        bool fillHoles, std::size_t& openHoleCells) {
+CellFlags makeCellFlags(const HeightGrid& grid, std::size_t maxHole, bool fillHoles,
+                        std::size_t& openHoleCells) {
     const std::size_t cells = grid.cellCount();
     CellFlags flags(cells, 0);
     bool anyNoData = false;

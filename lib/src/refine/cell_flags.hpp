@@ -20,7 +20,7 @@ using CellFlags = std::vector<std::uint8_t, HugePageAllocator<std::uint8_t>>;
 /// 8-connectivity: nodata cells touching by a corner are one hole, as a person sees a void;
 /// a diagonal line of nodata cells is one hole, not a row of single-cell gaps to fill.
 /// O(cells) time; a stack of at most one hole's cells.
-CellFlags makeCellFlags(const HeightGrid& grid, std::size_t maxHole,
-                                        bool fillHoles, std::size_t& openHoleCells);
+CellFlags makeCellFlags(const HeightGrid& grid, std::size_t maxHole, bool fillHoles,
+                        std::size_t& openHoleCells);
 
 } // namespace terratin::detail

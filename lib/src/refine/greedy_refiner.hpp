@@ -56,8 +56,6 @@ public:
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
-    [[nodiscard]] std::size_t points() const { return m_vertexCell.size(); }
-    [[nodiscard]] std::size_t triangles() const { return m_triangles; }
     [[nodiscard]] std::size_t rounds() const { return m_rounds; }
     [[nodiscard]] std::size_t deferred() const { return m_deferred; }
     /// Passes of completeAtPositions (0 without positions).

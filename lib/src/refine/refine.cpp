@@ -53,37 +53,6 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
 }
 
 RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
-                      const RefineOptions& options, const ProgressCallback& progress);
-
-} // namespace
-
-const char* toString(RefineStop stop) {
-    switch (stop) {
-    case RefineStop::ErrorReached:
-        return "error";
-    case RefineStop::PointLimit:
-        return "points";
-    case RefineStop::TriangleLimit:
-        return "triangles";
-    }
-    return "unknown";
-}
-
-RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
-                    const ProgressCallback& progress) {
-    return refineAt(grid, {}, options, progress);
-}
-
-RefineResult refine(const HeightGrid& grid, std::span<const Point2> positions,
-                    const RefineOptions& options, const ProgressCallback& progress) {
-    if (positions.empty())
-        throw InvalidInputError("Refiner: no cell positions given");
-    return refineAt(grid, positions, options, progress);
-}
-
-namespace {
-
-RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                       const RefineOptions& options, const ProgressCallback& progress) {
     checkInput(grid, positions, options);
     RefineResult result;
@@ -156,5 +125,29 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
 }
 
 } // namespace
+
+const char* toString(RefineStop stop) {
+    switch (stop) {
+    case RefineStop::ErrorReached:
+        return "error";
+    case RefineStop::PointLimit:
+        return "points";
+    case RefineStop::TriangleLimit:
+        return "triangles";
+    }
+    return "unknown";
+}
+
+RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
+                    const ProgressCallback& progress) {
+    return refineAt(grid, {}, options, progress);
+}
+
+RefineResult refine(const HeightGrid& grid, std::span<const Point2> positions,
+                    const RefineOptions& options, const ProgressCallback& progress) {
+    if (positions.empty())
+        throw InvalidInputError("Refiner: no cell positions given");
+    return refineAt(grid, positions, options, progress);
+}
 
 } // namespace terratin
