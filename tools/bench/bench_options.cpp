@@ -27,13 +27,12 @@ constexpr std::size_t kLargeSize = 10'000'000;
 // A triangle needs three points: fewer make the library throw InvalidInputError.
 constexpr std::size_t kMinimumPoints = 3;
 
-// Circumcircle (the paper's section 3.4) joins the table by itself once the library declares
-// it, so the bench builds against terratin::core both before and after.
-template <typename Method> std::vector<NamedMethod> methodTable() {
-    std::vector<NamedMethod> table{{"sequential", Method::Sequential}, {"batch", Method::Batch}};
-    if constexpr (requires { Method::Circumcircle; })
-        table.push_back({"circumcircle", Method::Circumcircle});
-    return table;
+std::vector<NamedMethod> methodTable() {
+    using Method = TriangulationMethod;
+    return {{"sequential", Method::Sequential},
+            {"batch", Method::Batch},
+            {"circumcircle", Method::Circumcircle},
+            {"strips", Method::Strips}};
 }
 
 std::string lowercase(std::string_view text) {
@@ -96,7 +95,7 @@ po::options_description benchOptionsDescription() {
         ("distributions", po::value<std::string>()->value_name("LIST"),
          "uniform,gauss,cluster,grid,arc (default: all)")
         ("methods", po::value<std::string>()->value_name("LIST"),
-         "terratin methods (default: all this build has: sequential,batch[,circumcircle])")
+         "terratin methods (default: sequential,batch,circumcircle,strips)")
         ("threads", po::value<std::string>()->value_name("T,T,..."),
          "thread counts of the parallel methods (default: 1,2,4,... up to the hardware's)")
         ("runs", po::value<unsigned>()->default_value(5)->value_name("R"),
@@ -200,7 +199,7 @@ std::vector<PointLocation> parseLocations(const std::string& list) {
 } // namespace
 
 const std::vector<NamedMethod>& benchMethods() {
-    static const std::vector<NamedMethod> methods = methodTable<TriangulationMethod>();
+    static const std::vector<NamedMethod> methods = methodTable();
     return methods;
 }
 

@@ -125,7 +125,8 @@ ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& be
     ResultRow row;
     row.points = points.size();
     row.method = method.name;
-    row.locate = locationName(locate);
+    // The strip method always walks.
+    row.locate = method.method == TriangulationMethod::Strips ? "walk" : locationName(locate);
     row.threadsRequested = threads;
     std::optional<TriangulationResult> result;
     const RunSamples samples = sampleRuns(
@@ -221,15 +222,21 @@ struct Configuration {
 };
 
 // Every run this group's configurations make, per point location: sequential first (the
-// speed-ups' reference), then each other method at each thread count.
+// speed-ups' reference), then each other method at each thread count. The strip method,
+// which always walks, runs once: with the walk rows when there are some, else at the end.
 std::vector<Configuration> configurations(const BenchOptions& bench) {
+    const bool anyWalk = std::find(bench.locations.begin(), bench.locations.end(),
+                                   PointLocation::Walk) != bench.locations.end();
     std::vector<Configuration> runs;
     for (const PointLocation locate : bench.locations) {
+        const bool stripsHere =
+            anyWalk ? locate == PointLocation::Walk : locate == bench.locations.back();
         for (const NamedMethod& method : bench.methods)
             if (method.method == TriangulationMethod::Sequential)
                 runs.push_back({method, locate, 1U});
         for (const NamedMethod& method : bench.methods)
-            if (method.method != TriangulationMethod::Sequential)
+            if (method.method != TriangulationMethod::Sequential &&
+                (method.method != TriangulationMethod::Strips || stripsHere))
                 for (const unsigned threads : bench.threads)
                     runs.push_back({method, locate, threads});
     }

@@ -62,10 +62,11 @@ TriangulationMethod parseMethod(const std::string& name) {
     const std::string key = lowercase(name);
     for (const TriangulationMethod method :
          {TriangulationMethod::Sequential, TriangulationMethod::Batch,
-          TriangulationMethod::Circumcircle, TriangulationMethod::Auto})
+          TriangulationMethod::Circumcircle, TriangulationMethod::Strips,
+          TriangulationMethod::Auto})
         if (key == toString(method))
             return method;
-    throw UsageError("--method must be sequential, batch, circumcircle or auto (got '" + name +
+    throw UsageError("--method must be sequential, batch, circumcircle, strips or auto (got '" + name +
                      "')");
 }
 
@@ -147,9 +148,11 @@ po::options_description buildOptionsDescription() {
          "elevation kept for points with the same x, y: first, last, min, max, mean")
         ("method", po::value<std::string>()->default_value("auto")->value_name("METHOD"),
          "triangulator: sequential, batch (searching threads + one inserting thread), "
-         "circumcircle (every thread inserts), auto")
+         "circumcircle (every thread inserts), strips (one strip of the plane per thread; "
+         "the fastest), auto (= strips)")
         ("locate", po::value<std::string>()->default_value("dag")->value_name("HOW"),
-         "point location: dag (the history DAG) or walk (from the previous point)")
+         "point location of sequential, batch and circumcircle: dag (the history DAG) or "
+         "walk (from the previous point; sequential then keeps no history)")
         ("threads,j", po::value<unsigned>()->default_value(0)->value_name("N"),
          "threads to use; 0 = all hardware threads")
         ("searchers", po::value<unsigned>()->default_value(0)->value_name("K"),

@@ -106,18 +106,6 @@ void DagTriangulator::insertAll(std::span<const VertexId> order, const ProgressC
     }
 }
 
-void DagTriangulator::insertAllByWalking(std::span<const VertexId> order,
-                                         const ProgressCallback& progress) {
-    for (std::size_t i = 0; i < order.size(); ++i) {
-        if (progress && i % kProgressInterval == 0 &&
-            !progress(static_cast<double>(i) / static_cast<double>(order.size()), "triangulating"))
-            throw Cancelled("Triangulator: cancelled");
-        // The node allocated last was created by the last edit and nothing has edited it
-        // since (any edit allocates newer nodes), so it is a leaf near the previous point.
-        insertAtLeaf(walk(order[i], newestNode()), order[i]);
-    }
-}
-
 NodeId DagTriangulator::walk(VertexId q, NodeId start) const {
     NodeId t = start;
     for (std::size_t steps = 0;; ++steps) {

@@ -54,13 +54,6 @@ public:
     /// of `order` done and throws Cancelled when it returns false.
     void insertAll(std::span<const VertexId> order, const ProgressCallback& progress);
 
-    /// Like insertAll, but locates each point by a visibility walk from the triangle created
-    /// last instead of descending the DAG. With a spatially sorted (BRIO) order the walks are
-    /// short and stay in cache, where the DAG descent is a chain of ~2 log n dependent memory
-    /// loads. Expected O(n log n) is no longer guaranteed (a walk is O(sqrt n) in the worst
-    /// uniform case); the DAG is still built (the parallel methods need it).
-    void insertAllByWalking(std::span<const VertexId> order, const ProgressCallback& progress);
-
     /// Node whose closed triangle contains q and that was a leaf when examined, found by a
     /// visibility walk from `start` (any node; an inner one is first descended to a leaf).
     /// Terminates on a Delaunay triangulation (Edelsbrunner 1989). Safe while other threads

@@ -7,6 +7,7 @@
 #include "dag_triangulator.hpp"
 #include "insertion_order.hpp"
 #include "parallel_for.hpp"
+#include "strip_insertion.hpp"
 
 #include "terratin/error.hpp"
 
@@ -21,21 +22,16 @@ namespace {
 
 using detail::VertexId;
 
-// Below this many points thread start-up and the shared queue cost more than they save.
-constexpr std::size_t kParallelThresholdPoints = 20000;
-
 unsigned resolveThreads(unsigned requested) {
     if (requested != 0)
         return requested;
     return std::max(1U, std::thread::hardware_concurrency());
 }
 
-TriangulationMethod resolveMethod(TriangulationMethod requested, std::size_t points,
-                                  unsigned threads) {
-    if (requested != TriangulationMethod::Auto)
-        return requested;
-    return threads > 1 && points >= kParallelThresholdPoints ? TriangulationMethod::Batch
-                                                             : TriangulationMethod::Sequential;
+// The strip method is the fastest at every size and thread count (it inserts small rounds
+// on one thread by itself).
+TriangulationMethod resolveMethod(TriangulationMethod requested) {
+    return requested == TriangulationMethod::Auto ? TriangulationMethod::Strips : requested;
 }
 
 // The paper found 3 searchers per specialised thread best on two processors for up to
@@ -97,43 +93,15 @@ double lap(Clock::time_point& start) {
     return seconds;
 }
 
-} // namespace
-
-const char* toString(TriangulationMethod method) {
-    switch (method) {
-    case TriangulationMethod::Sequential:
-        return "sequential";
-    case TriangulationMethod::Batch:
-        return "batch";
-    case TriangulationMethod::Circumcircle:
-        return "circumcircle";
-    case TriangulationMethod::Auto:
-        return "auto";
-    }
-    return "unknown";
-}
-
-TriangulationResult triangulate(std::span<const Point3> points, const TriangulationOptions& options,
-                                const ProgressCallback& progress) {
-    TriangulationResult result;
+// Inserts with the DAG (sequential, batch or circum-circle) and extracts the mesh.
+void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& options,
+                   unsigned threads, const ProgressCallback& progress,
+                   TriangulationResult& result) {
     Clock::time_point phase = Clock::now();
-    const PreparedPoints prepared = preparePoints(points, options.duplicateZ);
-    result.seconds.prepare = lap(phase);
-    const auto count = static_cast<std::uint32_t>(prepared.local.size());
-
-    const unsigned threads = resolveThreads(options.threads);
-    result.method = resolveMethod(options.method, count, threads);
+    const auto count = static_cast<std::uint32_t>(plan.local.size());
     const bool walk = options.locate == PointLocation::Walk;
-    // The sequential method is the baseline of the parallel ones: one thread throughout.
-    const unsigned phaseThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
-
-    const InsertionPlan plan = planInsertion(prepared.local, options, phaseThreads);
-    result.seconds.order = lap(phase);
-
     detail::DagTriangulator triangulator(plan.local);
     const std::span<const VertexId> order(plan.order);
-    const std::vector<std::size_t>& roundStarts = plan.roundStarts;
-
     switch (result.method) {
     case TriangulationMethod::Batch: {
         detail::BatchSettings settings;
@@ -149,9 +117,8 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
         break;
     }
     case TriangulationMethod::Circumcircle: {
-        const detail::CircumcircleStatistics statistics =
-            detail::insertWithCircumcircleMethod(triangulator, order, roundStarts, threads, walk,
-                                                 progress);
+        const detail::CircumcircleStatistics statistics = detail::insertWithCircumcircleMethod(
+            triangulator, order, plan.roundStarts, threads, walk, progress);
         result.threads = threads;
         result.waits = statistics.waits;
         result.overrides = statistics.overrides;
@@ -159,22 +126,84 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
         result.repairFlips = statistics.repairFlips;
         break;
     }
-    case TriangulationMethod::Sequential:
-    case TriangulationMethod::Auto:
-        if (walk)
-            triangulator.insertAllByWalking(order, progress);
-        else
-            triangulator.insertAll(order, progress);
+    default: // sequential (its walk keeps no history: see insertWithoutHistory)
+        triangulator.insertAll(order, progress);
         result.threads = 1;
         break;
     }
-
     result.seconds.insert = lap(phase);
-    result.inputPoints = points.size();
-    result.duplicatePoints = prepared.duplicateCount;
     result.historyNodes = triangulator.nodeCount();
     result.historyBytes = triangulator.memoryBytes();
-    triangulator.extract(result.mesh.triangles, result.mesh.neighbours, phaseThreads);
+    const unsigned extractThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
+    triangulator.extract(result.mesh.triangles, result.mesh.neighbours, extractThreads);
+    result.seconds.extract = lap(phase);
+}
+
+// Inserts with the history-free Bowyer-Watson core (strip method, or sequential walk) and
+// extracts the mesh.
+void insertWithoutHistory(const InsertionPlan& plan, unsigned threads,
+                          const ProgressCallback& progress, TriangulationResult& result) {
+    Clock::time_point phase = Clock::now();
+    // Every vertex, the DAG's auxiliary corner (vertex 0) first: no auxiliary triangle here.
+    std::vector<VertexId> order(plan.local.size());
+    std::iota(order.begin(), order.end(), VertexId{0});
+    std::vector<std::size_t> roundStarts{0};
+    for (std::size_t r = 1; r < plan.roundStarts.size(); ++r)
+        roundStarts.push_back(plan.roundStarts[r] + 1);
+    detail::StripTriangulator triangulator(plan.local, threads);
+    triangulator.insertAll(order, roundStarts, progress);
+    result.seconds.insert = lap(phase);
+    result.threads = triangulator.strips();
+    result.deferredPoints = triangulator.deferredPoints();
+    result.historyBytes = triangulator.memoryBytes();
+    triangulator.extract(result.mesh.triangles, result.mesh.neighbours, threads);
+    result.seconds.extract = lap(phase);
+}
+
+} // namespace
+
+const char* toString(TriangulationMethod method) {
+    switch (method) {
+    case TriangulationMethod::Sequential:
+        return "sequential";
+    case TriangulationMethod::Batch:
+        return "batch";
+    case TriangulationMethod::Circumcircle:
+        return "circumcircle";
+    case TriangulationMethod::Strips:
+        return "strips";
+    case TriangulationMethod::Auto:
+        return "auto";
+    }
+    return "unknown";
+}
+
+TriangulationResult triangulate(std::span<const Point3> points, const TriangulationOptions& options,
+                                const ProgressCallback& progress) {
+    TriangulationResult result;
+    Clock::time_point phase = Clock::now();
+    const PreparedPoints prepared = preparePoints(points, options.duplicateZ);
+    result.seconds.prepare = lap(phase);
+    const auto count = static_cast<std::uint32_t>(prepared.local.size());
+
+    const unsigned threads = resolveThreads(options.threads);
+    result.method = resolveMethod(options.method);
+    const bool walk = options.locate == PointLocation::Walk;
+    // The sequential method is the baseline of the parallel ones: one thread throughout.
+    const unsigned phaseThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
+
+    const InsertionPlan plan = planInsertion(prepared.local, options, phaseThreads);
+    result.seconds.order = lap(phase);
+
+    const bool historyFree = result.method == TriangulationMethod::Strips ||
+                             (result.method == TriangulationMethod::Sequential && walk);
+    if (historyFree)
+        insertWithoutHistory(plan, phaseThreads, progress, result);
+    else
+        insertWithDag(plan, options, threads, progress, result);
+    result.inputPoints = points.size();
+    result.duplicatePoints = prepared.duplicateCount;
+    lap(phase); // insertion and extraction timed themselves
 
     // Vertices carry the caller's exact coordinates (not local + origin, to avoid relying on
     // the round trip) and the elevation chosen by the duplicate policy.
@@ -189,7 +218,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
                                        prepared.z[preparedIndex]};
         }
     });
-    result.seconds.extract = lap(phase);
+    result.seconds.extract += lap(phase);
     if (progress)
         progress(1.0, "triangulated");
     return result;

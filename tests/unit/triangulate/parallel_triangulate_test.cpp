@@ -73,6 +73,20 @@ INSTANTIATE_TEST_SUITE_P(
                test::toString(std::get<3>(paramInfo.param));
     });
 
+// The strip method always walks: one location is enough.
+INSTANTIATE_TEST_SUITE_P(
+    StripsThreadsDistributions, ParallelMethod,
+    ::testing::Combine(::testing::Values(TriangulationMethod::Strips),
+                       ::testing::Values(PointLocation::Walk),
+                       ::testing::Values(1U, 2U, 3U, 4U, 8U),
+                       ::testing::Values(Distribution::Uniform, Distribution::Gauss,
+                                         Distribution::Cluster, Distribution::Grid,
+                                         Distribution::Arc)),
+    [](const auto& paramInfo) {
+        return std::to_string(std::get<2>(paramInfo.param)) + "threads_" +
+               test::toString(std::get<3>(paramInfo.param));
+    });
+
 class ParallelDegenerate
     : public ::testing::TestWithParam<std::tuple<TriangulationMethod, PointLocation, unsigned>> {
 protected:
@@ -128,6 +142,44 @@ INSTANTIATE_TEST_SUITE_P(MethodsThreads, ParallelDegenerate,
                                     toString(std::get<1>(paramInfo.param)) + "_" +
                                     std::to_string(std::get<2>(paramInfo.param)) + "threads";
                          });
+
+INSTANTIATE_TEST_SUITE_P(StripsThreads, ParallelDegenerate,
+                         ::testing::Combine(::testing::Values(TriangulationMethod::Strips),
+                                            ::testing::Values(PointLocation::Walk),
+                                            ::testing::Values(1U, 2U, 3U, 4U, 8U)),
+                         [](const auto& paramInfo) {
+                             return std::to_string(std::get<2>(paramInfo.param)) + "threads";
+                         });
+
+TEST(StripMethod, RunsItsStripsInParallel_OnALargeInput) {
+    // Large enough for the library's own threshold: rounds of over 4096 points per strip.
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 40000, 12);
+    const TriangulationResult result =
+        triangulate(points, parallelOptions(TriangulationMethod::Strips, 2));
+    EXPECT_EQ(result.threads, 2U);
+    EXPECT_GT(result.deferredPoints, 0U);
+    EXPECT_LT(result.deferredPoints, points.size() / 20);
+    test::expectExactDelaunayOf(result.mesh, points);
+}
+
+TEST(StripMethod, IsWhatAutoChooses) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Gauss, 500, 2);
+    for (const unsigned threads : {1U, 2U}) {
+        const TriangulationResult result =
+            triangulate(points, parallelOptions(TriangulationMethod::Auto, threads));
+        EXPECT_EQ(result.method, TriangulationMethod::Strips);
+        EXPECT_EQ(result.historyNodes, 0U);
+        test::expectExactDelaunayOf(result.mesh, points);
+    }
+}
+
+TEST(StripMethod, ThrowsCancelled) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 200000, 4);
+    std::size_t calls = 0;
+    EXPECT_THROW(triangulate(points, parallelOptions(TriangulationMethod::Strips, 2),
+                             [&calls](double, std::string_view) { return ++calls < 2; }),
+                 Cancelled);
+}
 
 TEST(CircumcircleMethod, IsExactlyDelaunay_WhenThreadsCrowdOneCircle) {
     // Points on one circle: every triangle's circumcircle is (nearly) that circle, so every

@@ -27,9 +27,10 @@ enum class InsertionOrder {
 enum class PointLocation {
     /// Descent of the DAG history (the paper's structure; expected O(log n) per point).
     Dag,
-    /// Visibility walk from the thread's previous point, on the current triangulation (the
-    /// DAG is still built, for the parallel methods' descents); no O(log n) guarantee, but
-    /// with the BRIO order the walks are short and stay in cache.
+    /// Visibility walk from the thread's previous point, on the current triangulation; no
+    /// O(log n) guarantee, but with the BRIO order the walks are short and stay in cache.
+    /// The sequential method then keeps no history at all (Bowyer-Watson insertion, the
+    /// strip method's core); batch and circum-circle still build the DAG for their descents.
     Walk,
 };
 
@@ -42,7 +43,11 @@ enum class TriangulationMethod {
     /// Every thread inserts, after testing the points other threads insert against the
     /// circumcircle of each triangle it touches (section 3.4).
     Circumcircle,
-    /// Chosen from the number of points and threads.
+    /// One vertical strip of equal point count per thread; each thread inserts its strip's
+    /// points touching only triangles inside its strip, and points near a strip boundary are
+    /// inserted afterwards by one thread. Always walks, keeps no history. The fastest method.
+    Strips,
+    /// The strip method (with one thread, a history-free sequential insertion).
     Auto,
 };
 
@@ -101,10 +106,12 @@ struct TriangulationResult {
     std::size_t overrides = 0;
     std::size_t deferredEdges = 0;
     std::size_t repairFlips = 0;
+    /// Strip method: points left to the single-threaded phase (near a strip boundary).
+    std::size_t deferredPoints = 0;
     TriangulationPhases seconds;
 };
 
-/// "sequential", "batch", "circumcircle" or "auto".
+/// "sequential", "batch", "circumcircle", "strips" or "auto".
 const char* toString(TriangulationMethod method);
 
 /// Delaunay triangulation of `points` (x, y in any planar units; z carried along).
