@@ -149,7 +149,7 @@ po::options_description buildOptionsDescription() {
         ("method", po::value<std::string>()->default_value("auto")->value_name("METHOD"),
          "triangulator: sequential, batch (searching threads + one inserting thread), "
          "circumcircle (every thread inserts), strips (one strip of the plane per thread; "
-         "the fastest), auto (= strips)")
+         "the fastest), auto (strips; sequential with --order random)")
         ("locate", po::value<std::string>()->default_value("dag")->value_name("HOW"),
          "point location of sequential, batch and circumcircle: dag (the history DAG) or "
          "walk (from the previous point; sequential then keeps no history)")

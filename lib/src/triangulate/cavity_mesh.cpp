@@ -15,12 +15,22 @@ namespace {
 constexpr CavityLink link(CavityTriangleId triangle, unsigned corner) {
     return triangle * 4U + corner;
 }
-constexpr CavityTriangleId linkedTriangle(CavityLink l) { return l >> 2U; }
-constexpr unsigned linkedCorner(CavityLink l) { return l & 3U; }
-constexpr unsigned next(unsigned corner) { return corner == 2 ? 0 : corner + 1; }
-constexpr unsigned previous(unsigned corner) { return corner == 0 ? 2 : corner - 1; }
+constexpr CavityTriangleId linkedTriangle(CavityLink l) {
+    return l >> 2U;
+}
+constexpr unsigned linkedCorner(CavityLink l) {
+    return l & 3U;
+}
+constexpr unsigned next(unsigned corner) {
+    return corner == 2 ? 0 : corner + 1;
+}
+constexpr unsigned previous(unsigned corner) {
+    return corner == 0 ? 2 : corner - 1;
+}
 
-bool isGhost(const CavityTriangle& t) { return t.corners[2] == kGhostVertex; }
+bool isGhost(const CavityTriangle& t) {
+    return t.corners[2] == kGhostVertex;
+}
 
 // p strictly between a and b, all three on one line.
 bool strictlyBetween(const Point2& a, const Point2& b, const Point2& p) {
@@ -111,7 +121,9 @@ bool CavityMesh::inConflict(const CavityTriangle& t, const Point2& p) const {
 CavityTriangleId CavityMesh::locate(CavityVertex p, CavityTriangleId start,
                                     std::uint8_t owner) const {
     const Point2& q = m_points[p];
-    const auto allowed = [&](CavityTriangleId t) { return owner == kAnyOwner || m_owner[t] == owner; };
+    const auto allowed = [&](CavityTriangleId t) {
+        return owner == kAnyOwner || m_owner[t] == owner;
+    };
     CavityTriangleId t = start;
     if (!allowed(t))
         return kNoCavityTriangle;
@@ -131,8 +143,8 @@ CavityTriangleId CavityMesh::locate(CavityVertex p, CavityTriangleId start,
         for (unsigned k = 0; k < 3; ++k) {
             if (k == entered)
                 continue;
-            if (predicates::orient2d(m_points[triangle.corners[next(k)]], m_points[triangle.corners[previous(k)]],
-                         q) < 0) {
+            if (predicates::orient2d(m_points[triangle.corners[next(k)]],
+                                     m_points[triangle.corners[previous(k)]], q) < 0) {
                 crossing = k;
                 break;
             }
@@ -209,9 +221,8 @@ CavityTriangleId CavityMesh::fillCavity(CavityVertex p, std::uint8_t owner, Scra
         // Unrotated: links[0] crosses (to, p), corner 1 of the next triangle; links[1]
         // crosses (p, from), corner 0 of the previous one; links[2] is the outside.
         const std::array<CavityVertex, 3> corners{edge.from, edge.to, p};
-        const std::array<CavityLink, 3> links{
-            link(slots[after], (1 + shiftAfter) % 3), link(slots[before], shiftBefore),
-            edge.outside};
+        const std::array<CavityLink, 3> links{link(slots[after], (1 + shiftAfter) % 3),
+                                              link(slots[before], shiftBefore), edge.outside};
         CavityTriangle& triangle = m_triangles[slots[i]];
         for (unsigned k = 0; k < 3; ++k) {
             triangle.corners[(k + shift) % 3] = corners[k];

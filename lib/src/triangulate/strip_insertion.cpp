@@ -60,8 +60,7 @@ std::size_t slotCapacity(std::size_t points, unsigned strips) {
 
 // Runs body(i) for i in [0, count), one thread each (i = 0 on the calling thread), and
 // rethrows the first exception once all have finished.
-template <class Body>
-void runOnThreads(unsigned count, Body&& body) {
+template <class Body> void runOnThreads(unsigned count, Body&& body) {
     std::mutex failureMutex;
     std::exception_ptr failure;
     const auto run = [&](unsigned index) {
@@ -111,8 +110,8 @@ void StripTriangulator::insertAll(std::span<const std::uint32_t> order,
         throw InvalidInputError("Triangulator: fewer than three points");
     // The first triangle: the first two points and the first point not collinear with them.
     std::size_t third = 2;
-    while (third < order.size() &&
-           predicates::orient2d(m_points[order[0]], m_points[order[1]], m_points[order[third]]) == 0)
+    while (third < order.size() && predicates::orient2d(m_points[order[0]], m_points[order[1]],
+                                                        m_points[order[third]]) == 0)
         ++third;
     if (third == order.size())
         throw InvalidInputError("Triangulator: all points are collinear");
@@ -121,8 +120,8 @@ void StripTriangulator::insertAll(std::span<const std::uint32_t> order,
     std::vector<std::size_t> starts(roundStarts.begin(), roundStarts.end());
     starts.push_back(order.size());
     const auto report = [&](std::size_t done) {
-        if (progress &&
-            !progress(static_cast<double>(done) / static_cast<double>(order.size()), "triangulating"))
+        if (progress && !progress(static_cast<double>(done) / static_cast<double>(order.size()),
+                                  "triangulating"))
             throw Cancelled("Triangulator: cancelled");
     };
     std::vector<std::uint32_t> round;

@@ -29,9 +29,13 @@ unsigned resolveThreads(unsigned requested) {
 }
 
 // The strip method is the fastest at every size and thread count (it inserts small rounds
-// on one thread by itself).
-TriangulationMethod resolveMethod(TriangulationMethod requested) {
-    return requested == TriangulationMethod::Auto ? TriangulationMethod::Strips : requested;
+// on one thread by itself), but it walks: in a random order, without BRIO's spatial sort, a
+// walk crosses O(sqrt n) triangles, so there the DAG's O(log n) descent is the choice.
+TriangulationMethod resolveMethod(TriangulationMethod requested, InsertionOrder order) {
+    if (requested != TriangulationMethod::Auto)
+        return requested;
+    return order == InsertionOrder::Brio ? TriangulationMethod::Strips
+                                         : TriangulationMethod::Sequential;
 }
 
 // The paper found 3 searchers per specialised thread best on two processors for up to
@@ -67,8 +71,7 @@ InsertionPlan planInsertion(const std::vector<Point2>& local, const Triangulatio
     InsertionPlan plan;
     plan.preparedIndex =
         options.order == InsertionOrder::Brio
-            ? detail::brioInsertionOrder(local, highest, options.seed, &plan.roundStarts,
-                                         threads)
+            ? detail::brioInsertionOrder(local, highest, options.seed, &plan.roundStarts, threads)
             : detail::randomInsertionOrder(count, highest, options.seed);
     if (plan.roundStarts.empty())
         plan.roundStarts.push_back(0);
@@ -94,9 +97,8 @@ double lap(Clock::time_point& start) {
 }
 
 // Inserts with the DAG (sequential, batch or circum-circle) and extracts the mesh.
-void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& options,
-                   unsigned threads, const ProgressCallback& progress,
-                   TriangulationResult& result) {
+void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& options, unsigned threads,
+                   const ProgressCallback& progress, TriangulationResult& result) {
     Clock::time_point phase = Clock::now();
     const auto count = static_cast<std::uint32_t>(plan.local.size());
     const bool walk = options.locate == PointLocation::Walk;
@@ -187,7 +189,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
     const unsigned threads = resolveThreads(options.threads);
-    result.method = resolveMethod(options.method);
+    result.method = resolveMethod(options.method, options.order);
     const bool walk = options.locate == PointLocation::Walk;
     // The sequential method is the baseline of the parallel ones: one thread throughout.
     const unsigned phaseThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;

@@ -162,7 +162,7 @@ TEST(StripMethod, RunsItsStripsInParallel_OnALargeInput) {
     test::expectExactDelaunayOf(result.mesh, points);
 }
 
-TEST(StripMethod, IsWhatAutoChooses) {
+TEST(StripMethod, IsWhatAutoChooses_WithTheBrioOrder) {
     const std::vector<Point3> points = test::generatePoints(Distribution::Gauss, 500, 2);
     for (const unsigned threads : {1U, 2U}) {
         const TriangulationResult result =
@@ -171,6 +171,12 @@ TEST(StripMethod, IsWhatAutoChooses) {
         EXPECT_EQ(result.historyNodes, 0U);
         test::expectExactDelaunayOf(result.mesh, points);
     }
+    // A random order makes walks long: auto then descends the DAG.
+    TriangulationOptions random = parallelOptions(TriangulationMethod::Auto, 2);
+    random.order = InsertionOrder::Random;
+    const TriangulationResult result = triangulate(points, random);
+    EXPECT_EQ(result.method, TriangulationMethod::Sequential);
+    EXPECT_GT(result.historyNodes, 0U);
 }
 
 TEST(StripMethod, ThrowsCancelled) {

@@ -27,9 +27,10 @@ constexpr std::size_t kSmallStripMinimum = 32;
 std::vector<Point3> distinct(std::vector<Point3> input) {
     std::sort(input.begin(), input.end(),
               [](const Point3& a, const Point3& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
-    input.erase(std::unique(input.begin(), input.end(),
-                            [](const Point3& a, const Point3& b) { return a.x == b.x && a.y == b.y; }),
-                input.end());
+    input.erase(
+        std::unique(input.begin(), input.end(),
+                    [](const Point3& a, const Point3& b) { return a.x == b.x && a.y == b.y; }),
+        input.end());
     return input;
 }
 
@@ -68,23 +69,22 @@ TEST_P(StripInsertion, IsExactlyDelaunay_AndDefersOnlyPointsNearStripBoundaries)
     // every triangle is long and thin, and a cluster leaves few points to most strips, so
     // more of them meet a boundary.
     EXPECT_GT(run.deferred, 0U);
-    const bool roundTriangles =
-        distribution == Distribution::Uniform || distribution == Distribution::Gauss ||
-        distribution == Distribution::Grid;
+    const bool roundTriangles = distribution == Distribution::Uniform ||
+                                distribution == Distribution::Gauss ||
+                                distribution == Distribution::Grid;
     EXPECT_LT(run.deferred, roundTriangles ? points.size() * strips / 16 : points.size());
 }
 
-INSTANTIATE_TEST_SUITE_P(StripsDistributions, StripInsertion,
-                         ::testing::Combine(::testing::Values(2U, 3U, 4U, 8U),
-                                            ::testing::Values(Distribution::Uniform,
-                                                              Distribution::Gauss,
-                                                              Distribution::Cluster,
-                                                              Distribution::Grid,
-                                                              Distribution::Arc)),
-                         [](const auto& paramInfo) {
-                             return std::to_string(std::get<0>(paramInfo.param)) + "strips_" +
-                                    test::toString(std::get<1>(paramInfo.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    StripsDistributions, StripInsertion,
+    ::testing::Combine(::testing::Values(2U, 3U, 4U, 8U),
+                       ::testing::Values(Distribution::Uniform, Distribution::Gauss,
+                                         Distribution::Cluster, Distribution::Grid,
+                                         Distribution::Arc)),
+    [](const auto& paramInfo) {
+        return std::to_string(std::get<0>(paramInfo.param)) + "strips_" +
+               test::toString(std::get<1>(paramInfo.param));
+    });
 
 TEST(StripInsertion, DependsOnlyOnTheStripCount_NotOnThreadTiming) {
     // Grid points are cocircular in every cell: the diagonals follow the insertion order, so
@@ -101,7 +101,8 @@ TEST(StripInsertion, DependsOnlyOnTheStripCount_NotOnThreadTiming) {
 
 TEST(StripInsertion, IsExactlyDelaunay_ForLargeOffsetGridsAndCocircularRings) {
     for (const std::vector<Point3>& points :
-         {distinct(test::offset(test::generatePoints(Distribution::Grid, kPoints, 3), 6.0e5, 5.2e6)),
+         {distinct(
+              test::offset(test::generatePoints(Distribution::Grid, kPoints, 3), 6.0e5, 5.2e6)),
           distinct(test::cocircularRings(1.0)), distinct(test::collinearPlusOne(3000))}) {
         test::expectExactDelaunayOf(triangulateInStrips(points, 4).mesh, points);
     }

@@ -47,7 +47,8 @@ enum class TriangulationMethod {
     /// points touching only triangles inside its strip, and points near a strip boundary are
     /// inserted afterwards by one thread. Always walks, keeps no history. The fastest method.
     Strips,
-    /// The strip method (with one thread, a history-free sequential insertion).
+    /// The strip method (with one thread, a history-free sequential insertion); with the
+    /// random order, whose walks would be long, the sequential method.
     Auto,
 };
 
