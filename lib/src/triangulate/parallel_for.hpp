@@ -24,6 +24,31 @@ inline unsigned parallelForThreads(std::size_t count, unsigned threads) {
     return static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, count / (kParallelForMinimum / 2)));
 }
 
+/// Calls body(index) for every index of [0, count), each on a thread of its own (index 0 on
+/// the calling thread). Rethrows the first exception after every thread has finished.
+template <class Body> void runOnThreads(unsigned count, Body&& body) {
+    std::mutex failureMutex;
+    std::exception_ptr failure;
+    const auto run = [&](unsigned index) {
+        try {
+            body(index);
+        } catch (...) {
+            const std::lock_guard lock(failureMutex);
+            if (!failure)
+                failure = std::current_exception();
+        }
+    };
+    {
+        std::vector<std::jthread> others;
+        others.reserve(count - 1);
+        for (unsigned index = 1; index < count; ++index)
+            others.emplace_back(run, index);
+        run(0);
+    }
+    if (failure)
+        std::rethrow_exception(failure);
+}
+
 /// Calls body(block, begin, end) for the blocks of [0, count) split into
 /// parallelForThreads(count, threads) contiguous ranges, block 0 on the calling thread.
 /// Rethrows the first exception after every thread has finished.
@@ -35,26 +60,7 @@ void parallelFor(std::size_t count, unsigned threads, Body&& body) {
         body(0U, std::size_t{0}, count);
         return;
     }
-    std::mutex failureMutex;
-    std::exception_ptr failure;
-    const auto run = [&](unsigned block) {
-        try {
-            body(block, begin(block), begin(block + 1));
-        } catch (...) {
-            const std::lock_guard lock(failureMutex);
-            if (!failure)
-                failure = std::current_exception();
-        }
-    };
-    {
-        std::vector<std::jthread> others;
-        others.reserve(blocks - 1);
-        for (unsigned block = 1; block < blocks; ++block)
-            others.emplace_back(run, block);
-        run(0);
-    }
-    if (failure)
-        std::rethrow_exception(failure);
+    runOnThreads(blocks, [&](unsigned block) { body(block, begin(block), begin(block + 1)); });
 }
 
 /// Like parallelFor, but the threads take chunks of `chunk` elements in turn, for loops whose

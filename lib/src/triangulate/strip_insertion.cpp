@@ -6,9 +6,6 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 namespace terratin::detail {
 
@@ -56,31 +53,6 @@ constexpr std::size_t kStartSlots = 4;
 
 std::size_t slotCapacity(std::size_t points, unsigned strips) {
     return (strips > 1 ? 4 : 2) * points + kStartSlots;
-}
-
-// Runs body(i) for i in [0, count), one thread each (i = 0 on the calling thread), and
-// rethrows the first exception once all have finished.
-template <class Body> void runOnThreads(unsigned count, Body&& body) {
-    std::mutex failureMutex;
-    std::exception_ptr failure;
-    const auto run = [&](unsigned index) {
-        try {
-            body(index);
-        } catch (...) {
-            const std::lock_guard lock(failureMutex);
-            if (!failure)
-                failure = std::current_exception();
-        }
-    };
-    {
-        std::vector<std::jthread> others;
-        others.reserve(count - 1);
-        for (unsigned index = 1; index < count; ++index)
-            others.emplace_back(run, index);
-        run(0);
-    }
-    if (failure)
-        std::rethrow_exception(failure);
 }
 
 } // namespace
