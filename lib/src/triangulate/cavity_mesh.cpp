@@ -6,6 +6,7 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 namespace terratin::detail {
@@ -248,61 +249,59 @@ bool CavityMesh::insert(CavityVertex p, CavityTriangleId& hint, Scratch& scratch
 
 void CavityMesh::extract(std::vector<std::uint32_t>& triangles,
                          std::vector<std::int32_t>& neighbours, unsigned threads) const {
-    // The used slots of every region, one after the other, as one range [0, total).
+    // The used slots of every region, one region after the other, as positions [0, total).
     std::vector<std::size_t> regionOffset{0};
     for (const auto& [begin, used] : m_regions)
         regionOffset.push_back(regionOffset.back() + (used - begin));
     const std::size_t total = regionOffset.back();
-    const auto slotAt = [&](std::size_t position) {
-        const auto region = static_cast<std::size_t>(
-            std::upper_bound(regionOffset.begin(), regionOffset.end(), position) -
-            regionOffset.begin() - 1);
-        return static_cast<CavityTriangleId>(m_regions[region].first +
-                                             (position - regionOffset[region]));
+    // Calls visit(slot) for the slots at positions [begin, end), region by region.
+    const auto forEachSlot = [&](std::size_t begin, std::size_t end, auto&& visit) {
+        for (std::size_t region = 0; region < m_regions.size(); ++region) {
+            const std::size_t from = std::max(begin, regionOffset[region]);
+            const std::size_t to = std::min(end, regionOffset[region + 1]);
+            for (std::size_t position = from; position < to; ++position)
+                visit(static_cast<CavityTriangleId>(m_regions[region].first +
+                                                    (position - regionOffset[region])));
+        }
     };
-    const auto positionOf = [&](CavityTriangleId slot) {
-        std::size_t region = m_regions.size() - 1;
-        while (m_regions[region].first > slot)
-            --region;
-        return regionOffset[region] + (slot - m_regions[region].first);
-    };
-    // Number the real triangles in that order: count per block, then fill. number[position].
-    std::vector<std::uint32_t> number(total);
+    // number[slot]: the triangle's index in the output, kGhostNumber for a ghost. Real
+    // triangles are numbered in position order: counted per block, then numbered. Only the
+    // used slots are written (and so only their pages touched).
+    constexpr std::uint32_t kGhostNumber = 0xFFFFFFFFU;
+    const auto number = std::make_unique_for_overwrite<std::uint32_t[]>(m_reserved);
     const unsigned blocks = parallelForThreads(total, threads);
     std::vector<std::uint32_t> blockFirst(blocks + 1, 0);
     parallelFor(total, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         std::uint32_t real = 0;
-        for (std::size_t position = begin; position < end; ++position)
-            real += isGhost(m_triangles[slotAt(position)]) ? 0 : 1;
+        forEachSlot(begin, end,
+                    [&](CavityTriangleId t) { real += isGhost(m_triangles[t]) ? 0 : 1; });
         blockFirst[block + 1] = real;
     });
     for (unsigned block = 0; block < blocks; ++block)
         blockFirst[block + 1] += blockFirst[block];
     parallelFor(total, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         std::uint32_t id = blockFirst[block];
-        for (std::size_t position = begin; position < end; ++position) {
-            number[position] = isGhost(m_triangles[slotAt(position)]) ? 0xFFFFFFFFU : id++;
-        }
+        forEachSlot(begin, end, [&](CavityTriangleId t) {
+            number[t] = isGhost(m_triangles[t]) ? kGhostNumber : id++;
+        });
     });
     const std::size_t realCount = blockFirst[blocks];
     triangles.resize(3 * realCount);
     neighbours.resize(3 * realCount);
     parallelFor(total, threads, [&](unsigned, std::size_t begin, std::size_t end) {
-        for (std::size_t position = begin; position < end; ++position) {
-            const CavityTriangleId t = slotAt(position);
+        forEachSlot(begin, end, [&](CavityTriangleId t) {
+            if (number[t] == kGhostNumber)
+                return;
             const CavityTriangle& triangle = m_triangles[t];
-            if (isGhost(triangle))
-                continue;
-            const std::size_t base = 3 * std::size_t{number[position]};
+            const std::size_t base = 3 * std::size_t{number[t]};
             for (unsigned i = 0; i < 3; ++i) {
                 triangles[base + i] = triangle.corners[i];
                 // TinMesh's edge i runs from corner i to corner i + 1: opposite corner i + 2.
-                const CavityTriangleId across = linkedTriangle(triangle.links[previous(i)]);
-                neighbours[base + i] = isGhost(m_triangles[across])
-                                           ? kNoNeighbour
-                                           : static_cast<std::int32_t>(number[positionOf(across)]);
+                const std::uint32_t across = number[linkedTriangle(triangle.links[previous(i)])];
+                neighbours[base + i] =
+                    across == kGhostNumber ? kNoNeighbour : static_cast<std::int32_t>(across);
             }
-        }
+        });
     });
 }
 

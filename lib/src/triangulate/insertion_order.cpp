@@ -74,21 +74,31 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
 
 // Least-significant-digit radix sort of the keys on their bits [lowBit, 64): linear time, and
 // each pass a sequential read and 256 sequential write streams, where a comparison sort of a
-// million keys costs several times more.
-void radixSort(std::vector<std::uint64_t>& keys, unsigned lowBit) {
+// million keys costs several times more. Each pass runs on up to `threads` threads: every
+// block counts its digits, and scatters from its own offsets, which keeps the sort stable.
+void radixSort(std::vector<std::uint64_t>& keys, unsigned lowBit, unsigned threads) {
     constexpr unsigned kDigitBits = 8;
     constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
     std::vector<std::uint64_t> buffer(keys.size());
-    std::array<std::size_t, kBuckets> offsets{};
+    const unsigned blocks = parallelForThreads(keys.size(), threads);
+    std::vector<std::array<std::size_t, kBuckets>> offsets(blocks);
     for (unsigned shift = lowBit; shift < 64; shift += kDigitBits) {
-        offsets.fill(0);
-        for (const std::uint64_t key : keys)
-            ++offsets[(key >> shift) & (kBuckets - 1)];
+        const auto digit = [shift](std::uint64_t key) { return (key >> shift) & (kBuckets - 1); };
+        parallelFor(keys.size(), threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+            offsets[block].fill(0);
+            for (std::size_t i = begin; i < end; ++i)
+                ++offsets[block][digit(keys[i])];
+        });
+        // Bucket by bucket, block by block: where each block's keys of each digit go.
         std::size_t total = 0;
-        for (std::size_t& offset : offsets)
-            total += std::exchange(offset, total);
-        for (const std::uint64_t key : keys)
-            buffer[offsets[(key >> shift) & (kBuckets - 1)]++] = key;
+        for (std::size_t bucket = 0; bucket < kBuckets; ++bucket)
+            for (unsigned block = 0; block < blocks; ++block)
+                total += std::exchange(offsets[block][bucket], total);
+        parallelFor(keys.size(), threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+            std::array<std::size_t, kBuckets>& next = offsets[block];
+            for (std::size_t i = begin; i < end; ++i)
+                buffer[next[digit(keys[i])]++] = keys[i];
+        });
         keys.swap(buffer);
     }
 }
@@ -149,13 +159,13 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
             const std::uint64_t word = SplitMix64(seed ^ (std::uint64_t{v} << 32U))();
             const auto round =
                 static_cast<std::uint64_t>(std::countr_zero(word | (1ULL << kMaxRound)));
-            const std::uint64_t hilbert = hilbertIndex(gridCell(points[v].x, minX, maxX),
-                                                       gridCell(points[v].y, minY, maxY));
+            const std::uint64_t hilbert =
+                hilbertIndex(gridCell(points[v].x, minX, maxX), gridCell(points[v].y, minY, maxY));
             keys[v < skip ? v : v - 1] =
                 ((kMaxRound - round) << kRoundShift) | (hilbert << kHilbertShift) | v;
         }
     });
-    radixSort(keys, kHilbertShift);
+    radixSort(keys, kHilbertShift, threads);
     std::vector<std::uint32_t> order;
     order.reserve(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i) {

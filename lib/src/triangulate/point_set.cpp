@@ -4,6 +4,7 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -78,9 +79,22 @@ std::vector<Survivor> mergeDuplicates(std::span<const Point3> points, DuplicateZ
     std::vector<std::uint32_t> table(capacity, kEmpty);
     std::vector<Survivor> survivors;
     survivors.reserve(points.size());
+    // Each point's first probe is a cache miss in a table of several megabytes: the slots of
+    // the next kLookAhead points are computed and prefetched ahead of their turn.
+    constexpr std::size_t kLookAhead = 16;
+    std::array<std::size_t, kLookAhead> ahead{};
+    const auto home = [&](std::size_t i) { return positionHash(points[i]) & (capacity - 1); };
+    for (std::size_t i = 0; i < std::min(kLookAhead, points.size()); ++i) {
+        ahead[i] = home(i);
+        __builtin_prefetch(&table[ahead[i]]);
+    }
     for (std::uint32_t i = 0; i < points.size(); ++i) {
         const Point3& p = points[i];
-        std::size_t slot = positionHash(p) & (capacity - 1);
+        std::size_t slot = ahead[i % kLookAhead];
+        if (i + kLookAhead < points.size()) {
+            ahead[i % kLookAhead] = home(i + kLookAhead);
+            __builtin_prefetch(&table[ahead[i % kLookAhead]]);
+        }
         for (;;) {
             const std::uint32_t existing = table[slot];
             if (existing == kEmpty) {
@@ -152,7 +166,8 @@ constexpr double kLargestCoordinate = 1e70;
 void requirePredicateRange(const std::vector<Point2>& local) {
     const auto outside = [](double value) {
         const double magnitude = std::abs(value);
-        return magnitude != 0.0 && (magnitude < kSmallestCoordinate || magnitude > kLargestCoordinate);
+        return magnitude != 0.0 &&
+               (magnitude < kSmallestCoordinate || magnitude > kLargestCoordinate);
     };
     for (const Point2& p : local)
         if (outside(p.x) || outside(p.y))
@@ -195,7 +210,8 @@ PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy po
     prepared.origin = chooseOrigin(points, prepared.sourceIndex);
     prepared.local.reserve(survivors.size());
     for (std::uint32_t i : prepared.sourceIndex)
-        prepared.local.push_back({points[i].x - prepared.origin.x, points[i].y - prepared.origin.y});
+        prepared.local.push_back(
+            {points[i].x - prepared.origin.x, points[i].y - prepared.origin.y});
 
     requirePredicateRange(prepared.local);
     requireTwoDimensions(prepared.local);

@@ -11,8 +11,10 @@ namespace terratin::detail {
 
 namespace {
 
-// Points of a strip tried when looking for one whose triangle the strip owns.
-constexpr std::size_t kStartAttempts = 64;
+// Points of a strip between two checkpoints (see insertRoundInStrips).
+constexpr std::size_t kCheckpointStride = 256;
+// Points of a stretch tried for its checkpoint.
+constexpr std::size_t kCheckpointTries = 8;
 // Points between two progress reports in sequential insertion.
 constexpr std::size_t kProgressInterval = std::size_t{1} << 16;
 
@@ -136,23 +138,45 @@ void StripTriangulator::insertRoundInStrips(std::span<const std::uint32_t> round
         for (const std::uint32_t p : round)
             byStrip[fill[m_vertexStrip[p]]++] = p;
     }
-    // Each strip starts from the triangle of one of its first points, if the strip owns it.
-    std::vector<CavityTriangleId> hints(m_strips, kNoCavityTriangle);
+    // Checkpoints: for every kCheckpointStride-th point of a strip, the triangle holding it
+    // now if the strip owns it, found before the threads start. A thread whose walk is cut
+    // off by another strip's triangles (its points jump from one cluster to another, or the
+    // Hilbert curve enters the strip along a boundary) starts again from the checkpoint of
+    // the point's stretch instead of deferring everything after it. During phase 1 only
+    // the strip's thread edits the strip's triangles, so a checkpoint stays the strip's.
+    std::vector<std::vector<CavityTriangleId>> checkpoints(m_strips);
+    CavityTriangleId walkStart = m_hint;
     for (unsigned s = 0; s < m_strips; ++s) {
-        const std::size_t end = std::min(stripStart[s + 1], stripStart[s] + kStartAttempts);
-        for (std::size_t i = stripStart[s]; i < end && hints[s] == kNoCavityTriangle; ++i) {
-            const CavityTriangleId found = m_mesh.locate(byStrip[i], m_hint);
-            if (m_mesh.ownerOf(found) == s)
-                hints[s] = found;
+        for (std::size_t first = stripStart[s]; first < stripStart[s + 1];
+             first += kCheckpointStride) {
+            // The stretch's first point may lie by a boundary: a few more are tried.
+            const std::size_t length = std::min(kCheckpointStride, stripStart[s + 1] - first);
+            const std::size_t tries = std::min(length, kCheckpointTries);
+            CavityTriangleId checkpoint = kNoCavityTriangle;
+            for (std::size_t k = 0; k < tries && checkpoint == kNoCavityTriangle; ++k) {
+                walkStart = m_mesh.locate(byStrip[first + length * k / tries], walkStart);
+                if (m_mesh.ownerOf(walkStart) == s)
+                    checkpoint = walkStart;
+            }
+            checkpoints[s].push_back(checkpoint);
         }
     }
+    std::vector<CavityTriangleId> hints(m_strips, kNoCavityTriangle);
     std::vector<std::vector<std::uint32_t>> deferred(m_strips);
     runOnThreads(m_strips, [&](unsigned s) {
         const auto owner = static_cast<std::uint8_t>(s);
-        CavityTriangleId hint = hints[s];
+        CavityTriangleId hint = kNoCavityTriangle;
         for (std::size_t i = stripStart[s]; i < stripStart[s + 1]; ++i) {
             const std::uint32_t p = byStrip[i];
-            if (hint == kNoCavityTriangle || !m_mesh.insert(p, hint, m_scratch[s], owner))
+            bool inserted =
+                hint != kNoCavityTriangle && m_mesh.insert(p, hint, m_scratch[s], owner);
+            const CavityTriangleId checkpoint =
+                checkpoints[s][(i - stripStart[s]) / kCheckpointStride];
+            if (!inserted && checkpoint != kNoCavityTriangle && checkpoint != hint) {
+                hint = checkpoint;
+                inserted = m_mesh.insert(p, hint, m_scratch[s], owner);
+            }
+            if (!inserted)
                 deferred[s].push_back(p);
         }
         hints[s] = hint;

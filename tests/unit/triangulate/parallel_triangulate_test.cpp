@@ -153,13 +153,17 @@ INSTANTIATE_TEST_SUITE_P(StripsThreads, ParallelDegenerate,
 
 TEST(StripMethod, RunsItsStripsInParallel_OnALargeInput) {
     // Large enough for the library's own threshold: rounds of over 4096 points per strip.
-    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 40000, 12);
-    const TriangulationResult result =
-        triangulate(points, parallelOptions(TriangulationMethod::Strips, 2));
-    EXPECT_EQ(result.threads, 2U);
-    EXPECT_GT(result.deferredPoints, 0U);
-    EXPECT_LT(result.deferredPoints, points.size() / 20);
-    test::expectExactDelaunayOf(result.mesh, points);
+    // On clusters a strip's points jump from one cluster to the next across other strips'
+    // triangles: the checkpoints must keep those jumps from deferring whole clusters.
+    for (const Distribution distribution : {Distribution::Uniform, Distribution::Cluster}) {
+        const std::vector<Point3> points = test::generatePoints(distribution, 40000, 12);
+        const TriangulationResult result =
+            triangulate(points, parallelOptions(TriangulationMethod::Strips, 2));
+        EXPECT_EQ(result.threads, 2U);
+        EXPECT_GT(result.deferredPoints, 0U);
+        EXPECT_LT(result.deferredPoints, points.size() / 20) << test::toString(distribution);
+        test::expectExactDelaunayOf(result.mesh, points);
+    }
 }
 
 TEST(StripMethod, IsWhatAutoChooses_WithTheBrioOrder) {
