@@ -113,11 +113,12 @@ case "$case_name" in
     expect_no_leftovers
     ;;
   parallel_methods)
-    for method in sequential batch circumcircle auto; do
+    for method in sequential batch circumcircle strips auto; do
       run 0 build "$sample" -o "tin_$method.gpkg" --method "$method" --threads 2 --json --quiet --validate
       grep -q '"validated": true' out.txt || fail "$method: not validated"
       [ "$method" = auto ] || grep -q "\"method\": \"$method\"" out.txt || fail "$method not reported"
     done
+    grep -q '"method": "strips"' out.txt || fail "auto did not choose strips"
     ;;
   random_order)
     run 0 build "$sample" -o tin.gpkg --order random --seed 7 --quiet --validate

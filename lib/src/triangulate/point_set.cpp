@@ -3,8 +3,11 @@
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 
+#include "parallel_for.hpp"
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -18,13 +21,22 @@ namespace {
 // "none" marker, so the input must leave room for them.
 constexpr std::size_t kMaxPoints = std::numeric_limits<std::uint32_t>::max() - 4;
 
-void checkFinite(std::span<const Point3> points) {
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        const Point3& p = points[i];
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw InvalidInputError("Triangulator: point " + std::to_string(i) +
-                                    " has a non-finite coordinate or elevation");
-    }
+bool isFinite(const Point3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+void checkFinite(std::span<const Point3> points, unsigned threads) {
+    std::atomic<bool> allFinite{true};
+    detail::parallelFor(points.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        if (!std::all_of(points.begin() + begin, points.begin() + end, isFinite))
+            allFinite.store(false, std::memory_order_relaxed);
+    });
+    if (allFinite.load(std::memory_order_relaxed))
+        return;
+    // The first offender, for the message.
+    const auto first = std::find_if_not(points.begin(), points.end(), isFinite);
+    throw InvalidInputError("Triangulator: point " + std::to_string(first - points.begin()) +
+                            " has a non-finite coordinate or elevation");
 }
 
 // A distinct (x, y) and what its duplicates contributed so far.
@@ -137,25 +149,52 @@ double roundedCentre(double lo, double hi) {
     return std::round(centre / ulp) * ulp;
 }
 
-Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_t> distinct) {
-    double minX = std::numeric_limits<double>::infinity();
-    double minY = minX;
-    double maxX = -minX;
-    double maxY = -minX;
-    for (std::uint32_t i : distinct) {
-        minX = std::min(minX, points[i].x);
-        maxX = std::max(maxX, points[i].x);
-        minY = std::min(minY, points[i].y);
-        maxY = std::max(maxY, points[i].y);
+Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_t> distinct,
+                    unsigned threads) {
+    struct Box {
+        double minX = std::numeric_limits<double>::infinity();
+        double minY = std::numeric_limits<double>::infinity();
+        double maxX = -std::numeric_limits<double>::infinity();
+        double maxY = -std::numeric_limits<double>::infinity();
+    };
+    std::vector<Box> boxes(detail::parallelForThreads(distinct.size(), threads));
+    detail::parallelFor(distinct.size(), threads,
+                        [&](unsigned block, std::size_t begin, std::size_t end) {
+                            Box box;
+                            for (std::size_t k = begin; k < end; ++k) {
+                                const Point3& p = points[distinct[k]];
+                                box.minX = std::min(box.minX, p.x);
+                                box.maxX = std::max(box.maxX, p.x);
+                                box.minY = std::min(box.minY, p.y);
+                                box.maxY = std::max(box.maxY, p.y);
+                            }
+                            boxes[block] = box;
+                        });
+    Box all;
+    for (const Box& box : boxes) {
+        all.minX = std::min(all.minX, box.minX);
+        all.maxX = std::max(all.maxX, box.maxX);
+        all.minY = std::min(all.minY, box.minY);
+        all.maxY = std::max(all.maxY, box.maxY);
     }
-    Point2 origin{roundedCentre(minX, maxX), roundedCentre(minY, maxY)};
-    for (std::uint32_t i : distinct) {
-        if (!subtractsExactly(points[i].x, origin.x))
-            origin.x = 0.0;
-        if (!subtractsExactly(points[i].y, origin.y))
-            origin.y = 0.0;
-    }
-    return origin;
+    const Point2 centre{roundedCentre(all.minX, all.maxX), roundedCentre(all.minY, all.maxY)};
+    std::atomic<bool> exactX{true};
+    std::atomic<bool> exactY{true};
+    detail::parallelFor(distinct.size(), threads,
+                        [&](unsigned, std::size_t begin, std::size_t end) {
+                            bool x = true;
+                            bool y = true;
+                            for (std::size_t k = begin; k < end; ++k) {
+                                x = x && subtractsExactly(points[distinct[k]].x, centre.x);
+                                y = y && subtractsExactly(points[distinct[k]].y, centre.y);
+                            }
+                            if (!x)
+                                exactX.store(false, std::memory_order_relaxed);
+                            if (!y)
+                                exactY.store(false, std::memory_order_relaxed);
+                        });
+    return {exactX.load(std::memory_order_relaxed) ? centre.x : 0.0,
+            exactY.load(std::memory_order_relaxed) ? centre.y : 0.0};
 }
 
 // The exact predicates' range (predicates.hpp): beyond it their products could overflow or
@@ -163,12 +202,21 @@ Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_
 constexpr double kSmallestCoordinate = 1e-60;
 constexpr double kLargestCoordinate = 1e70;
 
-void requirePredicateRange(const std::vector<Point2>& local) {
+void requirePredicateRange(const std::vector<Point2>& local, unsigned threads) {
     const auto outside = [](double value) {
         const double magnitude = std::abs(value);
         return magnitude != 0.0 &&
                (magnitude < kSmallestCoordinate || magnitude > kLargestCoordinate);
     };
+    std::atomic<bool> inRange{true};
+    detail::parallelFor(local.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            if (outside(local[i].x) || outside(local[i].y))
+                inRange.store(false, std::memory_order_relaxed);
+    });
+    if (inRange.load(std::memory_order_relaxed))
+        return;
+    // The first offender, for the message.
     for (const Point2& p : local)
         if (outside(p.x) || outside(p.y))
             throw InvalidInputError("Triangulator: coordinate (" + std::to_string(p.x) + ", " +
@@ -192,28 +240,36 @@ void requireTwoDimensions(const std::vector<Point2>& local) {
 
 } // namespace
 
-PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy policy) {
+PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy policy,
+                             unsigned threads) {
     if (points.size() > kMaxPoints)
         throw InvalidInputError("Triangulator: too many points (" + std::to_string(points.size()) +
                                 "); at most " + std::to_string(kMaxPoints) + " are supported");
-    checkFinite(points);
+    checkFinite(points, threads);
 
     const std::vector<Survivor> survivors = mergeDuplicates(points, policy);
     PreparedPoints prepared;
     prepared.duplicateCount = points.size() - survivors.size();
-    prepared.sourceIndex.reserve(survivors.size());
-    prepared.z.reserve(survivors.size());
-    for (const Survivor& s : survivors) {
-        prepared.sourceIndex.push_back(s.source);
-        prepared.z.push_back(s.z);
-    }
-    prepared.origin = chooseOrigin(points, prepared.sourceIndex);
-    prepared.local.reserve(survivors.size());
-    for (std::uint32_t i : prepared.sourceIndex)
-        prepared.local.push_back(
-            {points[i].x - prepared.origin.x, points[i].y - prepared.origin.y});
+    prepared.sourceIndex.resize(survivors.size());
+    prepared.z.resize(survivors.size());
+    detail::parallelFor(survivors.size(), threads,
+                        [&](unsigned, std::size_t begin, std::size_t end) {
+                            for (std::size_t k = begin; k < end; ++k) {
+                                prepared.sourceIndex[k] = survivors[k].source;
+                                prepared.z[k] = survivors[k].z;
+                            }
+                        });
+    prepared.origin = chooseOrigin(points, prepared.sourceIndex, threads);
+    prepared.local.resize(survivors.size());
+    detail::parallelFor(
+        survivors.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                const Point3& p = points[prepared.sourceIndex[k]];
+                prepared.local[k] = {p.x - prepared.origin.x, p.y - prepared.origin.y};
+            }
+        });
 
-    requirePredicateRange(prepared.local);
+    requirePredicateRange(prepared.local, threads);
     requireTwoDimensions(prepared.local);
     return prepared;
 }

@@ -184,15 +184,15 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
                                 const ProgressCallback& progress) {
     TriangulationResult result;
     Clock::time_point phase = Clock::now();
-    const PreparedPoints prepared = preparePoints(points, options.duplicateZ);
-    result.seconds.prepare = lap(phase);
-    const auto count = static_cast<std::uint32_t>(prepared.local.size());
-
     const unsigned threads = resolveThreads(options.threads);
     result.method = resolveMethod(options.method, options.order);
     const bool walk = options.locate == PointLocation::Walk;
     // The sequential method is the baseline of the parallel ones: one thread throughout.
     const unsigned phaseThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
+
+    const PreparedPoints prepared = preparePoints(points, options.duplicateZ, phaseThreads);
+    result.seconds.prepare = lap(phase);
+    const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
     const InsertionPlan plan = planInsertion(prepared.local, options, phaseThreads);
     result.seconds.order = lap(phase);

@@ -46,7 +46,9 @@ struct PreparedPoints {
 /// Throws InvalidInputError for a non-finite coordinate or elevation, for a shifted coordinate
 /// outside the exact predicates' range (0 or 1e-60 .. 1e70 in magnitude), for more than
 /// 2^32 - 5 points, and when fewer than three distinct points are not all collinear.
-/// Complexity: O(n log n) for the sort that finds duplicates.
-PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy policy);
+/// Complexity: O(n) expected (a hash table finds the duplicates); the passes around it run on
+/// up to `threads` threads.
+PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy policy,
+                             unsigned threads = 1);
 
 } // namespace terratin
