@@ -200,7 +200,7 @@ bool CavityMesh::collectCavity(const Point2& p, CavityTriangleId first, std::uin
 
 CavityTriangleId CavityMesh::fillCavity(CavityVertex p, std::uint8_t owner, Scratch& scratch) {
     // Boundary edge i, from -> to, becomes triangle (from, to, p), rotated so that a vertex at
-    // infinity is corner 2; shift[i] is where corner 0 of (from, to, p) went.
+    // infinity is corner 2; shiftOf(i) is the corner that corner 0 of (from, to, p) became.
     const std::size_t count = scratch.boundary.size();
     // A disk triangulated without inner vertices has two triangles fewer than edges.
     if (scratch.cavity.size() + 2 != count)
