@@ -1,36 +1,44 @@
 #pragma once
 /// @file
 /// The greedy insertion loop (Garland & Heckbert's "greedy insertion" with a priority queue of
-/// per-triangle candidates), in rounds of several non-conflicting insertions.
+/// per-triangle candidates), run in vertical strips of the raster at once.
 ///
-/// A round pops up to `roundCandidates` live candidates in priority order and, for each,
-/// finds the triangles its insertion can change: its Bowyer-Watson cavity (every triangle
-/// whose circumcircle contains the cell, cocircular included, found by a search from the
-/// triangle holding it; Lawson's flips never leave the cavity) plus the cavity's neighbours,
-/// whose links are rewritten. A candidate whose set meets an earlier accepted one waits for a
-/// later round. The accepted insertions touch disjoint triangles, so they commute: the
-/// workers insert them in any order and the triangulation is the same as inserting them one
-/// after the other, for any number of threads. Each worker then scans the new triangles
-/// around its points (the cells inside, the farthest from the new plane) and the candidates
-/// go back into the queue. A popped candidate is stale when its triangle's slot changed since
-/// (RefineMesh versions) or its cell became a vertex (lazy invalidation).
+/// The raster's columns are cut into strips of about equal valid cells (how many depends on
+/// the raster, never on the thread count). A triangle belongs to a strip when its three
+/// corners do (refine_mesh.hpp); each strip keeps its own queue of the candidates found in
+/// its triangles, and a candidate found in a triangle spanning strips goes to a shared queue.
+/// Refinement goes down by levels of error: in a level, the workers take the strips one by
+/// one and insert each strip's candidates above the level in its own priority order,
+/// touching only its triangles, with no lock and no waiting. A candidate whose insertion
+/// would reach past its strip is deferred; then one thread inserts the shared and deferred
+/// candidates above the level, unrestricted, and the next level starts below the highest
+/// error left. A strip's insertions depend only on its own triangles, so the TIN is the same
+/// for any number of threads; greedy order holds within a strip, and across strips within a
+/// level (a factor kLevelRatio of error), which costs a fraction of a percent of points.
+///
+/// Candidates are lazy: one is stale when its triangle's slot changed since (RefineMesh
+/// versions) or its cell became a vertex.
 ///
 /// Priorities: a triangle covering an open hole's cell and a valid non-vertex cell is
 /// refined before any error (priority +inf), so the triangles finally dropped over holes hold
 /// no valid cell that another triangle would not cover; otherwise the priority is the largest
 /// error, and only errors above the target become candidates. Ties: the lowest cell index.
+///
+/// Limits (points, triangles) give each strip a share of what is left per level; when little
+/// is left, one thread finishes in global priority order and stops exactly at the limit.
 
 #include "candidate_queue.hpp"
 #include "cell_flags.hpp"
 #include "grid_scan.hpp"
-#include "triangle_scan.hpp"
 #include "round_workers.hpp"
+#include "triangle_scan.hpp"
 
 #include "refine_mesh.hpp"
 
 #include "terratin/progress.hpp"
 #include "terratin/refine/refine.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
@@ -56,90 +64,95 @@ public:
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
-    [[nodiscard]] std::size_t rounds() const { return m_rounds; }
+    [[nodiscard]] std::size_t strips() const { return m_strips.size(); }
+    [[nodiscard]] std::size_t levels() const { return m_levels; }
     [[nodiscard]] std::size_t deferred() const { return m_deferred; }
+    /// Points inserted by the sequential step of the levels (shared and deferred candidates).
+    [[nodiscard]] std::size_t sharedInsertions() const { return m_sharedInsertions; }
     /// Passes of completeAtPositions (0 without positions).
     [[nodiscard]] std::size_t completionPasses() const { return m_completionPasses; }
     [[nodiscard]] std::size_t meshBytes() const { return m_mesh->memoryBytes(); }
 
 private:
-    struct Accepted {
-        VertexId vertex;
-        TriId leaf;
-    };
     /// A vertex's cell in pixel coordinates and its elevation, for the scans.
     struct VertexPixel {
         std::int32_t col;
         std::int32_t row;
         float z;
     };
+    /// A strip's state. Cache-line aligned: the workers run neighbouring strips at once.
+    struct alignas(64) Strip {
+        CandidateQueue queue;
+        /// Candidates whose insertion reached another strip's triangles, in this level.
+        std::vector<Candidate> deferred;
+        RefineMesh::InsertScratch insert;
+        /// The strip's range of vertex ids (its valid cells) and its region of mesh slots.
+        VertexId firstVertex = 0;
+        VertexId nextVertex = 0;
+        VertexId endVertex = 0;
+        unsigned region = 0;
+        /// Points inserted and triangles added in this level.
+        std::size_t inserted = 0;
+        std::size_t triangles = 0;
+    };
 
+    /// Cuts the columns into strips and reserves their vertex ids and slots.
+    void planStrips();
     void startFromHull();
     /// Where `cell` lies in the TIN.
     [[nodiscard]] Point2 position(std::uint32_t cell) const {
         return m_positions.empty() ? m_grid.cellCentre(cell) : m_positions[cell];
     }
-    /// Insertion rounds until the queue is empty or a limit is reached.
-    void runRounds(const ProgressCallback& progress);
-    /// With positions, the rounds' pixel-space scans only approximate the TIN's triangles
+    [[nodiscard]] std::uint8_t stripOfCell(std::uint32_t cell) const {
+        return m_columnStrip[cell % static_cast<std::uint32_t>(m_grid.width)];
+    }
+    /// Levels until no candidate is above the target or a limit is reached.
+    void runLevels(const ProgressCallback& progress);
+    /// One strip's insertions above `level`, at most `quota` of them.
+    void runStrip(std::uint8_t strip, double level, std::size_t quota);
+    /// The shared and deferred candidates above `level`, by one thread, in priority order.
+    /// With `exactLimits`, stops exactly at a limit (and returns false); candidates then go
+    /// to the shared queue only, so this is plain greedy insertion.
+    bool runShared(double level, bool exactLimits, const ProgressCallback& progress);
+    /// Moves every strip's candidates to the shared queue (for the exact finish).
+    void gatherIntoShared();
+    /// Inserts `candidate`'s cell, restricted to `strip` (kSharedStrip: unrestricted), with
+    /// the vertex ids and slots of the cell's strip. Returns the triangles added (0: not
+    /// inserted, the insertion reached past the strip).
+    /// Refused as well (0) when it would add more than `maxAdded` triangles.
+    int insert(const Candidate& candidate, std::uint8_t strip, int maxAdded);
+    /// Writes vertex `vertex`'s position, cell, pixel and strip for `cell`.
+    void setVertex(VertexId vertex, std::uint32_t cell);
+    /// The highest priority queued anywhere, -inf when nothing is.
+    [[nodiscard]] double highestPriority();
+    /// The level below `top`: a fraction kLevelRatio of it, not below the target.
+    [[nodiscard]] double levelBelow(double top) const;
+    /// Points that may still be inserted under the limits (SIZE_MAX without one).
+    [[nodiscard]] std::size_t budget() const;
+    [[nodiscard]] std::size_t pointCount() const;
+    /// Whether `candidate` still stands: its triangle unchanged and its cell no vertex.
+    [[nodiscard]] bool isLive(const Candidate& candidate) const;
+    /// With positions, the levels' pixel-space scans only approximate the TIN's triangles
     /// (the map from pixels to positions bends straight lines, and shifts errors by up to a
     /// millimetre on a 90 m grid). This queues what the exact check of located_check.hpp
-    /// still finds and runs the rounds again, pass after pass, until the check finds nothing
+    /// still finds and runs the levels again, pass after pass, until the check finds nothing
     /// or a limit is reached. Each pass checks the whole TIN, so the result stays the same
     /// for any thread count.
     void completeAtPositions(const ProgressCallback& progress);
+    /// Queues a candidate with its triangle's strip (or the shared queue).
+    void route(const Candidate& candidate);
     [[nodiscard]] PixelCorner corner(VertexId v) const;
     /// Prepares the scan of a triangle (see TriangleScan); false when it has nothing to
     /// measure.
     bool prepareScan(TriId node, TriangleScan& scan) const;
     /// The candidate of a triangle from its scan, if it has one worth inserting.
     [[nodiscard]] std::optional<Candidate> candidateOf(TriId node, const ScanResult& result) const;
-    /// Scans a triangle and appends its candidate, if any, to `found`.
-    void scanInto(TriId node, std::vector<Candidate>& found) const;
-    /// scanInto for several leaves, whose memory requests overlap (kMaxFan at a time).
-    void scanAllInto(std::span<const TriId> nodes, std::vector<Candidate>& found) const;
-    /// The triangles inserting a point can change: the one holding it, the cavity, the ring.
-    /// Cache-line aligned: the workers fill neighbouring zones, and a zone's vector header
-    /// changes with every push_back; sharing a line would bounce it between the cores.
-    struct alignas(64) Zone {
-        TriId leaf = kNoTriangle;
-        /// Change in the number of output triangles: 2, or 1 on the hull.
-        int growth = 2;
-        std::vector<TriId> nodes;
-    };
-    /// Whether `candidate` still stands: its triangle unchanged and its cell no vertex.
-    [[nodiscard]] bool isLive(const Candidate& candidate) const;
-    /// Appends the next `count` live candidates in queue order (fewer if it runs out), and
-    /// drops the stale ones met on the way. Rounds are made of live candidates only: counting
-    /// stale ones would make a round's content depend on the order of equal candidates.
-    void popLive(std::size_t count, std::vector<Candidate>& out);
-    /// Like popLive, from `early` (candidates popped before, in queue order) merged with the
-    /// queue; the early ones not taken go back into the queue and `early` is cleared.
-    void mergeLive(std::size_t count, std::vector<Candidate>& early, std::vector<Candidate>& out);
-    /// Fills `zone` for `vertex` (already in m_points), searching from the triangle `start`.
-    /// Reads the mesh only: safe from several threads while nothing edits it.
-    void findZone(VertexId vertex, TriId start, Zone& zone) const;
-    /// Claims the zone's triangles for this round, unless an accepted insertion of the round
-    /// claimed one of them (then nothing is claimed).
-    bool claim(const Zone& zone, std::uint32_t stamp);
-    /// Whether claim would succeed, without claiming.
-    [[nodiscard]] bool claimFree(const Zone& zone, std::uint32_t stamp) const;
-    /// A worker's legalisation stack and the candidates it found, on cache lines of their
-    /// own (see Zone).
-    struct alignas(64) WorkerScratch {
-        RefineMesh::Scratch mesh;
-        std::vector<TriId> fan;
-        std::vector<Candidate> found;
-    };
-    /// Inserts one accepted point and appends the candidates of its new triangles to
-    /// scratch.found.
-    void insert(const Accepted& accepted, WorkerScratch& scratch);
-    void addVertex(std::uint32_t cell);
-    /// Whether `vertex` may lie inside or on the circumcircle of `node`: a floating-point test
-    /// erring towards "yes" (a larger claim is still a correct one, and grids make exact
-    /// cocircularity tests common).
-    [[nodiscard]] bool mayBeInCircle(const MeshTriangle& node, VertexId vertex) const;
+    /// Scans triangles, whose memory requests overlap (kMaxFan at a time), and passes each
+    /// candidate found to `found`.
+    template <class Found> void scanAll(std::span<const TriId> nodes, Found&& found) const;
     [[nodiscard]] double progressFraction(double topPriority) const;
+    /// Calls `progress` (from the calling thread only); throws Cancelled when it says stop.
+    void report(const ProgressCallback& progress, double topPriority);
 
     const HeightGrid& m_grid;
     std::span<const Point2> m_positions;
@@ -149,18 +162,27 @@ private:
     RoundWorkers& m_workers;
     /// Candidates at or below this are not inserted: maxError, or -1 to use every cell.
     double m_threshold = -1.0;
-    std::size_t m_capacity = 0;
+    /// Strip of each column; the strips.
+    std::vector<std::uint8_t> m_columnStrip;
+    std::vector<Strip> m_strips;
+    /// Per vertex id (hull first, then each strip's range): position, cell, pixel, strip.
     HugePageBuffer<Point2> m_points;
-    std::vector<std::uint32_t> m_vertexCell;
-    std::vector<VertexPixel> m_vertexPixel;
+    HugePageBuffer<std::uint32_t> m_vertexCell;
+    HugePageBuffer<VertexPixel> m_vertexPixel;
+    HugePageBuffer<std::uint8_t> m_vertexStrip;
     std::optional<RefineMesh> m_mesh;
-    CandidateQueue m_queue;
+    /// Candidates of triangles spanning strips, and the deferred ones between levels.
+    CandidateQueue m_shared;
+    RefineMesh::InsertScratch m_sharedInsert;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
-    std::size_t m_rounds = 0;
+    std::size_t m_levels = 0;
     std::size_t m_deferred = 0;
+    std::size_t m_sharedInsertions = 0;
     std::size_t m_completionPasses = 0;
     double m_firstPriority = 0.0;
+    /// Set by the calling thread when progress asks to stop; the workers then stop early.
+    std::atomic<bool> m_cancelled{false};
     RefineStop m_stop = RefineStop::ErrorReached;
 };
 

@@ -70,8 +70,10 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     refiner.run(progress);
     result.stop = refiner.stop();
     result.hullPoints = refiner.hullPoints();
-    result.rounds = refiner.rounds();
+    result.strips = refiner.strips();
+    result.levels = refiner.levels();
     result.deferredCandidates = refiner.deferred();
+    result.sharedInsertions = refiner.sharedInsertions();
     result.completionPasses = refiner.completionPasses();
     result.meshBytes = refiner.meshBytes();
     result.insertSeconds = lap(phase);

@@ -4,6 +4,7 @@
 #include "terratin/huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -11,44 +12,94 @@ namespace terratin::detail {
 
 namespace {
 
-/// Slots a thread takes at a time: threads then never write neighbouring slots.
-constexpr TriId kBlockSlots = 256;
-
-constexpr int next(int i) { return i == 2 ? 0 : i + 1; }
-constexpr int previous(int i) { return i == 0 ? 2 : i - 1; }
+constexpr int next(int i) {
+    return i == 2 ? 0 : i + 1;
+}
+constexpr int previous(int i) {
+    return i == 0 ? 2 : i - 1;
+}
 
 } // namespace
 
-RefineMesh::RefineMesh(std::span<const Point2> points, std::size_t maxTriangles,
-                       unsigned threads)
-    : m_points(points),
-      m_capacity(maxTriangles + (static_cast<std::size_t>(threads) + 2) * kBlockSlots) {
+RefineMesh::RefineMesh(std::span<const Point2> points, std::span<const std::uint8_t> vertexStrips,
+                       std::size_t capacity)
+    : m_points(points), m_vertexStrips(vertexStrips), m_capacity(capacity) {
     if (m_capacity >= kNoTriangle)
         throw std::length_error("Refiner: more than 2^32 - 1 triangles");
-    // Pages are touched only as blocks are taken, so memory follows the triangles in use.
+    // Pages are touched only as slots are used, so memory follows the triangles in use.
     m_triangles = HugePageBuffer<MeshTriangle>(m_capacity);
 }
 
-TriId RefineMesh::allocate(Scratch& scratch) {
-    if (scratch.next == scratch.end) {
-        const TriId start = m_nextSlot.fetch_add(kBlockSlots, std::memory_order_relaxed);
-        if (static_cast<std::size_t>(start) + kBlockSlots > m_capacity)
-            throw std::length_error("Refiner: triangle slots exhausted");
-        for (TriId t = start; t < start + kBlockSlots; ++t)
-            m_triangles[t] = {{kNoVertex, kNoVertex, kNoVertex},
-                              {kNoTriangle, kNoTriangle, kNoTriangle}, 0, 0};
-        scratch.next = start;
-        scratch.end = start + kBlockSlots;
-    }
-    return scratch.next++;
+unsigned RefineMesh::addRegion(std::size_t slots) {
+    const TriId begin = m_regions.empty() ? 0 : m_regions.back().end;
+    if (begin + slots > m_capacity)
+        throw std::length_error("Refiner: triangle slots exhausted");
+    Region region;
+    region.begin = begin;
+    region.next = begin;
+    region.end = begin + static_cast<TriId>(slots);
+    m_regions.push_back(region);
+    return static_cast<unsigned>(m_regions.size() - 1);
+}
+
+TriId RefineMesh::allocate(unsigned region) {
+    Region& from = m_regions[region];
+    if (from.next == from.end)
+        throw std::length_error("Refiner: a region of triangle slots is exhausted");
+    const TriId t = from.next++;
+    m_triangles[t] = {{kNoVertex, kNoVertex, kNoVertex},
+                      {kNoTriangle, kNoTriangle, kNoTriangle},
+                      0,
+                      kSharedStrip};
+    return t;
+}
+
+std::vector<TriId> RefineMesh::slotsInUse() const {
+    std::vector<TriId> slots;
+    for (const Region& region : m_regions)
+        for (TriId t = region.begin; t < region.next; ++t)
+            if (inUse(t))
+                slots.push_back(t);
+    return slots;
+}
+
+TriId RefineMesh::slotEnd() const {
+    TriId end = 0;
+    for (const Region& region : m_regions)
+        if (region.next > region.begin)
+            end = region.next;
+    return end;
+}
+
+std::size_t RefineMesh::memoryBytes() const {
+    std::size_t slots = 0;
+    for (const Region& region : m_regions)
+        slots += region.next - region.begin;
+    return slots * sizeof(MeshTriangle);
 }
 
 void RefineMesh::set(TriId t, std::array<VertexId, 3> v, std::array<TriId, 3> n) {
     MeshTriangle& triangle = m_triangles[t];
     triangle.v = v;
     triangle.n = n;
+    const std::uint8_t strip = m_vertexStrips[v[0]];
+    triangle.strip =
+        m_vertexStrips[v[1]] == strip && m_vertexStrips[v[2]] == strip ? strip : kSharedStrip;
     const std::atomic_ref<std::uint32_t> version(triangle.version);
     version.store(version.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+}
+
+void RefineMesh::relinkAcross(TriId in, VertexId a, VertexId b, TriId to) {
+    if (in == kNoTriangle)
+        return;
+    // The corner that is neither a nor b faces the edge. Only the corners are read: another
+    // thread may be rewriting a different link of the same (shared) triangle.
+    MeshTriangle& triangle = m_triangles[in];
+    for (std::size_t i = 0; i < 3; ++i)
+        if (triangle.v[i] != a && triangle.v[i] != b) {
+            triangle.n[i] = to;
+            return;
+        }
 }
 
 void RefineMesh::relink(TriId in, TriId from, TriId to) {
@@ -61,13 +112,12 @@ void RefineMesh::relink(TriId in, TriId from, TriId to) {
         }
 }
 
-void RefineMesh::startFromHull(std::span<const VertexId> hull) {
+void RefineMesh::startFromHull(std::span<const VertexId> hull, unsigned region) {
     // A fan from hull[0], then Lawson's flips over every edge until all are Delaunay.
-    Scratch scratch;
     const std::size_t fanSize = hull.size() - 2;
     std::vector<TriId> fan(fanSize);
     for (TriId& t : fan)
-        t = allocate(scratch);
+        t = allocate(region);
     for (std::size_t i = 0; i < fanSize; ++i) {
         // (h0, h[i+1], h[i+2]): opposite h0 the hull edge, opposite h[i+1] the next
         // triangle, opposite h[i+2] the previous one.
@@ -147,99 +197,97 @@ int RefineMesh::edgeContaining(TriId t, VertexId p) const {
     return -1;
 }
 
-int RefineMesh::insert(VertexId p, TriId t, Scratch& scratch, std::vector<TriId>& fan) {
-    const MeshTriangle original = m_triangles[t];
-    const int e = edgeContaining(t, p);
-    int growth = 2;
-    std::vector<std::pair<TriId, int>>& pending = scratch.pending;
-    if (e < 0) {
-        // Three triangles with p first: (p, v1, v2) in t's slot, (p, v2, v0), (p, v0, v1).
-        const auto [v0, v1, v2] = original.v;
-        const auto [n0, n1, n2] = original.n;
-        const TriId t1 = allocate(scratch);
-        const TriId t2 = allocate(scratch);
-        set(t, {p, v1, v2}, {n0, t1, t2});
-        set(t1, {p, v2, v0}, {n1, t2, t});
-        set(t2, {p, v0, v1}, {n2, t, t1});
-        relink(n1, t, t1);
-        relink(n2, t, t2);
-        pending.insert(pending.end(), {{t, 0}, {t1, 0}, {t2, 0}});
-    } else {
-        // p on the edge (b, c) opposite a; u beyond it, if any, is (d, c, b).
-        const VertexId a = original.v[static_cast<std::size_t>(e)];
-        const VertexId b = original.v[static_cast<std::size_t>(next(e))];
-        const VertexId c = original.v[static_cast<std::size_t>(previous(e))];
-        const TriId u = original.n[static_cast<std::size_t>(e)];
-        const TriId nb = original.n[static_cast<std::size_t>(next(e))];     // across (c, a)
-        const TriId nc = original.n[static_cast<std::size_t>(previous(e))]; // across (a, b)
-        const TriId t1 = allocate(scratch);
-        if (u == kNoTriangle) {
-            growth = 1;
-            set(t, {p, a, b}, {nc, kNoTriangle, t1});
-            set(t1, {p, c, a}, {nb, t, kNoTriangle});
-            relink(nb, t, t1);
-            pending.insert(pending.end(), {{t, 0}, {t1, 0}});
-        } else {
-            const MeshTriangle beyond = m_triangles[u];
-            int f = 0;
-            while (beyond.n[static_cast<std::size_t>(f)] != t)
-                ++f;
-            const VertexId d = beyond.v[static_cast<std::size_t>(f)];
-            const TriId mc = beyond.n[static_cast<std::size_t>(next(f))];     // across (b, d)
-            const TriId mb = beyond.n[static_cast<std::size_t>(previous(f))]; // across (d, c)
-            const TriId u1 = allocate(scratch);
-            set(t, {p, a, b}, {nc, u1, t1});
-            set(t1, {p, c, a}, {nb, t, u});
-            set(u, {p, d, c}, {mb, t1, u1});
-            set(u1, {p, b, d}, {mc, u, t});
-            relink(nb, t, t1);
-            relink(mc, u, u1);
-            pending.insert(pending.end(), {{t, 0}, {t1, 0}, {u, 0}, {u1, 0}});
+int RefineMesh::tryInsert(VertexId p, TriId start, std::uint8_t strip, unsigned region,
+                          InsertScratch& scratch, int maxAdded) {
+    const Point2& q = point(p);
+    // The walk, then the cavity by a search over neighbours; nothing is written until both
+    // are known to stay within the strip.
+    TriId t = start;
+    if (!mayTouch(t, strip))
+        return 0;
+    for (;;) {
+        const MeshTriangle& triangle = m_triangles[t];
+        int exit = -1;
+        for (int i = 0; i < 3 && exit < 0; ++i)
+            if (predicates::orient2d(point(triangle.v[static_cast<std::size_t>(next(i))]),
+                                     point(triangle.v[static_cast<std::size_t>(previous(i))]),
+                                     q) < 0.0)
+                exit = i;
+        if (exit < 0)
+            break;
+        t = triangle.n[static_cast<std::size_t>(exit)];
+        if (t == kNoTriangle)
+            throw std::logic_error("Refiner: a point outside the hull");
+        if (!mayTouch(t, strip))
+            return 0;
+    }
+    std::vector<TriId>& cavity = scratch.cavity;
+    std::vector<InsertScratch::Edge>& boundary = scratch.boundary;
+    cavity.assign(1, t);
+    boundary.clear();
+    for (std::size_t i = 0; i < cavity.size(); ++i) {
+        const MeshTriangle& triangle = m_triangles[cavity[i]];
+        for (int e = 0; e < 3; ++e) {
+            const VertexId a = triangle.v[static_cast<std::size_t>(next(e))];
+            const VertexId b = triangle.v[static_cast<std::size_t>(previous(e))];
+            const TriId u = triangle.n[static_cast<std::size_t>(e)];
+            if (u == kNoTriangle) {
+                // p on this hull edge splits it: no triangle over it.
+                if (predicates::orient2d(point(a), point(b), q) != 0.0)
+                    boundary.push_back({a, b, u});
+                continue;
+            }
+            if (std::find(cavity.begin(), cavity.end(), u) != cavity.end())
+                continue;
+            const MeshTriangle& beyond = m_triangles[u];
+            // A point inside the edge (a, b) is strictly inside u's circumcircle too.
+            if (predicates::incircle(point(beyond.v[0]), point(beyond.v[1]), point(beyond.v[2]),
+                                     q) > 0.0) {
+                if (!mayTouch(u, strip))
+                    return 0;
+                cavity.push_back(u);
+            } else {
+                boundary.push_back({a, b, u});
+            }
         }
     }
-    legalize(scratch);
 
-    // The triangles around p all have p first (every one was made by the split or a flip);
-    // t's slot still holds p. Turn one way, and on the hull the other way as well.
-    TriId s = t;
-    do {
-        fan.push_back(s);
-        s = m_triangles[s].n[2];
-    } while (s != t && s != kNoTriangle);
-    if (s == kNoTriangle)
-        for (s = m_triangles[t].n[1]; s != kNoTriangle; s = m_triangles[s].n[1])
-            fan.push_back(s);
-    return growth;
-}
+    const int added = static_cast<int>(boundary.size()) - static_cast<int>(cavity.size());
+    if (added > maxAdded)
+        return 0;
 
-void RefineMesh::legalize(Scratch& scratch) {
-    // Only the edges opposite the new point can become illegal; flipped triangles keep it
-    // first, so their new edges opposite it are edge 0 of both.
-    std::vector<std::pair<TriId, int>>& pending = scratch.pending;
-    while (!pending.empty()) {
-        const TriId t = pending.back().first;
-        pending.pop_back();
-        const TriId u = flipIfIllegal(t, 0);
-        if (u != kNoTriangle) {
-            pending.emplace_back(t, 0);
-            pending.emplace_back(u, 0);
-        }
+    // The fan: (p, a, b) for each boundary edge, in the cavity's slots and then new ones.
+    std::vector<TriId>& fan = scratch.fan;
+    fan.resize(boundary.size());
+    for (std::size_t k = 0; k < fan.size(); ++k)
+        fan[k] = k < cavity.size() ? cavity[k] : allocate(region);
+    // The fan triangle of the boundary edge that starts (or ends) at v; none beside the split
+    // hull edge.
+    const auto fanFrom = [&](VertexId v, bool atStart) {
+        for (std::size_t k = 0; k < boundary.size(); ++k)
+            if ((atStart ? boundary[k].a : boundary[k].b) == v)
+                return fan[k];
+        return kNoTriangle;
+    };
+    for (std::size_t k = 0; k < fan.size(); ++k) {
+        const auto [a, b, beyond] = boundary[k];
+        // (p, a, b): across (a, b) the triangle beyond, across (b, p) the fan triangle of the
+        // edge leaving b, across (p, a) the one of the edge arriving at a.
+        set(fan[k], {p, a, b}, {beyond, fanFrom(b, true), fanFrom(a, false)});
+        relinkAcross(beyond, a, b, fan[k]);
     }
+    return added;
 }
 
 void RefineMesh::extract(std::vector<std::uint32_t>& triangles,
                          std::vector<std::int32_t>& neighbours) const {
-    const TriId slots = slotCount();
-    std::vector<std::int32_t> index(slots, -1);
-    std::int32_t count = 0;
-    for (TriId t = 0; t < slots; ++t)
-        if (inUse(t))
-            index[t] = count++;
-    triangles.resize(3 * static_cast<std::size_t>(count));
-    neighbours.resize(3 * static_cast<std::size_t>(count));
-    for (TriId t = 0; t < slots; ++t) {
-        if (index[t] < 0)
-            continue;
+    const std::vector<TriId> slots = slotsInUse();
+    std::vector<std::int32_t> index(slotEnd(), -1);
+    for (std::size_t k = 0; k < slots.size(); ++k)
+        index[slots[k]] = static_cast<std::int32_t>(k);
+    triangles.resize(3 * slots.size());
+    neighbours.resize(3 * slots.size());
+    for (const TriId t : slots) {
         const auto out = 3 * static_cast<std::size_t>(index[t]);
         const MeshTriangle& triangle = m_triangles[t];
         // TinMesh: neighbours[3t+i] across the edge from corner i to corner i+1, which is

@@ -6,21 +6,25 @@
 /// Refinement needs no point location from scratch: every point inserted is a candidate
 /// cell, found by scanning a known triangle, so a short walk from that triangle finds it.
 /// A DAG would keep every triangle ever made (several times the live ones, most of the
-/// memory the refiner touches); here a split or flipped triangle's slot is reused at once,
-/// so the triangles in use stay dense and in cache. A slot's version changes with every
-/// edit, which is how a queued candidate knows that its triangle is gone.
+/// memory the refiner touches); here an insertion's cavity slots are reused at once, so the
+/// triangles in use stay dense and in cache. A slot's version changes with every edit, which
+/// is how a queued candidate knows that its triangle is gone.
 ///
 /// The TIN starts as the convex hull of the valid cells (strictly convex), triangulated and
 /// made Delaunay, so every later point lies inside it or on its boundary: no auxiliary
-/// triangle or symbolic point is needed. Predicates are exact; an edge is flipped only when
-/// the opposite point is strictly inside the circumcircle, so cocircular points (every 2 x 2
-/// block of a grid) keep whichever diagonal came first. That choice depends only on the
-/// order of insertions, and the refiner's rounds insert the same points in the same order for
-/// any thread count.
+/// triangle or symbolic point is needed. Insertion is Bowyer-Watson's: the cavity is every
+/// triangle whose circumcircle strictly contains the point (exact predicates), replaced by a
+/// fan from the point. Cocircular points (every 2 x 2 block of a grid) keep whichever
+/// diagonal came first, so the TIN depends on the order of insertions only.
 ///
-/// Concurrency: insert() may run from several threads on triangles that do not meet (the
-/// refiner's zones); each thread takes new slots from a block of its own. version() may be
-/// read while others insert.
+/// Strips: every vertex belongs to a strip (the refiner's vertical bands of the raster), and
+/// a triangle to the strip of its three corners, or to none (kSharedStrip). An insertion
+/// restricted to a strip touches only that strip's triangles; it gives up, changing nothing,
+/// when its walk or cavity reaches another triangle. Its new triangles have the point and
+/// cavity corners as corners, so they belong to the strip too. Neighbours outside the cavity
+/// get one link rewritten, the one facing it, found from their corners (which never change
+/// while they are outside every cavity): insertions restricted to different strips may run
+/// at once. New slots come from regions, one per inserting thread.
 
 #include "../triangulate/node_arena.hpp"
 
@@ -40,6 +44,10 @@ namespace terratin::detail {
 using TriId = std::uint32_t;
 inline constexpr TriId kNoTriangle = 0xFFFFFFFFU;
 
+/// The strip of a triangle whose corners lie in different strips; also, for tryInsert, "no
+/// restriction".
+inline constexpr std::uint8_t kSharedStrip = 0xFF;
+
 /// A triangle of the refiner's mesh; v counter-clockwise, n[i] across the edge opposite v[i]
 /// (kNoTriangle on the hull).
 struct MeshTriangle {
@@ -47,71 +55,107 @@ struct MeshTriangle {
     std::array<TriId, 3> n;
     /// Changed with every edit of the slot (read through RefineMesh::version).
     std::uint32_t version;
-    /// The refiner's claim stamp (its accept loop, one thread).
-    std::uint32_t owner;
+    /// The strip of all three corners, or kSharedStrip.
+    std::uint32_t strip;
 };
 
 class RefineMesh {
 public:
-    /// A thread's working state for insert(): its block of free slots and its flip stack.
-    struct Scratch {
-        TriId next = 0;
-        TriId end = 0;
-        std::vector<std::pair<TriId, int>> pending;
+    /// What tryInsert needs besides the mesh, one per inserting thread.
+    struct InsertScratch {
+        /// The edge (a, b) of the cavity's boundary, counter-clockwise seen from inside, and
+        /// the triangle beyond it.
+        struct Edge {
+            VertexId a;
+            VertexId b;
+            TriId beyond;
+        };
+        std::vector<TriId> cavity;
+        std::vector<Edge> boundary;
+        /// After a successful tryInsert: the new triangles, all with the point as a corner.
+        std::vector<TriId> fan;
     };
 
-    /// `points` are read as vertices are used; `maxTriangles` bounds the triangles ever in
-    /// use and `threads` the threads inserting at once (for the slot blocks).
-    RefineMesh(std::span<const Point2> points, std::size_t maxTriangles, unsigned threads);
+    /// `points` and `vertexStrips` are read as vertices are used (the strip of vertex v is
+    /// vertexStrips[v]); `capacity` bounds the slots of all regions together.
+    RefineMesh(std::span<const Point2> points, std::span<const std::uint8_t> vertexStrips,
+               std::size_t capacity);
+
+    /// Reserves the next `slots` slots as a region and returns its index. Call before the
+    /// region is used, never while insertions run.
+    unsigned addRegion(std::size_t slots);
 
     /// Triangulates the strictly convex counter-clockwise polygon `hull` and makes it
-    /// Delaunay. Must be called once, first.
-    void startFromHull(std::span<const VertexId> hull);
+    /// Delaunay, in slots of `region`. Must be called once, first.
+    void startFromHull(std::span<const VertexId> hull, unsigned region);
 
     [[nodiscard]] const MeshTriangle& triangle(TriId t) const { return m_triangles[t]; }
-    [[nodiscard]] std::uint32_t& owner(TriId t) { return m_triangles[t].owner; }
-    [[nodiscard]] std::uint32_t owner(TriId t) const { return m_triangles[t].owner; }
+    [[nodiscard]] std::uint8_t strip(TriId t) const {
+        return static_cast<std::uint8_t>(m_triangles[t].strip);
+    }
+    /// May be read while another thread edits the slot (a candidate's triangle taken over by
+    /// another strip): atomic, unlike the rest of the triangle.
     [[nodiscard]] std::uint32_t version(TriId t) const {
         return std::atomic_ref<std::uint32_t>(m_triangles[t].version)
             .load(std::memory_order_acquire);
     }
-    /// Slots handed out so far (some may be unused: see extract).
-    [[nodiscard]] TriId slotCount() const { return m_nextSlot.load(std::memory_order_relaxed); }
     [[nodiscard]] bool inUse(TriId t) const { return m_triangles[t].v[0] != kNoVertex; }
+    /// The slots in use, region by region: the order of extract()'s triangles.
+    [[nodiscard]] std::vector<TriId> slotsInUse() const;
+    /// One past the highest slot handed out.
+    [[nodiscard]] TriId slotEnd() const;
 
     /// The triangle holding point p (inside or on its boundary), walking from `start`.
     [[nodiscard]] TriId walk(VertexId p, TriId start) const;
     /// The corner opposite the edge of t that p lies on, or -1 when p is inside t.
     [[nodiscard]] int edgeContaining(TriId t, VertexId p) const;
-    /// Inserts p, which t holds, restores the Delaunay property and appends the triangles
-    /// around p to `fan`. Returns the number of triangles added: 2, or 1 on the hull.
-    int insert(VertexId p, TriId t, Scratch& scratch, std::vector<TriId>& fan);
 
-    /// The triangles in use, in slot order, with neighbours as indices into that order.
-    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours) const;
+    /// Inserts p, walking from `start`, and leaves its new triangles in scratch.fan; new slots
+    /// come from `region`. Restricted to `strip` unless that is kSharedStrip: then it returns
+    /// 0 and changes nothing when the walk or the cavity meets a triangle of another strip.
+    /// Also changes nothing and returns 0 when it would add more than `maxAdded` triangles.
+    /// Returns the number of triangles added: 2, or 1 on a hull edge.
+    int tryInsert(VertexId p, TriId start, std::uint8_t strip, unsigned region,
+                  InsertScratch& scratch, int maxAdded = 2);
+
+    /// The triangles in use, in slotsInUse() order, with neighbours as indices into it.
+    void extract(std::vector<std::uint32_t>& triangles,
+                 std::vector<std::int32_t>& neighbours) const;
     /// Bytes of the slots handed out (the reserved capacity beyond is untouched).
-    [[nodiscard]] std::size_t memoryBytes() const { return slotCount() * sizeof(MeshTriangle); }
+    [[nodiscard]] std::size_t memoryBytes() const;
 
 private:
     static constexpr VertexId kNoVertex = 0xFFFFFFFFU;
 
-    TriId allocate(Scratch& scratch);
+    /// A range of slots one thread at a time takes from; cache-line aligned, as the threads
+    /// advance their own `next` at once.
+    struct alignas(64) Region {
+        TriId begin = 0;
+        TriId next = 0;
+        TriId end = 0;
+    };
+
+    TriId allocate(unsigned region);
     void set(TriId t, std::array<VertexId, 3> v, std::array<TriId, 3> n);
-    /// In triangle `in`, points the link that pointed to `from` at `to`.
+    /// In triangle `in` (outside every cavity), points the link across its edge (a, b) at `to`.
+    void relinkAcross(TriId in, VertexId a, VertexId b, TriId to);
+    /// In triangle `in`, points the link that pointed to `from` at `to` (the hull's flips).
     void relink(TriId in, TriId from, TriId to);
-    /// Lawson's flips for the edges queued in scratch.pending (each opposite p, at v[0]).
-    void legalize(Scratch& scratch);
     /// Flips the edge of t opposite corner e when the point beyond it is strictly inside t's
-    /// circumcircle. Afterwards t = (p, x, d) and the neighbour = (p, d, y), p being t's corner
-    /// e, x and y the edge's ends and d the point beyond. Returns the neighbour, or
-    /// kNoTriangle when nothing was flipped.
+    /// circumcircle (the hull's triangulation). Returns the neighbour, or kNoTriangle when
+    /// nothing was flipped.
     TriId flipIfIllegal(TriId t, int e);
+    /// Whether `strip` may touch t (see tryInsert).
+    [[nodiscard]] bool mayTouch(TriId t, std::uint8_t strip) const {
+        return strip == kSharedStrip || m_triangles[t].strip == strip;
+    }
     [[nodiscard]] const Point2& point(VertexId v) const { return m_points[v]; }
 
     std::span<const Point2> m_points;
+    std::span<const std::uint8_t> m_vertexStrips;
     std::size_t m_capacity = 0;
     HugePageBuffer<MeshTriangle> m_triangles;
-    std::atomic<TriId> m_nextSlot{0};
+    std::vector<Region> m_regions;
 };
 
 } // namespace terratin::detail

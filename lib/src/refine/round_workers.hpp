@@ -1,12 +1,12 @@
 #pragma once
 /// @file
-/// A fixed team of threads that runs one task per round, for the refiner's many short
-/// parallel rounds (hundreds of microseconds each, thousands of them).
+/// A fixed team of threads that runs one task per round, for the refiner's parallel steps
+/// (the first scans, then the strips of each level: dozens of rounds, some of them short).
 ///
 /// Starting threads every round would cost tens of microseconds, so the team stays. Between
 /// rounds the threads spin briefly before they sleep: the calling thread's sequential work
-/// between two rounds (popping the next candidates) is shorter than waking a sleeping thread,
-/// which on a virtual machine can take as long as the round itself. A thread that finds no
+/// between two rounds is often shorter than waking a sleeping thread, which on a virtual
+/// machine can take as long as a short round itself. A thread that finds no
 /// round after the spin sleeps on the round counter (std::atomic::wait), so the team costs
 /// nothing while the caller does something else.
 

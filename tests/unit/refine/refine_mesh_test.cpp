@@ -1,6 +1,7 @@
 // The refiner's in-place triangulation on its own: lattice points (every 2 x 2 block
 // cocircular, many points on the hull's edges) and random points stay exactly Delaunay, each
-// insertion reports the triangles around the new point, and edited triangles change version.
+// insertion reports the triangles around the new point, edited triangles change version, and
+// an insertion restricted to a strip touches nothing outside it.
 
 #include "refine_mesh.hpp"
 
@@ -27,36 +28,52 @@ TinMesh toTinMesh(const RefineMesh& mesh, const std::vector<Point2>& points, std
     return tin;
 }
 
+/// Every vertex in strip 0: no restriction ever applies.
+std::vector<std::uint8_t> oneStrip(const std::vector<Point2>& points) {
+    return std::vector<std::uint8_t>(points.size(), 0);
+}
+
 /// Inserts points[hullSize..) in order, checking each insertion's fan and growth.
-void insertAll(RefineMesh& mesh, const std::vector<Point2>& points, std::size_t hullSize) {
-    RefineMesh::Scratch scratch;
-    std::vector<TriId> fan;
+void insertAll(RefineMesh& mesh, unsigned region, const std::vector<Point2>& points,
+               std::size_t hullSize) {
+    RefineMesh::InsertScratch scratch;
     std::size_t triangles = hullSize - 2;
-    TriId start = 0;
+    TriId start = mesh.slotsInUse().front();
     for (auto p = static_cast<VertexId>(hullSize); p < points.size(); ++p) {
         const TriId holder = mesh.walk(p, start);
         const std::uint32_t before = mesh.version(holder);
-        fan.clear();
-        triangles += static_cast<std::size_t>(mesh.insert(p, holder, scratch, fan));
+        const int added = mesh.tryInsert(p, start, kSharedStrip, region, scratch);
+        ASSERT_TRUE(added == 1 || added == 2) << "point " << p;
+        triangles += static_cast<std::size_t>(added);
         EXPECT_NE(mesh.version(holder), before);
         // The fan is every triangle with p as a corner, each once.
         std::vector<TriId> around;
-        for (TriId t = 0; t < mesh.slotCount(); ++t)
-            if (mesh.inUse(t)) {
-                const auto& v = mesh.triangle(t).v;
-                if (std::find(v.begin(), v.end(), p) != v.end())
-                    around.push_back(t);
-            }
-        std::vector<TriId> sortedFan = fan;
+        for (const TriId t : mesh.slotsInUse()) {
+            const auto& v = mesh.triangle(t).v;
+            if (std::find(v.begin(), v.end(), p) != v.end())
+                around.push_back(t);
+        }
+        std::vector<TriId> sortedFan = scratch.fan;
         std::sort(sortedFan.begin(), sortedFan.end());
         ASSERT_EQ(sortedFan, around) << "point " << p;
-        start = fan.front();
+        start = scratch.fan.front();
     }
-    std::size_t inUse = 0;
-    for (TriId t = 0; t < mesh.slotCount(); ++t)
-        inUse += mesh.inUse(t) ? 1U : 0U;
-    EXPECT_EQ(inUse, triangles);
+    EXPECT_EQ(mesh.slotsInUse().size(), triangles);
 }
+
+/// A mesh over `points` with its hull and one region for the rest.
+struct TestMesh {
+    TestMesh(const std::vector<Point2>& points, std::vector<std::uint8_t> strips,
+             const std::vector<VertexId>& hull)
+        : vertexStrips(std::move(strips)), mesh(points, vertexStrips, 2 * points.size()) {
+        const unsigned hullRegion = mesh.addRegion(hull.size());
+        region = mesh.addRegion(2 * points.size() - hull.size());
+        mesh.startFromHull(hull, hullRegion);
+    }
+    std::vector<std::uint8_t> vertexStrips;
+    RefineMesh mesh;
+    unsigned region = 0;
+};
 
 TEST(RefineMesh, LatticeStaysExactlyDelaunay_WithCocircularBlocksAndHullEdgePoints) {
     constexpr int kSide = 24;
@@ -71,11 +88,10 @@ TEST(RefineMesh, LatticeStaysExactlyDelaunay_WithCocircularBlocksAndHullEdgePoin
     std::shuffle(inner.begin(), inner.end(), std::mt19937(4));
     points.insert(points.end(), inner.begin(), inner.end());
 
-    RefineMesh mesh(points, 2 * points.size(), 1);
     const std::vector<VertexId> hull{0, 1, 2, 3};
-    mesh.startFromHull(hull);
-    insertAll(mesh, points, hull.size());
-    const TinMesh tin = toTinMesh(mesh, points, points.size());
+    TestMesh test(points, oneStrip(points), hull);
+    insertAll(test.mesh, test.region, points, hull.size());
+    const TinMesh tin = toTinMesh(test.mesh, points, points.size());
     const MeshValidation validation = validateDelaunay(tin);
     EXPECT_TRUE(validation.ok()) << (validation.problems.empty() ? "" : validation.problems[0]);
     EXPECT_EQ(tin.triangleCount(), 2U * (kSide - 1) * (kSide - 1));
@@ -92,13 +108,76 @@ TEST(RefineMesh, RandomPointsInAConvexPolygonStayExactlyDelaunay) {
     std::uniform_real_distribution<double> coordinate(-60.0, 60.0);
     for (int i = 0; i < 3000; ++i)
         points.push_back({coordinate(random), coordinate(random)});
-    RefineMesh mesh(points, 2 * points.size(), 1);
     std::vector<VertexId> hull(12);
     std::iota(hull.begin(), hull.end(), VertexId{0});
-    mesh.startFromHull(hull);
-    EXPECT_TRUE(validateDelaunay(toTinMesh(mesh, points, 12)).ok());
-    insertAll(mesh, points, hull.size());
-    EXPECT_TRUE(validateDelaunay(toTinMesh(mesh, points, points.size())).ok());
+    TestMesh test(points, oneStrip(points), hull);
+    EXPECT_TRUE(validateDelaunay(toTinMesh(test.mesh, points, 12)).ok());
+    insertAll(test.mesh, test.region, points, hull.size());
+    EXPECT_TRUE(validateDelaunay(toTinMesh(test.mesh, points, points.size())).ok());
+}
+
+TEST(RefineMesh, RestrictedInsertionStaysInItsStripOrChangesNothing) {
+    // A square cut at x = 50 into strip 0 (x < 50) and strip 1. The hull's triangles span
+    // both: the first 300 random points go in without restriction, the others restricted to
+    // their side's strip, and the refused ones afterwards without restriction.
+    std::vector<Point2> points{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+    std::mt19937 random(21);
+    std::uniform_real_distribution<double> coordinate(1.0, 99.0);
+    for (int i = 0; i < 2000; ++i)
+        points.push_back({coordinate(random), coordinate(random)});
+    std::vector<std::uint8_t> strips(points.size());
+    for (std::size_t v = 0; v < points.size(); ++v)
+        strips[v] = points[v].x < 50.0 ? 0 : 1;
+    TestMesh test(points, strips, {0, 1, 2, 3});
+    RefineMesh& mesh = test.mesh;
+    RefineMesh::InsertScratch scratch;
+    for (auto p = VertexId{4}; p < 304; ++p)
+        ASSERT_GT(mesh.tryInsert(p, mesh.slotsInUse().front(), kSharedStrip, test.region, scratch),
+                  0);
+    std::vector<VertexId> refused;
+    std::size_t inserted = 0;
+    for (auto p = VertexId{304}; p < points.size(); ++p) {
+        const std::vector<TriId> slots = mesh.slotsInUse();
+        // Start from a triangle of p's strip, if any.
+        const auto own = std::find_if(slots.begin(), slots.end(),
+                                      [&](TriId t) { return mesh.strip(t) == strips[p]; });
+        if (own == slots.end()) {
+            refused.push_back(p);
+            continue;
+        }
+        std::vector<MeshTriangle> before;
+        for (const TriId t : slots)
+            before.push_back(mesh.triangle(t));
+        if (mesh.tryInsert(p, *own, strips[p], test.region, scratch) == 0) {
+            // Nothing changed.
+            ASSERT_EQ(mesh.slotsInUse(), slots);
+            for (std::size_t k = 0; k < slots.size(); ++k) {
+                EXPECT_EQ(mesh.triangle(slots[k]).v, before[k].v);
+                EXPECT_EQ(mesh.triangle(slots[k]).n, before[k].n);
+                EXPECT_EQ(mesh.version(slots[k]), before[k].version);
+            }
+            refused.push_back(p);
+            continue;
+        }
+        ++inserted;
+        // The new triangles belong to the strip; the ones of the other strip are untouched.
+        for (const TriId t : scratch.fan)
+            EXPECT_EQ(mesh.strip(t), strips[p]);
+        for (std::size_t k = 0; k < slots.size(); ++k)
+            if (before[k].strip != strips[p] && before[k].strip != kSharedStrip) {
+                EXPECT_EQ(mesh.triangle(slots[k]).v, before[k].v);
+                EXPECT_EQ(mesh.triangle(slots[k]).n, before[k].n);
+            }
+    }
+    // Most insertions stay within their strip; the refused ones complete the triangulation.
+    EXPECT_GT(inserted, 1300U);
+    EXPECT_FALSE(refused.empty());
+    for (const VertexId p : refused)
+        ASSERT_GT(mesh.tryInsert(p, mesh.slotsInUse().front(), kSharedStrip, test.region, scratch),
+                  0);
+    const TinMesh tin = toTinMesh(mesh, points, points.size());
+    EXPECT_EQ(tin.triangleCount(), 2 * points.size() - 2 - 4);
+    EXPECT_TRUE(validateDelaunay(tin).ok());
 }
 
 } // namespace

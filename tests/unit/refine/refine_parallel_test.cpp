@@ -1,5 +1,5 @@
-// Parallel refinement: rounds of non-conflicting insertions give the same TIN for any thread
-// count, and rounds barely change the point count against one-at-a-time greedy insertion.
+// Parallel refinement: strips refined at once give the same TIN for any thread count, and
+// barely change the point count against strict greedy insertion.
 
 #include "refine_test_grids.hpp"
 
@@ -46,22 +46,28 @@ TEST(RefineParallel, SameTinForOneTwoAndFourThreads) {
     }
 }
 
-TEST(RefineParallel, RoundsCostFewPointsAgainstStrictGreedy) {
-    const HeightGrid grid = test::roughTerrain(128, 128, 4);
+TEST(RefineParallel, StripsCostFewPointsAgainstStrictGreedy) {
+    const HeightGrid grid = test::roughTerrain(192, 128, 4);
     RefineOptions options;
     options.maxError = 1.5;
     options.threads = 2;
-    options.roundCandidates = 1;
+    options.strips = 1;
     const RefineResult strict = refine(grid, options);
-    options.roundCandidates = 256;
-    const RefineResult rounds = refine(grid, options);
-    EXPECT_EQ(strict.deferredCandidates, 0U);
-    EXPECT_LE(rounds.maxError, 1.5);
-    const double ratio = static_cast<double>(rounds.mesh.vertexCount()) /
-                         static_cast<double>(strict.mesh.vertexCount());
-    EXPECT_NEAR(ratio, 1.0, 0.03) << rounds.mesh.vertexCount() << " vs "
-                                  << strict.mesh.vertexCount();
-    EXPECT_LT(rounds.rounds, strict.rounds / 10);
+    EXPECT_EQ(strict.strips, 1U);
+    EXPECT_EQ(strict.sharedInsertions, 0U);
+    for (const std::size_t strips : {2U, 4U}) {
+        options.strips = strips;
+        const RefineResult parallel = refine(grid, options);
+        EXPECT_EQ(parallel.strips, strips);
+        EXPECT_LE(parallel.maxError, 1.5);
+        const double ratio = static_cast<double>(parallel.mesh.vertexCount()) /
+                             static_cast<double>(strict.mesh.vertexCount());
+        EXPECT_NEAR(ratio, 1.0, 0.03)
+            << parallel.mesh.vertexCount() << " vs " << strict.mesh.vertexCount();
+        // Most points go in within their strips; the sequential step takes the rest.
+        EXPECT_GT(parallel.sharedInsertions, 0U);
+        EXPECT_LT(parallel.sharedInsertions, parallel.mesh.vertexCount() / 4);
+    }
 }
 
 TEST(RefineParallel, LimitsGiveTheSameTinForAnyThreadCount) {

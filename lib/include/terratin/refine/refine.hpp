@@ -37,10 +37,10 @@ struct RefineOptions {
     std::optional<std::size_t> maxTriangles;
     /// Hardware threads for insertion and scans; 0 = all. The TIN does not depend on it.
     unsigned threads = 0;
-    /// Candidates taken from the priority queue per round; those whose insertions touch
-    /// disjoint triangles are inserted together (in parallel). Fixed, so that the result does
-    /// not depend on the thread count; 1 gives strict one-at-a-time greedy insertion.
-    std::size_t roundCandidates = 256;
+    /// Vertical strips of the raster refined at once (the unit of parallel work, see the
+    /// refiner); 0 chooses from the raster's width. Fixed by the raster, not the threads, so
+    /// that the result does not depend on the thread count; 1 gives strict greedy insertion.
+    std::size_t strips = 0;
     /// Nodata regions (8-connected) of at most this many cells may be covered by triangles;
     /// larger ones stay open: no triangle covers the centre of one of their cells.
     std::size_t maxHole = 1;
@@ -79,10 +79,14 @@ struct RefineResult {
     std::size_t droppedTriangles = 0;
     /// Vertices of the convex hull the refinement started from.
     std::size_t hullPoints = 0;
-    /// Insertion rounds and candidates deferred to a later round by a conflict.
-    std::size_t rounds = 0;
+    /// Strips refined at once, levels of error they went down by, candidates deferred to a
+    /// level's sequential step because their insertion reached past their strip, and the
+    /// points that step inserted (those and the ones in triangles spanning strips).
+    std::size_t strips = 0;
+    std::size_t levels = 0;
     std::size_t deferredCandidates = 0;
-    /// With positions: passes of the exact completion that inserted cells the rounds'
+    std::size_t sharedInsertions = 0;
+    /// With positions: passes of the exact completion that inserted cells the levels'
     /// approximate scans left above the target (0 without positions).
     std::size_t completionPasses = 0;
     RefineStop stop = RefineStop::ErrorReached;
@@ -126,7 +130,7 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
 /// projection is), not affine: the TIN is Delaunay in the positions' coordinates, and its
 /// straight edges are curves in the grid.
 ///
-/// The rounds choose their points with the pixel-space scans (an approximation here); then
+/// The levels choose their points with the pixel-space scans (an approximation here); then
 /// every cell is located in the TIN exactly, at its position, and the cells still farther
 /// than maxError (or in a triangle over an open hole) are inserted, pass after pass, until
 /// none is left. The guarantee, the holes (no kept triangle holds the position of an open
