@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 
 namespace terratin::detail {
@@ -26,9 +27,10 @@ constexpr std::size_t kMaxFan = 16;
 /// sequential step and a barrier).
 constexpr double kLevelRatio = 0.5;
 
-/// Strips: at least this many columns each, and at most kMaxStrips (the strips are the unit
-/// of parallel work; more strips than threads balance uneven terrain).
-constexpr std::int64_t kMinStripColumns = 48;
+/// Strips: about this many columns each, at most kMaxStrips. Strips are the unit of parallel
+/// work: more of them balance uneven terrain and feed more threads, fewer leave less work to
+/// the pairs and to the sequential step (the triangles spanning strips).
+constexpr std::int64_t kMinStripColumns = 128;
 constexpr std::size_t kMaxStrips = 32;
 
 /// Under limits, strips get a share of what is left per level until it is less than this
@@ -184,23 +186,26 @@ void GreedyRefiner::startFromHull() {
 }
 
 void GreedyRefiner::route(const Candidate& candidate) {
-    const std::uint8_t strip = m_mesh->strip(candidate.triangle);
-    if (strip == kSharedStrip)
-        m_shared.push(candidate);
+    const StripRange strips = m_mesh->strips(candidate.triangle);
+    if (strips.single())
+        m_strips[strips.first].queue.push(candidate);
+    else if (strips.last == strips.first + 1)
+        m_strips[strips.first].pairQueue.push(candidate);
     else
-        m_strips[strip].queue.push(candidate);
+        m_shared.push(candidate);
 }
 
-int GreedyRefiner::insert(const Candidate& candidate, std::uint8_t strip, int maxAdded) {
-    // The vertex takes the next id of its cell's strip, which only this insertion (the strip's
-    // worker, or the shared step alone) uses now; the id is kept only if the insertion is done.
+int GreedyRefiner::insert(const Candidate& candidate, StripRange allowed,
+                          RefineMesh::InsertScratch& scratch, int maxAdded) {
+    // The vertex takes the next id of its cell's strip, which only this insertion uses now
+    // (the task restricted to strips that include the cell's); the id is kept only if the
+    // insertion is done.
     const std::uint32_t cell = candidate.cell;
     Strip& own = m_strips[stripOfCell(cell)];
     const VertexId vertex = own.nextVertex;
     setVertex(vertex, cell);
-    RefineMesh::InsertScratch& scratch = strip == kSharedStrip ? m_sharedInsert : own.insert;
     const int added =
-        m_mesh->tryInsert(vertex, candidate.triangle, strip, own.region, scratch, maxAdded);
+        m_mesh->tryInsert(vertex, candidate.triangle, allowed, own.region, scratch, maxAdded);
     if (added == 0)
         return 0;
     ++own.nextVertex;
@@ -213,34 +218,94 @@ int GreedyRefiner::insert(const Candidate& candidate, std::uint8_t strip, int ma
     return added;
 }
 
-void GreedyRefiner::runStrip(std::uint8_t strip, double level, std::size_t quota) {
-    Strip& own = m_strips[strip];
-    own.inserted = 0;
-    own.triangles = 0;
-    while (!own.queue.empty() && own.queue.top().priority > level && own.inserted < quota) {
-        const Candidate candidate = own.queue.pop();
+void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double level,
+                          std::size_t quota, Strip& task) {
+    task.inserted = 0;
+    task.triangles = 0;
+    while (!queue.empty() && queue.top().priority > level && task.inserted < quota) {
+        const Candidate candidate = queue.pop();
         if (!isLive(candidate))
             continue;
-        const int added = insert(candidate, strip, 2);
+        const int added = insert(candidate, allowed, task.insert, 2);
         if (added == 0) {
-            own.deferred.push_back(candidate);
+            task.refused.push_back({candidate, task.insert.needed});
             continue;
         }
-        ++own.inserted;
-        own.triangles += static_cast<std::size_t>(added);
-        scanAll(own.insert.fan, [&](const Candidate& found) { own.queue.push(found); });
-        if (own.inserted % kCheckEvery == 0 && m_cancelled.load(std::memory_order_relaxed))
+        ++task.inserted;
+        task.triangles += static_cast<std::size_t>(added);
+        scanAll(task.insert.fan, [&](const Candidate& found) { route(found); });
+        if (task.inserted % kCheckEvery == 0 && m_cancelled.load(std::memory_order_relaxed))
             return;
     }
 }
 
-bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCallback& progress) {
-    for (Strip& own : m_strips) {
-        m_deferred += own.deferred.size();
-        for (const Candidate& candidate : own.deferred)
-            m_shared.push(candidate);
-        own.deferred.clear();
+void GreedyRefiner::requeueRefused() {
+    for (Strip& task : m_strips) {
+        m_deferred += task.refused.size();
+        for (const auto& [candidate, needed] : task.refused)
+            if (needed.last == needed.first + 1)
+                m_strips[needed.first].pairQueue.push(candidate);
+            else
+                m_shared.push(candidate);
+        task.refused.clear();
     }
+}
+
+template <class Task>
+void GreedyRefiner::runTasks(const std::vector<std::uint8_t>& tasks,
+                             const ProgressCallback& progress, double level, Task&& task) {
+    std::atomic<std::size_t> next{0};
+    m_workers.run([&](unsigned worker) {
+        for (std::size_t k = next++; k < tasks.size(); k = next++) {
+            if (m_cancelled.load(std::memory_order_relaxed))
+                return;
+            task(tasks[k]);
+            // Only the calling thread reports.
+            if (worker == 0 && progress && !progress(progressFraction(level), "refining"))
+                m_cancelled.store(true, std::memory_order_relaxed);
+        }
+    });
+    if (m_cancelled.load(std::memory_order_relaxed))
+        throw Cancelled("Refiner: cancelled");
+    for (const std::uint8_t k : tasks)
+        m_triangles += m_strips[k].triangles;
+}
+
+void GreedyRefiner::runStripsAndPairs(double level, std::size_t quota,
+                                      const ProgressCallback& progress) {
+    // The strips with the most candidates first, so that the last ones taken are short and
+    // the workers finish together.
+    const auto bySize = [&](std::vector<std::uint8_t> tasks, auto queueOf) {
+        std::stable_sort(tasks.begin(), tasks.end(), [&](std::uint8_t a, std::uint8_t b) {
+            return queueOf(m_strips[a]).size() > queueOf(m_strips[b]).size();
+        });
+        return tasks;
+    };
+    std::vector<std::uint8_t> strips(m_strips.size());
+    std::iota(strips.begin(), strips.end(), std::uint8_t{0});
+    runTasks(bySize(strips, [](Strip& own) -> CandidateQueue& { return own.queue; }), progress,
+             level, [&](std::uint8_t k) {
+                 drain(m_strips[k].queue, {k, k}, level, quota, m_strips[k]);
+             });
+    requeueRefused();
+
+    // Pairs (k, k + 1) of the same parity never share a strip, so they run at once.
+    for (const std::uint8_t parity : {std::uint8_t{0}, std::uint8_t{1}}) {
+        std::vector<std::uint8_t> pairs;
+        for (std::uint8_t k = parity; k + 1U < m_strips.size(); k += 2)
+            pairs.push_back(k);
+        runTasks(bySize(pairs, [](Strip& own) -> CandidateQueue& { return own.pairQueue; }),
+                 progress, level, [&](std::uint8_t k) {
+                     drain(m_strips[k].pairQueue, {k, static_cast<std::uint8_t>(k + 1)}, level,
+                           quota, m_strips[k]);
+                 });
+        for (const std::uint8_t k : pairs)
+            m_pairInsertions += m_strips[k].inserted;
+        requeueRefused();
+    }
+}
+
+bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCallback& progress) {
     std::size_t done = 0;
     while (!m_shared.empty() && m_shared.top().priority > level) {
         if (exactLimits && m_options.maxPoints && pointCount() >= *m_options.maxPoints) {
@@ -254,7 +319,8 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
         if (exactLimits && m_options.maxTriangles)
             maxAdded = static_cast<int>(std::min<std::size_t>(
                 2, *m_options.maxTriangles - std::min(m_triangles, *m_options.maxTriangles)));
-        const int added = maxAdded > 0 ? insert(candidate, kSharedStrip, maxAdded) : 0;
+        const int added =
+            maxAdded > 0 ? insert(candidate, StripRange::all(), m_sharedInsert, maxAdded) : 0;
         if (added == 0) { // only a triangle limit refuses an unrestricted insertion
             m_shared.push(candidate);
             m_stop = RefineStop::TriangleLimit;
@@ -275,15 +341,17 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
 
 void GreedyRefiner::gatherIntoShared() {
     for (Strip& own : m_strips)
-        while (!own.queue.empty())
-            m_shared.push(own.queue.pop());
+        for (CandidateQueue* queue : {&own.queue, &own.pairQueue})
+            while (!queue->empty())
+                m_shared.push(queue->pop());
 }
 
 double GreedyRefiner::highestPriority() {
     double top = -std::numeric_limits<double>::infinity();
     for (Strip& own : m_strips)
-        if (!own.queue.empty())
-            top = std::max(top, own.queue.top().priority);
+        for (CandidateQueue* queue : {&own.queue, &own.pairQueue})
+            if (!queue->empty())
+                top = std::max(top, queue->top().priority);
     if (!m_shared.empty())
         top = std::max(top, m_shared.top().priority);
     return top;
@@ -294,7 +362,8 @@ double GreedyRefiner::levelBelow(double top) const {
         return m_threshold; // one strip: plain greedy insertion, no levels needed
     if (top == kHolePriority)
         return std::numeric_limits<double>::max(); // the holes' candidates first, alone
-    const double level = top * kLevelRatio;
+    static const double ratio = getenv("RATIO") ? atof(getenv("RATIO")) : kLevelRatio;
+    const double level = top * ratio;
     // Errors vanishingly small against the first (a flat grid used whole): finish in one go.
     return level > m_threshold && level > m_firstPriority * 1e-9 ? level : m_threshold;
 }
@@ -360,24 +429,11 @@ void GreedyRefiner::runLevels(const ProgressCallback& progress) {
             return;
         }
         const double level = levelBelow(top);
-        // Under limits each strip may take a share of half of what is left; the shared step
-        // stops exactly if it would go past.
+        // Under limits each task (a strip or a pair) may take 1 / (2 strips) of what is left;
+        // the shared step stops exactly if it would go past.
         const std::size_t quota =
             left == std::numeric_limits<std::size_t>::max() ? left : left / (2 * m_strips.size());
-        std::atomic<std::size_t> nextStrip{0};
-        m_workers.run([&](unsigned worker) {
-            for (std::size_t k = nextStrip++; k < m_strips.size(); k = nextStrip++) {
-                if (m_cancelled.load(std::memory_order_relaxed))
-                    return;
-                runStrip(static_cast<std::uint8_t>(k), level, quota);
-                if (worker == 0 && progress && !progress(progressFraction(level), "refining"))
-                    m_cancelled.store(true, std::memory_order_relaxed);
-            }
-        });
-        if (m_cancelled.load(std::memory_order_relaxed))
-            throw Cancelled("Refiner: cancelled");
-        for (const Strip& own : m_strips)
-            m_triangles += own.triangles;
+        runStripsAndPairs(level, quota, progress);
         ++m_levels;
         if (!runShared(level, m_options.maxPoints || m_options.maxTriangles, progress))
             return;

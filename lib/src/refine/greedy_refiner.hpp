@@ -67,7 +67,8 @@ public:
     [[nodiscard]] std::size_t strips() const { return m_strips.size(); }
     [[nodiscard]] std::size_t levels() const { return m_levels; }
     [[nodiscard]] std::size_t deferred() const { return m_deferred; }
-    /// Points inserted by the sequential step of the levels (shared and deferred candidates).
+    /// Points inserted by the pairs of strips, and by the sequential step of the levels.
+    [[nodiscard]] std::size_t pairInsertions() const { return m_pairInsertions; }
     [[nodiscard]] std::size_t sharedInsertions() const { return m_sharedInsertions; }
     /// Passes of completeAtPositions (0 without positions).
     [[nodiscard]] std::size_t completionPasses() const { return m_completionPasses; }
@@ -81,19 +82,27 @@ private:
         float z;
     };
     /// A strip's state. Cache-line aligned: the workers run neighbouring strips at once.
+    /// A candidate an insertion restricted to some strips refused, and the strips it needs.
+    struct Refused {
+        Candidate candidate;
+        StripRange needed;
+    };
+    /// A strip's state, and that of the pair it forms with the next strip. Cache-line
+    /// aligned: the workers run neighbouring strips at once.
     struct alignas(64) Strip {
+        /// Candidates of the triangles within the strip, and of those spanning it and the next.
         CandidateQueue queue;
-        /// Candidates whose insertion reached another strip's triangles, in this level.
-        std::vector<Candidate> deferred;
+        CandidateQueue pairQueue;
+        /// The working state of the task run from this strip (the strip's or its pair's).
         RefineMesh::InsertScratch insert;
+        std::vector<Refused> refused;
+        std::size_t inserted = 0;
+        std::size_t triangles = 0;
         /// The strip's range of vertex ids (its valid cells) and its region of mesh slots.
         VertexId firstVertex = 0;
         VertexId nextVertex = 0;
         VertexId endVertex = 0;
         unsigned region = 0;
-        /// Points inserted and triangles added in this level.
-        std::size_t inserted = 0;
-        std::size_t triangles = 0;
     };
 
     /// Cuts the columns into strips and reserves their vertex ids and slots.
@@ -108,19 +117,32 @@ private:
     }
     /// Levels until no candidate is above the target or a limit is reached.
     void runLevels(const ProgressCallback& progress);
-    /// One strip's insertions above `level`, at most `quota` of them.
-    void runStrip(std::uint8_t strip, double level, std::size_t quota);
-    /// The shared and deferred candidates above `level`, by one thread, in priority order.
+    /// The parallel steps of a level: every strip, then the pairs of neighbouring strips
+    /// starting at an even strip, then those starting at an odd one. Each task inserts its
+    /// queue's candidates above `level`, at most `quota`, restricted to its strips.
+    void runStripsAndPairs(double level, std::size_t quota, const ProgressCallback& progress);
+    /// Runs task(k) for k in `tasks` on the workers, the first ones first.
+    template <class Task>
+    void runTasks(const std::vector<std::uint8_t>& tasks, const ProgressCallback& progress,
+                  double level, Task&& task);
+    /// Inserts `queue`'s candidates above `level` restricted to `allowed`, at most `quota`,
+    /// with `task`'s working state; found candidates are routed, refused ones kept in
+    /// task.refused.
+    void drain(CandidateQueue& queue, StripRange allowed, double level, std::size_t quota,
+               Strip& task);
+    /// Queues the refused candidates of the last parallel step where they can go in: the pair
+    /// queue of the two strips they need, or the shared queue.
+    void requeueRefused();
+    /// The shared candidates above `level`, by one thread, in priority order, unrestricted.
     /// With `exactLimits`, stops exactly at a limit (and returns false); candidates then go
     /// to the shared queue only, so this is plain greedy insertion.
     bool runShared(double level, bool exactLimits, const ProgressCallback& progress);
     /// Moves every strip's candidates to the shared queue (for the exact finish).
     void gatherIntoShared();
-    /// Inserts `candidate`'s cell, restricted to `strip` (kSharedStrip: unrestricted), with
-    /// the vertex ids and slots of the cell's strip. Returns the triangles added (0: not
-    /// inserted, the insertion reached past the strip).
-    /// Refused as well (0) when it would add more than `maxAdded` triangles.
-    int insert(const Candidate& candidate, std::uint8_t strip, int maxAdded);
+    /// Inserts `candidate`'s cell restricted to `allowed`, with the vertex ids and slots of the
+    /// cell's strip. Returns the triangles added, 0 when refused (see RefineMesh::tryInsert).
+    int insert(const Candidate& candidate, StripRange allowed, RefineMesh::InsertScratch& scratch,
+               int maxAdded);
     /// Writes vertex `vertex`'s position, cell, pixel and strip for `cell`.
     void setVertex(VertexId vertex, std::uint32_t cell);
     /// The highest priority queued anywhere, -inf when nothing is.
@@ -139,7 +161,9 @@ private:
     /// or a limit is reached. Each pass checks the whole TIN, so the result stays the same
     /// for any thread count.
     void completeAtPositions(const ProgressCallback& progress);
-    /// Queues a candidate with its triangle's strip (or the shared queue).
+    /// Queues a candidate by the strips its triangle spans: the strip's queue, the pair's, or
+    /// the shared queue. Touches only queues of those strips: safe from a task restricted to
+    /// strips that include them.
     void route(const Candidate& candidate);
     [[nodiscard]] PixelCorner corner(VertexId v) const;
     /// Prepares the scan of a triangle (see TriangleScan); false when it has nothing to
@@ -171,13 +195,14 @@ private:
     HugePageBuffer<VertexPixel> m_vertexPixel;
     HugePageBuffer<std::uint8_t> m_vertexStrip;
     std::optional<RefineMesh> m_mesh;
-    /// Candidates of triangles spanning strips, and the deferred ones between levels.
+    /// Candidates of triangles spanning more than two strips, and the ones refused by pairs.
     CandidateQueue m_shared;
     RefineMesh::InsertScratch m_sharedInsert;
     std::size_t m_triangles = 0;
     std::size_t m_hullPoints = 0;
     std::size_t m_levels = 0;
     std::size_t m_deferred = 0;
+    std::size_t m_pairInsertions = 0;
     std::size_t m_sharedInsertions = 0;
     std::size_t m_completionPasses = 0;
     double m_firstPriority = 0.0;

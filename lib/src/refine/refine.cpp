@@ -45,8 +45,8 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
     if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
         throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
     if (!positions.empty() && positions.size() != grid.cellCount())
-        throw InvalidInputError("Refiner: " + std::to_string(positions.size()) +
-                                " positions for " + std::to_string(grid.cellCount()) + " cells");
+        throw InvalidInputError("Refiner: " + std::to_string(positions.size()) + " positions for " +
+                                std::to_string(grid.cellCount()) + " cells");
     for (const Point2& p : positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y))
             throw InvalidInputError("Refiner: a cell position is not finite");
@@ -73,6 +73,7 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     result.strips = refiner.strips();
     result.levels = refiner.levels();
     result.deferredCandidates = refiner.deferred();
+    result.pairInsertions = refiner.pairInsertions();
     result.sharedInsertions = refiner.sharedInsertions();
     result.completionPasses = refiner.completionPasses();
     result.meshBytes = refiner.meshBytes();

@@ -50,7 +50,7 @@ TriId RefineMesh::allocate(unsigned region) {
     m_triangles[t] = {{kNoVertex, kNoVertex, kNoVertex},
                       {kNoTriangle, kNoTriangle, kNoTriangle},
                       0,
-                      kSharedStrip};
+                      StripRange::all()};
     return t;
 }
 
@@ -82,9 +82,10 @@ void RefineMesh::set(TriId t, std::array<VertexId, 3> v, std::array<TriId, 3> n)
     MeshTriangle& triangle = m_triangles[t];
     triangle.v = v;
     triangle.n = n;
-    const std::uint8_t strip = m_vertexStrips[v[0]];
-    triangle.strip =
-        m_vertexStrips[v[1]] == strip && m_vertexStrips[v[2]] == strip ? strip : kSharedStrip;
+    const std::uint8_t a = m_vertexStrips[v[0]];
+    const std::uint8_t b = m_vertexStrips[v[1]];
+    const std::uint8_t c = m_vertexStrips[v[2]];
+    triangle.strips = {std::min({a, b, c}), std::max({a, b, c})};
     const std::atomic_ref<std::uint32_t> version(triangle.version);
     version.store(version.load(std::memory_order_relaxed) + 1, std::memory_order_release);
 }
@@ -197,14 +198,20 @@ int RefineMesh::edgeContaining(TriId t, VertexId p) const {
     return -1;
 }
 
-int RefineMesh::tryInsert(VertexId p, TriId start, std::uint8_t strip, unsigned region,
+int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned region,
                           InsertScratch& scratch, int maxAdded) {
     const Point2& q = point(p);
     // The walk, then the cavity by a search over neighbours; nothing is written until both
-    // are known to stay within the strip.
-    TriId t = start;
-    if (!mayTouch(t, strip))
+    // are known to stay within the allowed strips.
+    const auto refuse = [&](TriId met) {
+        const StripRange strips = m_triangles[met].strips;
+        scratch.needed = {std::min(allowed.first, strips.first),
+                          std::max(allowed.last, strips.last)};
         return 0;
+    };
+    TriId t = start;
+    if (!allowed.contains(m_triangles[t].strips))
+        return refuse(t);
     for (;;) {
         const MeshTriangle& triangle = m_triangles[t];
         int exit = -1;
@@ -218,8 +225,8 @@ int RefineMesh::tryInsert(VertexId p, TriId start, std::uint8_t strip, unsigned 
         t = triangle.n[static_cast<std::size_t>(exit)];
         if (t == kNoTriangle)
             throw std::logic_error("Refiner: a point outside the hull");
-        if (!mayTouch(t, strip))
-            return 0;
+        if (!allowed.contains(m_triangles[t].strips))
+            return refuse(t);
     }
     std::vector<TriId>& cavity = scratch.cavity;
     std::vector<InsertScratch::Edge>& boundary = scratch.boundary;
@@ -243,8 +250,8 @@ int RefineMesh::tryInsert(VertexId p, TriId start, std::uint8_t strip, unsigned 
             // A point inside the edge (a, b) is strictly inside u's circumcircle too.
             if (predicates::incircle(point(beyond.v[0]), point(beyond.v[1]), point(beyond.v[2]),
                                      q) > 0.0) {
-                if (!mayTouch(u, strip))
-                    return 0;
+                if (!allowed.contains(beyond.strips))
+                    return refuse(u);
                 cavity.push_back(u);
             } else {
                 boundary.push_back({a, b, u});

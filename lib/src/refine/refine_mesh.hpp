@@ -18,13 +18,13 @@
 /// diagonal came first, so the TIN depends on the order of insertions only.
 ///
 /// Strips: every vertex belongs to a strip (the refiner's vertical bands of the raster), and
-/// a triangle to the strip of its three corners, or to none (kSharedStrip). An insertion
-/// restricted to a strip touches only that strip's triangles; it gives up, changing nothing,
-/// when its walk or cavity reaches another triangle. Its new triangles have the point and
-/// cavity corners as corners, so they belong to the strip too. Neighbours outside the cavity
-/// get one link rewritten, the one facing it, found from their corners (which never change
-/// while they are outside every cavity): insertions restricted to different strips may run
-/// at once. New slots come from regions, one per inserting thread.
+/// a triangle spans the strips from its corners' lowest to their highest. An insertion
+/// restricted to a range of strips touches only triangles within it; it gives up, changing
+/// nothing, when its walk or cavity reaches another triangle. Its new triangles have the point
+/// and cavity corners as corners, so they lie within the range too. Neighbours outside the
+/// cavity get one link rewritten, the one facing it, found from their corners (which never
+/// change while they are outside every cavity): insertions restricted to disjoint ranges may
+/// run at once. New slots come from regions, one per inserting thread.
 
 #include "../triangulate/node_arena.hpp"
 
@@ -44,9 +44,19 @@ namespace terratin::detail {
 using TriId = std::uint32_t;
 inline constexpr TriId kNoTriangle = 0xFFFFFFFFU;
 
-/// The strip of a triangle whose corners lie in different strips; also, for tryInsert, "no
-/// restriction".
-inline constexpr std::uint8_t kSharedStrip = 0xFF;
+/// Strips first to last, inclusive: the strips a triangle spans, or those an insertion may
+/// touch.
+struct StripRange {
+    std::uint8_t first = 0;
+    std::uint8_t last = 0;
+
+    static constexpr StripRange all() { return {0, 0xFF}; }
+    [[nodiscard]] bool contains(StripRange other) const {
+        return first <= other.first && other.last <= last;
+    }
+    [[nodiscard]] bool single() const { return first == last; }
+    friend bool operator==(StripRange a, StripRange b) = default;
+};
 
 /// A triangle of the refiner's mesh; v counter-clockwise, n[i] across the edge opposite v[i]
 /// (kNoTriangle on the hull).
@@ -55,8 +65,8 @@ struct MeshTriangle {
     std::array<TriId, 3> n;
     /// Changed with every edit of the slot (read through RefineMesh::version).
     std::uint32_t version;
-    /// The strip of all three corners, or kSharedStrip.
-    std::uint32_t strip;
+    /// The strips of its corners, lowest to highest.
+    StripRange strips;
 };
 
 class RefineMesh {
@@ -74,6 +84,8 @@ public:
         std::vector<Edge> boundary;
         /// After a successful tryInsert: the new triangles, all with the point as a corner.
         std::vector<TriId> fan;
+        /// After one refused for its strips: `allowed` widened by the triangle it met.
+        StripRange needed;
     };
 
     /// `points` and `vertexStrips` are read as vertices are used (the strip of vertex v is
@@ -90,9 +102,7 @@ public:
     void startFromHull(std::span<const VertexId> hull, unsigned region);
 
     [[nodiscard]] const MeshTriangle& triangle(TriId t) const { return m_triangles[t]; }
-    [[nodiscard]] std::uint8_t strip(TriId t) const {
-        return static_cast<std::uint8_t>(m_triangles[t].strip);
-    }
+    [[nodiscard]] StripRange strips(TriId t) const { return m_triangles[t].strips; }
     /// May be read while another thread edits the slot (a candidate's triangle taken over by
     /// another strip): atomic, unlike the rest of the triangle.
     [[nodiscard]] std::uint32_t version(TriId t) const {
@@ -111,11 +121,11 @@ public:
     [[nodiscard]] int edgeContaining(TriId t, VertexId p) const;
 
     /// Inserts p, walking from `start`, and leaves its new triangles in scratch.fan; new slots
-    /// come from `region`. Restricted to `strip` unless that is kSharedStrip: then it returns
-    /// 0 and changes nothing when the walk or the cavity meets a triangle of another strip.
-    /// Also changes nothing and returns 0 when it would add more than `maxAdded` triangles.
-    /// Returns the number of triangles added: 2, or 1 on a hull edge.
-    int tryInsert(VertexId p, TriId start, std::uint8_t strip, unsigned region,
+    /// come from `region`. Returns 0 and changes nothing when the walk or the cavity meets a
+    /// triangle not within `allowed` (then scratch.needed is the range the insertion needs, as
+    /// far as it went) or when it would add more than `maxAdded` triangles. Returns the number
+    /// of triangles added: 2, or 1 on a hull edge.
+    int tryInsert(VertexId p, TriId start, StripRange allowed, unsigned region,
                   InsertScratch& scratch, int maxAdded = 2);
 
     /// The triangles in use, in slotsInUse() order, with neighbours as indices into it.
@@ -145,10 +155,6 @@ private:
     /// circumcircle (the hull's triangulation). Returns the neighbour, or kNoTriangle when
     /// nothing was flipped.
     TriId flipIfIllegal(TriId t, int e);
-    /// Whether `strip` may touch t (see tryInsert).
-    [[nodiscard]] bool mayTouch(TriId t, std::uint8_t strip) const {
-        return strip == kSharedStrip || m_triangles[t].strip == strip;
-    }
     [[nodiscard]] const Point2& point(VertexId v) const { return m_points[v]; }
 
     std::span<const Point2> m_points;

@@ -42,7 +42,7 @@ void insertAll(RefineMesh& mesh, unsigned region, const std::vector<Point2>& poi
     for (auto p = static_cast<VertexId>(hullSize); p < points.size(); ++p) {
         const TriId holder = mesh.walk(p, start);
         const std::uint32_t before = mesh.version(holder);
-        const int added = mesh.tryInsert(p, start, kSharedStrip, region, scratch);
+        const int added = mesh.tryInsert(p, start, StripRange::all(), region, scratch);
         ASSERT_TRUE(added == 1 || added == 2) << "point " << p;
         triangles += static_cast<std::size_t>(added);
         EXPECT_NE(mesh.version(holder), before);
@@ -129,27 +129,30 @@ TEST(RefineMesh, RestrictedInsertionStaysInItsStripOrChangesNothing) {
     for (std::size_t v = 0; v < points.size(); ++v)
         strips[v] = points[v].x < 50.0 ? 0 : 1;
     TestMesh test(points, strips, {0, 1, 2, 3});
+    const auto own = [&](VertexId p) { return StripRange{strips[p], strips[p]}; };
     RefineMesh& mesh = test.mesh;
     RefineMesh::InsertScratch scratch;
     for (auto p = VertexId{4}; p < 304; ++p)
-        ASSERT_GT(mesh.tryInsert(p, mesh.slotsInUse().front(), kSharedStrip, test.region, scratch),
-                  0);
+        ASSERT_GT(
+            mesh.tryInsert(p, mesh.slotsInUse().front(), StripRange::all(), test.region, scratch),
+            0);
     std::vector<VertexId> refused;
     std::size_t inserted = 0;
     for (auto p = VertexId{304}; p < points.size(); ++p) {
         const std::vector<TriId> slots = mesh.slotsInUse();
         // Start from a triangle of p's strip, if any.
-        const auto own = std::find_if(slots.begin(), slots.end(),
-                                      [&](TriId t) { return mesh.strip(t) == strips[p]; });
-        if (own == slots.end()) {
+        const auto start = std::find_if(slots.begin(), slots.end(),
+                                        [&](TriId t) { return mesh.strips(t) == own(p); });
+        if (start == slots.end()) {
             refused.push_back(p);
             continue;
         }
         std::vector<MeshTriangle> before;
         for (const TriId t : slots)
             before.push_back(mesh.triangle(t));
-        if (mesh.tryInsert(p, *own, strips[p], test.region, scratch) == 0) {
-            // Nothing changed.
+        if (mesh.tryInsert(p, *start, own(p), test.region, scratch) == 0) {
+            // It met a triangle spanning both strips, and nothing changed.
+            EXPECT_EQ(scratch.needed, (StripRange{0, 1}));
             ASSERT_EQ(mesh.slotsInUse(), slots);
             for (std::size_t k = 0; k < slots.size(); ++k) {
                 EXPECT_EQ(mesh.triangle(slots[k]).v, before[k].v);
@@ -162,9 +165,9 @@ TEST(RefineMesh, RestrictedInsertionStaysInItsStripOrChangesNothing) {
         ++inserted;
         // The new triangles belong to the strip; the ones of the other strip are untouched.
         for (const TriId t : scratch.fan)
-            EXPECT_EQ(mesh.strip(t), strips[p]);
+            EXPECT_EQ(mesh.strips(t), own(p));
         for (std::size_t k = 0; k < slots.size(); ++k)
-            if (before[k].strip != strips[p] && before[k].strip != kSharedStrip) {
+            if (!(before[k].strips == own(p)) && before[k].strips.single()) {
                 EXPECT_EQ(mesh.triangle(slots[k]).v, before[k].v);
                 EXPECT_EQ(mesh.triangle(slots[k]).n, before[k].n);
             }
@@ -173,8 +176,9 @@ TEST(RefineMesh, RestrictedInsertionStaysInItsStripOrChangesNothing) {
     EXPECT_GT(inserted, 1300U);
     EXPECT_FALSE(refused.empty());
     for (const VertexId p : refused)
-        ASSERT_GT(mesh.tryInsert(p, mesh.slotsInUse().front(), kSharedStrip, test.region, scratch),
-                  0);
+        ASSERT_GT(
+            mesh.tryInsert(p, mesh.slotsInUse().front(), StripRange::all(), test.region, scratch),
+            0);
     const TinMesh tin = toTinMesh(mesh, points, points.size());
     EXPECT_EQ(tin.triangleCount(), 2 * points.size() - 2 - 4);
     EXPECT_TRUE(validateDelaunay(tin).ok());

@@ -79,12 +79,14 @@ struct RefineResult {
     std::size_t droppedTriangles = 0;
     /// Vertices of the convex hull the refinement started from.
     std::size_t hullPoints = 0;
-    /// Strips refined at once, levels of error they went down by, candidates deferred to a
-    /// level's sequential step because their insertion reached past their strip, and the
-    /// points that step inserted (those and the ones in triangles spanning strips).
+    /// Strips refined at once and levels of error they went down by; candidates deferred
+    /// because their insertion reached past their strip (or pair of strips); points inserted
+    /// by the pairs of neighbouring strips and by the sequential step (the rest went in within
+    /// one strip).
     std::size_t strips = 0;
     std::size_t levels = 0;
     std::size_t deferredCandidates = 0;
+    std::size_t pairInsertions = 0;
     std::size_t sharedInsertions = 0;
     /// With positions: passes of the exact completion that inserted cells the levels'
     /// approximate scans left above the target (0 without positions).
