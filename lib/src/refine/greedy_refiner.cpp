@@ -22,6 +22,11 @@ constexpr double kHolePriority = std::numeric_limits<double>::infinity();
 /// Triangles around a new vertex scanned in one batch.
 constexpr std::size_t kMaxFan = 16;
 
+/// A fan of the shared step covering more cells than this is scanned on the workers, in
+/// bands of kBandRows rows.
+constexpr std::int64_t kParallelScanCells = std::int64_t{1} << 15;
+constexpr std::int64_t kBandRows = 32;
+
 /// Each level goes down to this fraction of the highest error left. Closer to 1 follows the
 /// greedy order more closely across strips, at the cost of more levels (each ends with a
 /// sequential step and a barrier).
@@ -85,6 +90,57 @@ void GreedyRefiner::scanAll(std::span<const TriId> triangles, Found&& found) con
                         candidateOf(triangles[begin + k], scans[k].measure(m_view)))
                     found(*candidate);
     }
+}
+
+template <class Found>
+void GreedyRefiner::scanOnWorkers(std::span<const TriId> triangles, Found&& found) {
+    struct Band {
+        std::size_t triangle;
+        std::int64_t rowFrom;
+        std::int64_t rowTo;
+    };
+    std::vector<PixelTriangle> pixels;
+    std::vector<std::size_t> measured; // index into `triangles` of each pixel triangle
+    std::vector<Band> bands;
+    for (std::size_t k = 0; k < triangles.size(); ++k) {
+        const MeshTriangle& node = m_mesh->triangle(triangles[k]);
+        const PixelTriangle pixel(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]));
+        if (!pixel.hasArea() || pixel.coversOnlyCorners())
+            continue;
+        for (std::int64_t row = pixel.rowMin(); row <= pixel.rowMax(); row += kBandRows)
+            bands.push_back({pixels.size(), row, std::min(row + kBandRows - 1, pixel.rowMax())});
+        pixels.push_back(pixel);
+        measured.push_back(k);
+    }
+    std::vector<ScanResult> results(bands.size());
+    std::atomic<std::size_t> next{0};
+    m_workers.run([&](unsigned) {
+        for (std::size_t b = next++; b < bands.size(); b = next++)
+            results[b] =
+                measureRows(pixels[bands[b].triangle], m_view, bands[b].rowFrom, bands[b].rowTo);
+    });
+    // Bands are in row order within each triangle: merging them in order is one scan.
+    std::vector<ScanResult> totals(pixels.size());
+    for (std::size_t b = 0; b < bands.size(); ++b)
+        mergeLater(totals[bands[b].triangle], results[b]);
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        if (const std::optional<Candidate> candidate =
+                candidateOf(triangles[measured[i]], totals[i]))
+            found(*candidate);
+}
+
+template <class Found>
+void GreedyRefiner::scanFan(std::span<const TriId> triangles, Found&& found) {
+    std::int64_t doubleArea = 0;
+    for (const TriId t : triangles) {
+        const MeshTriangle& node = m_mesh->triangle(t);
+        doubleArea +=
+            PixelTriangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2])).doubleArea();
+    }
+    if (m_workers.size() > 1 && doubleArea > 2 * kParallelScanCells)
+        scanOnWorkers(triangles, found);
+    else
+        scanAll(triangles, found);
 }
 
 bool GreedyRefiner::isLive(const Candidate& candidate) const {
@@ -224,6 +280,13 @@ void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double leve
     task.triangles = 0;
     while (!queue.empty() && queue.top().priority > level && task.inserted < quota) {
         const Candidate candidate = queue.pop();
+        // The next candidate's triangle and flag are two cache misses at random places:
+        // requested now, they arrive while this one is inserted.
+        if (!queue.empty()) {
+            const Candidate& next = queue.top();
+            __builtin_prefetch(&m_mesh->triangle(next.triangle));
+            __builtin_prefetch(&m_flags[next.cell]);
+        }
         if (!isLive(candidate))
             continue;
         const int added = insert(candidate, allowed, task.insert, 2);
@@ -330,9 +393,9 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
         m_triangles += static_cast<std::size_t>(added);
         const std::vector<TriId>& fan = m_sharedInsert.fan;
         if (exactLimits)
-            scanAll(fan, [&](const Candidate& found) { m_shared.push(found); });
+            scanFan(fan, [&](const Candidate& found) { m_shared.push(found); });
         else
-            scanAll(fan, [&](const Candidate& found) { route(found); });
+            scanFan(fan, [&](const Candidate& found) { route(found); });
         if (++done % kCheckEvery == 0)
             report(progress, candidate.priority);
     }

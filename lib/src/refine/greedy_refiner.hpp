@@ -174,6 +174,13 @@ private:
     /// Scans triangles, whose memory requests overlap (kMaxFan at a time), and passes each
     /// candidate found to `found`.
     template <class Found> void scanAll(std::span<const TriId> nodes, Found&& found) const;
+    /// scanAll on the workers, for triangles too large for one thread (early on, when they
+    /// span much of the raster): their rows are measured in bands. The same candidates as
+    /// scanAll.
+    template <class Found> void scanOnWorkers(std::span<const TriId> nodes, Found&& found);
+    /// Scans an insertion's fan made by one thread alone (the shared step), on the workers
+    /// when it covers many cells.
+    template <class Found> void scanFan(std::span<const TriId> nodes, Found&& found);
     [[nodiscard]] double progressFraction(double topPriority) const;
     /// Calls `progress` (from the calling thread only); throws Cancelled when it says stop.
     void report(const ProgressCallback& progress, double topPriority);

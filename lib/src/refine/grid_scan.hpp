@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -167,16 +168,26 @@ public:
     }
     [[nodiscard]] double gradCol() const { return m_gradCol; }
 
+    /// Twice the triangle's area in cells (about twice the cells it covers).
+    [[nodiscard]] std::int64_t doubleArea() const { return m_det < 0 ? -m_det : m_det; }
+    [[nodiscard]] std::int64_t rowMin() const { return m_rowMin; }
+    [[nodiscard]] std::int64_t rowMax() const { return m_rowMax; }
+
     /// Calls visit(row, lo, hi) for each row of the grid with cells inside the closed
-    /// triangle, [lo, hi] the inclusive column interval, clipped to the grid. When
-    /// `strictEdge` is given, the cells on edge i (corner(i) to corner(i+1)) are left out
-    /// where strictEdge[i] is true (see ownsSharedEdge). Requires hasArea().
+    /// triangle, [lo, hi] the inclusive column interval, clipped to the grid and to the rows
+    /// rowFrom..rowTo. When `strictEdge` is given, the cells on edge i (corner(i) to
+    /// corner(i+1)) are left out where strictEdge[i] is true (see ownsSharedEdge). Requires
+    /// hasArea().
     template <class Visit>
     void forEachRow(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
-                    Visit&& visit) const {
-        forEachRowPair(gridWidth, gridHeight, strictEdge,
-                       [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t,
-                           std::int64_t) { visit(row, lo, hi); });
+                    Visit&& visit, std::int64_t rowFrom = 0,
+                    std::int64_t rowTo = std::numeric_limits<std::int64_t>::max()) const {
+        forEachRowPair(
+            gridWidth, gridHeight, strictEdge,
+            [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t, std::int64_t) {
+                visit(row, lo, hi);
+            },
+            rowFrom, rowTo);
     }
 
     /// Like forEachRow without `strictEdge`, and gives as well the sub-interval [ownedLo,
@@ -184,7 +195,8 @@ public:
     /// (empty when ownedLo > ownedHi). `strictEdge` may be null (then both intervals agree).
     template <class Visit>
     void forEachRowPair(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
-                        Visit&& visit) const {
+                        Visit&& visit, std::int64_t rowFrom = 0,
+                        std::int64_t rowTo = std::numeric_limits<std::int64_t>::max()) const {
         // Edge i runs from corner i to corner i+1; a cell (x, r) is inside when
         // sgn * orient(p, q, (x, r)) >= t (t = 0 closed, 1 to leave the edge's cells out), with
         //   orient(p, q, (x, r)) = (q.col - p.col)(r - p.row) - (q.row - p.row)(x - p.col).
@@ -194,8 +206,8 @@ public:
         // slope), slope < 0 gives x <= floor(N / -slope), slope == 0 needs N(r) >= 0. The floor
         // divisions are carried from row to row with a remainder (Bresenham), exactly.
         const std::int64_t sgn = m_det > 0 ? 1 : -1;
-        const std::int64_t rowFirst = std::max<std::int64_t>(m_rowMin, 0);
-        const std::int64_t rowLast = std::min<std::int64_t>(m_rowMax, gridHeight - 1);
+        const std::int64_t rowFirst = std::max({m_rowMin, rowFrom, std::int64_t{0}});
+        const std::int64_t rowLast = std::min({m_rowMax, rowTo, gridHeight - 1});
         if (rowFirst > rowLast)
             return;
         EdgeWalk closed[3];

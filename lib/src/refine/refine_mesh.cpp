@@ -230,6 +230,14 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
     }
     std::vector<TriId>& cavity = scratch.cavity;
     std::vector<InsertScratch::Edge>& boundary = scratch.boundary;
+    // A cavity triangle's neighbours are read when the search reaches it: their records are
+    // requested as soon as it joins.
+    const auto requestNeighbours = [&](TriId in) {
+        for (const TriId n : m_triangles[in].n)
+            if (n != kNoTriangle)
+                __builtin_prefetch(&m_triangles[n]);
+    };
+    requestNeighbours(t);
     cavity.assign(1, t);
     boundary.clear();
     for (std::size_t i = 0; i < cavity.size(); ++i) {
@@ -252,6 +260,7 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
                                      q) > 0.0) {
                 if (!allowed.contains(beyond.strips))
                     return refuse(u);
+                requestNeighbours(u);
                 cavity.push_back(u);
             } else {
                 boundary.push_back({a, b, u});

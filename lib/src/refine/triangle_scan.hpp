@@ -28,6 +28,51 @@ struct ScanResult {
     bool coversHole = false;
 };
 
+/// Measures the cells of row `row`, columns lo..hi, of `triangle` into `result`.
+inline void measureSpan(const GridView& view, const PixelTriangle& triangle, std::int64_t row,
+                        std::int64_t lo, std::int64_t hi, ScanResult& result) {
+    const float* z = view.z + row * view.width;
+    const std::uint8_t* flags = view.flags + row * view.width;
+    const double base = triangle.rowBase(row);
+    const double gradCol = triangle.gradCol();
+    for (std::int64_t col = lo; col <= hi; ++col) {
+        if (flags[col] != 0) {
+            result.coversHole |= (flags[col] & kCellOpenHole) != 0;
+            continue;
+        }
+        const double error =
+            std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
+        if (error > result.best) {
+            result.best = error;
+            result.bestCell = row * view.width + col;
+        }
+    }
+}
+
+/// Measures the rows rowFrom..rowTo of a triangle, a part of a large one (requires hasArea()).
+inline ScanResult measureRows(const PixelTriangle& triangle, const GridView& view,
+                              std::int64_t rowFrom, std::int64_t rowTo) {
+    ScanResult result;
+    triangle.forEachRow(
+        view.width, view.height, nullptr,
+        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+            measureSpan(view, triangle, row, lo, hi, result);
+        },
+        rowFrom, rowTo);
+    return result;
+}
+
+/// Adds the measure of a later part of the same triangle (rows after total's): the result is
+/// the one of measuring both parts at once.
+inline void mergeLater(ScanResult& total, const ScanResult& later) {
+    // A later part's cells have higher indices: it wins a tie only against nothing.
+    if (later.best > total.best) {
+        total.best = later.best;
+        total.bestCell = later.bestCell;
+    }
+    total.coversHole |= later.coversHole;
+}
+
 class TriangleScan {
 public:
     static constexpr std::size_t kPreparedRows = 32;
@@ -94,22 +139,7 @@ private:
     }
 
     void measureRow(const GridView& view, const Span& span, ScanResult& result) const {
-        const float* z = view.z + span.row * view.width;
-        const std::uint8_t* flags = view.flags + span.row * view.width;
-        const double base = m_triangle->rowBase(span.row);
-        const double gradCol = m_triangle->gradCol();
-        for (std::int64_t col = span.lo; col <= span.hi; ++col) {
-            if (flags[col] != 0) {
-                result.coversHole |= (flags[col] & kCellOpenHole) != 0;
-                continue;
-            }
-            const double error =
-                std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
-            if (error > result.best) {
-                result.best = error;
-                result.bestCell = span.row * view.width + col;
-            }
-        }
+        measureSpan(view, *m_triangle, span.row, span.lo, span.hi, result);
     }
 
     std::optional<PixelTriangle> m_triangle;

@@ -4,6 +4,7 @@
 
 #include "candidate_queue.hpp"
 #include "grid_scan.hpp"
+#include "triangle_scan.hpp"
 
 #include <gtest/gtest.h>
 
@@ -73,6 +74,41 @@ TEST(GridScan, RowsHoldExactlyTheCellsOfTheClosedTriangle) {
         }
     }
     EXPECT_GT(onlyCorners, 0);
+}
+
+TEST(GridScan, BandsOfRowsMeasureLikeTheWholeTriangle) {
+    // Rough elevations with ties (integers) and a few flagged cells; a triangle measured in
+    // bands of rows and merged in order gives the same farthest cell as measured at once.
+    constexpr std::int64_t kWidth = 90;
+    constexpr std::int64_t kHeight = 70;
+    std::mt19937 random(9);
+    std::uniform_int_distribution<int> height(0, 6);
+    std::vector<float> z(kWidth * kHeight);
+    std::vector<std::uint8_t> flags(z.size(), 0);
+    for (std::size_t i = 0; i < z.size(); ++i) {
+        z[i] = static_cast<float>(height(random));
+        flags[i] = i % 37 == 0 ? kCellOpenHole | kCellNoData : i % 41 == 0 ? kCellVertex : 0;
+    }
+    const GridView view{kWidth, kHeight, z.data(), flags.data()};
+    std::uniform_int_distribution<std::int64_t> coordinate(0, kWidth - 1);
+    for (int trial = 0; trial < 300; ++trial) {
+        const PixelCorner a{coordinate(random), coordinate(random) % kHeight, 3.0, 0};
+        const PixelCorner b{coordinate(random), coordinate(random) % kHeight, 1.0, 1};
+        const PixelCorner c{coordinate(random), coordinate(random) % kHeight, 5.0, 2};
+        const PixelTriangle triangle(a, b, c);
+        TriangleScan scan;
+        if (!scan.prepare(triangle, view))
+            continue;
+        const ScanResult whole = scan.measure(view);
+        for (const std::int64_t band : {1, 3, 32}) {
+            ScanResult merged;
+            for (std::int64_t row = triangle.rowMin(); row <= triangle.rowMax(); row += band)
+                mergeLater(merged, measureRows(triangle, view, row, row + band - 1));
+            EXPECT_EQ(merged.best, whole.best);
+            EXPECT_EQ(merged.bestCell, whole.bestCell);
+            EXPECT_EQ(merged.coversHole, whole.coversHole);
+        }
+    }
 }
 
 TEST(GridScan, FloorDivisionIsExact) {
