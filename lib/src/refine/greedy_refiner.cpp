@@ -56,8 +56,8 @@ GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::span<const Point2> pos
 }
 
 PixelCorner GreedyRefiner::corner(VertexId v) const {
-    const VertexPixel& pixel = m_vertexPixel[v];
-    return {pixel.col, pixel.row, static_cast<double>(pixel.z), v};
+    const RefineVertex& vertex = m_vertices[v];
+    return {vertex.col, vertex.row, static_cast<double>(vertex.z), v};
 }
 
 bool GreedyRefiner::prepareScan(TriId id, TriangleScan& scan) const {
@@ -191,26 +191,19 @@ void GreedyRefiner::planStrips() {
         own.endVertex = static_cast<VertexId>(ids);
         slots += 2 * validInStrip[k];
     }
-    m_points = HugePageBuffer<Point2>(ids);
-    m_vertexCell = HugePageBuffer<std::uint32_t>(ids);
-    m_vertexPixel = HugePageBuffer<VertexPixel>(ids);
-    m_vertexStrip = HugePageBuffer<std::uint8_t>(ids);
-    m_mesh.emplace(std::span<const Point2>(m_points.data(), ids),
-                   std::span<const std::uint8_t>(m_vertexStrip.data(), ids), slots);
+    m_vertices = HugePageBuffer<RefineVertex>(ids);
+    m_mesh.emplace(std::span<const RefineVertex>(m_vertices.data(), ids), slots);
     m_mesh->addRegion(m_hullPoints);
     for (std::size_t k = 0; k < m_strips.size(); ++k)
         m_strips[k].region = m_mesh->addRegion(2 * validInStrip[k]);
 }
 
 void GreedyRefiner::setVertex(VertexId vertex, std::uint32_t cell) {
-    // Point2 and the others are implicit-lifetime aggregates: writing into the raw storage
-    // is valid.
+    // RefineVertex is an implicit-lifetime aggregate: writing into the raw storage is valid.
     const auto width = static_cast<std::uint32_t>(m_grid.width);
-    m_points[vertex] = position(cell);
-    m_vertexCell[vertex] = cell;
-    m_vertexPixel[vertex] = {static_cast<std::int32_t>(cell % width),
-                             static_cast<std::int32_t>(cell / width), m_grid.z[cell]};
-    m_vertexStrip[vertex] = stripOfCell(cell);
+    m_vertices[vertex] = {position(cell), static_cast<std::int32_t>(cell % width),
+                          static_cast<std::int32_t>(cell / width), m_grid.z[cell],
+                          stripOfCell(cell)};
 }
 
 void GreedyRefiner::startFromHull() {
@@ -266,11 +259,6 @@ int GreedyRefiner::insert(const Candidate& candidate, StripRange allowed,
         return 0;
     ++own.nextVertex;
     m_flags[cell] |= kCellVertex;
-    // The new triangles' corners are scattered (vertices are numbered in insertion order):
-    // their pixels are requested together before the scans.
-    for (const TriId t : scratch.fan)
-        for (const VertexId v : m_mesh->triangle(t).v)
-            __builtin_prefetch(&m_vertexPixel[v]);
     return added;
 }
 
@@ -578,8 +566,11 @@ TinMesh GreedyRefiner::extract() const {
     std::size_t out = 0;
     for (const auto& [first, end] : ranges)
         for (VertexId v = first; v < end; ++v, ++out) {
-            const std::uint32_t cell = m_vertexCell[v];
-            const Point2& p = m_points[v];
+            const RefineVertex& vertex = m_vertices[v];
+            const auto cell =
+                static_cast<std::uint32_t>(vertex.row) * static_cast<std::uint32_t>(m_grid.width) +
+                static_cast<std::uint32_t>(vertex.col);
+            const Point2& p = vertex.position;
             mesh.vertices[out] = {p.x, p.y, static_cast<double>(m_grid.z[cell])};
             mesh.sourceIndex[out] = cell;
         }

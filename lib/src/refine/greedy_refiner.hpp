@@ -75,13 +75,6 @@ public:
     [[nodiscard]] std::size_t meshBytes() const { return m_mesh->memoryBytes(); }
 
 private:
-    /// A vertex's cell in pixel coordinates and its elevation, for the scans.
-    struct VertexPixel {
-        std::int32_t col;
-        std::int32_t row;
-        float z;
-    };
-    /// A strip's state. Cache-line aligned: the workers run neighbouring strips at once.
     /// A candidate an insertion restricted to some strips refused, and the strips it needs.
     struct Refused {
         Candidate candidate;
@@ -143,7 +136,7 @@ private:
     /// cell's strip. Returns the triangles added, 0 when refused (see RefineMesh::tryInsert).
     int insert(const Candidate& candidate, StripRange allowed, RefineMesh::InsertScratch& scratch,
                int maxAdded);
-    /// Writes vertex `vertex`'s position, cell, pixel and strip for `cell`.
+    /// Makes `vertex` the vertex of `cell`.
     void setVertex(VertexId vertex, std::uint32_t cell);
     /// The highest priority queued anywhere, -inf when nothing is.
     [[nodiscard]] double highestPriority();
@@ -196,11 +189,8 @@ private:
     /// Strip of each column; the strips.
     std::vector<std::uint8_t> m_columnStrip;
     std::vector<Strip> m_strips;
-    /// Per vertex id (hull first, then each strip's range): position, cell, pixel, strip.
-    HugePageBuffer<Point2> m_points;
-    HugePageBuffer<std::uint32_t> m_vertexCell;
-    HugePageBuffer<VertexPixel> m_vertexPixel;
-    HugePageBuffer<std::uint8_t> m_vertexStrip;
+    /// By vertex id: the hull's first, then each strip's range.
+    HugePageBuffer<RefineVertex> m_vertices;
     std::optional<RefineMesh> m_mesh;
     /// Candidates of triangles spanning more than two strips, and the ones refused by pairs.
     CandidateQueue m_shared;

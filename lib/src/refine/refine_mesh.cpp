@@ -21,9 +21,8 @@ constexpr int previous(int i) {
 
 } // namespace
 
-RefineMesh::RefineMesh(std::span<const Point2> points, std::span<const std::uint8_t> vertexStrips,
-                       std::size_t capacity)
-    : m_points(points), m_vertexStrips(vertexStrips), m_capacity(capacity) {
+RefineMesh::RefineMesh(std::span<const RefineVertex> vertices, std::size_t capacity)
+    : m_vertices(vertices), m_capacity(capacity) {
     if (m_capacity >= kNoTriangle)
         throw std::length_error("Refiner: more than 2^32 - 1 triangles");
     // Pages are touched only as slots are used, so memory follows the triangles in use.
@@ -82,9 +81,9 @@ void RefineMesh::set(TriId t, std::array<VertexId, 3> v, std::array<TriId, 3> n)
     MeshTriangle& triangle = m_triangles[t];
     triangle.v = v;
     triangle.n = n;
-    const std::uint8_t a = m_vertexStrips[v[0]];
-    const std::uint8_t b = m_vertexStrips[v[1]];
-    const std::uint8_t c = m_vertexStrips[v[2]];
+    const std::uint8_t a = m_vertices[v[0]].strip;
+    const std::uint8_t b = m_vertices[v[1]].strip;
+    const std::uint8_t c = m_vertices[v[2]].strip;
     triangle.strips = {std::min({a, b, c}), std::max({a, b, c})};
     const std::atomic_ref<std::uint32_t> version(triangle.version);
     version.store(version.load(std::memory_order_relaxed) + 1, std::memory_order_release);

@@ -58,6 +58,20 @@ struct StripRange {
     friend bool operator==(StripRange a, StripRange b) = default;
 };
 
+/// A vertex as the mesh and the refiner keep it, half a cache line: an insertion reads the
+/// positions and strips of its cavity's corners, and the scans that follow read the pixels of
+/// the same corners.
+struct RefineVertex {
+    /// Where the vertex lies in the TIN.
+    Point2 position;
+    /// Its cell in pixel coordinates, and the cell's elevation.
+    std::int32_t col;
+    std::int32_t row;
+    float z;
+    std::uint8_t strip;
+};
+static_assert(sizeof(RefineVertex) == 32);
+
 /// A triangle of the refiner's mesh; v counter-clockwise, n[i] across the edge opposite v[i]
 /// (kNoTriangle on the hull).
 struct MeshTriangle {
@@ -88,10 +102,9 @@ public:
         StripRange needed;
     };
 
-    /// `points` and `vertexStrips` are read as vertices are used (the strip of vertex v is
-    /// vertexStrips[v]); `capacity` bounds the slots of all regions together.
-    RefineMesh(std::span<const Point2> points, std::span<const std::uint8_t> vertexStrips,
-               std::size_t capacity);
+    /// `vertices` are read as they are used (positions and strips); `capacity` bounds the
+    /// slots of all regions together.
+    RefineMesh(std::span<const RefineVertex> vertices, std::size_t capacity);
 
     /// Reserves the next `slots` slots as a region and returns its index. Call before the
     /// region is used, never while insertions run.
@@ -155,10 +168,9 @@ private:
     /// circumcircle (the hull's triangulation). Returns the neighbour, or kNoTriangle when
     /// nothing was flipped.
     TriId flipIfIllegal(TriId t, int e);
-    [[nodiscard]] const Point2& point(VertexId v) const { return m_points[v]; }
+    [[nodiscard]] const Point2& point(VertexId v) const { return m_vertices[v].position; }
 
-    std::span<const Point2> m_points;
-    std::span<const std::uint8_t> m_vertexStrips;
+    std::span<const RefineVertex> m_vertices;
     std::size_t m_capacity = 0;
     HugePageBuffer<MeshTriangle> m_triangles;
     std::vector<Region> m_regions;

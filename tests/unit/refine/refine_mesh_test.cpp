@@ -61,16 +61,24 @@ void insertAll(RefineMesh& mesh, unsigned region, const std::vector<Point2>& poi
     EXPECT_EQ(mesh.slotsInUse().size(), triangles);
 }
 
+std::vector<RefineVertex> verticesOf(const std::vector<Point2>& points,
+                                     const std::vector<std::uint8_t>& strips) {
+    std::vector<RefineVertex> vertices;
+    for (std::size_t v = 0; v < points.size(); ++v)
+        vertices.push_back({points[v], 0, 0, 0.0F, strips[v]});
+    return vertices;
+}
+
 /// A mesh over `points` with its hull and one region for the rest.
 struct TestMesh {
-    TestMesh(const std::vector<Point2>& points, std::vector<std::uint8_t> strips,
+    TestMesh(const std::vector<Point2>& points, const std::vector<std::uint8_t>& strips,
              const std::vector<VertexId>& hull)
-        : vertexStrips(std::move(strips)), mesh(points, vertexStrips, 2 * points.size()) {
+        : vertices(verticesOf(points, strips)), mesh(vertices, 2 * points.size()) {
         const unsigned hullRegion = mesh.addRegion(hull.size());
         region = mesh.addRegion(2 * points.size() - hull.size());
         mesh.startFromHull(hull, hullRegion);
     }
-    std::vector<std::uint8_t> vertexStrips;
+    std::vector<RefineVertex> vertices;
     RefineMesh mesh;
     unsigned region = 0;
 };
