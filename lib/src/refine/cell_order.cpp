@@ -1,5 +1,7 @@
 #include "cell_order.hpp"
 
+#include "../triangulate/parallel_for.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -29,7 +31,7 @@ std::vector<std::uint32_t> orderOfKeys(const std::vector<std::uint32_t>& keys) {
 
 } // namespace
 
-void orderByCell(TinMesh& mesh) {
+void orderByCell(TinMesh& mesh, unsigned threads) {
     const std::size_t vertexCount = mesh.vertexCount();
     const std::size_t triangleCount = mesh.triangleCount();
 
@@ -39,23 +41,28 @@ void orderByCell(TinMesh& mesh) {
     {
         std::vector<Point3> vertices(vertexCount);
         std::vector<std::uint32_t> sourceIndex(vertexCount);
-        for (std::size_t rank = 0; rank < vertexCount; ++rank) {
-            const std::uint32_t old = vertexOrder[rank];
-            newVertex[old] = static_cast<std::uint32_t>(rank);
-            vertices[rank] = mesh.vertices[old];
-            sourceIndex[rank] = mesh.sourceIndex[old];
-        }
+        parallelFor(vertexCount, threads, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t rank = begin; rank < end; ++rank) {
+                const std::uint32_t old = vertexOrder[rank];
+                newVertex[old] = static_cast<std::uint32_t>(rank);
+                vertices[rank] = mesh.vertices[old];
+                sourceIndex[rank] = mesh.sourceIndex[old];
+            }
+        });
         mesh.vertices.swap(vertices);
         mesh.sourceIndex.swap(sourceIndex);
     }
-    for (std::uint32_t& corner : mesh.triangles)
-        corner = newVertex[corner];
 
     // Triangles by their lowest corner (counting sort: one bucket per vertex).
     std::vector<std::uint32_t> lowest(triangleCount);
-    for (std::size_t t = 0; t < triangleCount; ++t)
-        lowest[t] = std::min({mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                              mesh.triangles[3 * t + 2]});
+    parallelFor(triangleCount, threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            std::uint32_t* corners = &mesh.triangles[3 * t];
+            for (std::size_t k = 0; k < 3; ++k)
+                corners[k] = newVertex[corners[k]];
+            lowest[t] = std::min({corners[0], corners[1], corners[2]});
+        }
+    });
     std::vector<std::uint32_t> start(vertexCount + 1, 0);
     for (const std::uint32_t corner : lowest)
         ++start[corner + 1];
@@ -65,16 +72,18 @@ void orderByCell(TinMesh& mesh) {
         newTriangle[t] = static_cast<std::int32_t>(start[lowest[t]]++);
     std::vector<std::uint32_t> triangles(mesh.triangles.size());
     std::vector<std::int32_t> neighbours(mesh.neighbours.size());
-    for (std::size_t t = 0; t < triangleCount; ++t) {
-        const auto to = static_cast<std::size_t>(newTriangle[t]);
-        for (std::size_t k = 0; k < 3; ++k) {
-            triangles[3 * to + k] = mesh.triangles[3 * t + k];
-            const std::int32_t neighbour = mesh.neighbours[3 * t + k];
-            neighbours[3 * to + k] = neighbour == kNoNeighbour
-                                         ? kNoNeighbour
-                                         : newTriangle[static_cast<std::size_t>(neighbour)];
+    parallelFor(triangleCount, threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            const auto to = static_cast<std::size_t>(newTriangle[t]);
+            for (std::size_t k = 0; k < 3; ++k) {
+                triangles[3 * to + k] = mesh.triangles[3 * t + k];
+                const std::int32_t neighbour = mesh.neighbours[3 * t + k];
+                neighbours[3 * to + k] = neighbour == kNoNeighbour
+                                             ? kNoNeighbour
+                                             : newTriangle[static_cast<std::size_t>(neighbour)];
+            }
         }
-    }
+    });
     mesh.triangles.swap(triangles);
     mesh.neighbours.swap(neighbours);
 }

@@ -13,7 +13,8 @@
 
 namespace terratin::detail {
 
-/// Renumbers `mesh` (sourceIndex = cell index) as described above; the TIN is unchanged.
-void orderByCell(TinMesh& mesh);
+/// Renumbers `mesh` (sourceIndex = cell index) as described above, on up to `threads`
+/// threads; the TIN is unchanged.
+void orderByCell(TinMesh& mesh, unsigned threads = 1);
 
 } // namespace terratin::detail

@@ -1,5 +1,6 @@
 #include "greedy_refiner.hpp"
 
+#include "../triangulate/parallel_for.hpp"
 #include "located_check.hpp"
 #include "valid_hull.hpp"
 
@@ -549,7 +550,8 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
 
 TinMesh GreedyRefiner::extract() const {
     TinMesh mesh;
-    m_mesh->extract(mesh.triangles, mesh.neighbours);
+    const unsigned threads = m_workers.size();
+    m_mesh->extract(mesh.triangles, mesh.neighbours, threads);
     // Vertex ids run in ranges (the hull's, then each strip's) with unused ids at each range's
     // end: renumber them densely.
     std::vector<std::pair<VertexId, VertexId>> ranges{{0, static_cast<VertexId>(m_hullPoints)}};
@@ -563,24 +565,32 @@ TinMesh GreedyRefiner::extract() const {
     }
     mesh.vertices.resize(count);
     mesh.sourceIndex.resize(count);
-    std::size_t out = 0;
-    for (const auto& [first, end] : ranges)
-        for (VertexId v = first; v < end; ++v, ++out) {
-            const RefineVertex& vertex = m_vertices[v];
-            const auto cell =
-                static_cast<std::uint32_t>(vertex.row) * static_cast<std::uint32_t>(m_grid.width) +
-                static_cast<std::uint32_t>(vertex.col);
-            const Point2& p = vertex.position;
-            mesh.vertices[out] = {p.x, p.y, static_cast<double>(m_grid.z[cell])};
-            mesh.sourceIndex[out] = cell;
-        }
-    for (std::uint32_t& corner : mesh.triangles) {
-        // The range holding the corner: the last one starting at or before it.
-        std::size_t r = ranges.size() - 1;
-        while (ranges[r].first > corner)
-            --r;
-        corner -= shift[r];
+    for (std::size_t r = 0; r < ranges.size(); ++r) {
+        const VertexId first = ranges[r].first;
+        const VertexId out = first - shift[r];
+        parallelFor(ranges[r].second - first, threads,
+                    [&](unsigned, std::size_t begin, std::size_t end) {
+                        for (std::size_t k = begin; k < end; ++k) {
+                            const RefineVertex& vertex = m_vertices[first + k];
+                            const auto cell = static_cast<std::uint32_t>(vertex.row) *
+                                                  static_cast<std::uint32_t>(m_grid.width) +
+                                              static_cast<std::uint32_t>(vertex.col);
+                            const Point2& p = vertex.position;
+                            mesh.vertices[out + k] = {p.x, p.y, static_cast<double>(vertex.z)};
+                            mesh.sourceIndex[out + k] = cell;
+                        }
+                    });
     }
+    parallelFor(mesh.triangles.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            std::uint32_t& corner = mesh.triangles[k];
+            // The range holding the corner: the last one starting at or before it.
+            std::size_t r = ranges.size() - 1;
+            while (ranges[r].first > corner)
+                --r;
+            corner -= shift[r];
+        }
+    });
     return mesh;
 }
 

@@ -80,7 +80,7 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     result.insertSeconds = lap(phase);
 
     result.mesh = refiner.extract();
-    detail::orderByCell(result.mesh);
+    detail::orderByCell(result.mesh, threads);
     if (options.validate) {
         const MeshValidation validation = validateDelaunay(result.mesh);
         if (!validation.ok())

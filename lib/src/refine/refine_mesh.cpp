@@ -1,5 +1,7 @@
 #include "refine_mesh.hpp"
 
+#include "../triangulate/parallel_for.hpp"
+
 #include "terratin/geometry/predicates.hpp"
 #include "terratin/huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
@@ -295,24 +297,25 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
 }
 
 void RefineMesh::extract(std::vector<std::uint32_t>& triangles,
-                         std::vector<std::int32_t>& neighbours) const {
+                         std::vector<std::int32_t>& neighbours, unsigned threads) const {
     const std::vector<TriId> slots = slotsInUse();
     std::vector<std::int32_t> index(slotEnd(), -1);
     for (std::size_t k = 0; k < slots.size(); ++k)
         index[slots[k]] = static_cast<std::int32_t>(k);
     triangles.resize(3 * slots.size());
     neighbours.resize(3 * slots.size());
-    for (const TriId t : slots) {
-        const auto out = 3 * static_cast<std::size_t>(index[t]);
-        const MeshTriangle& triangle = m_triangles[t];
-        // TinMesh: neighbours[3t+i] across the edge from corner i to corner i+1, which is
-        // the edge opposite corner i+2 here.
-        for (std::size_t i = 0; i < 3; ++i) {
-            triangles[out + i] = triangle.v[i];
-            const TriId across = triangle.n[(i + 2) % 3];
-            neighbours[out + i] = across == kNoTriangle ? kNoNeighbour : index[across];
+    parallelFor(slots.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const MeshTriangle& triangle = m_triangles[slots[k]];
+            // TinMesh: neighbours[3t+i] across the edge from corner i to corner i+1, which is
+            // the edge opposite corner i+2 here.
+            for (std::size_t i = 0; i < 3; ++i) {
+                triangles[3 * k + i] = triangle.v[i];
+                const TriId across = triangle.n[(i + 2) % 3];
+                neighbours[3 * k + i] = across == kNoTriangle ? kNoNeighbour : index[across];
+            }
         }
-    }
+    });
 }
 
 } // namespace terratin::detail

@@ -141,9 +141,10 @@ public:
     int tryInsert(VertexId p, TriId start, StripRange allowed, unsigned region,
                   InsertScratch& scratch, int maxAdded = 2);
 
-    /// The triangles in use, in slotsInUse() order, with neighbours as indices into it.
-    void extract(std::vector<std::uint32_t>& triangles,
-                 std::vector<std::int32_t>& neighbours) const;
+    /// The triangles in use, in slotsInUse() order, with neighbours as indices into it; on up
+    /// to `threads` threads.
+    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours,
+                 unsigned threads = 1) const;
     /// Bytes of the slots handed out (the reserved capacity beyond is untouched).
     [[nodiscard]] std::size_t memoryBytes() const;
 
