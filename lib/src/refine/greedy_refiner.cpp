@@ -36,7 +36,7 @@ constexpr double kLevelRatio = 0.5;
 /// Strips: about this many columns each, at most kMaxStrips. Strips are the unit of parallel
 /// work: more of them balance uneven terrain and feed more threads, fewer leave less work to
 /// the pairs and to the sequential step (the triangles spanning strips).
-constexpr std::int64_t kMinStripColumns = 128;
+constexpr std::int64_t kStripColumns = 128;
 constexpr std::size_t kMaxStrips = 32;
 
 /// Under limits, strips get a share of what is left per level until it is less than this
@@ -162,7 +162,7 @@ void GreedyRefiner::planStrips() {
     std::size_t count = m_options.strips;
     if (count == 0)
         count =
-            static_cast<std::size_t>(std::max<std::int64_t>(m_grid.width / kMinStripColumns, 1));
+            static_cast<std::size_t>(std::max<std::int64_t>(m_grid.width / kStripColumns, 1));
     count = std::clamp<std::size_t>(count, 1, std::min(kMaxStrips, width));
     m_columnStrip.assign(width, 0);
     std::size_t strip = 0;
@@ -306,14 +306,16 @@ void GreedyRefiner::requeueRefused() {
 template <class Task>
 void GreedyRefiner::runTasks(const std::vector<std::uint8_t>& tasks,
                              const ProgressCallback& progress, double level, Task&& task) {
+    // Only the calling thread reports, with the progress at the start (the counts change
+    // while the tasks run).
+    const double fraction = progressFraction(level);
     std::atomic<std::size_t> next{0};
     m_workers.run([&](unsigned worker) {
         for (std::size_t k = next++; k < tasks.size(); k = next++) {
             if (m_cancelled.load(std::memory_order_relaxed))
                 return;
             task(tasks[k]);
-            // Only the calling thread reports.
-            if (worker == 0 && progress && !progress(progressFraction(level), "refining"))
+            if (worker == 0 && progress && !progress(fraction, "refining"))
                 m_cancelled.store(true, std::memory_order_relaxed);
         }
     });
@@ -414,8 +416,7 @@ double GreedyRefiner::levelBelow(double top) const {
         return m_threshold; // one strip: plain greedy insertion, no levels needed
     if (top == kHolePriority)
         return std::numeric_limits<double>::max(); // the holes' candidates first, alone
-    static const double ratio = getenv("RATIO") ? atof(getenv("RATIO")) : kLevelRatio;
-    const double level = top * ratio;
+    const double level = top * kLevelRatio;
     // Errors vanishingly small against the first (a flat grid used whole): finish in one go.
     return level > m_threshold && level > m_firstPriority * 1e-9 ? level : m_threshold;
 }
