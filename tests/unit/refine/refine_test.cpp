@@ -212,5 +212,22 @@ TEST(Refine, CancelledByProgress) {
     EXPECT_THROW(refine(grid, options, [](double, std::string_view) { return false; }), Cancelled);
 }
 
+TEST(Refine, CancelledPartwayWhileStripsRunOnTwoThreads) {
+    // Reports come from the calling thread while the other inserts; with a point limit the
+    // fraction counts points. The fifth report stops the run.
+    const HeightGrid grid = test::roughTerrain(160, 128, 3);
+    RefineOptions options = withError(0.0, 2);
+    options.strips = 4;
+    options.maxPoints = 12000;
+    int reports = 0;
+    const auto progress = [&](double fraction, std::string_view) {
+        EXPECT_GE(fraction, 0.0);
+        EXPECT_LE(fraction, 1.0);
+        return ++reports < 5;
+    };
+    EXPECT_THROW(refine(grid, options, progress), Cancelled);
+    EXPECT_EQ(reports, 5);
+}
+
 } // namespace
 } // namespace terratin
