@@ -60,10 +60,45 @@ std::vector<std::uint8_t> trianglesOverOpenHoles(const TinMesh& mesh, const Grid
     return drop;
 }
 
+namespace {
+
+/// Measures the valid cells of a row's interval: into the maximum, and when `count`, into
+/// the sums as well.
+void measureCells(const GridView& grid, const PixelTriangle& triangle, std::int64_t row,
+                  std::int64_t lo, std::int64_t hi, bool count, ErrorMeasure& measure) {
+    const std::uint8_t* flags = grid.flags + row * grid.width;
+    const float* z = grid.z + row * grid.width;
+    const double base = triangle.rowBase(row);
+    const double gradCol = triangle.gradCol();
+    for (std::int64_t col = lo; col <= hi; ++col) {
+        if (flags[col] != 0)
+            continue;
+        const double error =
+            std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
+        measure.maxError = std::max(measure.maxError, error);
+        if (count) {
+            measure.sumSquares += error * error;
+            ++measure.coveredCells;
+        }
+    }
+}
+
+} // namespace
+
 ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned threads) {
     const std::size_t triangles = mesh.triangleCount();
     std::vector<ErrorMeasure> blocks(parallelForThreads(triangles, threads));
     const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
+    // Triangles without pixel area are skipped (their cells lie on their neighbours' edges).
+    std::vector<std::uint8_t> flat(triangles);
+    parallelFor(triangles, threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            const PixelCorner& a = corners[mesh.triangles[3 * t]];
+            const PixelCorner& b = corners[mesh.triangles[3 * t + 1]];
+            const PixelCorner& c = corners[mesh.triangles[3 * t + 2]];
+            flat[t] = (b.col - a.col) * (c.row - a.row) == (c.col - a.col) * (b.row - a.row) ? 1 : 0;
+        }
+    });
     // Chunks, not halves: triangles differ in size by orders of magnitude (flat ground).
     parallelForChunks(triangles, threads, kCheckChunk, [&](unsigned block, std::size_t begin,
                                                           std::size_t end) {
@@ -74,46 +109,43 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
             if (t + kAhead < end)
                 for (std::size_t k = 0; k < 3; ++k)
                     __builtin_prefetch(&corners[mesh.triangles[3 * (t + kAhead) + k]]);
+            if (flat[t] != 0)
+                continue;
             const PixelTriangle triangle = triangleOf(mesh, corners, t);
-            if (!triangle.hasArea())
-                continue; // its cells lie on neighbouring triangles' edges (grid_scan.hpp)
             if (triangle.coversOnlyCorners())
                 continue; // vertices, counted below
 
             // Edge i of `triangle` runs corner(i) -> corner(i+1); find the mesh's neighbour
             // across it to decide whether this triangle owns the cells on it.
             bool strict[3] = {false, false, false};
+            bool besideFlat = false;
             for (int i = 0; i < 3; ++i) {
                 const std::uint32_t a = triangle.corner(i).id;
                 const std::uint32_t b = triangle.corner((i + 1) % 3).id;
                 for (int j = 0; j < 3; ++j) {
                     const std::uint32_t p = mesh.triangles[3 * t + j];
                     const std::uint32_t q = mesh.triangles[3 * t + (j + 1) % 3];
-                    if ((p == a && q == b) || (p == b && q == a))
-                        strict[i] = mesh.neighbours[3 * t + j] != kNoNeighbour &&
-                                    !triangle.ownsSharedEdge(i);
+                    if ((p == a && q == b) || (p == b && q == a)) {
+                        const std::int32_t neighbour = mesh.neighbours[3 * t + j];
+                        strict[i] = neighbour != kNoNeighbour && !triangle.ownsSharedEdge(i);
+                        besideFlat |=
+                            neighbour != kNoNeighbour && flat[static_cast<std::size_t>(neighbour)];
+                    }
                 }
             }
-            const double gradCol = triangle.gradCol();
-            triangle.forEachRowPair(
-                grid.width, grid.height, strict,
-                [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t ownedLo,
-                    std::int64_t ownedHi) {
-                    const std::uint8_t* flags = grid.flags + row * grid.width;
-                    const float* z = grid.z + row * grid.width;
-                    const double base = triangle.rowBase(row);
-                    for (std::int64_t col = lo; col <= hi; ++col) {
-                        if (flags[col] != 0)
-                            continue;
-                        const double error = std::fabs(static_cast<double>(z[col]) -
-                                                       (base + gradCol * static_cast<double>(col)));
-                        measure.maxError = std::max(measure.maxError, error);
-                        if (col >= ownedLo && col <= ownedHi) {
-                            measure.sumSquares += error * error;
-                            ++measure.coveredCells;
-                        }
-                    }
-                });
+            // Each covered cell is counted in the one triangle that owns it, which sees the
+            // largest error as well; but no triangle owns the cells a flat neighbour skips, so
+            // beside one the maximum takes every cell of the closed triangle.
+            triangle.forEachRow(grid.width, grid.height, strict,
+                                [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                    measureCells(grid, triangle, row, lo, hi, true, measure);
+                                });
+            if (besideFlat)
+                triangle.forEachRow(grid.width, grid.height, nullptr,
+                                    [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                        measureCells(grid, triangle, row, lo, hi, false,
+                                                     measure);
+                                    });
         }
     });
     ErrorMeasure total;

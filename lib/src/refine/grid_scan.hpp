@@ -176,27 +176,12 @@ public:
     /// Calls visit(row, lo, hi) for each row of the grid with cells inside the closed
     /// triangle, [lo, hi] the inclusive column interval, clipped to the grid and to the rows
     /// rowFrom..rowTo. When `strictEdge` is given, the cells on edge i (corner(i) to
-    /// corner(i+1)) are left out where strictEdge[i] is true (see ownsSharedEdge). Requires
-    /// hasArea().
+    /// corner(i+1)) are left out where strictEdge[i] is true (see ownsSharedEdge), and rows
+    /// left empty are skipped. Requires hasArea().
     template <class Visit>
     void forEachRow(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
                     Visit&& visit, std::int64_t rowFrom = 0,
                     std::int64_t rowTo = std::numeric_limits<std::int64_t>::max()) const {
-        forEachRowPair(
-            gridWidth, gridHeight, strictEdge,
-            [&](std::int64_t row, std::int64_t lo, std::int64_t hi, std::int64_t, std::int64_t) {
-                visit(row, lo, hi);
-            },
-            rowFrom, rowTo);
-    }
-
-    /// Like forEachRow without `strictEdge`, and gives as well the sub-interval [ownedLo,
-    /// ownedHi] of the row's cells left when the edges marked in `strictEdge` are excluded
-    /// (empty when ownedLo > ownedHi). `strictEdge` may be null (then both intervals agree).
-    template <class Visit>
-    void forEachRowPair(std::int64_t gridWidth, std::int64_t gridHeight, const bool* strictEdge,
-                        Visit&& visit, std::int64_t rowFrom = 0,
-                        std::int64_t rowTo = std::numeric_limits<std::int64_t>::max()) const {
         // Edge i runs from corner i to corner i+1; a cell (x, r) is inside when
         // sgn * orient(p, q, (x, r)) >= t (t = 0 closed, 1 to leave the edge's cells out), with
         //   orient(p, q, (x, r)) = (q.col - p.col)(r - p.row) - (q.row - p.row)(x - p.col).
@@ -210,36 +195,24 @@ public:
         const std::int64_t rowLast = std::min({m_rowMax, rowTo, gridHeight - 1});
         if (rowFirst > rowLast)
             return;
-        EdgeWalk closed[3];
-        EdgeWalk owned[3];
+        EdgeWalk edges[3];
         for (int i = 0; i < 3; ++i) {
             const PixelCorner& p = m_corner[static_cast<std::size_t>(i)];
             const PixelCorner& q = m_corner[static_cast<std::size_t>((i + 1) % 3)];
             const std::int64_t slope = -sgn * (q.row - p.row);
             const std::int64_t k = (q.col - p.col) * (rowFirst - p.row) + (q.row - p.row) * p.col;
-            const std::int64_t step = sgn * (q.col - p.col);
-            closed[i].start(slope, sgn * k, step);
-            if (strictEdge != nullptr)
-                owned[i].start(slope, sgn * k - (strictEdge[i] ? 1 : 0), step);
+            const std::int64_t t = strictEdge != nullptr && strictEdge[i] ? 1 : 0;
+            edges[i].start(slope, sgn * k - t, sgn * (q.col - p.col));
         }
         for (std::int64_t r = rowFirst; r <= rowLast; ++r) {
             std::int64_t lo = 0;
             std::int64_t hi = gridWidth - 1;
-            for (const EdgeWalk& edge : closed)
+            for (const EdgeWalk& edge : edges)
                 edge.clip(lo, hi);
-            if (lo <= hi) {
-                std::int64_t ownedLo = lo;
-                std::int64_t ownedHi = hi;
-                if (strictEdge != nullptr)
-                    for (const EdgeWalk& edge : owned)
-                        edge.clip(ownedLo, ownedHi);
-                visit(r, lo, hi, ownedLo, ownedHi);
-            }
-            for (EdgeWalk& edge : closed)
+            if (lo <= hi)
+                visit(r, lo, hi);
+            for (EdgeWalk& edge : edges)
                 edge.advance();
-            if (strictEdge != nullptr)
-                for (EdgeWalk& edge : owned)
-                    edge.advance();
         }
     }
 
