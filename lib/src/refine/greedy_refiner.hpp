@@ -4,17 +4,20 @@
 /// per-triangle candidates), run in vertical strips of the raster at once.
 ///
 /// The raster's columns are cut into strips of about equal valid cells (how many depends on
-/// the raster, never on the thread count). A triangle belongs to a strip when its three
-/// corners do (refine_mesh.hpp); each strip keeps its own queue of the candidates found in
-/// its triangles, and a candidate found in a triangle spanning strips goes to a shared queue.
-/// Refinement goes down by levels of error: in a level, the workers take the strips one by
-/// one and insert each strip's candidates above the level in its own priority order,
-/// touching only its triangles, with no lock and no waiting. A candidate whose insertion
-/// would reach past its strip is deferred; then one thread inserts the shared and deferred
-/// candidates above the level, unrestricted, and the next level starts below the highest
-/// error left. A strip's insertions depend only on its own triangles, so the TIN is the same
-/// for any number of threads; greedy order holds within a strip, and across strips within a
-/// level (a factor kLevelRatio of error), which costs a fraction of a percent of points.
+/// the raster, never on the thread count). A triangle spans the strips of its corners
+/// (refine_mesh.hpp). Candidates are queued by where their triangle lies: within one strip
+/// (that strip's queue), across two neighbouring strips (the pair's queue), or wider (a
+/// shared queue). Refinement goes down by levels of error; in a level:
+///  1. the workers take the strips one by one and insert each strip's candidates above the
+///     level in its own priority order, touching only the strip's triangles, with no lock;
+///  2. the pairs of strips do the same with theirs, first those starting at an even strip,
+///     which never share one, then the odd ones; a candidate refused by a strip because its
+///     cavity reached the neighbour goes to the pair;
+///  3. one thread inserts the shared candidates and those the pairs refused, unrestricted.
+/// The next level starts below the highest error left. A task's insertions depend only on its
+/// own triangles, so the TIN is the same for any number of threads; greedy order holds within
+/// a task, and across tasks within a level (a factor kLevelRatio of error), which costs a
+/// fraction of a percent of points.
 ///
 /// Candidates are lazy: one is stale when its triangle's slot changed since (RefineMesh
 /// versions) or its cell became a vertex.
@@ -24,7 +27,7 @@
 /// no valid cell that another triangle would not cover; otherwise the priority is the largest
 /// error, and only errors above the target become candidates. Ties: the lowest cell index.
 ///
-/// Limits (points, triangles) give each strip a share of what is left per level; when little
+/// Limits (points, triangles) give each task a share of what is left per level; when little
 /// is left, one thread finishes in global priority order and stops exactly at the limit.
 
 #include "candidate_queue.hpp"
@@ -66,6 +69,7 @@ public:
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
     [[nodiscard]] std::size_t strips() const { return m_strips.size(); }
     [[nodiscard]] std::size_t levels() const { return m_levels; }
+    /// Candidates a strip or a pair refused because their insertion reached past it.
     [[nodiscard]] std::size_t deferred() const { return m_deferred; }
     /// Points inserted by the pairs of strips, and by the sequential step of the levels.
     [[nodiscard]] std::size_t pairInsertions() const { return m_pairInsertions; }
