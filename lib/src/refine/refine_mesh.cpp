@@ -170,33 +170,23 @@ TriId RefineMesh::flipIfIllegal(TriId t, int e) {
     return u;
 }
 
-TriId RefineMesh::walk(VertexId p, TriId start) const {
-    TriId t = start;
-    const Point2& q = point(p);
-    for (;;) {
-        const MeshTriangle& triangle = m_triangles[t];
-        int exit = -1;
-        for (int i = 0; i < 3 && exit < 0; ++i)
-            if (predicates::orient2d(point(triangle.v[static_cast<std::size_t>(next(i))]),
-                                     point(triangle.v[static_cast<std::size_t>(previous(i))]),
-                                     q) < 0.0)
-                exit = i;
-        if (exit < 0)
-            return t;
-        t = triangle.n[static_cast<std::size_t>(exit)];
-        if (t == kNoTriangle)
-            throw std::logic_error("Refiner: a point outside the hull");
-    }
-}
-
-int RefineMesh::edgeContaining(TriId t, VertexId p) const {
+int RefineMesh::exitEdge(TriId t, const Point2& q) const {
     const MeshTriangle& triangle = m_triangles[t];
     for (int i = 0; i < 3; ++i)
         if (predicates::orient2d(point(triangle.v[static_cast<std::size_t>(next(i))]),
-                                 point(triangle.v[static_cast<std::size_t>(previous(i))]),
-                                 point(p)) == 0.0)
+                                 point(triangle.v[static_cast<std::size_t>(previous(i))]), q) < 0.0)
             return i;
     return -1;
+}
+
+TriId RefineMesh::walk(VertexId p, TriId start) const {
+    TriId t = start;
+    for (int exit = exitEdge(t, point(p)); exit >= 0; exit = exitEdge(t, point(p))) {
+        t = m_triangles[t].n[static_cast<std::size_t>(exit)];
+        if (t == kNoTriangle)
+            throw std::logic_error("Refiner: a point outside the hull");
+    }
+    return t;
 }
 
 int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned region,
@@ -213,17 +203,8 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
     TriId t = start;
     if (!allowed.contains(m_triangles[t].strips))
         return refuse(t);
-    for (;;) {
-        const MeshTriangle& triangle = m_triangles[t];
-        int exit = -1;
-        for (int i = 0; i < 3 && exit < 0; ++i)
-            if (predicates::orient2d(point(triangle.v[static_cast<std::size_t>(next(i))]),
-                                     point(triangle.v[static_cast<std::size_t>(previous(i))]),
-                                     q) < 0.0)
-                exit = i;
-        if (exit < 0)
-            break;
-        t = triangle.n[static_cast<std::size_t>(exit)];
+    for (int exit = exitEdge(t, q); exit >= 0; exit = exitEdge(t, q)) {
+        t = m_triangles[t].n[static_cast<std::size_t>(exit)];
         if (t == kNoTriangle)
             throw std::logic_error("Refiner: a point outside the hull");
         if (!allowed.contains(m_triangles[t].strips))

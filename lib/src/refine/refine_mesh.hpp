@@ -24,7 +24,8 @@
 /// and cavity corners as corners, so they lie within the range too. Neighbours outside the
 /// cavity get one link rewritten, the one facing it, found from their corners (which never
 /// change while they are outside every cavity): insertions restricted to disjoint ranges may
-/// run at once. New slots come from regions, one per inserting thread.
+/// run at once. New slots come from regions (the refiner has one per strip), each used by
+/// one thread at a time.
 
 #include "../triangulate/node_arena.hpp"
 
@@ -130,8 +131,6 @@ public:
 
     /// The triangle holding point p (inside or on its boundary), walking from `start`.
     [[nodiscard]] TriId walk(VertexId p, TriId start) const;
-    /// The corner opposite the edge of t that p lies on, or -1 when p is inside t.
-    [[nodiscard]] int edgeContaining(TriId t, VertexId p) const;
 
     /// Inserts p, walking from `start`, and leaves its new triangles in scratch.fan; new slots
     /// come from `region`. Returns 0 and changes nothing when the walk or the cavity meets a
@@ -160,6 +159,9 @@ private:
     };
 
     TriId allocate(unsigned region);
+    /// The edge of t (by its opposite corner) with q strictly beyond it, or -1 when t holds q
+    /// (inside or on its boundary): a walk's next step.
+    [[nodiscard]] int exitEdge(TriId t, const Point2& q) const;
     void set(TriId t, std::array<VertexId, 3> v, std::array<TriId, 3> n);
     /// In triangle `in` (outside every cavity), points the link across its edge (a, b) at `to`.
     void relinkAcross(TriId in, VertexId a, VertexId b, TriId to);
