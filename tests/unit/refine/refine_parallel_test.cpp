@@ -78,15 +78,28 @@ TEST(RefineParallel, StripsCostFewPointsAgainstStrictGreedy) {
 }
 
 TEST(RefineParallel, LimitsGiveTheSameTinForAnyThreadCount) {
+    // Strips take shares of the points left per level, then one thread stops exactly.
     const HeightGrid grid = test::roughTerrain(100, 100, 23);
     RefineOptions options;
     options.maxPoints = 700;
+    options.strips = 4;
     options.threads = 1;
     const RefineResult one = refine(grid, options);
     options.threads = 3;
     const RefineResult three = refine(grid, options);
     EXPECT_EQ(one.mesh.vertexCount(), 700U);
+    EXPECT_EQ(one.stop, RefineStop::PointLimit);
     EXPECT_EQ(sortedCells(one.mesh), sortedCells(three.mesh));
+
+    options.maxPoints.reset();
+    options.maxTriangles = 1001;
+    const RefineResult triangles = refine(grid, options);
+    options.threads = 1;
+    const RefineResult trianglesOne = refine(grid, options);
+    EXPECT_EQ(triangles.stop, RefineStop::TriangleLimit);
+    EXPECT_LE(triangles.mesh.triangleCount(), 1001U);
+    EXPECT_GE(triangles.mesh.triangleCount(), 999U);
+    EXPECT_EQ(sortedCells(triangles.mesh), sortedCells(trianglesOne.mesh));
 }
 
 } // namespace
