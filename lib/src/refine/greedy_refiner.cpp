@@ -189,7 +189,6 @@ void GreedyRefiner::planStrips() {
         Strip& own = m_strips[k];
         own.firstVertex = own.nextVertex = static_cast<VertexId>(ids);
         ids += validInStrip[k];
-        own.endVertex = static_cast<VertexId>(ids);
         slots += 2 * validInStrip[k];
     }
     m_vertices = HugePageBuffer<RefineVertex>(ids);

@@ -95,10 +95,10 @@ private:
         std::vector<Refused> refused;
         std::size_t inserted = 0;
         std::size_t triangles = 0;
-        /// The strip's range of vertex ids (its valid cells) and its region of mesh slots.
+        /// The strip's vertex ids (one reserved per valid cell of the strip): the first and the
+        /// next free one; and its region of mesh slots.
         VertexId firstVertex = 0;
         VertexId nextVertex = 0;
-        VertexId endVertex = 0;
         unsigned region = 0;
     };
 
