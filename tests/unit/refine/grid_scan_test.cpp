@@ -28,8 +28,8 @@ std::int64_t orient(const PixelCorner& p, const PixelCorner& q, std::int64_t col
 }
 
 /// Every cell of a width x height grid inside or on the triangle, by orientation tests.
-std::set<Cell> cellsByBruteForce(const PixelCorner& a, const PixelCorner& b,
-                                 const PixelCorner& c, std::int64_t width, std::int64_t height) {
+std::set<Cell> cellsByBruteForce(const PixelCorner& a, const PixelCorner& b, const PixelCorner& c,
+                                 std::int64_t width, std::int64_t height) {
     std::set<Cell> cells;
     for (std::int64_t row = 0; row < height; ++row)
         for (std::int64_t col = 0; col < width; ++col) {
@@ -74,6 +74,52 @@ TEST(GridScan, RowsHoldExactlyTheCellsOfTheClosedTriangle) {
         }
     }
     EXPECT_GT(onlyCorners, 0);
+}
+
+TEST(GridScan, StrictEdgesLeaveOutExactlyTheirCells) {
+    // Every combination of strict edges, on triangles with horizontal edges, a corner between
+    // the rows of the other two on either side, and rows clipped to bands.
+    std::mt19937 random(11);
+    std::uniform_int_distribution<std::int64_t> coordinate(-2, 21);
+    constexpr std::int64_t kWidth = 19;
+    constexpr std::int64_t kHeight = 18;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const PixelTriangle triangle({coordinate(random), coordinate(random), 0.0, 0},
+                                     {coordinate(random), coordinate(random), 0.0, 1},
+                                     {coordinate(random), coordinate(random), 0.0, 2});
+        if (!triangle.hasArea())
+            continue;
+        const std::int64_t sgn = orient(triangle.corner(0), triangle.corner(1),
+                                        triangle.corner(2).col, triangle.corner(2).row) > 0
+                                     ? 1
+                                     : -1;
+        for (int mask = 0; mask < 8; ++mask) {
+            const bool strict[3] = {(mask & 1) != 0, (mask & 2) != 0, (mask & 4) != 0};
+            const std::int64_t rowFrom = trial % 3 == 0 ? trial % 7 : 0;
+            const std::int64_t rowTo = trial % 5 == 0 ? rowFrom + trial % 4 : kHeight;
+            std::set<Cell> expected;
+            for (std::int64_t row = rowFrom; row <= std::min(rowTo, kHeight - 1); ++row)
+                for (std::int64_t col = 0; col < kWidth; ++col) {
+                    bool inside = true;
+                    for (int i = 0; i < 3; ++i)
+                        inside &= sgn * orient(triangle.corner(i), triangle.corner((i + 1) % 3),
+                                               col, row) >=
+                                  (strict[i] ? 1 : 0);
+                    if (inside)
+                        expected.insert({row, col});
+                }
+            std::set<Cell> visited;
+            triangle.forEachRow(
+                kWidth, kHeight, strict,
+                [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                    EXPECT_LE(lo, hi);
+                    for (std::int64_t col = lo; col <= hi; ++col)
+                        EXPECT_TRUE(visited.insert({row, col}).second);
+                },
+                rowFrom, rowTo);
+            ASSERT_EQ(visited, expected) << "trial " << trial << " mask " << mask;
+        }
+    }
 }
 
 TEST(GridScan, BandsOfRowsMeasureLikeTheWholeTriangle) {
