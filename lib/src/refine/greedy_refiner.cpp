@@ -67,6 +67,18 @@ bool GreedyRefiner::prepareScan(TriId id, TriangleScan& scan) const {
                         m_view);
 }
 
+double GreedyRefiner::errorIn(TriId id, std::uint32_t cell) const {
+    const MeshTriangle& node = m_mesh->triangle(id);
+    const PixelTriangle pixel(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]));
+    if (!pixel.hasArea())
+        return 0.0;
+    const auto width = static_cast<std::uint32_t>(m_grid.width);
+    const std::int64_t row = cell / width;
+    const std::int64_t col = cell % width;
+    return std::fabs(static_cast<double>(m_grid.z[cell]) -
+                     (pixel.rowBase(row) + pixel.gradCol() * static_cast<double>(col)));
+}
+
 std::optional<Candidate> GreedyRefiner::candidateOf(TriId id, const ScanResult& result) const {
     if (result.best < 0.0)
         return std::nullopt; // no valid cell left to insert
@@ -161,8 +173,7 @@ void GreedyRefiner::planStrips() {
         }
     std::size_t count = m_options.strips;
     if (count == 0)
-        count =
-            static_cast<std::size_t>(std::max<std::int64_t>(m_grid.width / kStripColumns, 1));
+        count = static_cast<std::size_t>(std::max<std::int64_t>(m_grid.width / kStripColumns, 1));
     count = std::clamp<std::size_t>(count, 1, std::min(kMaxStrips, width));
     m_columnStrip.assign(width, 0);
     std::size_t strip = 0;
@@ -359,19 +370,24 @@ void GreedyRefiner::runStripsAndPairs(double level, std::size_t quota,
 }
 
 bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCallback& progress) {
+    if (!exactLimits) {
+        runSharedInBatches(level, progress);
+        return true;
+    }
     std::size_t done = 0;
     while (!m_shared.empty() && m_shared.top().priority > level) {
-        if (exactLimits && m_options.maxPoints && pointCount() >= *m_options.maxPoints) {
+        if (m_options.maxPoints && pointCount() >= *m_options.maxPoints) {
             m_stop = RefineStop::PointLimit;
             return false;
         }
         const Candidate candidate = m_shared.pop();
         if (!isLive(candidate))
             continue;
-        int maxAdded = 2;
-        if (exactLimits && m_options.maxTriangles)
-            maxAdded = static_cast<int>(std::min<std::size_t>(
-                2, *m_options.maxTriangles - std::min(m_triangles, *m_options.maxTriangles)));
+        const int maxAdded =
+            m_options.maxTriangles
+                ? static_cast<int>(std::min<std::size_t>(
+                      2, *m_options.maxTriangles - std::min(m_triangles, *m_options.maxTriangles)))
+                : 2;
         const int added =
             maxAdded > 0 ? insert(candidate, StripRange::all(), m_sharedInsert, maxAdded) : 0;
         if (added == 0) { // only a triangle limit refuses an unrestricted insertion
@@ -381,15 +397,45 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
         }
         ++m_sharedInsertions;
         m_triangles += static_cast<std::size_t>(added);
-        const std::vector<TriId>& fan = m_sharedInsert.fan;
-        if (exactLimits)
-            scanFan(fan, [&](const Candidate& found) { m_shared.push(found); });
-        else
-            scanFan(fan, [&](const Candidate& found) { route(found); });
+        scanFan(m_sharedInsert.fan, [&](const Candidate& found) { m_shared.push(found); });
         if (++done % kCheckEvery == 0)
             report(progress, candidate.priority);
     }
     return true;
+}
+
+void GreedyRefiner::runSharedInBatches(double level, const ProgressCallback& progress) {
+    std::vector<Candidate> batch;
+    std::vector<TriId> made;
+    while (!m_shared.empty() && m_shared.top().priority > level) {
+        batch.clear();
+        while (!m_shared.empty() && m_shared.top().priority > level)
+            batch.push_back(m_shared.pop());
+        // Highest first. Early on one cavity covers most of the raster, so most candidates
+        // of a batch find their triangle replaced by an earlier insertion: such a cell still
+        // goes in if it lies above the level from the new surface, else its cells are left
+        // to the scan of the triangles made.
+        made.clear();
+        for (Candidate candidate : batch) {
+            if ((m_flags[candidate.cell] & kCellVertex) != 0)
+                continue;
+            if (m_mesh->version(candidate.triangle) != candidate.version) {
+                candidate.triangle = m_mesh->walk(position(candidate.cell), candidate.triangle);
+                if (errorIn(candidate.triangle, candidate.cell) <= level)
+                    continue;
+            }
+            const int added = insert(candidate, StripRange::all(), m_sharedInsert, 2);
+            ++m_sharedInsertions;
+            m_triangles += static_cast<std::size_t>(added);
+            made.insert(made.end(), m_sharedInsert.fan.begin(), m_sharedInsert.fan.end());
+        }
+        // A cavity reuses its slots, so every slot listed holds a triangle the batch made:
+        // each is scanned once, however often the batch rewrote it.
+        std::sort(made.begin(), made.end());
+        made.erase(std::unique(made.begin(), made.end()), made.end());
+        scanFan(made, [&](const Candidate& found) { route(found); });
+        report(progress, level);
+    }
 }
 
 void GreedyRefiner::gatherIntoShared() {

@@ -179,9 +179,9 @@ int RefineMesh::exitEdge(TriId t, const Point2& q) const {
     return -1;
 }
 
-TriId RefineMesh::walk(VertexId p, TriId start) const {
+TriId RefineMesh::walk(const Point2& q, TriId start) const {
     TriId t = start;
-    for (int exit = exitEdge(t, point(p)); exit >= 0; exit = exitEdge(t, point(p))) {
+    for (int exit = exitEdge(t, q); exit >= 0; exit = exitEdge(t, q)) {
         t = m_triangles[t].n[static_cast<std::size_t>(exit)];
         if (t == kNoTriangle)
             throw std::logic_error("Refiner: a point outside the hull");

@@ -129,8 +129,8 @@ public:
     /// One past the highest slot handed out.
     [[nodiscard]] TriId slotEnd() const;
 
-    /// The triangle holding point p (inside or on its boundary), walking from `start`.
-    [[nodiscard]] TriId walk(VertexId p, TriId start) const;
+    /// The triangle holding q (inside or on its boundary), walking from `start`.
+    [[nodiscard]] TriId walk(const Point2& q, TriId start) const;
 
     /// Inserts p, walking from `start`, and leaves its new triangles in scratch.fan; new slots
     /// come from `region`. Returns 0 and changes nothing when the walk or the cavity meets a

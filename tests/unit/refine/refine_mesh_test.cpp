@@ -40,7 +40,7 @@ void insertAll(RefineMesh& mesh, unsigned region, const std::vector<Point2>& poi
     std::size_t triangles = hullSize - 2;
     TriId start = mesh.slotsInUse().front();
     for (auto p = static_cast<VertexId>(hullSize); p < points.size(); ++p) {
-        const TriId holder = mesh.walk(p, start);
+        const TriId holder = mesh.walk(points[p], start);
         const std::uint32_t before = mesh.version(holder);
         const int added = mesh.tryInsert(p, start, StripRange::all(), region, scratch);
         ASSERT_TRUE(added == 1 || added == 2) << "point " << p;
