@@ -2,6 +2,7 @@
 
 #include "../triangulate/parallel_for.hpp"
 #include "located_check.hpp"
+#include "task_graph.hpp"
 #include "valid_hull.hpp"
 
 #include "terratin/error.hpp"
@@ -186,6 +187,7 @@ void GreedyRefiner::planStrips() {
         before += validInColumn[col];
     }
     m_strips = std::vector<Strip>(strip + 1);
+    m_pairTasks = std::vector<TaskState>(m_strips.size() - 1);
     std::vector<std::size_t> validInStrip(m_strips.size(), 0);
     for (std::size_t col = 0; col < width; ++col)
         validInStrip[m_columnStrip[col]] += validInColumn[col];
@@ -274,9 +276,10 @@ int GreedyRefiner::insert(const Candidate& candidate, StripRange allowed,
 }
 
 void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double level,
-                          std::size_t quota, Strip& task) {
+                          std::size_t quota, TaskState& task) {
     task.inserted = 0;
     task.triangles = 0;
+    task.deferred = 0;
     while (!queue.empty() && queue.top().priority > level && task.inserted < quota) {
         const Candidate candidate = queue.pop();
         // The next candidate's triangle and flag are two cache misses at random places:
@@ -291,6 +294,7 @@ void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double leve
         const int added = insert(candidate, allowed, task.insert, 2);
         if (added == 0) {
             task.refused.push_back({candidate, task.insert.needed});
+            ++task.deferred;
             continue;
         }
         ++task.inserted;
@@ -301,72 +305,90 @@ void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double leve
     }
 }
 
-void GreedyRefiner::requeueRefused() {
-    for (Strip& task : m_strips) {
-        m_deferred += task.refused.size();
-        for (const auto& [candidate, needed] : task.refused)
-            if (needed.last == needed.first + 1)
-                m_strips[needed.first].pairQueue.push(candidate);
-            else
-                m_shared.push(candidate);
-        task.refused.clear();
+void GreedyRefiner::takeRefusedByStrips(std::uint8_t k) {
+    const StripRange pair{k, static_cast<std::uint8_t>(k + 1)};
+    for (const std::uint8_t strip : {pair.first, pair.last}) {
+        std::vector<Refused>& refused = m_strips[strip].task.refused;
+        const auto needsPair = [&](const Refused& r) {
+            return r.needed.first == pair.first && r.needed.last == pair.last;
+        };
+        for (const Refused& r : refused)
+            if (needsPair(r))
+                m_strips[k].pairQueue.push(r.candidate);
+        refused.erase(std::remove_if(refused.begin(), refused.end(), needsPair), refused.end());
     }
 }
 
-template <class Task>
-void GreedyRefiner::runTasks(const std::vector<std::uint8_t>& tasks,
-                             const ProgressCallback& progress, double level, Task&& task) {
-    // Only the calling thread reports, with the progress at the start (the counts change
-    // while the tasks run).
-    const double fraction = progressFraction(level);
-    std::atomic<std::size_t> next{0};
-    m_workers.run([&](unsigned worker) {
-        for (std::size_t k = next++; k < tasks.size(); k = next++) {
-            if (m_cancelled.load(std::memory_order_relaxed))
-                return;
-            task(tasks[k]);
-            if (worker == 0 && progress && !progress(fraction, "refining"))
-                m_cancelled.store(true, std::memory_order_relaxed);
-        }
-    });
-    if (m_cancelled.load(std::memory_order_relaxed))
-        throw Cancelled("Refiner: cancelled");
-    for (const std::uint8_t k : tasks)
-        m_triangles += m_strips[k].triangles;
+void GreedyRefiner::queueRefusedInShared() {
+    const auto queue = [&](TaskState& task) {
+        for (const Refused& r : task.refused)
+            m_shared.push(r.candidate);
+        task.refused.clear();
+    };
+    for (Strip& own : m_strips)
+        queue(own.task);
+    for (TaskState& task : m_pairTasks)
+        queue(task);
 }
 
 void GreedyRefiner::runStripsAndPairs(double level, std::size_t quota,
                                       const ProgressCallback& progress) {
-    // The strips with the most candidates first, so that the last ones taken are short and
-    // the workers finish together.
-    const auto bySize = [&](std::vector<std::uint8_t> tasks, auto queueOf) {
-        std::stable_sort(tasks.begin(), tasks.end(), [&](std::uint8_t a, std::uint8_t b) {
-            return queueOf(m_strips[a]).size() > queueOf(m_strips[b]).size();
-        });
-        return tasks;
-    };
-    std::vector<std::uint8_t> strips(m_strips.size());
-    std::iota(strips.begin(), strips.end(), std::uint8_t{0});
-    runTasks(bySize(strips, [](Strip& own) -> CandidateQueue& { return own.queue; }), progress,
-             level, [&](std::uint8_t k) {
-                 drain(m_strips[k].queue, {k, k}, level, quota, m_strips[k]);
-             });
-    requeueRefused();
-
-    // Pairs (k, k + 1) of the same parity never share a strip, so they run at once.
-    for (const std::uint8_t parity : {std::uint8_t{0}, std::uint8_t{1}}) {
-        std::vector<std::uint8_t> pairs;
-        for (std::uint8_t k = parity; k + 1U < m_strips.size(); k += 2)
-            pairs.push_back(k);
-        runTasks(bySize(pairs, [](Strip& own) -> CandidateQueue& { return own.pairQueue; }),
-                 progress, level, [&](std::uint8_t k) {
-                     drain(m_strips[k].pairQueue, {k, static_cast<std::uint8_t>(k + 1)}, level,
-                           quota, m_strips[k]);
-                 });
-        for (const std::uint8_t k : pairs)
-            m_pairInsertions += m_strips[k].inserted;
-        requeueRefused();
+    // Tasks: strips 0..n-1, then pairs n..2n-2 (pair k of strips k and k + 1). Ready tasks
+    // start in the order added: the strips with the most candidates first, so that the last
+    // ones taken are short, then the pairs starting at an even strip, then the odd ones.
+    const std::size_t n = m_strips.size();
+    std::vector<std::uint8_t> order(n);
+    std::iota(order.begin(), order.end(), std::uint8_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
+        return m_strips[a].queue.size() > m_strips[b].queue.size();
+    });
+    TaskGraph graph;
+    std::vector<std::size_t> stripTask(n);
+    std::vector<std::uint8_t> subject; // the strip, or the pair's first strip, of each task
+    for (const std::uint8_t k : order) {
+        stripTask[k] = graph.add();
+        subject.push_back(k);
     }
+    std::vector<std::size_t> pairTask(n > 0 ? n - 1 : 0);
+    for (const std::uint8_t parity : {std::uint8_t{0}, std::uint8_t{1}})
+        for (std::uint8_t k = parity; k + 1U < n; k += 2) {
+            pairTask[k] = graph.add();
+            subject.push_back(k);
+            graph.after(pairTask[k], stripTask[k]);
+            graph.after(pairTask[k], stripTask[k + 1]);
+            if (parity == 1) {
+                graph.after(pairTask[k], pairTask[k - 1]);
+                if (k + 2U < n)
+                    graph.after(pairTask[k], pairTask[k + 1]);
+            }
+        }
+    // Only the calling thread reports, with the progress at the start (the counts change
+    // while the tasks run).
+    const double fraction = progressFraction(level);
+    graph.run(m_workers, m_cancelled, [&](std::size_t task, unsigned worker) {
+        const std::uint8_t k = subject[task];
+        if (task < n) {
+            drain(m_strips[k].queue, {k, k}, level, quota, m_strips[k].task);
+        } else {
+            takeRefusedByStrips(k);
+            drain(m_strips[k].pairQueue, {k, static_cast<std::uint8_t>(k + 1)}, level, quota,
+                  m_pairTasks[k]);
+        }
+        if (worker == 0 && progress && !progress(fraction, "refining"))
+            m_cancelled.store(true, std::memory_order_relaxed);
+    });
+    if (m_cancelled.load(std::memory_order_relaxed))
+        throw Cancelled("Refiner: cancelled");
+    for (Strip& own : m_strips) {
+        m_triangles += own.task.triangles;
+        m_deferred += own.task.deferred;
+    }
+    for (const TaskState& task : m_pairTasks) {
+        m_triangles += task.triangles;
+        m_deferred += task.deferred;
+        m_pairInsertions += task.inserted;
+    }
+    queueRefusedInShared();
 }
 
 bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCallback& progress) {

@@ -84,17 +84,22 @@ private:
         Candidate candidate;
         StripRange needed;
     };
-    /// A strip's state, and that of the pair it forms with the next strip. Cache-line
-    /// aligned: the workers run neighbouring strips at once.
-    struct alignas(64) Strip {
-        /// Candidates of the triangles within the strip, and of those spanning it and the next.
-        CandidateQueue queue;
-        CandidateQueue pairQueue;
-        /// The working state of the task run from this strip (the strip's or its pair's).
+    /// The working state of one task of a level (a strip or a pair of strips). Cache-line
+    /// aligned: the workers run neighbouring tasks at once.
+    struct alignas(64) TaskState {
         RefineMesh::InsertScratch insert;
         std::vector<Refused> refused;
         std::size_t inserted = 0;
         std::size_t triangles = 0;
+        /// Candidates refused in the last drain.
+        std::size_t deferred = 0;
+    };
+    /// A strip: its candidates and its task's state.
+    struct Strip {
+        /// Candidates of the triangles within the strip, and of those spanning it and the next.
+        CandidateQueue queue;
+        CandidateQueue pairQueue;
+        TaskState task;
         /// The strip's vertex ids (one reserved per valid cell of the strip): the first and the
         /// next free one; and its region of mesh slots.
         VertexId firstVertex = 0;
@@ -114,22 +119,22 @@ private:
     }
     /// Levels until no candidate is above the target or a limit is reached.
     void runLevels(const ProgressCallback& progress);
-    /// The parallel steps of a level: every strip, then the pairs of neighbouring strips
-    /// starting at an even strip, then those starting at an odd one. Each task inserts its
-    /// queue's candidates above `level`, at most `quota`, restricted to its strips.
+    /// The parallel steps of a level: every strip, and every pair of neighbouring strips,
+    /// on the workers (task_graph.hpp). Each task inserts its queue's candidates above
+    /// `level`, at most `quota`, restricted to its strips. A pair starts once its two strips
+    /// are done, with the candidates they refused for needing both; a pair starting at an
+    /// odd strip starts after the pairs beside it, which share its strips.
     void runStripsAndPairs(double level, std::size_t quota, const ProgressCallback& progress);
-    /// Runs task(k) for k in `tasks` on the workers, the first ones first.
-    template <class Task>
-    void runTasks(const std::vector<std::uint8_t>& tasks, const ProgressCallback& progress,
-                  double level, Task&& task);
+    /// Moves the candidates strips k and k + 1 refused for needing both to their pair's queue.
+    void takeRefusedByStrips(std::uint8_t k);
     /// Inserts `queue`'s candidates above `level` restricted to `allowed`, at most `quota`,
     /// with `task`'s working state; found candidates are routed, refused ones kept in
     /// task.refused.
     void drain(CandidateQueue& queue, StripRange allowed, double level, std::size_t quota,
-               Strip& task);
-    /// Queues the refused candidates of the last parallel step where they can go in: the pair
-    /// queue of the two strips they need, or the shared queue.
-    void requeueRefused();
+               TaskState& task);
+    /// After a level's tasks: the candidates they refused for needing three strips or more
+    /// go to the shared queue.
+    void queueRefusedInShared();
     /// The shared candidates above `level`, by one thread, in priority order, unrestricted.
     /// With `exactLimits`, stops exactly at a limit (and returns false); candidates then go
     /// to the shared queue only, so this is plain greedy insertion.
@@ -202,6 +207,8 @@ private:
     /// Strip of each column; the strips.
     std::vector<std::uint8_t> m_columnStrip;
     std::vector<Strip> m_strips;
+    /// The state of the task of each pair of strips (k, k + 1).
+    std::vector<TaskState> m_pairTasks;
     /// By vertex id: the hull's first, then each strip's range.
     HugePageBuffer<RefineVertex> m_vertices;
     std::optional<RefineMesh> m_mesh;
