@@ -1,20 +1,35 @@
 #pragma once
 /// @file
-/// Puts a refined TIN in raster order: vertices by cell index, triangles by their
-/// lowest-numbered corner.
+/// The refined TIN taken out of the refiner's mesh in raster order: vertices by cell index,
+/// triangles by their lowest-numbered corner.
 ///
 /// The refiner numbers vertices in insertion order, which follows the errors and so jumps
-/// across the raster, and the triangulator's triangles follow its allocation. Everything
-/// after the refinement (the error check over every cell, dropping triangles over holes,
-/// the writers) walks the triangles and reads their corners and cells; in raster order
-/// those reads are nearly sequential instead of one cache miss each.
+/// across the raster, and its triangles follow its slot allocation. Everything after the
+/// refinement (the error check over every cell, dropping triangles over holes, the writers)
+/// walks the triangles and reads their corners and cells; in raster order those reads are
+/// nearly sequential instead of one cache miss each. The order is also the output's: the
+/// same TIN always comes out the same.
+
+#include "refine_mesh.hpp"
 
 #include "terratin/triangulate/tin_mesh.hpp"
 
+#include <cstdint>
+#include <span>
+
 namespace terratin::detail {
 
-/// Renumbers `mesh` (sourceIndex = cell index) as described above, on up to `threads`
-/// threads; the TIN is unchanged.
-void orderByCell(TinMesh& mesh, unsigned threads = 1);
+/// Vertex ids [first, end) in use.
+struct VertexRange {
+    VertexId first = 0;
+    VertexId end = 0;
+};
+
+/// The triangles of `mesh` with the vertices of `ranges` (every vertex a triangle uses lies
+/// in one), in raster order, sourceIndex = cell index (row * width + col). On up to
+/// `threads` threads.
+TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex> vertices,
+                           std::span<const VertexRange> ranges, std::int64_t width,
+                           unsigned threads);
 
 } // namespace terratin::detail

@@ -1,6 +1,7 @@
 #include "greedy_refiner.hpp"
 
 #include "../triangulate/parallel_for.hpp"
+#include "cell_order.hpp"
 #include "located_check.hpp"
 #include "task_graph.hpp"
 #include "valid_hull.hpp"
@@ -614,6 +615,15 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
         }
         runLevels(progress);
     }
+}
+
+TinMesh GreedyRefiner::extractInCellOrder() const {
+    std::vector<VertexRange> ranges{{0, static_cast<VertexId>(m_hullPoints)}};
+    for (const Strip& own : m_strips)
+        ranges.push_back({own.firstVertex, own.nextVertex});
+    return detail::extractInCellOrder(
+        *m_mesh, std::span<const RefineVertex>(m_vertices.data(), m_vertices.size()), ranges,
+        m_grid.width, m_workers.size());
 }
 
 TinMesh GreedyRefiner::extract() const {

@@ -62,8 +62,10 @@ public:
     void run(const ProgressCallback& progress);
 
     /// The Delaunay triangulation of the chosen cells as a TinMesh (vertices at the cells'
-    /// positions, sourceIndex = cell index).
+    /// positions, sourceIndex = cell index), triangles in slotsInUse() order.
     [[nodiscard]] TinMesh extract() const;
+    /// The same TIN in raster order (cell_order.hpp): the refinement's result.
+    [[nodiscard]] TinMesh extractInCellOrder() const;
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }

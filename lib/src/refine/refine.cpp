@@ -1,7 +1,6 @@
 #include "terratin/refine/refine.hpp"
 
 #include "cell_flags.hpp"
-#include "cell_order.hpp"
 #include "error_check.hpp"
 #include "greedy_refiner.hpp"
 #include "located_check.hpp"
@@ -79,8 +78,7 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     result.meshBytes = refiner.meshBytes();
     result.insertSeconds = lap(phase);
 
-    result.mesh = refiner.extract();
-    detail::orderByCell(result.mesh, threads);
+    result.mesh = refiner.extractInCellOrder();
     if (options.validate) {
         const MeshValidation validation = validateDelaunay(result.mesh);
         if (!validation.ok())
