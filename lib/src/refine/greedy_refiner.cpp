@@ -69,18 +69,6 @@ bool GreedyRefiner::prepareScan(TriId id, TriangleScan& scan) const {
                         m_view);
 }
 
-double GreedyRefiner::errorIn(TriId id, std::uint32_t cell) const {
-    const MeshTriangle& node = m_mesh->triangle(id);
-    const PixelTriangle pixel(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]));
-    if (!pixel.hasArea())
-        return 0.0;
-    const auto width = static_cast<std::uint32_t>(m_grid.width);
-    const std::int64_t row = cell / width;
-    const std::int64_t col = cell % width;
-    return std::fabs(static_cast<double>(m_grid.z[cell]) -
-                     (pixel.rowBase(row) + pixel.gradCol() * static_cast<double>(col)));
-}
-
 std::optional<Candidate> GreedyRefiner::candidateOf(TriId id, const ScanResult& result) const {
     if (result.best < 0.0)
         return std::nullopt; // no valid cell left to insert
@@ -434,19 +422,12 @@ void GreedyRefiner::runSharedInBatches(double level, const ProgressCallback& pro
         batch.clear();
         while (!m_shared.empty() && m_shared.top().priority > level)
             batch.push_back(m_shared.pop());
-        // Highest first. Early on one cavity covers most of the raster, so most candidates
-        // of a batch find their triangle replaced by an earlier insertion: such a cell still
-        // goes in if it lies above the level from the new surface, else its cells are left
-        // to the scan of the triangles made.
+        // Highest first; a candidate whose triangle an earlier one of the batch replaced is
+        // dropped: its cells are scanned again with the triangles made.
         made.clear();
-        for (Candidate candidate : batch) {
-            if ((m_flags[candidate.cell] & kCellVertex) != 0)
+        for (const Candidate& candidate : batch) {
+            if (!isLive(candidate))
                 continue;
-            if (m_mesh->version(candidate.triangle) != candidate.version) {
-                candidate.triangle = m_mesh->walk(position(candidate.cell), candidate.triangle);
-                if (errorIn(candidate.triangle, candidate.cell) <= level)
-                    continue;
-            }
             const int added = insert(candidate, StripRange::all(), m_sharedInsert, 2);
             ++m_sharedInsertions;
             m_triangles += static_cast<std::size_t>(added);

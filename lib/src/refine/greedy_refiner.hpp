@@ -143,9 +143,10 @@ private:
     bool runShared(double level, bool exactLimits, const ProgressCallback& progress);
     /// runShared without limits. The shared candidates are few, but early on they are huge
     /// triangles, and every insertion's cavity covers much of the raster: one at a time,
-    /// each would rescan it. So every candidate above `level` is inserted, the highest first
-    /// (Puppo et al.'s selective parallel insertion: far-apart points, one per triangle),
-    /// and then every triangle made is scanned once; until no candidate is above `level`.
+    /// each would rescan it. So every candidate above `level` whose triangle is still there is
+    /// inserted, the highest first (Puppo et al.'s selective parallel insertion: far-apart
+    /// points, one per triangle), and then every triangle made is scanned once; until no
+    /// candidate is above `level`.
     void runSharedInBatches(double level, const ProgressCallback& progress);
     /// Moves every strip's candidates to the shared queue (for the exact finish).
     void gatherIntoShared();
@@ -179,9 +180,6 @@ private:
     /// Prepares the scan of a triangle (see TriangleScan); false when it has nothing to
     /// measure.
     bool prepareScan(TriId node, TriangleScan& scan) const;
-    /// The distance of `cell`'s elevation from the plane of triangle `id`, as a scan
-    /// measures it (0 for a triangle without pixel area, which interpolates nothing).
-    [[nodiscard]] double errorIn(TriId id, std::uint32_t cell) const;
     /// The candidate of a triangle from its scan, if it has one worth inserting.
     [[nodiscard]] std::optional<Candidate> candidateOf(TriId node, const ScanResult& result) const;
     /// Scans triangles, whose memory requests overlap (kMaxFan at a time), and passes each
