@@ -24,6 +24,7 @@
 
 #include "bench_options.hpp"
 #include "distributions.hpp"
+#include "host_steal.hpp"
 #include "peers.hpp"
 #include "process_memory.hpp"
 #include "refine_bench.hpp"
@@ -177,7 +178,8 @@ ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
     if (slot.tooSlowAt) {
         row.unmeasured = "skipped";
         notes.push_back(groupName(distribution, points.size()) + ": " + row.method +
-                        " skipped, a run took (or would take) over " + secondsText(bench.peerLimitSeconds) +
+                        " skipped, a run took (or would take) over " +
+                        secondsText(bench.peerLimitSeconds) +
                         " at N=" + std::to_string(*slot.tooSlowAt));
         return row;
     }
@@ -316,6 +318,8 @@ std::vector<PeerSlot> makePeers(const BenchOptions& bench, std::vector<std::stri
 
 int runBench(const BenchOptions& bench) {
     const Stopwatch total;
+    HostStealProbe steal;
+    steal.start();
     // The table goes to stdout; in CSV mode the comments go to stderr so stdout stays CSV.
     std::FILE* comments = bench.csv ? stderr : stdout;
     std::vector<std::string> preamble{
@@ -348,6 +352,11 @@ int runBench(const BenchOptions& bench) {
     for (const std::string& note : notes)
         std::fprintf(comments, "# note: %s\n", note.c_str());
     std::fprintf(comments, "# finished in %.1f s\n", total.seconds());
+    if (const std::optional<double> stolen = steal.stolenShare())
+        std::fprintf(comments,
+                     "# host steal: %.1f%% of the CPU time went to other guests of the hypervisor "
+                     "(above a few percent, timings and speed-ups are unreliable)\n",
+                     100.0 * *stolen);
     return kExitOk;
 }
 

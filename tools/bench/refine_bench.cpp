@@ -1,5 +1,6 @@
 #include "refine_bench.hpp"
 
+#include "host_steal.hpp"
 #include "process_memory.hpp"
 #include "stats.hpp"
 
@@ -41,7 +42,8 @@ const std::vector<RefineCase>& refineCases() {
 }
 
 // The cells' positions in the UTM zone of the DEM's centre, or none.
-std::vector<Point2> casePositions(const RefineCase& refineCase, const io::HeightGridRaster& raster) {
+std::vector<Point2> casePositions(const RefineCase& refineCase,
+                                  const io::HeightGridRaster& raster) {
     if (!refineCase.inUtmZone)
         return {};
     const Point2 centre = raster.grid.extentCentre();
@@ -57,11 +59,11 @@ int runRefineBench(const BenchOptions& options) {
         options.threadsGiven ? options.threads : std::vector<unsigned>{1, 2};
     if (options.csv)
         std::printf("dem,cells,valid,max_error_m,threads,points,triangles,hole_triangles,"
-                    "achieved_max_error_m,rmse_m,seconds,speedup,peak_mib\n");
+                    "achieved_max_error_m,rmse_m,seconds,speedup,peak_mib,steal_percent\n");
     else
-        std::printf("%-11s %9s %6s %3s %9s %9s %9s %8s %7s %8s %6s %8s\n", "DEM", "cells", "E [m]",
-                    "thr", "points", "triangles", "holes", "max err", "RMSE", "time [s]", "speed",
-                    "peak MiB");
+        std::printf("%-11s %9s %6s %3s %9s %9s %9s %8s %7s %8s %6s %8s %7s\n", "DEM", "cells",
+                    "E [m]", "thr", "points", "triangles", "holes", "max err", "RMSE", "time [s]",
+                    "speed", "peak MiB", "steal %");
     for (const RefineCase& refineCase : refineCases()) {
         const std::filesystem::path path =
             std::filesystem::path(options.demDirectory) / refineCase.file;
@@ -82,12 +84,13 @@ int runRefineBench(const BenchOptions& options) {
                 std::vector<double> peaks;
                 RefineResult result;
                 PeakMemoryProbe probe;
+                HostStealProbe steal;
+                steal.start();
                 for (unsigned run = 0; run < options.runs; ++run) {
                     probe.start();
                     const Stopwatch stopwatch;
-                    result = positions.empty()
-                                 ? refine(raster.grid, refineOptions)
-                                 : refine(raster.grid, positions, refineOptions);
+                    result = positions.empty() ? refine(raster.grid, refineOptions)
+                                               : refine(raster.grid, positions, refineOptions);
                     seconds.push_back(stopwatch.seconds());
                     if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
                         peaks.push_back(static_cast<double>(*peak));
@@ -96,18 +99,21 @@ int runRefineBench(const BenchOptions& options) {
                 if (!oneThread)
                     oneThread = time;
                 const double peakMiB = peaks.empty() ? -1.0 : median(peaks) / (1024.0 * 1024.0);
+                // Time the hypervisor gave other guests while this row ran (-1: unknown).
+                const double stolen = 100.0 * steal.stolenShare().value_or(-0.01);
                 if (options.csv)
-                    std::printf("%s,%zu,%zu,%g,%u,%zu,%zu,%zu,%.3f,%.3f,%.4f,%.2f,%.1f\n",
+                    std::printf("%s,%zu,%zu,%g,%u,%zu,%zu,%zu,%.3f,%.3f,%.4f,%.2f,%.1f,%.1f\n",
                                 refineCase.label, raster.grid.cellCount(), valid, tolerance,
-                                threadCount, result.mesh.vertexCount(),
-                                result.mesh.triangleCount(), result.droppedTriangles,
-                                result.maxError, result.rmse, time, *oneThread / time, peakMiB);
-                else
-                    std::printf("%-11s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f\n",
-                                refineCase.label, raster.grid.cellCount(), tolerance, threadCount,
-                                result.mesh.vertexCount(), result.mesh.triangleCount(),
+                                threadCount, result.mesh.vertexCount(), result.mesh.triangleCount(),
                                 result.droppedTriangles, result.maxError, result.rmse, time,
-                                *oneThread / time, peakMiB);
+                                *oneThread / time, peakMiB, stolen);
+                else
+                    std::printf(
+                        "%-11s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f %7.1f\n",
+                        refineCase.label, raster.grid.cellCount(), tolerance, threadCount,
+                        result.mesh.vertexCount(), result.mesh.triangleCount(),
+                        result.droppedTriangles, result.maxError, result.rmse, time,
+                        *oneThread / time, peakMiB, stolen);
                 std::fflush(stdout);
             }
         }
