@@ -39,7 +39,7 @@ std::vector<std::uint32_t> orderOfKeys(const std::vector<std::uint32_t>& keys) {
 
 TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex> vertices,
                            std::span<const VertexRange> ranges, std::int64_t width,
-                           unsigned threads) {
+                           unsigned threads, std::vector<TriId>* slotOfTriangle) {
     // The vertices in use, one range after the other, and their cells.
     std::size_t vertexCount = 0;
     for (const VertexRange& range : ranges)
@@ -103,6 +103,11 @@ TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex>
     for (std::size_t k = 0; k < triangleCount; ++k) {
         position[k] = start[lowest[k]]++;
         indexOf[slots[k]] = static_cast<std::int32_t>(position[k]);
+    }
+    if (slotOfTriangle != nullptr) {
+        slotOfTriangle->resize(triangleCount);
+        for (std::size_t k = 0; k < triangleCount; ++k)
+            (*slotOfTriangle)[position[k]] = slots[k];
     }
     out.triangles.resize(3 * triangleCount);
     out.neighbours.resize(3 * triangleCount);

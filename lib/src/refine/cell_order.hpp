@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace terratin::detail {
 
@@ -27,9 +28,9 @@ struct VertexRange {
 
 /// The triangles of `mesh` with the vertices of `ranges` (every vertex a triangle uses lies
 /// in one), in raster order, sourceIndex = cell index (row * width + col). On up to
-/// `threads` threads.
+/// `threads` threads. With `slotOfTriangle`, sets it to the slot of each triangle.
 TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex> vertices,
                            std::span<const VertexRange> ranges, std::int64_t width,
-                           unsigned threads);
+                           unsigned threads, std::vector<TriId>* slotOfTriangle = nullptr);
 
 } // namespace terratin::detail

@@ -1,6 +1,5 @@
 #include "greedy_refiner.hpp"
 
-#include "../triangulate/parallel_for.hpp"
 #include "cell_order.hpp"
 #include "located_check.hpp"
 #include "task_graph.hpp"
@@ -554,9 +553,8 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
     std::vector<std::int32_t> near;
     std::vector<std::int32_t> located(cellCount, -1);
     while (m_stop == RefineStop::ErrorReached) {
-        const TinMesh mesh = extract();
-        // extract() lists the slots in use in slotsInUse() order.
-        const std::vector<TriId> slots = m_mesh->slotsInUse();
+        std::vector<TriId> slots; // the slot of each triangle of `mesh`
+        const TinMesh mesh = extractInCellOrder(&slots);
         std::vector<std::int32_t> indexOfSlot(m_mesh->slotEnd(), -1);
         for (std::size_t k = 0; k < slots.size(); ++k)
             indexOfSlot[slots[k]] = static_cast<std::int32_t>(k);
@@ -598,59 +596,13 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
     }
 }
 
-TinMesh GreedyRefiner::extractInCellOrder() const {
+TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle) const {
     std::vector<VertexRange> ranges{{0, static_cast<VertexId>(m_hullPoints)}};
     for (const Strip& own : m_strips)
         ranges.push_back({own.firstVertex, own.nextVertex});
     return detail::extractInCellOrder(
         *m_mesh, std::span<const RefineVertex>(m_vertices.data(), m_vertices.size()), ranges,
-        m_grid.width, m_workers.size());
-}
-
-TinMesh GreedyRefiner::extract() const {
-    TinMesh mesh;
-    const unsigned threads = m_workers.size();
-    m_mesh->extract(mesh.triangles, mesh.neighbours, threads);
-    // Vertex ids run in ranges (the hull's, then each strip's) with unused ids at each range's
-    // end: renumber them densely.
-    std::vector<std::pair<VertexId, VertexId>> ranges{{0, static_cast<VertexId>(m_hullPoints)}};
-    for (const Strip& own : m_strips)
-        ranges.emplace_back(own.firstVertex, own.nextVertex);
-    std::vector<VertexId> shift(ranges.size());
-    std::size_t count = 0;
-    for (std::size_t r = 0; r < ranges.size(); ++r) {
-        shift[r] = ranges[r].first - static_cast<VertexId>(count);
-        count += ranges[r].second - ranges[r].first;
-    }
-    mesh.vertices.resize(count);
-    mesh.sourceIndex.resize(count);
-    for (std::size_t r = 0; r < ranges.size(); ++r) {
-        const VertexId first = ranges[r].first;
-        const VertexId out = first - shift[r];
-        parallelFor(ranges[r].second - first, threads,
-                    [&](unsigned, std::size_t begin, std::size_t end) {
-                        for (std::size_t k = begin; k < end; ++k) {
-                            const RefineVertex& vertex = m_vertices[first + k];
-                            const auto cell = static_cast<std::uint32_t>(vertex.row) *
-                                                  static_cast<std::uint32_t>(m_grid.width) +
-                                              static_cast<std::uint32_t>(vertex.col);
-                            const Point2& p = vertex.position;
-                            mesh.vertices[out + k] = {p.x, p.y, static_cast<double>(vertex.z)};
-                            mesh.sourceIndex[out + k] = cell;
-                        }
-                    });
-    }
-    parallelFor(mesh.triangles.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            std::uint32_t& corner = mesh.triangles[k];
-            // The range holding the corner: the last one starting at or before it.
-            std::size_t r = ranges.size() - 1;
-            while (ranges[r].first > corner)
-                --r;
-            corner -= shift[r];
-        }
-    });
-    return mesh;
+        m_grid.width, m_workers.size(), slotOfTriangle);
 }
 
 } // namespace terratin::detail

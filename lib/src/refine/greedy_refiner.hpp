@@ -62,10 +62,9 @@ public:
     void run(const ProgressCallback& progress);
 
     /// The Delaunay triangulation of the chosen cells as a TinMesh (vertices at the cells'
-    /// positions, sourceIndex = cell index), triangles in slotsInUse() order.
-    [[nodiscard]] TinMesh extract() const;
-    /// The same TIN in raster order (cell_order.hpp): the refinement's result.
-    [[nodiscard]] TinMesh extractInCellOrder() const;
+    /// positions, sourceIndex = cell index) in raster order (cell_order.hpp); with
+    /// `slotOfTriangle`, also the mesh slot of each of its triangles.
+    [[nodiscard]] TinMesh extractInCellOrder(std::vector<TriId>* slotOfTriangle = nullptr) const;
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
