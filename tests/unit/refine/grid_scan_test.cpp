@@ -122,6 +122,56 @@ TEST(GridScan, StrictEdgesLeaveOutExactlyTheirCells) {
     }
 }
 
+TEST(GridScan, RowsAreExactAroundTheSizeOfTheVectorPath) {
+    // Triangles up to 16 columns and 32 rows take a vectorised path (grid_scan.hpp), larger
+    // ones the divisions: spans of 15 to 17 columns and 31 to 33 rows, with strict edges,
+    // inside the grid and reaching past its columns.
+    std::mt19937 random(17);
+    constexpr std::int64_t kWidth = 40;
+    constexpr std::int64_t kHeight = 50;
+    int trials = 0;
+    for (const std::int64_t columns : {15, 16, 17})
+        for (const std::int64_t rows : {31, 32, 33})
+            for (const std::int64_t left :
+                 {std::int64_t{-1}, std::int64_t{3}, kWidth - columns + 1})
+                for (int trial = 0; trial < 120; ++trial) {
+                    std::uniform_int_distribution<std::int64_t> col(left, left + columns - 1);
+                    std::uniform_int_distribution<std::int64_t> row(5, 5 + rows - 1);
+                    // The first two corners span the whole box, so the box is the triangle's.
+                    const PixelTriangle triangle({left, row(random), 0.0, 0},
+                                                 {left + columns - 1, 5, 0.0, 1},
+                                                 {col(random), 5 + rows - 1, 0.0, 2});
+                    if (!triangle.hasArea())
+                        continue;
+                    const std::int64_t sgn =
+                        orient(triangle.corner(0), triangle.corner(1), triangle.corner(2).col,
+                               triangle.corner(2).row) > 0
+                            ? 1
+                            : -1;
+                    const bool strict[3] = {trial % 2 == 0, trial % 3 == 0, trial % 5 == 0};
+                    std::set<Cell> expected;
+                    for (std::int64_t r = 0; r < kHeight; ++r)
+                        for (std::int64_t c = 0; c < kWidth; ++c) {
+                            bool inside = true;
+                            for (int i = 0; i < 3; ++i)
+                                inside &= sgn * orient(triangle.corner(i),
+                                                       triangle.corner((i + 1) % 3), c, r) >=
+                                          (strict[i] ? 1 : 0);
+                            if (inside)
+                                expected.insert({r, c});
+                        }
+                    std::set<Cell> visited;
+                    triangle.forEachRow(kWidth, kHeight, strict,
+                                        [&](std::int64_t r, std::int64_t lo, std::int64_t hi) {
+                                            for (std::int64_t c = lo; c <= hi; ++c)
+                                                EXPECT_TRUE(visited.insert({r, c}).second);
+                                        });
+                    ASSERT_EQ(visited, expected) << columns << " x " << rows << ", trial " << trial;
+                    ++trials;
+                }
+    EXPECT_GT(trials, 900);
+}
+
 TEST(GridScan, BandsOfRowsMeasureLikeTheWholeTriangle) {
     // Rough elevations with ties (integers) and a few flagged cells; a triangle measured in
     // bands of rows and merged in order gives the same farthest cell as measured at once.
