@@ -64,8 +64,7 @@ PixelCorner GreedyRefiner::corner(VertexId v) const {
 
 bool GreedyRefiner::prepareScan(TriId id, TriangleScan& scan) const {
     const MeshTriangle& node = m_mesh->triangle(id);
-    return scan.prepare(PixelTriangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2])),
-                        m_view);
+    return scan.prepare(corner(node.v[0]), corner(node.v[1]), corner(node.v[2]), m_view);
 }
 
 std::optional<Candidate> GreedyRefiner::candidateOf(TriId id, const ScanResult& result) const {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -193,7 +194,7 @@ TEST(GridScan, BandsOfRowsMeasureLikeTheWholeTriangle) {
         const PixelCorner c{coordinate(random), coordinate(random) % kHeight, 5.0, 2};
         const PixelTriangle triangle(a, b, c);
         TriangleScan scan;
-        if (!scan.prepare(triangle, view))
+        if (!scan.prepare(a, b, c, view))
             continue;
         const ScanResult whole = scan.measure(view);
         for (const std::int64_t band : {1, 3, 32}) {
@@ -205,6 +206,71 @@ TEST(GridScan, BandsOfRowsMeasureLikeTheWholeTriangle) {
             EXPECT_EQ(merged.coversHole, whole.coversHole);
         }
     }
+}
+
+TEST(GridScan, MeasureFindsTheFarthestCellOfBruteForce) {
+    // Elevations with many ties, flagged cells, and triangles up to the last cell of the
+    // raster (where four cells at once would read past its end); tall ones are measured in
+    // batches of rows. The farthest cell is the lowest-indexed of the largest errors.
+    constexpr std::int64_t kWidth = 45;
+    constexpr std::int64_t kHeight = 50;
+    std::mt19937 random(21);
+    std::uniform_int_distribution<int> height(0, 3);
+    std::vector<float> z(kWidth * kHeight);
+    std::vector<std::uint8_t> flags(z.size(), 0);
+    for (std::size_t i = 0; i < z.size(); ++i) {
+        z[i] = static_cast<float>(height(random));
+        flags[i] = i % 29 == 0 ? kCellOpenHole | kCellNoData : i % 31 == 0 ? kCellVertex : 0;
+    }
+    const GridView view{kWidth, kHeight, z.data(), flags.data()};
+    std::uniform_int_distribution<std::int64_t> col(0, kWidth - 1);
+    std::uniform_int_distribution<std::int64_t> row(0, kHeight - 1);
+    int measured = 0;
+    for (int trial = 0; trial < 600; ++trial) {
+        // Every third triangle has a corner in the last cell.
+        const PixelCorner a = trial % 3 == 0 ? PixelCorner{kWidth - 1, kHeight - 1, 2.0, 0}
+                                             : PixelCorner{col(random), row(random), 2.0, 0};
+        const PixelCorner b{col(random), row(random), trial % 2 == 0 ? 2.0 : 0.5, 1};
+        const PixelCorner c{col(random), row(random), 2.0, 2};
+        const PixelTriangle triangle(a, b, c);
+        TriangleScan scan;
+        if (!scan.prepare(a, b, c, view))
+            continue;
+        ScanResult expected;
+        std::vector<RowSpan> spans;
+        for (std::int64_t r = 0; r < kHeight; ++r)
+            for (std::int64_t x = 0; x < kWidth; ++x) {
+                const std::int64_t ab = orient(a, b, x, r);
+                const std::int64_t bc = orient(b, c, x, r);
+                const std::int64_t ca = orient(c, a, x, r);
+                if (!((ab >= 0 && bc >= 0 && ca >= 0) || (ab <= 0 && bc <= 0 && ca <= 0)))
+                    continue;
+                if (spans.empty() || spans.back().row != r)
+                    spans.push_back({r, x, x});
+                spans.back().hi = x;
+                const std::uint8_t flag = flags[static_cast<std::size_t>(r * kWidth + x)];
+                expected.coversHole |= (flag & kCellOpenHole) != 0;
+                if (flag != 0)
+                    continue;
+                const double error =
+                    std::fabs(static_cast<double>(z[static_cast<std::size_t>(r * kWidth + x)]) -
+                              (triangle.rowBase(r) + triangle.gradCol() * static_cast<double>(x)));
+                if (error > expected.best) {
+                    expected.best = error;
+                    expected.bestCell = r * kWidth + x;
+                }
+            }
+        const ScanResult found = scan.measure(view);
+        EXPECT_EQ(found.best, expected.best) << "trial " << trial;
+        EXPECT_EQ(found.bestCell, expected.bestCell) << "trial " << trial;
+        EXPECT_EQ(found.coversHole, expected.coversHole) << "trial " << trial;
+        ScanResult oneByOne;
+        measureSpansOneByOne(view, triangle, spans.data(), spans.size(), oneByOne);
+        EXPECT_EQ(oneByOne.best, expected.best);
+        EXPECT_EQ(oneByOne.bestCell, expected.bestCell);
+        ++measured;
+    }
+    EXPECT_GT(measured, 400);
 }
 
 TEST(GridScan, FloorDivisionIsExact) {
