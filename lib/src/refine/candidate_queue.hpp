@@ -11,7 +11,6 @@
 /// non-empty bucket is kept as a heap; it holds thousands of entries, which stay in cache.
 /// Priorities are never negative, so the float's bit pattern orders like its value.
 
-
 #include "refine_mesh.hpp"
 
 #include <algorithm>
@@ -62,6 +61,35 @@ public:
         return m_topHeap.front();
     }
 
+    /// The greatest candidate, or nullptr when the queue is empty. A bucket taken into the
+    /// top heap first loses the candidates `isLive` rejects: most candidates are stale by
+    /// the time their bucket comes up, and each would cost a pop from the heap. One that
+    /// goes stale later can still come out: the caller tests what it pops. `isLive` must be
+    /// monotone (a candidate it rejects stays rejected), so that dropping early changes
+    /// nothing; it also has request(candidate), to ask ahead for the memory it reads.
+    template <class IsLive> [[nodiscard]] const Candidate* top(const IsLive& isLive) {
+        while (m_topHeap.empty() && m_size > 0) {
+            takeHighestBucket();
+            const std::size_t taken = m_topHeap.size();
+            // Each test is a cache miss or two (the triangle's version, the cell's flags):
+            // requested a few candidates ahead.
+            constexpr std::size_t kAhead = 8;
+            for (std::size_t i = 0; i < std::min(kAhead, taken); ++i)
+                isLive.request(m_topHeap[i]);
+            std::size_t kept = 0;
+            for (std::size_t i = 0; i < taken; ++i) {
+                if (i + kAhead < taken)
+                    isLive.request(m_topHeap[i + kAhead]);
+                if (isLive(m_topHeap[i]))
+                    m_topHeap[kept++] = m_topHeap[i];
+            }
+            m_topHeap.resize(kept);
+            m_size -= taken - kept;
+            std::make_heap(m_topHeap.begin(), m_topHeap.end(), Lower{});
+        }
+        return m_topHeap.empty() ? nullptr : &m_topHeap.front();
+    }
+
     /// Removes and returns the greatest candidate; requires !empty().
     Candidate pop() {
         settleTop();
@@ -103,8 +131,8 @@ private:
             --s;
         const std::size_t word =
             s * 64 + 63 - static_cast<std::size_t>(std::countl_zero(m_summary[s]));
-        return static_cast<std::uint32_t>(
-            word * 64 + 63 - static_cast<std::size_t>(std::countl_zero(m_full[word])));
+        return static_cast<std::uint32_t>(word * 64 + 63 -
+                                          static_cast<std::size_t>(std::countl_zero(m_full[word])));
     }
 
     /// Refills an empty top heap from the highest full bucket. Invariant: every candidate of a
@@ -113,10 +141,14 @@ private:
     void settleTop() {
         if (!m_topHeap.empty())
             return;
+        takeHighestBucket();
+        std::make_heap(m_topHeap.begin(), m_topHeap.end(), Lower{});
+    }
+    /// Moves the highest full bucket into the empty top heap (not yet a heap).
+    void takeHighestBucket() {
         m_top = highestFull();
         std::swap(m_topHeap, m_buckets[m_top]);
         markEmpty(m_top);
-        std::make_heap(m_topHeap.begin(), m_topHeap.end(), Lower{});
     }
 
     std::vector<std::vector<Candidate>> m_buckets;

@@ -267,15 +267,14 @@ void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double leve
     task.inserted = 0;
     task.triangles = 0;
     task.deferred = 0;
-    while (!queue.empty() && queue.top().priority > level && task.inserted < quota) {
+    const LiveTest live{*this};
+    for (const Candidate* top = queue.top(live);
+         top != nullptr && top->priority > level && task.inserted < quota; top = queue.top(live)) {
         const Candidate candidate = queue.pop();
         // The next candidate's triangle and flag are two cache misses at random places:
         // requested now, they arrive while this one is inserted.
-        if (!queue.empty()) {
-            const Candidate& next = queue.top();
-            __builtin_prefetch(&m_mesh->triangle(next.triangle));
-            __builtin_prefetch(&m_flags[next.cell]);
-        }
+        if (const Candidate* next = queue.top(live))
+            live.request(*next);
         if (!isLive(candidate))
             continue;
         const int added = insert(candidate, allowed, task.insert, 2);
@@ -384,7 +383,9 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
         return true;
     }
     std::size_t done = 0;
-    while (!m_shared.empty() && m_shared.top().priority > level) {
+    const LiveTest live{*this};
+    for (const Candidate* top = m_shared.top(live); top != nullptr && top->priority > level;
+         top = m_shared.top(live)) {
         if (m_options.maxPoints && pointCount() >= *m_options.maxPoints) {
             m_stop = RefineStop::PointLimit;
             return false;
@@ -416,9 +417,14 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
 void GreedyRefiner::runSharedInBatches(double level, const ProgressCallback& progress) {
     std::vector<Candidate> batch;
     std::vector<TriId> made;
-    while (!m_shared.empty() && m_shared.top().priority > level) {
+    const LiveTest live{*this};
+    const auto aboveLevel = [&] {
+        const Candidate* top = m_shared.top(live);
+        return top != nullptr && top->priority > level;
+    };
+    while (aboveLevel()) {
         batch.clear();
-        while (!m_shared.empty() && m_shared.top().priority > level)
+        while (aboveLevel())
             batch.push_back(m_shared.pop());
         // Highest first; a candidate whose triangle an earlier one of the batch replaced is
         // dropped: its cells are scanned again with the triangles made.
@@ -449,12 +455,16 @@ void GreedyRefiner::gatherIntoShared() {
 
 double GreedyRefiner::highestPriority() {
     double top = -std::numeric_limits<double>::infinity();
-    for (Strip& own : m_strips)
-        for (CandidateQueue* queue : {&own.queue, &own.pairQueue})
-            if (!queue->empty())
-                top = std::max(top, queue->top().priority);
-    if (!m_shared.empty())
-        top = std::max(top, m_shared.top().priority);
+    const LiveTest live{*this};
+    const auto consider = [&](CandidateQueue& queue) {
+        if (const Candidate* first = queue.top(live))
+            top = std::max(top, first->priority);
+    };
+    for (Strip& own : m_strips) {
+        consider(own.queue);
+        consider(own.pairQueue);
+    }
+    consider(m_shared);
     return top;
 }
 

@@ -164,6 +164,15 @@ private:
     [[nodiscard]] std::size_t pointCount() const;
     /// Whether `candidate` still stands: its triangle unchanged and its cell no vertex.
     [[nodiscard]] bool isLive(const Candidate& candidate) const;
+    /// isLive for CandidateQueue::top, which requests the memory it reads ahead.
+    struct LiveTest {
+        const GreedyRefiner& refiner;
+        bool operator()(const Candidate& candidate) const { return refiner.isLive(candidate); }
+        void request(const Candidate& candidate) const {
+            __builtin_prefetch(&refiner.m_mesh->triangle(candidate.triangle));
+            __builtin_prefetch(&refiner.m_flags[candidate.cell]);
+        }
+    };
     /// With positions, the levels' pixel-space scans only approximate the TIN's triangles
     /// (the map from pixels to positions bends straight lines, and shifts errors by up to a
     /// millimetre on a 90 m grid). This queues what the exact check of located_check.hpp

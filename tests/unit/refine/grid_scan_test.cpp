@@ -332,5 +332,53 @@ TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
     EXPECT_TRUE(queue.empty());
 }
 
+TEST(CandidateQueue, TopWithALiveTestDropsDeadCandidatesAndKeepsTheOrder) {
+    // Candidates die (for good) while queued. top(isLive) drops those already dead when their
+    // bucket comes up; one that dies later may still come out. The live ones come out in
+    // exactly the order of a queue that never held the dead.
+    std::mt19937 random(4);
+    std::uniform_real_distribution<double> priority(0.0, 500.0);
+    std::vector<std::uint8_t> dead(3000, 0);
+    struct IsLive {
+        const std::vector<std::uint8_t>& dead;
+        mutable int requests = 0;
+        bool operator()(const Candidate& candidate) const { return dead[candidate.cell] == 0; }
+        void request(const Candidate&) const { ++requests; }
+    };
+    const IsLive live{dead};
+    CandidateQueue queue;
+    std::vector<Candidate> reference; // queued and live
+    for (std::uint32_t cell = 0; cell < dead.size(); ++cell) {
+        const Candidate candidate{cell % 50 == 0 ? 7.0 : priority(random), cell, 0, 0};
+        queue.push(candidate);
+        reference.push_back(candidate);
+    }
+    std::size_t livePops = 0;
+    std::size_t deadPops = 0;
+    for (const Candidate* top = queue.top(live); top != nullptr; top = queue.top(live)) {
+        const std::uint32_t topCell = top->cell; // pop() moves what top points at
+        const Candidate got = queue.pop();
+        EXPECT_EQ(got.cell, topCell);
+        std::erase_if(reference, [&](const Candidate& c) { return dead[c.cell] != 0; });
+        if (dead[got.cell] != 0) {
+            ++deadPops;
+        } else {
+            const auto greatest = std::max_element(reference.begin(), reference.end(), Lower{});
+            ASSERT_NE(greatest, reference.end());
+            EXPECT_EQ(got.cell, greatest->cell);
+            reference.erase(greatest);
+            ++livePops;
+        }
+        for (int k = 0; k < 3; ++k)
+            dead[random() % dead.size()] = 1;
+    }
+    EXPECT_TRUE(reference.empty());
+    EXPECT_TRUE(queue.empty());
+    const auto died = static_cast<std::size_t>(std::count(dead.begin(), dead.end(), 1));
+    EXPECT_GT(livePops, 300U);
+    EXPECT_LT(deadPops, died / 2); // most dead candidates were dropped unpopped
+    EXPECT_GT(live.requests, 0);
+}
+
 } // namespace
 } // namespace terratin::detail
