@@ -54,7 +54,6 @@ __attribute__((target("avx2"))) void measureSpansFourAtOnce(const GridView& view
                                                             const PixelTriangle& triangle,
                                                             const RowSpan* spans, std::size_t count,
                                                             ScanResult& result) {
-    const std::int64_t cellCount = view.width * view.height;
     const __m256d gradCol = _mm256_set1_pd(triangle.gradCol());
     const __m256d laneOffsets = _mm256_setr_pd(0.0, 1.0, 2.0, 3.0);
     const __m256d four = _mm256_set1_pd(4.0);
@@ -78,22 +77,14 @@ __attribute__((target("avx2"))) void measureSpansFourAtOnce(const GridView& view
         }
         if (col > span.hi)
             continue;
-        // The last one to three cells: the lanes past the span get kCellNoData. The cells
-        // after them are read only where they exist.
+        // The last one to three cells; the lanes past the span get kCellNoData. Nothing past
+        // the span is read: the flags there may be another strip's, being written.
         const auto used = static_cast<std::size_t>(span.hi - col + 1);
         float tailZ[4] = {0.0F, 0.0F, 0.0F, 0.0F};
-        std::uint32_t tailFlags = 0;
-        if (rowStart + col + 4 <= cellCount) {
-            std::memcpy(tailZ, z + col, sizeof tailZ);
-            std::memcpy(&tailFlags, flags + col, sizeof tailFlags);
-        } else {
-            std::memcpy(tailZ, z + col, used * sizeof(float));
-            std::memcpy(&tailFlags, flags + col, used);
-        }
-        const std::uint32_t keep = (std::uint32_t{1} << (8 * used)) - 1U;
-        const std::uint32_t padding = 0x01010101U * kCellNoData;
-        measureFour(lanes, tailZ, (tailFlags & keep) | (padding & ~keep), columns, base, gradCol,
-                    cells);
+        std::uint32_t tailFlags = 0x01010101U * kCellNoData;
+        std::memcpy(tailZ, z + col, used * sizeof(float));
+        std::memcpy(&tailFlags, flags + col, used); // lane i is byte i (x86: little-endian)
+        measureFour(lanes, tailZ, tailFlags, columns, base, gradCol, cells);
     }
     alignas(32) double best[4];
     alignas(32) double cell[4];
