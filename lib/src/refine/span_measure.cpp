@@ -1,5 +1,6 @@
 #include "span_measure.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -28,14 +29,13 @@ struct FourLanes {
     std::uint32_t flagsSeen = 0;
 };
 
-/// Measures the four cells at z[0..3], flags[0..3] (packed in `flags`, lane i in byte i),
-/// columns `columns`, first cell index `firstCell`.
-__attribute__((target("avx2"))) inline void measureFour(FourLanes& lanes, const float* z,
+/// Measures four cells: their elevations, flags (lane i in byte i), columns and indices.
+__attribute__((target("avx2"))) inline void measureFour(FourLanes& lanes, __m128 z,
                                                         std::uint32_t flags, __m256d columns,
                                                         __m256d base, __m256d gradCol,
                                                         __m256d cells) {
     const __m256d absolute = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffff));
-    const __m256d elevation = _mm256_cvtps_pd(_mm_loadu_ps(z));
+    const __m256d elevation = _mm256_cvtps_pd(z);
     // The plane as measureSpan evaluates it: base + gradCol * col, then |z - plane|.
     const __m256d plane = _mm256_add_pd(base, _mm256_mul_pd(gradCol, columns));
     const __m256d error = _mm256_and_pd(_mm256_sub_pd(elevation, plane), absolute);
@@ -71,20 +71,26 @@ __attribute__((target("avx2"))) void measureSpansFourAtOnce(const GridView& view
         for (; col + 3 <= span.hi; col += 4) {
             std::uint32_t fourFlags = 0;
             std::memcpy(&fourFlags, flags + col, sizeof fourFlags);
-            measureFour(lanes, z + col, fourFlags, columns, base, gradCol, cells);
+            measureFour(lanes, _mm_loadu_ps(z + col), fourFlags, columns, base, gradCol, cells);
             columns = _mm256_add_pd(columns, four);
             cells = _mm256_add_pd(cells, four);
         }
         if (col > span.hi)
             continue;
         // The last one to three cells; the lanes past the span get kCellNoData. Nothing past
-        // the span is read: the flags there may be another strip's, being written.
-        const auto used = static_cast<std::size_t>(span.hi - col + 1);
-        float tailZ[4] = {0.0F, 0.0F, 0.0F, 0.0F};
-        std::uint32_t tailFlags = 0x01010101U * kCellNoData;
-        std::memcpy(tailZ, z + col, used * sizeof(float));
-        std::memcpy(&tailFlags, flags + col, used); // lane i is byte i (x86: little-endian)
-        measureFour(lanes, tailZ, tailFlags, columns, base, gradCol, cells);
+        // the span is read: the flags there may be another strip's, being written. (Built in
+        // registers: a lane-by-lane copy read back whole would stall on store forwarding.)
+        const auto used = static_cast<int>(span.hi - col + 1);
+        const __m128 tailZ = _mm_maskload_ps(
+            z + col, _mm_cmpgt_epi32(_mm_set1_epi32(used), _mm_setr_epi32(0, 1, 2, 3)));
+        // Branch-free (the length is unpredictable): lanes past the span read its last cell.
+        const auto flagAt = [&](std::int64_t lane) {
+            return static_cast<std::uint32_t>(flags[std::min(col + lane, span.hi)]) << (8 * lane);
+        };
+        const std::uint32_t read = flagAt(0) | flagAt(1) | flagAt(2);
+        const std::uint32_t keep = (std::uint32_t{1} << (8 * used)) - 1U;
+        const std::uint32_t padding = 0x01010101U * kCellNoData;
+        measureFour(lanes, tailZ, (read & keep) | (padding & ~keep), columns, base, gradCol, cells);
     }
     alignas(32) double best[4];
     alignas(32) double cell[4];
