@@ -224,6 +224,12 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
     boundary.clear();
     for (std::size_t i = 0; i < cavity.size(); ++i) {
         const MeshTriangle& triangle = m_triangles[cavity[i]];
+        // Each neighbour's corner across the edge is a vertex read nowhere else yet: the
+        // three are requested together rather than met one after the other.
+        for (const TriId u : triangle.n)
+            if (u != kNoTriangle)
+                for (const VertexId v : m_triangles[u].v)
+                    __builtin_prefetch(&m_vertices[v]);
         for (int e = 0; e < 3; ++e) {
             const VertexId a = triangle.v[static_cast<std::size_t>(next(e))];
             const VertexId b = triangle.v[static_cast<std::size_t>(previous(e))];
