@@ -25,8 +25,8 @@ std::vector<PixelCorner> pixelCorners(const TinMesh& mesh, std::int64_t width, u
     return corners;
 }
 
-PixelTriangle triangleOf(const TinMesh& mesh, const std::vector<PixelCorner>& corners,
-                         std::size_t t) {
+[[gnu::always_inline]] inline PixelTriangle
+triangleOf(const TinMesh& mesh, const std::vector<PixelCorner>& corners, std::size_t t) {
     return {corners[mesh.triangles[3 * t]], corners[mesh.triangles[3 * t + 1]],
             corners[mesh.triangles[3 * t + 2]]};
 }
@@ -37,26 +37,27 @@ std::vector<std::uint8_t> trianglesOverOpenHoles(const TinMesh& mesh, const Grid
                                                  unsigned threads) {
     std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
     const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
-    parallelForChunks(drop.size(), threads, kCheckChunk, [&](unsigned, std::size_t begin,
-                                                              std::size_t end) {
-        for (std::size_t t = begin; t < end; ++t) {
-            const PixelTriangle triangle = triangleOf(mesh, corners, t);
-            bool covers = false;
-            if (triangle.hasArea()) {
-                triangle.forEachRow(grid.width, grid.height, nullptr,
-                                    [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                        const std::uint8_t* flags = grid.flags + row * grid.width;
-                                        for (std::int64_t col = lo; col <= hi && !covers; ++col)
-                                            covers = (flags[col] & kCellOpenHole) != 0;
-                                    });
-            } else {
-                triangle.forEachOnSegment([&](std::int64_t col, std::int64_t row) {
-                    covers |= (grid.flags[row * grid.width + col] & kCellOpenHole) != 0;
-                });
+    parallelForChunks(
+        drop.size(), threads, kCheckChunk, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
+                const PixelTriangle triangle = triangleOf(mesh, corners, t);
+                bool covers = false;
+                if (triangle.hasArea()) {
+                    triangle.forEachRow(grid.width, grid.height, nullptr,
+                                        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                            const std::uint8_t* flags =
+                                                grid.flags + row * grid.width;
+                                            for (std::int64_t col = lo; col <= hi && !covers; ++col)
+                                                covers = (flags[col] & kCellOpenHole) != 0;
+                                        });
+                } else {
+                    triangle.forEachOnSegment([&](std::int64_t col, std::int64_t row) {
+                        covers |= (grid.flags[row * grid.width + col] & kCellOpenHole) != 0;
+                    });
+                }
+                drop[t] = covers ? 1 : 0;
             }
-            drop[t] = covers ? 1 : 0;
-        }
-    });
+        });
     return drop;
 }
 
@@ -70,16 +71,24 @@ void measureCells(const GridView& grid, const PixelTriangle& triangle, std::int6
     const float* z = grid.z + row * grid.width;
     const double base = triangle.rowBase(row);
     const double gradCol = triangle.gradCol();
+    // Sums in locals: `measure` might alias the flags (bytes alias anything), which would
+    // keep it in memory, a store and a reload per cell.
+    double maxError = measure.maxError;
+    double sumSquares = 0.0;
+    std::size_t cells = 0;
     for (std::int64_t col = lo; col <= hi; ++col) {
         if (flags[col] != 0)
             continue;
         const double error =
             std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
-        measure.maxError = std::max(measure.maxError, error);
-        if (count) {
-            measure.sumSquares += error * error;
-            ++measure.coveredCells;
-        }
+        maxError = std::max(maxError, error);
+        sumSquares += error * error;
+        ++cells;
+    }
+    measure.maxError = maxError;
+    if (count) {
+        measure.sumSquares += sumSquares;
+        measure.coveredCells += cells;
     }
 }
 
@@ -96,58 +105,56 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
             const PixelCorner& a = corners[mesh.triangles[3 * t]];
             const PixelCorner& b = corners[mesh.triangles[3 * t + 1]];
             const PixelCorner& c = corners[mesh.triangles[3 * t + 2]];
-            flat[t] = (b.col - a.col) * (c.row - a.row) == (c.col - a.col) * (b.row - a.row) ? 1 : 0;
+            flat[t] =
+                (b.col - a.col) * (c.row - a.row) == (c.col - a.col) * (b.row - a.row) ? 1 : 0;
         }
     });
     // Chunks, not halves: triangles differ in size by orders of magnitude (flat ground).
-    parallelForChunks(triangles, threads, kCheckChunk, [&](unsigned block, std::size_t begin,
-                                                          std::size_t end) {
-        ErrorMeasure& measure = blocks[block];
-        for (std::size_t t = begin; t < end; ++t) {
-            // Corners are looked up by vertex number, at random: ask for them ahead.
-            constexpr std::size_t kAhead = 8;
-            if (t + kAhead < end)
-                for (std::size_t k = 0; k < 3; ++k)
-                    __builtin_prefetch(&corners[mesh.triangles[3 * (t + kAhead) + k]]);
-            if (flat[t] != 0)
-                continue;
-            const PixelTriangle triangle = triangleOf(mesh, corners, t);
-            if (triangle.coversOnlyCorners())
-                continue; // vertices, counted below
+    parallelForChunks(
+        triangles, threads, kCheckChunk, [&](unsigned block, std::size_t begin, std::size_t end) {
+            ErrorMeasure& measure = blocks[block];
+            for (std::size_t t = begin; t < end; ++t) {
+                // Corners are looked up by vertex number, at random: ask for them ahead.
+                constexpr std::size_t kAhead = 8;
+                if (t + kAhead < end)
+                    for (std::size_t k = 0; k < 3; ++k)
+                        __builtin_prefetch(&corners[mesh.triangles[3 * (t + kAhead) + k]]);
+                if (flat[t] != 0)
+                    continue;
+                const PixelTriangle triangle = triangleOf(mesh, corners, t);
+                if (triangle.coversOnlyCorners())
+                    continue; // vertices, counted below
 
-            // Edge i of `triangle` runs corner(i) -> corner(i+1); find the mesh's neighbour
-            // across it to decide whether this triangle owns the cells on it.
-            bool strict[3] = {false, false, false};
-            bool besideFlat = false;
-            for (int i = 0; i < 3; ++i) {
-                const std::uint32_t a = triangle.corner(i).id;
-                const std::uint32_t b = triangle.corner((i + 1) % 3).id;
-                for (int j = 0; j < 3; ++j) {
-                    const std::uint32_t p = mesh.triangles[3 * t + j];
-                    const std::uint32_t q = mesh.triangles[3 * t + (j + 1) % 3];
-                    if ((p == a && q == b) || (p == b && q == a)) {
-                        const std::int32_t neighbour = mesh.neighbours[3 * t + j];
-                        strict[i] = neighbour != kNoNeighbour && !triangle.ownsSharedEdge(i);
-                        besideFlat |=
-                            neighbour != kNoNeighbour && flat[static_cast<std::size_t>(neighbour)];
-                    }
+                // Edge i of `triangle` runs corner(i) -> corner(i+1); the mesh's neighbour across
+                // it is the one across the mesh edge opposite corner(i+2), mesh corner k, which
+                // is the mesh edge k + 1 (TinMesh: neighbours[3t+j] across corner j to j+1).
+                bool strict[3] = {false, false, false};
+                bool besideFlat = false;
+                for (int i = 0; i < 3; ++i) {
+                    const std::uint32_t opposite = triangle.corner((i + 2) % 3).id;
+                    const std::size_t k = opposite == mesh.triangles[3 * t]       ? 0
+                                          : opposite == mesh.triangles[3 * t + 1] ? 1
+                                                                                  : 2;
+                    const std::int32_t neighbour = mesh.neighbours[3 * t + (k + 1) % 3];
+                    strict[i] = neighbour != kNoNeighbour && !triangle.ownsSharedEdge(i);
+                    besideFlat |=
+                        neighbour != kNoNeighbour && flat[static_cast<std::size_t>(neighbour)];
                 }
-            }
-            // Each covered cell is counted in the one triangle that owns it, which sees the
-            // largest error as well; but no triangle owns the cells a flat neighbour skips, so
-            // beside one the maximum takes every cell of the closed triangle.
-            triangle.forEachRow(grid.width, grid.height, strict,
-                                [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                    measureCells(grid, triangle, row, lo, hi, true, measure);
-                                });
-            if (besideFlat)
-                triangle.forEachRow(grid.width, grid.height, nullptr,
+                // Each covered cell is counted in the one triangle that owns it, which sees the
+                // largest error as well; but no triangle owns the cells a flat neighbour skips, so
+                // beside one the maximum takes every cell of the closed triangle.
+                triangle.forEachRow(grid.width, grid.height, strict,
                                     [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                        measureCells(grid, triangle, row, lo, hi, false,
-                                                     measure);
+                                        measureCells(grid, triangle, row, lo, hi, true, measure);
                                     });
-        }
-    });
+                if (besideFlat)
+                    triangle.forEachRow(grid.width, grid.height, nullptr,
+                                        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                            measureCells(grid, triangle, row, lo, hi, false,
+                                                         measure);
+                                        });
+            }
+        });
     ErrorMeasure total;
     for (const ErrorMeasure& block : blocks) {
         total.maxError = std::max(total.maxError, block.maxError);
