@@ -56,7 +56,11 @@ TriId RefineMesh::allocate(unsigned region) {
 }
 
 std::vector<TriId> RefineMesh::slotsInUse() const {
+    std::size_t handedOut = 0;
+    for (const Region& region : m_regions)
+        handedOut += region.next - region.begin;
     std::vector<TriId> slots;
+    slots.reserve(handedOut);
     for (const Region& region : m_regions)
         for (TriId t = region.begin; t < region.next; ++t)
             if (inUse(t))
