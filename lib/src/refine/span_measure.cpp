@@ -44,8 +44,10 @@ __attribute__((target("avx2"))) inline void measureFour(FourLanes& lanes, __m128
         _mm256_castsi256_pd(_mm256_cmpeq_epi64(laneFlags, _mm256_setzero_si256()));
     // A cell with a flag (no data, a vertex) has no error: -1, never above a lane's best.
     const __m256d candidate = _mm256_blendv_pd(_mm256_set1_pd(-1.0), error, measured);
+    // The maximum, not a blend, carries the lanes' best from one group to the next: a
+    // shorter chain of dependent instructions.
     const __m256d larger = _mm256_cmp_pd(candidate, lanes.best, _CMP_GT_OQ);
-    lanes.best = _mm256_blendv_pd(lanes.best, candidate, larger);
+    lanes.best = _mm256_max_pd(lanes.best, candidate);
     lanes.cell = _mm256_blendv_pd(lanes.cell, cells, larger);
     lanes.flagsSeen |= flags;
 }
