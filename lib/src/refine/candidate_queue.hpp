@@ -6,10 +6,13 @@
 /// A binary or 4-ary heap of a million candidates misses the cache on every level of each
 /// pop, and most popped candidates are stale (their triangle was split since), so the pops
 /// were the refiner's largest sequential cost. Here candidates are first sorted into buckets
-/// by the leading bits of their priority (as a float: 8 exponent and 7 mantissa bits, so a
+/// by the leading bits of their priority (as a float: exponent and 5 mantissa bits, so a
 /// bucket spans 1/32 of an octave), which costs one append per push. Only the highest
 /// non-empty bucket is kept as a heap; it holds thousands of entries, which stay in cache.
-/// Priorities are never negative, so the float's bit pattern orders like its value.
+/// Priorities are never negative, so the float's bit pattern orders like its value. The
+/// buckets cover the octaves 2^-16 to 2^24; lower priorities share the first bucket and
+/// higher ones (+inf too) the last, which keeps the order (a bucket's heap sorts it out) and
+/// the queue small: the refiner keeps two per strip.
 
 #include "refine_mesh.hpp"
 
@@ -101,17 +104,27 @@ public:
     }
 
 private:
-    /// A float's 8 exponent bits and 5 leading mantissa bits (its sign is always 0).
-    static constexpr std::size_t kBucketBits = 13;
-    static constexpr std::size_t kBuckets = std::size_t{1} << kBucketBits;
+    /// Buckets per octave (2^kSubBits), and the octaves with buckets of their own.
+    static constexpr unsigned kSubBits = 5;
+    static constexpr int kLowestOctave = -16;
+    static constexpr int kHighestOctave = 24;
+    static constexpr std::size_t kBuckets = static_cast<std::size_t>(kHighestOctave - kLowestOctave)
+                                            << kSubBits;
+    static_assert(kBuckets % 64 == 0);
     static constexpr std::size_t kWords = kBuckets / 64;
     static constexpr std::size_t kSummaryWords = (kWords + 63) / 64;
 
-    /// Monotone: rounding to float never reverses an order, and for non-negative floats
-    /// (+inf included) the bit pattern grows with the value.
+    /// Monotone: rounding to float never reverses an order, for non-negative floats (+inf
+    /// included) the bit pattern grows with the value, and clamping keeps that.
     static std::uint32_t bucketOf(double priority) {
-        const auto bits = std::bit_cast<std::uint32_t>(static_cast<float>(priority));
-        return bits >> (32 - 1 - kBucketBits);
+        constexpr unsigned kMantissaBits = 23;
+        constexpr std::uint32_t kFirst = static_cast<std::uint32_t>(127 + kLowestOctave)
+                                         << kSubBits;
+        const std::uint32_t leading = std::bit_cast<std::uint32_t>(static_cast<float>(priority)) >>
+                                      (kMantissaBits - kSubBits);
+        if (leading < kFirst)
+            return 0;
+        return std::min<std::uint32_t>(leading - kFirst, kBuckets - 1);
     }
 
     void markFull(std::uint32_t bucket) {

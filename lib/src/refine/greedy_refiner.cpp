@@ -154,11 +154,12 @@ void GreedyRefiner::planStrips() {
     const auto width = static_cast<std::size_t>(m_grid.width);
     std::vector<std::size_t> validInColumn(width, 0);
     std::size_t valid = 0;
-    for (std::size_t cell = 0; cell < m_flags.size(); ++cell)
-        if ((m_flags[cell] & kCellNoData) == 0) {
-            ++validInColumn[cell % width];
-            ++valid;
-        }
+    // Row by row: a division per cell (cell % width) took longer than the rest of the setup.
+    for (std::size_t rowStart = 0; rowStart < m_flags.size(); rowStart += width)
+        for (std::size_t col = 0; col < width; ++col)
+            validInColumn[col] += (m_flags[rowStart + col] & kCellNoData) == 0 ? 1 : 0;
+    for (const std::size_t count : validInColumn)
+        valid += count;
     std::size_t count = m_options.strips;
     if (count == 0)
         count = static_cast<std::size_t>(std::max<std::int64_t>(m_grid.width / kStripColumns, 1));

@@ -313,7 +313,7 @@ TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
         EXPECT_EQ(got.cell, expected.cell);
     };
     // Pushes interleaved with pops, some above the bucket being consumed, ties on priority
-    // broken by the cell, zero and infinite priorities.
+    // broken by the cell, zero, tiny, huge and infinite priorities.
     std::uint32_t cell = 0;
     for (int step = 0; step < 4000; ++step) {
         double value = priority(random);
@@ -323,6 +323,11 @@ TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
             value = 0.0;
         if (step % 211 == 0)
             value = std::numeric_limits<double>::infinity();
+        // Below and above the octaves with buckets of their own: they share the end buckets.
+        if (step % 13 == 0)
+            value = 1e-9 * static_cast<double>(step % 50);
+        if (step % 23 == 0)
+            value = 1e9 + static_cast<double>(step % 7);
         pushBoth({value, (cell++ * 7919U) % 100003U, 0, 0});
         if (step % 3 == 2)
             popBoth();
