@@ -40,18 +40,27 @@ inline void measureSpan(const GridView& view, const PixelTriangle& triangle, std
     const std::uint8_t* flags = view.flags + row * view.width;
     const double base = triangle.rowBase(row);
     const double gradCol = triangle.gradCol();
+    // In locals: `result` might alias the flags (bytes alias anything), which would keep it
+    // in memory.
+    double best = result.best;
+    std::int64_t bestCol = -1;
+    std::uint8_t seen = 0;
     for (std::int64_t col = lo; col <= hi; ++col) {
-        if (flags[col] != 0) {
-            result.coversHole |= (flags[col] & kCellOpenHole) != 0;
+        seen |= flags[col];
+        if (flags[col] != 0)
             continue;
-        }
         const double error =
             std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
-        if (error > result.best) {
-            result.best = error;
-            result.bestCell = row * view.width + col;
+        if (error > best) {
+            best = error;
+            bestCol = col;
         }
     }
+    if (bestCol >= 0) {
+        result.best = best;
+        result.bestCell = row * view.width + bestCol;
+    }
+    result.coversHole |= (seen & kCellOpenHole) != 0;
 }
 
 /// measureSpan on each of `count` spans in order (rows increasing), four cells at a time where
