@@ -43,6 +43,29 @@ std::set<Cell> cellsByBruteForce(const PixelCorner& a, const PixelCorner& b, con
     return cells;
 }
 
+/// A grid of rough integer elevations (many ties) in 0..maxHeight, with every holeEvery-th cell
+/// an open hole's and every vertexEvery-th a vertex.
+struct RoughGrid {
+    std::vector<float> z;
+    std::vector<std::uint8_t> flags;
+    GridView view;
+};
+RoughGrid makeRoughGrid(std::int64_t width, std::int64_t height, std::mt19937& random,
+                        int maxHeight, std::size_t holeEvery, std::size_t vertexEvery) {
+    RoughGrid grid;
+    std::uniform_int_distribution<int> elevation(0, maxHeight);
+    grid.z.resize(static_cast<std::size_t>(width * height));
+    grid.flags.assign(grid.z.size(), 0);
+    for (std::size_t i = 0; i < grid.z.size(); ++i) {
+        grid.z[i] = static_cast<float>(elevation(random));
+        grid.flags[i] = i % holeEvery == 0     ? kCellOpenHole | kCellNoData
+                        : i % vertexEvery == 0 ? kCellVertex
+                                               : 0;
+    }
+    grid.view = {width, height, grid.z.data(), grid.flags.data()};
+    return grid;
+}
+
 TEST(GridScan, RowsHoldExactlyTheCellsOfTheClosedTriangle) {
     std::mt19937 random(5);
     std::uniform_int_distribution<std::int64_t> coordinate(-3, 24);
@@ -179,14 +202,8 @@ TEST(GridScan, BandsOfRowsMeasureLikeTheWholeTriangle) {
     constexpr std::int64_t kWidth = 90;
     constexpr std::int64_t kHeight = 70;
     std::mt19937 random(9);
-    std::uniform_int_distribution<int> height(0, 6);
-    std::vector<float> z(kWidth * kHeight);
-    std::vector<std::uint8_t> flags(z.size(), 0);
-    for (std::size_t i = 0; i < z.size(); ++i) {
-        z[i] = static_cast<float>(height(random));
-        flags[i] = i % 37 == 0 ? kCellOpenHole | kCellNoData : i % 41 == 0 ? kCellVertex : 0;
-    }
-    const GridView view{kWidth, kHeight, z.data(), flags.data()};
+    const RoughGrid grid = makeRoughGrid(kWidth, kHeight, random, 6, 37, 41);
+    const GridView& view = grid.view;
     std::uniform_int_distribution<std::int64_t> coordinate(0, kWidth - 1);
     for (int trial = 0; trial < 300; ++trial) {
         const PixelCorner a{coordinate(random), coordinate(random) % kHeight, 3.0, 0};
@@ -215,14 +232,10 @@ TEST(GridScan, MeasureFindsTheFarthestCellOfBruteForce) {
     constexpr std::int64_t kWidth = 45;
     constexpr std::int64_t kHeight = 50;
     std::mt19937 random(21);
-    std::uniform_int_distribution<int> height(0, 3);
-    std::vector<float> z(kWidth * kHeight);
-    std::vector<std::uint8_t> flags(z.size(), 0);
-    for (std::size_t i = 0; i < z.size(); ++i) {
-        z[i] = static_cast<float>(height(random));
-        flags[i] = i % 29 == 0 ? kCellOpenHole | kCellNoData : i % 31 == 0 ? kCellVertex : 0;
-    }
-    const GridView view{kWidth, kHeight, z.data(), flags.data()};
+    const RoughGrid grid = makeRoughGrid(kWidth, kHeight, random, 3, 29, 31);
+    const GridView& view = grid.view;
+    const std::vector<float>& z = grid.z;
+    const std::vector<std::uint8_t>& flags = grid.flags;
     std::uniform_int_distribution<std::int64_t> col(0, kWidth - 1);
     std::uniform_int_distribution<std::int64_t> row(0, kHeight - 1);
     int measured = 0;
