@@ -58,12 +58,6 @@ public:
         markFull(bucket);
     }
 
-    /// The greatest candidate; requires !empty().
-    [[nodiscard]] const Candidate& top() {
-        settleTop();
-        return m_topHeap.front();
-    }
-
     /// The greatest candidate, or nullptr when the queue is empty. A bucket taken into the
     /// top heap first loses the candidates `isLive` rejects: most candidates are stale by
     /// the time their bucket comes up, and each would cost a pop from the heap. One that

@@ -306,6 +306,12 @@ TEST(GridScan, FloorDivisionIsExact) {
     EXPECT_EQ(floorDivPositive(-huge, 7), floorDiv(-huge, 7));
 }
 
+/// A live test for CandidateQueue::top that keeps every candidate.
+struct KeepAll {
+    bool operator()(const Candidate& /*candidate*/) const { return true; }
+    void request(const Candidate& /*candidate*/) const {}
+};
+
 TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
     std::mt19937 random(3);
     std::uniform_real_distribution<double> priority(0.0, 2000.0);
@@ -320,7 +326,9 @@ TEST(CandidateQueue, PopsInPriorityThenCellOrder) {
         const Candidate expected = *greatest;
         reference.erase(greatest);
         ASSERT_FALSE(queue.empty());
-        EXPECT_EQ(queue.top().priority, expected.priority);
+        const Candidate* top = queue.top(KeepAll{});
+        ASSERT_NE(top, nullptr);
+        EXPECT_EQ(top->priority, expected.priority);
         const Candidate got = queue.pop();
         EXPECT_EQ(got.priority, expected.priority);
         EXPECT_EQ(got.cell, expected.cell);
