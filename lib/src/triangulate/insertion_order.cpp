@@ -49,25 +49,72 @@ std::uint32_t boundedRandom(SplitMix64& random, std::uint32_t bound) {
 constexpr int kHilbertOrder = 13;
 constexpr std::uint32_t kHilbertSide = 1U << kHilbertOrder;
 
-// Position of cell (x, y) along the Hilbert curve filling a kHilbertSide square. Each level
-// picks a quadrant and then transforms the coordinates below it by a swap and/or a
-// complement of both; those transforms commute, so the state is just two bits.
+// One level of the Hilbert curve: the quadrant (bx, by) of a cell, seen in the frame of the
+// current state, gives the curve's next base-4 digit and the frame of the level below. The
+// frame is a swap and/or a complement of both coordinates; those transforms commute, so the
+// state is two bits: bit 0 swapped, bit 1 complemented.
+struct HilbertStep {
+    std::uint32_t digit;
+    std::uint32_t state;
+};
+
+constexpr HilbertStep hilbertStep(std::uint32_t bx, std::uint32_t by, std::uint32_t state) {
+    std::uint32_t swapped = state & 1U;
+    std::uint32_t complemented = state >> 1U;
+    const std::uint32_t exchange = (bx ^ by) & swapped;
+    bx ^= exchange ^ complemented;
+    by ^= exchange ^ complemented;
+    const std::uint32_t digit = (3U * bx) ^ by;
+    const std::uint32_t lowerHalf = by ^ 1U;
+    swapped ^= lowerHalf;
+    complemented ^= bx & lowerHalf;
+    return {digit, swapped | (complemented << 1U)};
+}
+
+// Four levels at once: entry (state, x nibble, y nibble) holds the curve's next 8 bits and,
+// above them, the state after those levels. Evaluating the levels one by one was the most
+// expensive part of ordering a million points (a chain of dependent bit operations per level).
+constexpr unsigned kNibbleLevels = 4;
+using NibbleTable = std::array<std::uint16_t, 4 * 16 * 16>;
+
+constexpr NibbleTable makeNibbleTable() {
+    NibbleTable table{};
+    for (std::uint32_t state = 0; state < 4; ++state)
+        for (std::uint32_t x = 0; x < 16; ++x)
+            for (std::uint32_t y = 0; y < 16; ++y) {
+                std::uint32_t digits = 0;
+                std::uint32_t next = state;
+                for (int level = kNibbleLevels - 1; level >= 0; --level) {
+                    const HilbertStep step =
+                        hilbertStep((x >> level) & 1U, (y >> level) & 1U, next);
+                    digits = (digits << 2U) | step.digit;
+                    next = step.state;
+                }
+                table[(state << 8U) | (x << 4U) | y] =
+                    static_cast<std::uint16_t>(digits | (next << 8U));
+            }
+    return table;
+}
+
+constexpr NibbleTable kNibbleTable = makeNibbleTable();
+
+// Position of cell (x, y) along the Hilbert curve filling a kHilbertSide square: the levels
+// above a multiple of four one at a time, then four at a time.
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
     std::uint32_t index = 0;
-    std::uint32_t swapped = 0;
-    std::uint32_t complemented = 0;
-    for (int level = kHilbertOrder - 1; level >= 0; --level) {
-        std::uint32_t bx = (x >> static_cast<unsigned>(level)) & 1U;
-        std::uint32_t by = (y >> static_cast<unsigned>(level)) & 1U;
-        // Branch-free on purpose: the quadrant is data, and mispredicted branches at every
-        // level made this the most expensive part of ordering a million points.
-        const std::uint32_t exchange = (bx ^ by) & swapped;
-        bx ^= exchange ^ complemented;
-        by ^= exchange ^ complemented;
-        index = (index << 2U) | ((3U * bx) ^ by);
-        const std::uint32_t lowerHalf = by ^ 1U;
-        swapped ^= lowerHalf;
-        complemented ^= bx & lowerHalf;
+    std::uint32_t state = 0;
+    int level = kHilbertOrder - 1;
+    for (; level >= 0 && (level + 1) % kNibbleLevels != 0; --level) {
+        const HilbertStep step = hilbertStep((x >> level) & 1U, (y >> level) & 1U, state);
+        index = (index << 2U) | step.digit;
+        state = step.state;
+    }
+    for (; level >= 0; level -= kNibbleLevels) {
+        const unsigned shift = static_cast<unsigned>(level) + 1 - kNibbleLevels;
+        const std::uint32_t entry =
+            kNibbleTable[(state << 8U) | (((x >> shift) & 15U) << 4U) | ((y >> shift) & 15U)];
+        index = (index << (2 * kNibbleLevels)) | (entry & 0xFFU);
+        state = entry >> 8U;
     }
     return index;
 }
@@ -77,7 +124,7 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
 // million keys costs several times more. Each pass runs on up to `threads` threads: every
 // block counts its digits, and scatters from its own offsets, which keeps the sort stable.
 void radixSort(std::vector<std::uint64_t>& keys, unsigned lowBit, unsigned threads) {
-    constexpr unsigned kDigitBits = 8;
+    constexpr unsigned kDigitBits = 11;
     constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
     std::vector<std::uint64_t> buffer(keys.size());
     const unsigned blocks = parallelForThreads(keys.size(), threads);
