@@ -3,15 +3,15 @@
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 
+#include "distinct_points.hpp"
 #include "parallel_for.hpp"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace terratin {
 
@@ -39,93 +39,49 @@ void checkFinite(std::span<const Point3> points, unsigned threads) {
                             " has a non-finite coordinate or elevation");
 }
 
-// A distinct (x, y) and what its duplicates contributed so far.
-struct Survivor {
-    std::uint32_t firstIndex;
-    std::uint32_t source;
-    double z;
-    std::uint32_t count;
-};
-
-void mergeDuplicate(Survivor& survivor, std::uint32_t index, double z, DuplicateZPolicy policy) {
-    ++survivor.count;
-    switch (policy) {
-    case DuplicateZPolicy::First:
-        break;
-    case DuplicateZPolicy::Last:
-        survivor.source = index;
-        survivor.z = z;
-        break;
-    case DuplicateZPolicy::Min:
-        survivor.z = std::min(survivor.z, z);
-        break;
-    case DuplicateZPolicy::Max:
-        survivor.z = std::max(survivor.z, z);
-        break;
-    case DuplicateZPolicy::Mean:
-        survivor.z += z; // divided by the count once the group is complete
-        break;
-    }
-}
-
-// Bits of a coordinate with -0 folded onto +0, so that equal doubles hash equally.
-std::uint64_t coordinateBits(double value) {
-    return std::bit_cast<std::uint64_t>(value == 0.0 ? 0.0 : value);
-}
-
-std::uint64_t positionHash(const Point3& p) {
-    // A multiply-xorshift mix (the finaliser of splitmix64) of both coordinates: cheap and
-    // spreads grid coordinates, whose low mantissa bits are all zero, over the whole table.
-    std::uint64_t h = coordinateBits(p.x) * 0x9E3779B97F4A7C15ULL ^ coordinateBits(p.y);
-    h = (h ^ (h >> 30U)) * 0xBF58476D1CE4E5B9ULL;
-    h = (h ^ (h >> 27U)) * 0x94D049BB133111EBULL;
-    return h ^ (h >> 31U);
-}
-
-// One survivor per distinct (x, y), in order of first occurrence, found with an
-// open-addressing hash table: O(n) expected, where sorting the points would cost O(n log n).
-std::vector<Survivor> mergeDuplicates(std::span<const Point3> points, DuplicateZPolicy policy) {
-    constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
-    // At most half full, so probe sequences stay short.
-    const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * points.size(), 16));
-    std::vector<std::uint32_t> table(capacity, kEmpty);
-    std::vector<Survivor> survivors;
-    survivors.reserve(points.size());
-    // Each point's first probe is a cache miss in a table of several megabytes: the slots of
-    // the next kLookAhead points are computed and prefetched ahead of their turn.
-    constexpr std::size_t kLookAhead = 16;
-    std::array<std::size_t, kLookAhead> ahead{};
-    const auto home = [&](std::size_t i) { return positionHash(points[i]) & (capacity - 1); };
-    for (std::size_t i = 0; i < std::min(kLookAhead, points.size()); ++i) {
-        ahead[i] = home(i);
-        __builtin_prefetch(&table[ahead[i]]);
-    }
-    for (std::uint32_t i = 0; i < points.size(); ++i) {
-        const Point3& p = points[i];
-        std::size_t slot = ahead[i % kLookAhead];
-        if (i + kLookAhead < points.size()) {
-            ahead[i % kLookAhead] = home(i + kLookAhead);
-            __builtin_prefetch(&table[ahead[i % kLookAhead]]);
-        }
-        for (;;) {
-            const std::uint32_t existing = table[slot];
-            if (existing == kEmpty) {
-                table[slot] = static_cast<std::uint32_t>(survivors.size());
-                survivors.push_back({i, i, p.z, 1});
-                break;
-            }
-            const Point3& q = points[survivors[existing].firstIndex];
-            if (q.x == p.x && q.y == p.y) {
-                mergeDuplicate(survivors[existing], i, p.z, policy);
-                break;
-            }
-            slot = (slot + 1) & (capacity - 1);
+// Folds each duplicate's elevation (and, for Last, its index) into its first occurrence,
+// which is at `k` in the prepared arrays. Duplicates come by ascending input index, so
+// "last" and the order of the sums do not depend on the thread count.
+void mergeDuplicates(std::span<const Point3> points,
+                     const std::vector<detail::DuplicatePoint>& duplicates, DuplicateZPolicy policy,
+                     PreparedPoints& prepared) {
+    // The first occurrences are sorted, so a binary search finds each group's position; all
+    // are found before the Last policy changes sourceIndex.
+    std::vector<std::size_t> groupOf(duplicates.size());
+    for (std::size_t d = 0; d < duplicates.size(); ++d)
+        groupOf[d] = static_cast<std::size_t>(std::lower_bound(prepared.sourceIndex.begin(),
+                                                               prepared.sourceIndex.end(),
+                                                               duplicates[d].first) -
+                                              prepared.sourceIndex.begin());
+    std::vector<std::uint32_t> groupSize;
+    if (policy == DuplicateZPolicy::Mean)
+        groupSize.assign(prepared.sourceIndex.size(), 1);
+    for (std::size_t d = 0; d < duplicates.size(); ++d) {
+        const detail::DuplicatePoint& duplicate = duplicates[d];
+        const std::size_t k = groupOf[d];
+        const double z = points[duplicate.index].z;
+        switch (policy) {
+        case DuplicateZPolicy::First:
+            break;
+        case DuplicateZPolicy::Last:
+            prepared.sourceIndex[k] = duplicate.index;
+            prepared.z[k] = z;
+            break;
+        case DuplicateZPolicy::Min:
+            prepared.z[k] = std::min(prepared.z[k], z);
+            break;
+        case DuplicateZPolicy::Max:
+            prepared.z[k] = std::max(prepared.z[k], z);
+            break;
+        case DuplicateZPolicy::Mean:
+            prepared.z[k] += z;
+            ++groupSize[k];
+            break;
         }
     }
     if (policy == DuplicateZPolicy::Mean)
-        for (Survivor& survivor : survivors)
-            survivor.z /= static_cast<double>(survivor.count);
-    return survivors;
+        for (std::size_t k = 0; k < groupSize.size(); ++k)
+            prepared.z[k] /= static_cast<double>(groupSize[k]);
 }
 
 // True when value - origin is exactly representable (Knuth's TwoDiff error term is zero).
@@ -248,22 +204,21 @@ PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy po
                                 "); at most " + std::to_string(kMaxPoints) + " are supported");
     checkFinite(points, threads);
 
-    const std::vector<Survivor> survivors = mergeDuplicates(points, policy);
+    detail::DistinctPoints distinct = detail::findDistinctPoints(points, threads);
     PreparedPoints prepared;
-    prepared.duplicateCount = points.size() - survivors.size();
-    prepared.sourceIndex.resize(survivors.size());
-    prepared.z.resize(survivors.size());
-    detail::parallelFor(survivors.size(), threads,
+    prepared.duplicateCount = distinct.duplicates.size();
+    prepared.sourceIndex = std::move(distinct.firstOccurrences);
+    prepared.z.resize(prepared.sourceIndex.size());
+    detail::parallelFor(prepared.z.size(), threads,
                         [&](unsigned, std::size_t begin, std::size_t end) {
-                            for (std::size_t k = begin; k < end; ++k) {
-                                prepared.sourceIndex[k] = survivors[k].source;
-                                prepared.z[k] = survivors[k].z;
-                            }
+                            for (std::size_t k = begin; k < end; ++k)
+                                prepared.z[k] = points[prepared.sourceIndex[k]].z;
                         });
+    mergeDuplicates(points, distinct.duplicates, policy, prepared);
     prepared.origin = chooseOrigin(points, prepared.sourceIndex, threads);
-    prepared.local.resize(survivors.size());
+    prepared.local.resize(prepared.sourceIndex.size());
     detail::parallelFor(
-        survivors.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        prepared.local.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 const Point3& p = points[prepared.sourceIndex[k]];
                 prepared.local[k] = {p.x - prepared.origin.x, p.y - prepared.origin.y};

@@ -4,8 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
+#include <utility>
+#include <vector>
 
 namespace terratin {
 namespace {
@@ -55,6 +60,80 @@ TEST(PreparePoints, Throws_WhenCoordinateIsInfinite) {
     const std::vector<Point3> points{
         {0, 0, 0}, {1, 0, 0}, {std::numeric_limits<double>::infinity(), 1, 0}};
     EXPECT_THROW(preparePoints(points, DuplicateZPolicy::First), InvalidInputError);
+}
+
+// Points on a coarse lattice, so that about half repeat an earlier (x, y); some zeros are
+// negative, which must merge with positive zeros.
+std::vector<Point3> pointsWithManyDuplicates(std::size_t count) {
+    std::vector<Point3> points;
+    std::uint64_t state = 12345;
+    const auto nextValue = [&state](std::uint64_t bound) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return (state >> 33U) % bound;
+    };
+    const double side = std::sqrt(static_cast<double>(count) / 2.0);
+    for (std::size_t i = 0; i < count; ++i) {
+        double x = static_cast<double>(nextValue(static_cast<std::uint64_t>(side)));
+        const double y = static_cast<double>(nextValue(static_cast<std::uint64_t>(side)));
+        if (x == 0.0 && nextValue(2) == 0)
+            x = -0.0;
+        points.push_back({x, y, static_cast<double>(nextValue(1000))});
+    }
+    return points;
+}
+
+// What every policy should give, from an ordered map of the groups.
+PreparedPoints referencePreparation(const std::vector<Point3>& points, DuplicateZPolicy policy) {
+    std::map<std::pair<double, double>, std::vector<std::uint32_t>> groups;
+    for (std::uint32_t i = 0; i < points.size(); ++i)
+        groups[{points[i].x == 0.0 ? 0.0 : points[i].x, points[i].y}].push_back(i);
+    std::vector<std::vector<std::uint32_t>> byFirst;
+    for (auto& [position, members] : groups)
+        byFirst.push_back(members);
+    std::sort(byFirst.begin(), byFirst.end());
+    PreparedPoints reference;
+    for (const std::vector<std::uint32_t>& members : byFirst) {
+        std::uint32_t source = members.front();
+        double z = points[source].z;
+        for (std::size_t m = 1; m < members.size(); ++m) {
+            const double other = points[members[m]].z;
+            if (policy == DuplicateZPolicy::Last) {
+                source = members[m];
+                z = other;
+            } else if (policy == DuplicateZPolicy::Min) {
+                z = std::min(z, other);
+            } else if (policy == DuplicateZPolicy::Max) {
+                z = std::max(z, other);
+            } else if (policy == DuplicateZPolicy::Mean) {
+                z += other;
+            }
+        }
+        if (policy == DuplicateZPolicy::Mean)
+            z /= static_cast<double>(members.size());
+        reference.sourceIndex.push_back(source);
+        reference.z.push_back(z);
+    }
+    reference.duplicateCount = points.size() - byFirst.size();
+    return reference;
+}
+
+TEST(PreparePoints, MergesLikeAReference_OnManyThreadsAndDuplicates) {
+    // Enough points for several threads and many hash partitions.
+    const std::vector<Point3> points = pointsWithManyDuplicates(150000);
+    for (const DuplicateZPolicy policy :
+         {DuplicateZPolicy::First, DuplicateZPolicy::Last, DuplicateZPolicy::Min,
+          DuplicateZPolicy::Max, DuplicateZPolicy::Mean}) {
+        const PreparedPoints reference = referencePreparation(points, policy);
+        ASSERT_GT(reference.duplicateCount, points.size() / 4);
+        for (const unsigned threads : {1U, 3U}) {
+            SCOPED_TRACE(testing::Message()
+                         << "policy " << static_cast<int>(policy) << ", " << threads << " threads");
+            const PreparedPoints prepared = preparePoints(points, policy, threads);
+            EXPECT_EQ(prepared.duplicateCount, reference.duplicateCount);
+            EXPECT_EQ(prepared.sourceIndex, reference.sourceIndex);
+            EXPECT_EQ(prepared.z, reference.z);
+        }
+    }
 }
 
 } // namespace
