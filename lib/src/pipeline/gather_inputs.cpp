@@ -232,7 +232,7 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
 }
 
 void countDuplicatesPerInput(const std::vector<std::size_t>& offsets,
-                             const std::vector<std::uint32_t>& sourceIndex, BuildReport& report) {
+                             std::span<const std::uint32_t> sourceIndex, BuildReport& report) {
     std::vector<std::uint64_t> vertices(report.inputs.size(), 0);
     for (const std::uint32_t index : sourceIndex) {
         const auto input = static_cast<std::size_t>(

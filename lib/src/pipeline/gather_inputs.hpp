@@ -8,6 +8,7 @@
 #include "terratin/progress.hpp"
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,6 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
 /// Fills report.inputs[i].duplicates from the mesh's sourceIndex: the points of input i that
 /// did not become a vertex.
 void countDuplicatesPerInput(const std::vector<std::size_t>& offsets,
-                             const std::vector<std::uint32_t>& sourceIndex, BuildReport& report);
+                             std::span<const std::uint32_t> sourceIndex, BuildReport& report);
 
 } // namespace terratin::detail

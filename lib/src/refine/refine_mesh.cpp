@@ -287,8 +287,8 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
     return added;
 }
 
-void RefineMesh::extract(std::vector<std::uint32_t>& triangles,
-                         std::vector<std::int32_t>& neighbours, unsigned threads) const {
+void RefineMesh::extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
+                         unsigned threads) const {
     const std::vector<TriId> slots = slotsInUse();
     std::vector<std::int32_t> index(slotEnd(), -1);
     for (std::size_t k = 0; k < slots.size(); ++k)

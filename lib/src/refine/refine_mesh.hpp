@@ -31,6 +31,7 @@
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/huge_pages.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>
 #include <atomic>
@@ -142,7 +143,7 @@ public:
 
     /// The triangles in use, in slotsInUse() order, with neighbours as indices into it; on up
     /// to `threads` threads.
-    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours,
+    void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads = 1) const;
     /// Bytes of the slots handed out (the reserved capacity beyond is untouched).
     [[nodiscard]] std::size_t memoryBytes() const;

@@ -247,8 +247,8 @@ bool CavityMesh::insert(CavityVertex p, CavityTriangleId& hint, Scratch& scratch
     return true;
 }
 
-void CavityMesh::extract(std::vector<std::uint32_t>& triangles,
-                         std::vector<std::int32_t>& neighbours, unsigned threads) const {
+void CavityMesh::extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
+                         unsigned threads) const {
     // The used slots of every region, one region after the other, as positions [0, total).
     std::vector<std::size_t> regionOffset{0};
     for (const auto& [begin, used] : m_regions)

@@ -114,7 +114,7 @@ public:
 
     /// The real triangles in TinMesh form (corner order kept; neighbours across the edge from
     /// corner i to corner i + 1, kNoNeighbour on the hull), numbered in slot order.
-    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours,
+    void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads) const;
 
     /// Bytes of triangle slots and owners in use (as last recorded).

@@ -300,8 +300,8 @@ std::size_t DagTriangulator::repairAllEdges() {
     return flips;
 }
 
-void DagTriangulator::extract(std::vector<std::uint32_t>& triangles,
-                              std::vector<std::int32_t>& neighbours, unsigned threads) const {
+void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
+                              MeshArray<std::int32_t>& neighbours, unsigned threads) const {
     // Each thread takes a contiguous block of the arena: it lists the output triangles
     // (finite leaves) of its block, numbers them after the blocks before it, and then writes
     // their corners and neighbours. Three passes, since a neighbour may be in any block.

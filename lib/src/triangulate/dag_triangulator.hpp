@@ -20,6 +20,7 @@
 #include "symbolic_predicates.hpp"
 
 #include "terratin/progress.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>
 #include <cstdint>
@@ -96,7 +97,7 @@ public:
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
     /// Uses up to `threads` threads; the result does not depend on it.
-    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours,
+    void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads = 1) const;
 
     [[nodiscard]] DagNode& node(NodeId id) { return m_nodes[id]; }

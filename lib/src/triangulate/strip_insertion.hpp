@@ -46,7 +46,7 @@ public:
     void insertAll(std::span<const std::uint32_t> order, std::span<const std::size_t> roundStarts,
                    const ProgressCallback& progress);
 
-    void extract(std::vector<std::uint32_t>& triangles, std::vector<std::int32_t>& neighbours,
+    void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads) const {
         m_mesh.extract(triangles, neighbours, threads);
     }

@@ -43,7 +43,7 @@ TEST(Refine, SingleSpikeAddsOnePoint_WhenItsNeighboursLieOnTheHull) {
     const RefineResult result = refine(grid, withError(0.5));
     ASSERT_EQ(result.mesh.vertexCount(), 5U);
     // The corners and the spike, in raster order.
-    EXPECT_EQ(result.mesh.sourceIndex, (std::vector<std::uint32_t>{0, 2, 4, 6, 8}));
+    EXPECT_EQ(result.mesh.sourceIndex, (MeshArray<std::uint32_t>{0, 2, 4, 6, 8}));
     EXPECT_EQ(result.maxError, 0.0);
 }
 

@@ -34,7 +34,7 @@ const char* toString(PointLocation locate) { return locate == PointLocation::Dag
 
 void expectSameVertices(const TinMesh& parallel, const TinMesh& sequential) {
     auto sortedSources = [](const TinMesh& mesh) {
-        std::vector<std::uint32_t> sources = mesh.sourceIndex;
+        std::vector<std::uint32_t> sources(mesh.sourceIndex.begin(), mesh.sourceIndex.end());
         std::sort(sources.begin(), sources.end());
         return sources;
     };

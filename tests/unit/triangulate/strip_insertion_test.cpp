@@ -50,7 +50,7 @@ StripRun triangulateInStrips(const std::vector<Point3>& points, unsigned strips)
     triangulator.insertAll(order, roundStarts, {});
     StripRun run;
     triangulator.extract(run.mesh.triangles, run.mesh.neighbours, strips);
-    run.mesh.vertices = points;
+    run.mesh.vertices.assign(points.begin(), points.end());
     run.mesh.sourceIndex.resize(points.size());
     std::iota(run.mesh.sourceIndex.begin(), run.mesh.sourceIndex.end(), 0U);
     run.deferred = triangulator.deferredPoints();
