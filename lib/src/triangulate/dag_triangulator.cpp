@@ -1,6 +1,7 @@
 #include "dag_triangulator.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/huge_pages.hpp"
 
 #include "parallel_for.hpp"
 
@@ -306,34 +307,45 @@ void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
     // (finite leaves) of its block, numbers them after the blocks before it, and then writes
     // their corners and neighbours. Three passes, since a neighbour may be in any block.
     const std::size_t nodeCount = m_nodes.size();
-    const auto isOutput = [this](const DagNode& node) {
-        return node.isLeaf() && m_predicates.isFinite(node.v[0]) &&
-               m_predicates.isFinite(node.v[1]) && m_predicates.isFinite(node.v[2]);
+    const auto isFinite = [this](const DagNode& node) {
+        return m_predicates.isFinite(node.v[0]) && m_predicates.isFinite(node.v[1]) &&
+               m_predicates.isFinite(node.v[2]);
     };
-    std::vector<std::vector<NodeId>> blockOutputs(parallelForThreads(nodeCount, threads));
+    struct BlockLeaves {
+        std::vector<NodeId> finite;
+        /// Leaves with a symbolic corner: outside the mesh.
+        std::vector<NodeId> outside;
+    };
+    std::vector<BlockLeaves> blockLeaves(parallelForThreads(nodeCount, threads));
     parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
-        std::vector<NodeId>& outputs = blockOutputs[block];
-        outputs.reserve((end - begin) / 4);
-        for (std::size_t n = begin; n < end; ++n)
-            if (isOutput(m_nodes[static_cast<NodeId>(n)]))
-                outputs.push_back(static_cast<NodeId>(n));
+        BlockLeaves& leaves = blockLeaves[block];
+        leaves.finite.reserve((end - begin) / 4);
+        for (std::size_t n = begin; n < end; ++n) {
+            const DagNode& node = m_nodes[static_cast<NodeId>(n)];
+            if (node.isLeaf())
+                (isFinite(node) ? leaves.finite : leaves.outside).push_back(static_cast<NodeId>(n));
+        }
     });
-    std::vector<std::size_t> blockFirst(blockOutputs.size() + 1, 0);
-    for (std::size_t block = 0; block < blockOutputs.size(); ++block)
-        blockFirst[block + 1] = blockFirst[block] + blockOutputs[block].size();
+    std::vector<std::size_t> blockFirst(blockLeaves.size() + 1, 0);
+    for (std::size_t block = 0; block < blockLeaves.size(); ++block)
+        blockFirst[block + 1] = blockFirst[block] + blockLeaves[block].finite.size();
 
-    const std::unique_ptr<std::int32_t[]> outputIndex(new std::int32_t[nodeCount]);
-    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
-        std::fill(outputIndex.get() + begin, outputIndex.get() + end, -1);
-        const std::vector<NodeId>& outputs = blockOutputs[block];
-        for (std::size_t k = 0; k < outputs.size(); ++k)
-            outputIndex[outputs[k]] = static_cast<std::int32_t>(blockFirst[block] + k);
+    // The output index of every leaf, -1 outside the mesh. Links lead only to leaves, so the
+    // entries of inner nodes (three in four) are never read and never written: the array is
+    // left uninitialised, on huge pages for the random reads below.
+    const HugePageBuffer<std::int32_t> outputIndex(nodeCount);
+    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
+        const BlockLeaves& leaves = blockLeaves[block];
+        for (std::size_t k = 0; k < leaves.finite.size(); ++k)
+            outputIndex[leaves.finite[k]] = static_cast<std::int32_t>(blockFirst[block] + k);
+        for (const NodeId n : leaves.outside)
+            outputIndex[n] = -1;
     });
 
     triangles.resize(3 * blockFirst.back());
     neighbours.resize(3 * blockFirst.back());
     parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
-        const std::vector<NodeId>& outputs = blockOutputs[block];
+        const std::vector<NodeId>& outputs = blockLeaves[block].finite;
         for (std::size_t k = 0; k < outputs.size(); ++k) {
             const DagNode& node = m_nodes[outputs[k]];
             const std::size_t t = blockFirst[block] + k;
