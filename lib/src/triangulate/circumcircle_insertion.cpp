@@ -112,7 +112,7 @@ public:
         m_statistics.deferredEdges += worker.statistics.deferredEdges;
     }
 
-    void finish() {
+    void finish(unsigned threads) {
         if (m_failure)
             std::rethrow_exception(m_failure);
         if (m_cancelled.load())
@@ -121,7 +121,7 @@ public:
         // result is what sequential insertion in some order gives. With one, edges were left
         // unchecked: repair (checking every edge keeps this simple and certain).
         if (m_statistics.overrides > 0 || m_statistics.deferredEdges > 0)
-            m_statistics.repairFlips = m_triangulator.repairAllEdges();
+            m_statistics.repairFlips = m_triangulator.repairAllEdges(threads);
     }
 
     [[nodiscard]] const CircumcircleStatistics& statistics() const { return m_statistics; }
@@ -432,7 +432,7 @@ CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulato
         run.work(0, &progress);
         run.reportUntilOthersFinish(progress);
     }
-    run.finish();
+    run.finish(workers);
     return run.statistics();
 }
 

@@ -260,15 +260,38 @@ void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m, PendingEdges& pen
     pending.emplace_back(t2, 0);
 }
 
-std::size_t DagTriangulator::repairAllEdges() {
-    // Every edge of every leaf, seen from both sides; flipped edges queue their four
-    // surrounding edges (the new triangles' edges away from the flipped diagonal).
+bool DagTriangulator::isIllegal(NodeId t, int pos, NodeId u) const {
+    const DagNode& tNode = m_nodes[t];
+    const DagNode& uNode = m_nodes[u];
+    int m = 0;
+    while (uNode.link[m] != t)
+        ++m;
+    return m_predicates.incircle(tNode.v[next(pos)], tNode.v[prev(pos)], tNode.v[pos],
+                                 uNode.v[m]) > 0;
+}
+
+std::size_t DagTriangulator::repairAllEdges(unsigned threads) {
+    // Every edge of every leaf is checked once, from its leaf with the lower id (the in-circle
+    // determinant is alternating, so the other side gives the same answer); only the illegal
+    // ones start the flips. A flipped edge queues its four surrounding edges (the new
+    // triangles' edges away from the flipped diagonal): no other edge's legality changes.
+    const std::size_t nodeCount = m_nodes.size();
+    std::vector<PendingEdges> illegal(parallelForThreads(nodeCount, threads));
+    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        for (std::size_t n = begin; n < end; ++n) {
+            const auto t = static_cast<NodeId>(n);
+            const DagNode& tNode = m_nodes[t];
+            if (!tNode.isLeaf() || tNode.v[0] == kNoNode)
+                continue;
+            for (int pos = 0; pos < 3; ++pos)
+                if (tNode.link[pos] != kNoNode && tNode.link[pos] > t &&
+                    isIllegal(t, pos, tNode.link[pos]))
+                    illegal[block].emplace_back(t, pos);
+        }
+    });
     PendingEdges work;
-    for (std::size_t n = 0; n < m_nodes.size(); ++n)
-        if (m_nodes[static_cast<NodeId>(n)].isLeaf() &&
-            m_nodes[static_cast<NodeId>(n)].v[0] != kNoNode)
-            for (int i = 0; i < 3; ++i)
-                work.emplace_back(static_cast<NodeId>(n), i);
+    for (const PendingEdges& own : illegal)
+        work.insert(work.end(), own.begin(), own.end());
     std::size_t flips = 0;
     PendingEdges created;
     while (!work.empty()) {
@@ -280,14 +303,12 @@ std::size_t DagTriangulator::repairAllEdges() {
         const NodeId u = tNode.link[pos];
         if (u == kNoNode)
             continue;
+        if (!isIllegal(t, pos, u))
+            continue;
         const DagNode& uNode = m_nodes[u];
         int m = 0;
         while (uNode.link[m] != t)
             ++m;
-        const VertexId i = tNode.v[next(pos)];
-        const VertexId j = tNode.v[prev(pos)];
-        if (m_predicates.incircle(i, j, tNode.v[pos], uNode.v[m]) <= 0)
-            continue;
         flip(t, pos, u, m, created);
         ++flips;
         // The new triangles are (k, i, l) and (k, l, j), k = the old tNode.v[pos]: their four

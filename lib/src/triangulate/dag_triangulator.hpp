@@ -89,10 +89,11 @@ public:
     /// Lawson's legalisation of the pending edges opposite the inserted vertex p.
     void legalize(VertexId p, PendingEdges& pending);
 
-    /// Makes every edge of the current triangulation locally Delaunay: checks them all and
-    /// flips until none is illegal (Lawson's algorithm, which terminates from any
-    /// triangulation). Single-threaded. Returns the number of flips.
-    std::size_t repairAllEdges();
+    /// Makes every edge of the current triangulation locally Delaunay: checks them all, on up
+    /// to `threads` threads, and flips from the illegal ones until none is left (Lawson's
+    /// algorithm, which terminates from any triangulation; the flips run on the calling
+    /// thread). Returns the number of flips.
+    std::size_t repairAllEdges(unsigned threads = 1);
 
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
@@ -117,6 +118,9 @@ private:
     /// Turns leaf `node` into an inner node; the release store publishes its children.
     void setInner(NodeId node, std::array<NodeId, 3> link, NodeId firstChild);
     void replaceNeighbour(NodeId node, NodeId from, NodeId to);
+    /// True when the edge opposite corner `pos` of leaf t, shared with leaf u, is not
+    /// locally Delaunay (u's far corner strictly inside t's circumcircle).
+    [[nodiscard]] bool isIllegal(NodeId t, int pos, NodeId u) const;
 
     SymbolicPredicates m_predicates;
     NodeArena m_nodes;

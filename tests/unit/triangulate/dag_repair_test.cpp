@@ -15,9 +15,9 @@ namespace terratin {
 namespace {
 
 // Inserts every point by subdivision only, so the result is a valid but (almost surely)
-// non-Delaunay triangulation; then repairs it.
+// non-Delaunay triangulation; then repairs it, checking the edges on `threads` threads.
 TinMesh triangulateByRepairOnly(const std::vector<Point3>& input, std::size_t& repairFlips,
-                                std::size_t& illegalBeforeRepair) {
+                                std::size_t& illegalBeforeRepair, unsigned threads = 1) {
     const PreparedPoints prepared = preparePoints(input, DuplicateZPolicy::First);
     detail::DagTriangulator triangulator(prepared.local);
     detail::PendingEdges pending;
@@ -38,7 +38,7 @@ TinMesh triangulateByRepairOnly(const std::vector<Point3>& input, std::size_t& r
         before.vertices.push_back(input[source]);
     illegalBeforeRepair = validateDelaunay(before).nonDelaunayEdges;
 
-    repairFlips = triangulator.repairAllEdges();
+    repairFlips = triangulator.repairAllEdges(threads);
     TinMesh mesh;
     triangulator.extract(mesh.triangles, mesh.neighbours);
     mesh.vertices = before.vertices;
@@ -54,6 +54,19 @@ TEST(DagRepair, ReachesExactDelaunay_FromAnUnlegalisedTriangulation) {
         const TinMesh mesh = triangulateByRepairOnly(points, flips, illegalBefore);
         EXPECT_GT(illegalBefore, 0U) << test::toString(distribution) << ": nothing to repair";
         EXPECT_GT(flips, 0U);
+        test::expectExactDelaunayOf(mesh, points);
+    }
+}
+
+TEST(DagRepair, ReachesExactDelaunay_WhenTheEdgesAreCheckedOnThreeThreads) {
+    // Enough points that the history's nodes split into three blocks of the check.
+    for (const test::Distribution distribution :
+         {test::Distribution::Uniform, test::Distribution::Grid}) {
+        const std::vector<Point3> points = test::generatePoints(distribution, 40000, 22);
+        std::size_t flips = 0;
+        std::size_t illegalBefore = 0;
+        const TinMesh mesh = triangulateByRepairOnly(points, flips, illegalBefore, 3);
+        EXPECT_GT(illegalBefore, 0U) << test::toString(distribution) << ": nothing to repair";
         test::expectExactDelaunayOf(mesh, points);
     }
 }
