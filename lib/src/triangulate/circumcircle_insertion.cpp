@@ -3,6 +3,7 @@
 #include "terratin/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <exception>
@@ -193,11 +194,13 @@ private:
         }
         const DagNode& node = m_triangulator.node(leaf);
         const int edge = m_triangulator.edgeContaining(leaf, q);
-        // Every triangle whose neighbour links the subdivision rewrites must be held.
-        std::vector<NodeId> needed;
+        // Every triangle whose neighbour links the subdivision rewrites must be held: at
+        // most the three neighbours of the leaf and two more beyond a split edge.
+        std::array<NodeId, 5> needed{};
+        std::size_t neededCount = 0;
         for (int i = 0; i < 3; ++i)
             if (node.link[i] != kNoNode)
-                needed.push_back(node.link[i]);
+                needed[neededCount++] = node.link[i];
         if (edge >= 0) {
             const DagNode& beyond = m_triangulator.node(node.link[edge]);
             if (!take(worker, node.link[edge])) {
@@ -206,9 +209,9 @@ private:
             }
             for (const NodeId n : beyond.link)
                 if (n != kNoNode && n != leaf)
-                    needed.push_back(n);
+                    needed[neededCount++] = n;
         }
-        for (const NodeId n : needed) {
+        for (const NodeId n : std::span(needed).first(neededCount)) {
             if (!take(worker, n)) {
                 hint = 0;
                 return false;
