@@ -215,13 +215,18 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
         }
     });
     radixSort(keys, kHilbertShift, threads);
-    std::vector<std::uint32_t> order;
-    order.reserve(keys.size());
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-        order.push_back(static_cast<std::uint32_t>(keys[i]));
-        if (roundStarts != nullptr &&
-            (i == 0 || (keys[i] >> kRoundShift) != (keys[i - 1] >> kRoundShift)))
-            roundStarts->push_back(i);
+    std::vector<std::uint32_t> order(keys.size());
+    parallelFor(keys.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            order[i] = static_cast<std::uint32_t>(keys[i]);
+    });
+    // At most 32 rounds: each one's end is found by binary search in the sorted keys.
+    for (std::size_t i = 0; roundStarts != nullptr && i < keys.size();) {
+        roundStarts->push_back(i);
+        const std::uint64_t nextRound = ((keys[i] >> kRoundShift) + 1) << kRoundShift;
+        i = static_cast<std::size_t>(
+            std::lower_bound(keys.begin() + static_cast<std::ptrdiff_t>(i), keys.end(), nextRound) -
+            keys.begin());
     }
     return order;
 }

@@ -55,12 +55,12 @@ unsigned resolveSearchers(unsigned requested, std::size_t points, unsigned threa
 // instead of jumping across the whole array.
 struct InsertionPlan {
     /// On huge pages (huge_pages.hpp): predicates read older vertices all over the array.
-    std::vector<Point2, HugePageAllocator<Point2>> local;
+    /// A MeshArray, so that sizing it writes nothing: the threads fill it.
+    MeshArray<Point2> local;
     /// preparedIndex[v]: the index in PreparedPoints of vertex v.
     std::vector<std::uint32_t> preparedIndex;
-    /// 1, 2, ..., n-1: every vertex but the auxiliary corner, in the new numbering.
-    std::vector<VertexId> order;
-    /// Where each BRIO round begins in `order` ({0} for a random order: one round).
+    /// Where each BRIO round begins in the order of the vertices after vertex 0 (index 0 is
+    /// vertex 1; {0} for a random order: one round).
     std::vector<std::size_t> roundStarts;
 };
 
@@ -81,8 +81,6 @@ InsertionPlan planInsertion(const std::vector<Point2>& local, const Triangulatio
         for (std::size_t v = begin; v < end; ++v)
             plan.local[v] = local[plan.preparedIndex[v]];
     });
-    plan.order.resize(count - 1);
-    std::iota(plan.order.begin(), plan.order.end(), VertexId{1});
     return plan;
 }
 
@@ -103,7 +101,10 @@ void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& option
     const auto count = static_cast<std::uint32_t>(plan.local.size());
     const bool walk = options.locate == PointLocation::Walk;
     detail::DagTriangulator triangulator(plan.local);
-    const std::span<const VertexId> order(plan.order);
+    // 1, 2, ..., n-1: every vertex but the auxiliary corner (vertex 0), in insertion order.
+    std::vector<VertexId> vertices(count - 1);
+    std::iota(vertices.begin(), vertices.end(), VertexId{1});
+    const std::span<const VertexId> order(vertices);
     switch (result.method) {
     case TriangulationMethod::Batch: {
         detail::BatchSettings settings;
