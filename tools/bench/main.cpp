@@ -24,6 +24,7 @@
 
 #include "bench_options.hpp"
 #include "distributions.hpp"
+#include "host_scaling.hpp"
 #include "host_steal.hpp"
 #include "peers.hpp"
 #include "process_memory.hpp"
@@ -357,6 +358,8 @@ int runBench(const BenchOptions& bench) {
                      "# host steal: %.1f%% of the CPU time went to other guests of the hypervisor "
                      "(above a few percent, timings and speed-ups are unreliable)\n",
                      100.0 * *stolen);
+    if (!bench.threads.empty())
+        printHostScaling(comments, *std::max_element(bench.threads.begin(), bench.threads.end()));
     return kExitOk;
 }
 

@@ -1,5 +1,6 @@
 #include "refine_bench.hpp"
 
+#include "host_scaling.hpp"
 #include "host_steal.hpp"
 #include "process_memory.hpp"
 #include "stats.hpp"
@@ -9,6 +10,7 @@
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/refine/refine.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -118,6 +120,8 @@ int runRefineBench(const BenchOptions& options) {
             }
         }
     }
+    printHostScaling(options.csv ? stderr : stdout,
+                     *std::max_element(threads.begin(), threads.end()));
     return 0;
 }
 
