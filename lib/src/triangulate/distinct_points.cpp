@@ -3,6 +3,7 @@
 #include "parallel_for.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstddef>
 #include <utility>
@@ -64,80 +65,103 @@ void findDuplicatesInPartition(std::span<const PartitionEntry> entries,
     }
 }
 
-} // namespace
+// The points grouped by partition, each group in ascending index, and where each group
+// starts (one more entry than groups). Two streaming passes over blocks of the input on the
+// threads: count per block and partition, then scatter.
+struct Partitions {
+    std::vector<PartitionEntry> entries;
+    std::vector<std::size_t> start;
+};
 
-// The points are scattered into partitions by the top bits of their position's hash (two
-// streaming passes, blocks of the input on the threads), then each partition finds its
-// duplicates in cache (partitions on the threads). A single table over all points was
-// slower: every probe a cache miss in a table of megabytes.
-DistinctPoints findDistinctPoints(std::span<const Point3> points, unsigned threads) {
-    const std::size_t count = points.size();
-    const auto partitionBits = static_cast<unsigned>(
-        std::min<std::size_t>(kMaxPartitionBits, std::bit_width(count / kPointsPerPartition)));
+Partitions scatterIntoPartitions(std::span<const Point3> points, unsigned partitionBits,
+                                 unsigned threads) {
     const std::size_t partitions = std::size_t{1} << partitionBits;
     const auto partitionOf = [partitionBits](const Point3& p) -> std::size_t {
         return partitionBits == 0 ? 0 : positionHash(p.x, p.y) >> (64U - partitionBits);
     };
-
     // Where each block's points of each partition go: partition by partition, then block by
-    // block, so that every partition lists its points in ascending index.
-    const unsigned blocks = parallelForThreads(count, threads);
+    // block, which keeps every partition in ascending index.
+    const unsigned blocks = parallelForThreads(points.size(), threads);
     std::vector<std::vector<std::size_t>> next(blocks, std::vector<std::size_t>(partitions, 0));
-    parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+    parallelFor(points.size(), threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
             ++next[block][partitionOf(points[i])];
     });
-    std::vector<std::size_t> partitionStart(partitions + 1, 0);
+    Partitions grouped;
+    grouped.start.resize(partitions + 1);
     std::size_t total = 0;
     for (std::size_t partition = 0; partition < partitions; ++partition) {
-        partitionStart[partition] = total;
+        grouped.start[partition] = total;
         for (unsigned block = 0; block < blocks; ++block)
             total += std::exchange(next[block][partition], total);
     }
-    partitionStart[partitions] = total;
-    std::vector<PartitionEntry> entries(count);
-    parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+    grouped.start[partitions] = total;
+    grouped.entries.resize(points.size());
+    parallelFor(points.size(), threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             const Point3& p = points[i];
-            entries[next[block][partitionOf(p)]++] = {p.x, p.y, static_cast<std::uint32_t>(i)};
+            grouped.entries[next[block][partitionOf(p)]++] = {p.x, p.y,
+                                                              static_cast<std::uint32_t>(i)};
         }
     });
+    return grouped;
+}
 
-    std::vector<std::vector<DuplicatePoint>> found(blocks);
-    parallelForChunks(
-        partitions, threads, 16, [&](unsigned block, std::size_t begin, std::size_t end) {
-            std::vector<std::uint32_t> table;
-            for (std::size_t partition = begin; partition < end; ++partition)
-                findDuplicatesInPartition(std::span(entries).subspan(partitionStart[partition],
-                                                                     partitionStart[partition + 1] -
-                                                                         partitionStart[partition]),
-                                          table, found[block]);
-        });
+// The indices in [0, count) that are not duplicates (sorted by index), in order: each block
+// of the range writes its own after those of the blocks before it.
+std::vector<std::uint32_t> indicesBesides(std::span<const DuplicatePoint> duplicates,
+                                          std::size_t count, unsigned threads) {
+    const auto duplicatesBefore = [&](std::size_t i) {
+        return static_cast<std::size_t>(
+            std::lower_bound(duplicates.begin(), duplicates.end(), i,
+                             [](const DuplicatePoint& d, std::size_t v) { return d.index < v; }) -
+            duplicates.begin());
+    };
+    std::vector<std::uint32_t> others(count - duplicates.size());
+    parallelFor(count, threads, [&](unsigned, std::size_t begin, std::size_t end) {
+        std::size_t duplicate = duplicatesBefore(begin);
+        std::size_t out = begin - duplicate;
+        for (std::size_t i = begin; i < end; ++i) {
+            if (duplicate < duplicates.size() && duplicates[duplicate].index == i)
+                ++duplicate;
+            else
+                others[out++] = static_cast<std::uint32_t>(i);
+        }
+    });
+    return others;
+}
+
+} // namespace
+
+// The points are scattered into partitions by the top bits of their position's hash, then
+// each partition finds its duplicates in cache (partitions on the threads). A single table
+// over all points was slower: every probe a cache miss in a table of megabytes.
+DistinctPoints findDistinctPoints(std::span<const Point3> points, unsigned threads) {
+    const auto partitionBits = static_cast<unsigned>(std::min<std::size_t>(
+        kMaxPartitionBits, std::bit_width(points.size() / kPointsPerPartition)));
+    const Partitions partitions = scatterIntoPartitions(points, partitionBits, threads);
+
+    // Every thread takes the next partition in turn (each holds thousands of points, so one
+    // atomic step per partition costs nothing).
+    const std::size_t partitionCount = partitions.start.size() - 1;
+    const auto workers = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, partitionCount));
+    std::vector<std::vector<DuplicatePoint>> found(workers);
+    std::atomic<std::size_t> nextPartition{0};
+    runOnThreads(workers, [&](unsigned worker) {
+        std::vector<std::uint32_t> table;
+        for (std::size_t p = nextPartition++; p < partitionCount; p = nextPartition++)
+            findDuplicatesInPartition(
+                std::span(partitions.entries)
+                    .subspan(partitions.start[p], partitions.start[p + 1] - partitions.start[p]),
+                table, found[worker]);
+    });
     DistinctPoints distinct;
     for (const std::vector<DuplicatePoint>& own : found)
         distinct.duplicates.insert(distinct.duplicates.end(), own.begin(), own.end());
     std::sort(distinct.duplicates.begin(), distinct.duplicates.end(),
               [](const DuplicatePoint& a, const DuplicatePoint& b) { return a.index < b.index; });
-
-    // The first occurrences are the other points: each block copies its own after those of
-    // the blocks before it.
-    const auto duplicatesBefore = [&](std::size_t i) {
-        return static_cast<std::size_t>(
-            std::lower_bound(distinct.duplicates.begin(), distinct.duplicates.end(), i,
-                             [](const DuplicatePoint& d, std::size_t v) { return d.index < v; }) -
-            distinct.duplicates.begin());
-    };
-    distinct.firstOccurrences.resize(count - distinct.duplicates.size());
-    parallelFor(count, threads, [&](unsigned, std::size_t begin, std::size_t end) {
-        std::size_t duplicate = duplicatesBefore(begin);
-        std::size_t out = begin - duplicate;
-        for (std::size_t i = begin; i < end; ++i) {
-            if (duplicate < distinct.duplicates.size() && distinct.duplicates[duplicate].index == i)
-                ++duplicate;
-            else
-                distinct.firstOccurrences[out++] = static_cast<std::uint32_t>(i);
-        }
-    });
+    distinct.firstOccurrences = indicesBesides(distinct.duplicates, points.size(), threads);
     return distinct;
 }
+
 } // namespace terratin::detail
