@@ -120,13 +120,12 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
 }
 
 // Least-significant-digit radix sort of the keys on their bits [lowBit, 64): linear time, and
-// each pass a sequential read and 2048 sequential write streams, where a comparison sort of
-// a million keys costs several times more. 11-bit digits sort the 32 key bits above the
-// vertex id in three passes; 8-bit ones took four, a third longer. Each pass runs on up to
-// `threads` threads: every block counts its digits, and scatters from its own offsets,
-// which keeps the sort stable.
+// each pass a sequential read and 256 sequential write streams, where a comparison sort of a
+// million keys costs several times more. (11-bit digits, three passes instead of four, were
+// no faster on a million keys.) Each pass runs on up to `threads` threads: every block
+// counts its digits, and scatters from its own offsets, which keeps the sort stable.
 void radixSort(std::vector<std::uint64_t>& keys, unsigned lowBit, unsigned threads) {
-    constexpr unsigned kDigitBits = 11;
+    constexpr unsigned kDigitBits = 8;
     constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
     std::vector<std::uint64_t> buffer(keys.size());
     const unsigned blocks = parallelForThreads(keys.size(), threads);
