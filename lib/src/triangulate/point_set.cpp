@@ -39,9 +39,9 @@ void checkFinite(std::span<const Point3> points, unsigned threads) {
                             " has a non-finite coordinate or elevation");
 }
 
-// Folds each duplicate's elevation (and, for Last, its index) into its first occurrence,
-// which is at `k` in the prepared arrays. Duplicates come by ascending input index, so
-// "last" and the order of the sums do not depend on the thread count.
+// Folds each duplicate's elevation (and, for Last, its index) into the prepared entry of its
+// first occurrence. Duplicates come by ascending input index, so "last" and the order of the
+// sums do not depend on the thread count.
 void mergeDuplicates(std::span<const Point3> points,
                      const std::vector<detail::DuplicatePoint>& duplicates, DuplicateZPolicy policy,
                      PreparedPoints& prepared) {
