@@ -75,6 +75,17 @@ public:
     /// conflict test and for repairs, where the fourth point is not always the new one.
     [[nodiscard]] int incircle(VertexId a, VertexId b, VertexId c, VertexId d) const;
 
+    /// For a counter-clockwise (a, b, c): true only when d lies strictly inside their
+    /// circumcircle. With four finite vertices, a d too close to the circle for the
+    /// floating-point filter counts as outside (no exact arithmetic); symbolic cases are exact.
+    /// For the circum-circle method's conflict test, a hint whose misses the owner tags catch.
+    [[nodiscard]] bool surelyInside(VertexId a, VertexId b, VertexId c, VertexId d) const {
+        if (a < m_count && b < m_count && c < m_count && d < m_count)
+            return predicates::incircleSurelyInside(m_points[a], m_points[b], m_points[c],
+                                                    m_points[d]);
+        return incircle(a, b, c, d) > 0;
+    }
+
     /// +1 when q is higher than p (larger y, or equal y and larger x), -1 when lower, 0 when
     /// equal.
     static int compareHeight(const Point2& p, const Point2& q) {

@@ -696,6 +696,41 @@ TEST(Incircle, MatchesExactSign_WhenRandomNearlyCocircular) {
     }
 }
 
+// The one-sided filter: never true unless the exact sign is positive, and true for every
+// point clearly inside; near-cocircular points it cannot decide count as outside.
+TEST(IncircleSurelyInside, ImpliesExactInside_AndDecidesClearCases) {
+    std::mt19937_64 rng(kSeed);
+    std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi);
+    std::uniform_int_distribution<int> ulps(-2, 2);
+    int undecidedInside = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        std::array<Point2, 4> p{};
+        for (auto& point : p) {
+            const double theta = angle(rng);
+            point = {ulpsAway(1e3 + 50.0 * std::cos(theta), ulps(rng)),
+                     -2e3 + 50.0 * std::sin(theta)};
+        }
+        if (exactOrient2dSign(p[0], p[1], p[2]) < 0)
+            std::swap(p[0], p[1]);
+        const int exact = exactIncircleSign(p[0], p[1], p[2], p[3]);
+        const bool surely = predicates::incircleSurelyInside(p[0], p[1], p[2], p[3]);
+        ASSERT_TRUE(!surely || exact > 0) << trial;
+        undecidedInside += exact > 0 && !surely;
+    }
+    // Two ulps off one circle: stage A cannot tell these apart, so some inside points are
+    // left undecided (that is the point of the filter).
+    EXPECT_GT(undecidedInside, 0);
+
+    const Point2 a{0.0, 0.0};
+    const Point2 b{1.0, 0.0};
+    const Point2 c{0.0, 1.0};
+    EXPECT_TRUE(predicates::incircleSurelyInside(a, b, c, {0.5, 0.5}));
+    EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, {2.0, 2.0}));
+    EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, {1.0, 1.0})); // cocircular
+    EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, a));           // a corner
+    EXPECT_FALSE(predicates::incircleSurelyInside(b, a, c, {0.5, 0.5}));  // clockwise
+}
+
 TEST(Incircle, MatchesExactSign_WhenCoordinatesSpanManyMagnitudes) {
     std::mt19937_64 rng(kSeed);
     for (int trial = 0; trial < 10000; ++trial) {

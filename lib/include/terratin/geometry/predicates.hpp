@@ -86,11 +86,12 @@ inline double orient2d(const Point2& a, const Point2& b, const Point2& c) {
     return detail::orient2dAdaptive(a, b, c, detSum);
 }
 
-/// For a, b, c in counter-clockwise order: positive if d lies strictly inside their circumcircle,
-/// negative if strictly outside, zero if the four points are cocircular. The sign flips when
-/// a, b, c are clockwise. The function is alternating: swapping any two arguments flips the sign.
-/// O(1); no allocation; thread-safe.
-inline double incircle(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+namespace detail {
+
+/// Stage A of incircle: the determinant in plain floating point, and in `permanent` the scale
+/// its error bound is a multiple of (see kIncircleErrorBoundA).
+inline double incircleStageA(const Point2& a, const Point2& b, const Point2& c, const Point2& d,
+                             double& permanent) {
     const double adx = a.x - d.x;
     const double bdx = b.x - d.x;
     const double cdx = c.x - d.x;
@@ -110,17 +111,38 @@ inline double incircle(const Point2& a, const Point2& b, const Point2& c, const 
     const double bdxady = bdx * ady;
     const double cLift = cdx * cdx + cdy * cdy;
 
-    const double det =
-        aLift * (bdxcdy - cdxbdy) + bLift * (cdxady - adxcdy) + cLift * (adxbdy - bdxady);
-    const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * aLift +
-                             (std::fabs(cdxady) + std::fabs(adxcdy)) * bLift +
-                             (std::fabs(adxbdy) + std::fabs(bdxady)) * cLift;
+    permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * aLift +
+                (std::fabs(cdxady) + std::fabs(adxcdy)) * bLift +
+                (std::fabs(adxbdy) + std::fabs(bdxady)) * cLift;
+    return aLift * (bdxcdy - cdxbdy) + bLift * (cdxady - adxcdy) + cLift * (adxbdy - bdxady);
+}
+
+} // namespace detail
+
+/// For a, b, c in counter-clockwise order: positive if d lies strictly inside their circumcircle,
+/// negative if strictly outside, zero if the four points are cocircular. The sign flips when
+/// a, b, c are clockwise. The function is alternating: swapping any two arguments flips the sign.
+/// O(1); no allocation; thread-safe.
+inline double incircle(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+    double permanent = 0.0;
+    const double det = detail::incircleStageA(a, b, c, d, permanent);
     // permanent == 0 means each lifted term has a zero lift (a point equal to d) or a minor
     // whose two products are exactly zero, so det == 0 is exact.
     if (std::fabs(det) > detail::kIncircleErrorBoundA * permanent || permanent == 0.0) [[likely]] {
         return det;
     }
     return detail::incircleAdaptive(a, b, c, d, permanent);
+}
+
+/// For a, b, c in counter-clockwise order: true when stage A alone proves d strictly inside
+/// their circumcircle. False when d is outside, on the circle, or too close to it for stage A
+/// to tell: a one-sided test for heuristics that must stay cheap on near-cocircular points
+/// (points on an arc send nearly every exact incircle call to the adaptive stages).
+inline bool incircleSurelyInside(const Point2& a, const Point2& b, const Point2& c,
+                                 const Point2& d) {
+    double permanent = 0.0;
+    const double det = detail::incircleStageA(a, b, c, d, permanent);
+    return det > detail::kIncircleErrorBoundA * permanent;
 }
 
 } // namespace terratin::predicates
