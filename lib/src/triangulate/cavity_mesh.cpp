@@ -74,6 +74,15 @@ std::uint8_t CavityMesh::ownerFromCorners(const std::array<CavityVertex, 3>& cor
     return strip;
 }
 
+std::uint8_t CavityMesh::groupFromCorners(const std::array<CavityVertex, 3>& corners,
+                                          unsigned level) const {
+    const auto group = static_cast<std::uint8_t>(m_vertexStrip[corners[0]] >> level);
+    if ((m_vertexStrip[corners[1]] >> level) != group ||
+        (corners[2] != kGhostVertex && (m_vertexStrip[corners[2]] >> level) != group))
+        return kSharedOwner;
+    return group;
+}
+
 CavityTriangleId CavityMesh::allocate(Scratch& scratch) {
     if (scratch.nextSlot == scratch.regionEnd)
         throw std::logic_error("CavityMesh: a scratch region is full");
@@ -119,12 +128,10 @@ bool CavityMesh::inConflict(const CavityTriangle& t, const Point2& p) const {
     return side > 0 || (side == 0 && strictlyBetween(a, b, p));
 }
 
-CavityTriangleId CavityMesh::locate(CavityVertex p, CavityTriangleId start,
-                                    std::uint8_t owner) const {
+CavityTriangleId CavityMesh::locate(CavityVertex p, CavityTriangleId start, std::uint8_t owner,
+                                    unsigned level) const {
     const Point2& q = m_points[p];
-    const auto allowed = [&](CavityTriangleId t) {
-        return owner == kAnyOwner || m_owner[t] == owner;
-    };
+    const auto allowed = [&](CavityTriangleId t) { return mayTouch(t, owner, level); };
     CavityTriangleId t = start;
     if (!allowed(t))
         return kNoCavityTriangle;
@@ -163,7 +170,7 @@ CavityTriangleId CavityMesh::locate(CavityVertex p, CavityTriangleId start,
 }
 
 bool CavityMesh::collectCavity(const Point2& p, CavityTriangleId first, std::uint8_t owner,
-                               Scratch& scratch) const {
+                               unsigned level, Scratch& scratch) const {
     // Depth first, each triangle's edges counter-clockwise from the one after the edge it was
     // entered by: the boundary comes out in counter-clockwise order around p. The cavity of a
     // Delaunay triangulation is a disk with every vertex on its boundary, so no triangle is
@@ -185,7 +192,7 @@ bool CavityMesh::collectCavity(const Point2& p, CavityTriangleId first, std::uin
         const CavityLink across = triangle.links[edge];
         const CavityTriangleId neighbour = linkedTriangle(across);
         if (inConflict(m_triangles[neighbour], p)) {
-            if (owner != kAnyOwner && m_owner[neighbour] != owner)
+            if (!mayTouch(neighbour, owner, level))
                 return false;
             scratch.cavity.push_back(neighbour);
             const auto entry = static_cast<std::uint8_t>(next(linkedCorner(across)));
@@ -198,7 +205,8 @@ bool CavityMesh::collectCavity(const Point2& p, CavityTriangleId first, std::uin
     return true;
 }
 
-CavityTriangleId CavityMesh::fillCavity(CavityVertex p, std::uint8_t owner, Scratch& scratch) {
+CavityTriangleId CavityMesh::fillCavity(CavityVertex p, std::uint8_t owner, unsigned level,
+                                        Scratch& scratch) {
     // Boundary edge i, from -> to, becomes triangle (from, to, p), rotated so that a vertex at
     // infinity is corner 2; shiftOf(i) is the corner that corner 0 of (from, to, p) became.
     const std::size_t count = scratch.boundary.size();
@@ -231,19 +239,21 @@ CavityTriangleId CavityMesh::fillCavity(CavityVertex p, std::uint8_t owner, Scra
         }
         m_triangles[linkedTriangle(edge.outside)].links[linkedCorner(edge.outside)] =
             link(slots[i], (2 + shift) % 3);
-        m_owner[slots[i]] = owner == kAnyOwner ? ownerFromCorners(triangle.corners) : owner;
+        // Within a strip the label is the strip; a merged group's triangles keep strip labels.
+        m_owner[slots[i]] =
+            owner == kAnyOwner || level != 0 ? ownerFromCorners(triangle.corners) : owner;
     }
     return slots[0];
 }
 
 bool CavityMesh::insert(CavityVertex p, CavityTriangleId& hint, Scratch& scratch,
-                        std::uint8_t owner) {
-    const CavityTriangleId first = locate(p, hint, owner);
+                        std::uint8_t owner, unsigned level) {
+    const CavityTriangleId first = locate(p, hint, owner, level);
     if (first == kNoCavityTriangle)
         return false;
-    if (!collectCavity(m_points[p], first, owner, scratch))
+    if (!collectCavity(m_points[p], first, owner, level, scratch))
         return false;
-    hint = fillCavity(p, owner, scratch);
+    hint = fillCavity(p, owner, level, scratch);
     return true;
 }
 

@@ -23,6 +23,11 @@
 /// Neighbours across an edge share its corners, so a triangle of one strip never touches
 /// another strip's triangles and insertions in different strips never race. An insertion that
 /// would walk into or conflict with a shared triangle is refused (the point is deferred).
+///
+/// Merged strips: at level L, strips s with the same s >> L form one group, and an insertion
+/// restricted to group g may touch the triangles whose finite corners all lie in g, shared
+/// ones included. The argument above holds for groups as for strips, so insertions in
+/// different groups of one level never race either. Triangles keep their strip labels.
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/huge_pages.hpp"
@@ -96,17 +101,28 @@ public:
     CavityTriangleId start(CavityVertex a, CavityVertex b, CavityVertex c, Scratch& scratch);
 
     /// Inserts p, walking from `hint` (any triangle in use). With `owner` other than
-    /// kAnyOwner, touches only triangles of that owner and returns false, having changed
-    /// nothing, when it would need another. On success `hint` becomes a triangle around p.
+    /// kAnyOwner, touches only triangles of that owner (the group `owner` of strips merged at
+    /// `level`) and returns false, having changed nothing, when it would need another. On
+    /// success `hint` becomes a triangle around p.
     bool insert(CavityVertex p, CavityTriangleId& hint, Scratch& scratch,
-                std::uint8_t owner = kAnyOwner);
+                std::uint8_t owner = kAnyOwner, unsigned level = 0);
 
     /// The triangle (real or ghost) in conflict with p found by walking from `start`, or
-    /// kNoCavityTriangle when the walk would leave triangles of `owner`. Read-only.
+    /// kNoCavityTriangle when the walk would leave triangles of `owner` at `level`. Read-only.
     [[nodiscard]] CavityTriangleId locate(CavityVertex p, CavityTriangleId start,
-                                          std::uint8_t owner = kAnyOwner) const;
+                                          std::uint8_t owner = kAnyOwner, unsigned level = 0) const;
 
     [[nodiscard]] std::uint8_t ownerOf(CavityTriangleId t) const { return m_owner[t]; }
+
+    /// Whether an insertion restricted to `owner` at `level` may touch triangle t.
+    [[nodiscard]] bool mayTouch(CavityTriangleId t, std::uint8_t owner, unsigned level) const {
+        if (owner == kAnyOwner)
+            return true;
+        const std::uint8_t label = m_owner[t];
+        if (label != kSharedOwner)
+            return (label >> level) == owner;
+        return level != 0 && groupFromCorners(m_triangles[t].corners, level) == owner;
+    }
 
     /// Records how far the scratch's region is used: extract() and memoryBytes() cover the
     /// slots of the regions as last recorded.
@@ -123,13 +139,17 @@ public:
 private:
     [[nodiscard]] bool inConflict(const CavityTriangle& t, const Point2& p) const;
     [[nodiscard]] std::uint8_t ownerFromCorners(const std::array<CavityVertex, 3>& corners) const;
+    /// The group at `level` holding all finite corners, or kSharedOwner.
+    [[nodiscard]] std::uint8_t groupFromCorners(const std::array<CavityVertex, 3>& corners,
+                                                unsigned level) const;
     CavityTriangleId allocate(Scratch& scratch);
     /// Collects into scratch the cavity of p, starting at triangle `first` (in conflict).
     /// Returns false when it meets a triangle in conflict that `owner` may not touch.
-    bool collectCavity(const Point2& p, CavityTriangleId first, std::uint8_t owner,
+    bool collectCavity(const Point2& p, CavityTriangleId first, std::uint8_t owner, unsigned level,
                        Scratch& scratch) const;
     /// Replaces the cavity in scratch by the triangles joining p to its boundary.
-    CavityTriangleId fillCavity(CavityVertex p, std::uint8_t owner, Scratch& scratch);
+    CavityTriangleId fillCavity(CavityVertex p, std::uint8_t owner, unsigned level,
+                                Scratch& scratch);
 
     std::span<const Point2> m_points;
     std::span<const std::uint8_t> m_vertexStrip;

@@ -6,6 +6,8 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <barrier>
+#include <bit>
 
 namespace terratin::detail {
 
@@ -35,12 +37,13 @@ std::vector<double> stripThresholds(std::span<const Point2> points, unsigned str
 }
 
 // The strip of every point (none with one strip).
-std::vector<std::uint8_t> assignStrips(std::span<const Point2> points, unsigned strips) {
+std::vector<std::uint8_t> assignStrips(std::span<const Point2> points,
+                                       std::span<const double> thresholds) {
     std::vector<std::uint8_t> vertexStrip;
-    if (strips == 1)
+    if (thresholds.empty())
         return vertexStrip;
-    const std::vector<double> thresholds = stripThresholds(points, strips);
     vertexStrip.resize(points.size());
+    const auto strips = static_cast<unsigned>(thresholds.size() + 1);
     parallelFor(points.size(), strips, [&](unsigned, std::size_t begin, std::size_t end) {
         for (std::size_t v = begin; v < end; ++v)
             vertexStrip[v] = static_cast<std::uint8_t>(
@@ -63,10 +66,13 @@ StripTriangulator::StripTriangulator(std::span<const Point2> points, unsigned st
                                      std::size_t minimumPointsPerStrip)
     : m_strips(std::clamp(strips, 1U, unsigned{kSharedOwner} - 1)),
       m_minimumPointsPerStrip(minimumPointsPerStrip), m_points(points),
-      m_vertexStrip(assignStrips(points, m_strips)),
+      m_thresholds(m_strips > 1 ? stripThresholds(points, m_strips) : std::vector<double>{}),
+      m_vertexStrip(assignStrips(points, m_thresholds)),
       m_mesh(points, m_vertexStrip, slotCapacity(points.size(), m_strips)) {
-    // Phase 1 gives each strip a region for the triangles of its points (two per point), the
-    // single-threaded insertions one for every point (any point may be deferred).
+    while (groupsAt(m_topLevel) > 1)
+        ++m_topLevel;
+    // Each strip gets a region for the triangles of its points (two per point), whatever
+    // level inserts them; the unrestricted insertions one for every point.
     if (m_strips > 1) {
         std::vector<std::size_t> stripPoints(m_strips, 0);
         for (const std::uint8_t strip : m_vertexStrip)
@@ -105,8 +111,11 @@ void StripTriangulator::insertAll(std::span<const std::uint32_t> order,
         for (std::size_t i = starts[r]; i < starts[r + 1]; ++i)
             if (i > 1 && i != third)
                 round.push_back(order[i]);
-        if (m_strips > 1 && round.size() >= m_minimumPointsPerStrip * m_strips) {
-            insertRoundInStrips(round);
+        unsigned level = 0;
+        while (level < m_topLevel && round.size() < m_minimumPointsPerStrip * groupsAt(level))
+            ++level;
+        if (level < m_topLevel) {
+            insertRoundInGroups(round, level);
         } else {
             for (std::size_t i = 0; i < round.size(); i += kProgressInterval) {
                 const std::size_t end = std::min(round.size(), i + kProgressInterval);
@@ -125,68 +134,112 @@ void StripTriangulator::insertSequentially(std::span<const std::uint32_t> points
         m_mesh.insert(p, m_hint, m_scratch.back());
 }
 
-void StripTriangulator::insertRoundInStrips(std::span<const std::uint32_t> round) {
-    // The round's points by strip, each strip keeping the round's (Hilbert) order.
-    std::vector<std::size_t> stripStart(m_strips + 1, 0);
-    for (const std::uint32_t p : round)
-        ++stripStart[m_vertexStrip[p] + 1];
-    for (unsigned s = 0; s < m_strips; ++s)
-        stripStart[s + 1] += stripStart[s];
-    std::vector<std::uint32_t> byStrip(round.size());
-    {
-        std::vector<std::size_t> fill(stripStart.begin(), stripStart.end() - 1);
-        for (const std::uint32_t p : round)
-            byStrip[fill[m_vertexStrip[p]]++] = p;
+void StripTriangulator::insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level) {
+    // queued[l]: the points level l tries, each level's in the order of the level before.
+    std::vector<std::vector<std::uint32_t>> queued(m_topLevel + 1);
+    queued[level].assign(round.begin(), round.end());
+    for (unsigned l = level; l < m_topLevel; ++l) {
+        if (l > level && queued[l].size() < kMinimumRetriedPoints) {
+            queued[m_topLevel].insert(queued[m_topLevel].end(), queued[l].begin(), queued[l].end());
+            continue;
+        }
+        for (const std::vector<std::uint32_t>& refused : insertAtLevel(queued[l], l))
+            for (const std::uint32_t p : refused)
+                queued[retryLevel(p, l)].push_back(p);
     }
-    // Checkpoints: for every kCheckpointStride-th point of a strip, the triangle holding it
-    // now if the strip owns it, found before the threads start. A thread whose walk is cut
-    // off by another strip's triangles (its points jump from one cluster to another, or the
-    // Hilbert curve enters the strip along a boundary) starts again from the checkpoint of
-    // the point's stretch instead of deferring everything after it. During phase 1 only
-    // the strip's thread edits the strip's triangles, so a checkpoint stays the strip's.
-    std::vector<std::vector<CavityTriangleId>> checkpoints(m_strips);
-    CavityTriangleId walkStart = m_hint;
-    for (unsigned s = 0; s < m_strips; ++s) {
-        for (std::size_t first = stripStart[s]; first < stripStart[s + 1];
+    m_deferred += queued[m_topLevel].size();
+    insertSequentially(queued[m_topLevel]);
+}
+
+unsigned StripTriangulator::retryLevel(std::uint32_t point, unsigned level) const {
+    // The group's boundaries, in strips: left at `first`, right at `last`.
+    const unsigned group = m_vertexStrip[point] >> level;
+    const unsigned first = group << level;
+    const unsigned last = std::min((group + 1) << level, m_strips);
+    unsigned boundary = 0;
+    if (first == 0)
+        boundary = last;
+    else if (last == m_strips)
+        boundary = first;
+    else
+        boundary = m_points[point].x < 0.5 * (m_thresholds[first - 1] + m_thresholds[last - 1])
+                       ? first
+                       : last;
+    if (boundary == 0 || boundary == m_strips)
+        return std::min(level + 1, m_topLevel); // a walk cut off, not a boundary
+    // Groups at level l have their boundaries at multiples of 2^l: this one is inside a group
+    // from the level above its lowest set bit.
+    return std::min(static_cast<unsigned>(std::countr_zero(boundary)) + 1, m_topLevel);
+}
+
+std::vector<std::vector<std::uint32_t>>
+StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned level) {
+    const unsigned groups = groupsAt(level);
+    // The points by group, each group keeping the given (Hilbert) order.
+    std::vector<std::size_t> groupStart(groups + 1, 0);
+    for (const std::uint32_t p : points)
+        ++groupStart[(m_vertexStrip[p] >> level) + 1];
+    for (unsigned g = 0; g < groups; ++g)
+        groupStart[g + 1] += groupStart[g];
+    std::vector<std::uint32_t> byGroup(points.size());
+    {
+        std::vector<std::size_t> fill(groupStart.begin(), groupStart.end() - 1);
+        for (const std::uint32_t p : points)
+            byGroup[fill[m_vertexStrip[p] >> level]++] = p;
+    }
+    // Checkpoints: for every kCheckpointStride-th point of a group, the triangle holding it
+    // before the level starts, if the group may touch it. A thread whose walk is cut off by
+    // another group's triangles (its points jump from one cluster to another, or the Hilbert
+    // curve enters the group along a boundary) starts again from the checkpoint of the
+    // point's stretch instead of giving up on everything after it. Each thread finds its own
+    // group's checkpoints, all before any thread inserts (the walks read the whole mesh);
+    // after that only the group's thread edits the group's triangles, so a checkpoint stays
+    // the group's.
+    std::vector<std::vector<CavityTriangleId>> checkpoints(groups);
+    for (unsigned g = 0; g < groups; ++g)
+        checkpoints[g].reserve((groupStart[g + 1] - groupStart[g]) / kCheckpointStride + 1);
+    std::vector<CavityTriangleId> hints(groups, kNoCavityTriangle);
+    std::vector<std::vector<std::uint32_t>> refused(groups);
+    std::barrier checkpointsFound(static_cast<std::ptrdiff_t>(groups));
+    runOnThreads(groups, [&](unsigned g) {
+        const auto owner = static_cast<std::uint8_t>(g);
+        CavityTriangleId walkStart = m_hint;
+        for (std::size_t first = groupStart[g]; first < groupStart[g + 1];
              first += kCheckpointStride) {
             // The stretch's first point may lie by a boundary: a few more are tried.
-            const std::size_t length = std::min(kCheckpointStride, stripStart[s + 1] - first);
+            const std::size_t length = std::min(kCheckpointStride, groupStart[g + 1] - first);
             const std::size_t tries = std::min(length, kCheckpointTries);
             CavityTriangleId checkpoint = kNoCavityTriangle;
             for (std::size_t k = 0; k < tries && checkpoint == kNoCavityTriangle; ++k) {
-                walkStart = m_mesh.locate(byStrip[first + length * k / tries], walkStart);
-                if (m_mesh.ownerOf(walkStart) == s)
+                walkStart = m_mesh.locate(byGroup[first + length * k / tries], walkStart);
+                if (m_mesh.mayTouch(walkStart, owner, level))
                     checkpoint = walkStart;
             }
-            checkpoints[s].push_back(checkpoint);
+            checkpoints[g].push_back(checkpoint);
         }
-    }
-    std::vector<CavityTriangleId> hints(m_strips, kNoCavityTriangle);
-    std::vector<std::vector<std::uint32_t>> deferred(m_strips);
-    runOnThreads(m_strips, [&](unsigned s) {
-        const auto owner = static_cast<std::uint8_t>(s);
+        checkpointsFound.arrive_and_wait();
+
         CavityTriangleId hint = kNoCavityTriangle;
-        for (std::size_t i = stripStart[s]; i < stripStart[s + 1]; ++i) {
-            const std::uint32_t p = byStrip[i];
+        for (std::size_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
+            const std::uint32_t p = byGroup[i];
+            CavityMesh::Scratch& scratch = m_scratch[m_vertexStrip[p]];
             bool inserted =
-                hint != kNoCavityTriangle && m_mesh.insert(p, hint, m_scratch[s], owner);
+                hint != kNoCavityTriangle && m_mesh.insert(p, hint, scratch, owner, level);
             const CavityTriangleId checkpoint =
-                checkpoints[s][(i - stripStart[s]) / kCheckpointStride];
+                checkpoints[g][(i - groupStart[g]) / kCheckpointStride];
             if (!inserted && checkpoint != kNoCavityTriangle && checkpoint != hint) {
                 hint = checkpoint;
-                inserted = m_mesh.insert(p, hint, m_scratch[s], owner);
+                inserted = m_mesh.insert(p, hint, scratch, owner, level);
             }
             if (!inserted)
-                deferred[s].push_back(p);
+                refused[g].push_back(p);
         }
-        hints[s] = hint;
+        hints[g] = hint;
     });
-    for (unsigned s = 0; s < m_strips; ++s) {
-        if (hints[s] != kNoCavityTriangle)
-            m_hint = hints[s];
-        m_deferred += deferred[s].size();
-        insertSequentially(deferred[s]);
-    }
+    for (const CavityTriangleId hint : hints)
+        if (hint != kNoCavityTriangle)
+            m_hint = hint;
+    return refused;
 }
 
 } // namespace terratin::detail

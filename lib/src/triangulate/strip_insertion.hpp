@@ -5,14 +5,19 @@
 /// The paper's methods share one triangulation between all threads and pay for it with a
 /// shared queue (batch) or with circumcircle tests against every other thread's point
 /// (circum-circle). Here the plane is cut into vertical strips of equal point counts, one per
-/// thread, and each BRIO round runs in two phases:
+/// thread, and each BRIO round runs in levels:
 /// 1. Every thread inserts its strip's points of the round into the CavityMesh, touching
 ///    only triangles whose corners all lie in its strip (cavity_mesh.hpp explains why
 ///    threads then never meet). A point whose walk or cavity reaches a triangle that spans
 ///    two strips is deferred; no lock, no atomic but the slot counter, no waiting.
-/// 2. One thread inserts the deferred points, unrestricted.
+/// 2. Deferred points lie by a strip boundary. Strips are merged in pairs, level by level
+///    (groups of 2, 4, ... strips, one thread each), and a deferred point is retried at the
+///    first level where its boundary lies inside a group.
+/// 3. When one group would hold every strip, one thread inserts what is left, unrestricted.
 /// Only points within about one triangle of a strip boundary are deferred (a fraction of a
-/// percent of a million uniform points), so phase 1 does almost all the work.
+/// percent of a million uniform points at 2 strips, 6% at 16), so level 0 does almost all
+/// the work. A round too small for every strip to get kMinimumPointsPerStrip points starts
+/// at the first level whose groups do.
 ///
 /// The result is exactly Delaunay (each insertion is an exact Bowyer-Watson step) and depends
 /// only on the points, the order and the strip count: thread timing never changes it.
@@ -31,12 +36,16 @@ namespace terratin::detail {
 
 class StripTriangulator {
 public:
-    /// A round runs in strips only when every strip gets at least this many points: below,
-    /// starting the threads and the deferred points cost more than they save.
+    /// A round starts at the first level whose groups get at least this many points each
+    /// (level 0: one strip each): below, starting the threads and the deferred points cost
+    /// more than they save. With no such level it runs on one thread.
     static constexpr std::size_t kMinimumPointsPerStrip = 4096;
+    /// Refused points fewer than this go straight to the single thread rather than start
+    /// the threads of another level.
+    static constexpr std::size_t kMinimumRetriedPoints = 256;
 
     /// `points`: distinct, not all collinear; they must outlive the triangulator. `strips`:
-    /// threads of phase 1 (1: a plain sequential Bowyer-Watson insertion).
+    /// threads of level 0 (1: a plain sequential Bowyer-Watson insertion).
     /// `minimumPointsPerStrip`: see kMinimumPointsPerStrip (tests lower it).
     StripTriangulator(std::span<const Point2> points, unsigned strips,
                       std::size_t minimumPointsPerStrip = kMinimumPointsPerStrip);
@@ -52,7 +61,7 @@ public:
     }
 
     [[nodiscard]] unsigned strips() const { return m_strips; }
-    /// Points phase 1 left to phase 2.
+    /// Points left to the single-threaded insertion of step 3 (small rounds excluded).
     [[nodiscard]] std::size_t deferredPoints() const { return m_deferred; }
     [[nodiscard]] std::size_t memoryBytes() const {
         return m_mesh.memoryBytes() + m_vertexStrip.size();
@@ -61,16 +70,29 @@ public:
 private:
     /// Inserts `points` one by one, unrestricted, on the calling thread.
     void insertSequentially(std::span<const std::uint32_t> points);
-    /// Phases 1 and 2 for one round.
-    void insertRoundInStrips(std::span<const std::uint32_t> round);
+    /// Groups of strips merged at `level` (strips s with the same s >> level).
+    [[nodiscard]] unsigned groupsAt(unsigned level) const { return ((m_strips - 1) >> level) + 1; }
+    /// The round's points from `level` on, by the steps above.
+    void insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level);
+    /// One level: each group's points on a thread of its own. Returns the points refused.
+    std::vector<std::vector<std::uint32_t>> insertAtLevel(std::span<const std::uint32_t> points,
+                                                          unsigned level);
+    /// The level at which a point refused at `level` may succeed: the first one whose groups
+    /// hold the strip boundary nearer to it on both sides.
+    [[nodiscard]] unsigned retryLevel(std::uint32_t point, unsigned level) const;
 
     unsigned m_strips;
     std::size_t m_minimumPointsPerStrip;
     std::span<const Point2> m_points;
+    /// Strip s holds the points with m_thresholds[s - 1] <= x < m_thresholds[s].
+    std::vector<double> m_thresholds;
     /// The strip of each vertex (empty with one strip).
     std::vector<std::uint8_t> m_vertexStrip;
+    /// The first level with a single group: its points are inserted unrestricted.
+    unsigned m_topLevel = 0;
     CavityMesh m_mesh;
-    /// One per strip (phase 1), and last the one of the single-threaded insertions.
+    /// One per strip (its points, at any level), and last the one of the unrestricted
+    /// insertions.
     std::vector<CavityMesh::Scratch> m_scratch;
     CavityTriangleId m_hint = 0;
     std::size_t m_deferred = 0;

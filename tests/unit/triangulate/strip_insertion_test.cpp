@@ -1,5 +1,5 @@
 // The strip method's core driven directly, with strips allowed from a few points per strip so
-// that moderate inputs (fast under ThreadSanitizer) run phase 1 in every round but the first.
+// that moderate inputs (fast under ThreadSanitizer) run in strips in every round but the first.
 
 #include "insertion_order.hpp"
 #include "strip_insertion.hpp"
@@ -85,6 +85,19 @@ INSTANTIATE_TEST_SUITE_P(
         return std::to_string(std::get<0>(paramInfo.param)) + "strips_" +
                test::toString(std::get<1>(paramInfo.param));
     });
+
+// A point refused by its strip is retried by a thread of merged strips, so only points by the
+// middle boundary reach the single thread: with 8 strips about as many as with 2, not 7
+// boundaries' worth.
+TEST(StripInsertion, MergedStripsLeaveOneBoundaryToTheSingleThread) {
+    const std::vector<Point3> points =
+        distinct(test::generatePoints(Distribution::Uniform, kPoints, 11));
+    const std::size_t twoStrips = triangulateInStrips(points, 2).deferred;
+    const StripRun eight = triangulateInStrips(points, 8);
+    test::expectExactDelaunayOf(eight.mesh, points);
+    EXPECT_GT(twoStrips, 0U);
+    EXPECT_LT(eight.deferred, 2 * twoStrips) << twoStrips;
+}
 
 TEST(StripInsertion, DependsOnlyOnTheStripCount_NotOnThreadTiming) {
     // Grid points are cocircular in every cell: the diagonals follow the insertion order, so
