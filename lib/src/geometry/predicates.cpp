@@ -401,8 +401,35 @@ double incircleExact(const Point2& a, const Point2& b, const Point2& c, const Po
     return orient2dExact(a, b, c);
 }
 
+namespace {
+
+// Whether the four points are the corners of a rectangle with sides parallel to the axes, in
+// any order: each shares its x with exactly one other point and its y with another.
+bool axisParallelRectangle(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+    const Point2* sameX = nullptr;
+    const Point2* sameY = nullptr;
+    const Point2* opposite = nullptr;
+    for (const Point2* p : {&b, &c, &d}) {
+        const bool x = p->x == a.x;
+        const bool y = p->y == a.y;
+        if (x && y)
+            return false;
+        const Point2*& role = x ? sameX : y ? sameY : opposite;
+        if (role != nullptr)
+            return false;
+        role = p;
+    }
+    return sameX->y == opposite->y && sameY->x == opposite->x;
+}
+
+} // namespace
+
 [[gnu::noinline]] double incircleAdaptive(const Point2& a, const Point2& b, const Point2& c,
                                           const Point2& d, double permanent) {
+    // The corners of a raster cell reach this stage on every test (stage A cannot tell their
+    // zero from rounding); a rectangle's corners are exactly cocircular.
+    if (axisParallelRectangle(a, b, c, d))
+        return 0.0;
     const double adx = a.x - d.x;
     const double bdx = b.x - d.x;
     const double cdx = c.x - d.x;

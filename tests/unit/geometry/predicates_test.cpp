@@ -622,6 +622,38 @@ TEST(Incircle, ReturnsZero_WhenRectangleOrTrapezoidCornersHaveMixedMagnitudes) {
 
 // The incircle analogue of the grid example: d perturbed on a 2^-53 grid around (0.5, 0.5),
 // which lies on the circle through (24.5, 0.5), (12.5, 12.5), (12.5, -11.5).
+// Raster cells: the four corners of an axis-parallel rectangle with inexact coordinates, in
+// every order, are cocircular; moving one corner by one ulp in x or y breaks that.
+TEST(Incircle, MatchesExactSign_ForRasterCellCornersInEveryOrder) {
+    for (const double offset : {0.0, 0.1, 4.0e5, -7.3e6}) {
+        const double x0 = offset + 0.1;
+        const double x1 = offset + 0.3;
+        const double y0 = -offset + 0.7;
+        const double y1 = -offset + 1.1;
+        std::array<Point2, 4> corners{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
+        for (int moved = -1; moved < 8; ++moved) {
+            std::array<Point2, 4> p = corners;
+            if (moved >= 0) {
+                Point2& corner = p[static_cast<std::size_t>(moved / 2)];
+                (moved % 2 == 0 ? corner.x : corner.y) =
+                    ulpsAway(moved % 2 == 0 ? corner.x : corner.y, 1);
+            }
+            std::array<int, 4> order{0, 1, 2, 3};
+            do {
+                const Point2& a = p[static_cast<std::size_t>(order[0])];
+                const Point2& b = p[static_cast<std::size_t>(order[1])];
+                const Point2& c = p[static_cast<std::size_t>(order[2])];
+                const Point2& d = p[static_cast<std::size_t>(order[3])];
+                const int expected = exactIncircleSign(a, b, c, d);
+                ASSERT_EQ(signOf(incircle(a, b, c, d)), expected) << offset << " " << moved;
+                if (moved < 0) {
+                    ASSERT_EQ(expected, 0);
+                }
+            } while (std::next_permutation(order.begin(), order.end()));
+        }
+    }
+}
+
 TEST(Incircle, MatchesExactSign_WhenGridPerturbedNearCircle) {
     constexpr int kGridSize = 64;
     const double step = std::ldexp(1.0, -53);
@@ -727,8 +759,8 @@ TEST(IncircleSurelyInside, ImpliesExactInside_AndDecidesClearCases) {
     EXPECT_TRUE(predicates::incircleSurelyInside(a, b, c, {0.5, 0.5}));
     EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, {2.0, 2.0}));
     EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, {1.0, 1.0})); // cocircular
-    EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, a));           // a corner
-    EXPECT_FALSE(predicates::incircleSurelyInside(b, a, c, {0.5, 0.5}));  // clockwise
+    EXPECT_FALSE(predicates::incircleSurelyInside(a, b, c, a));          // a corner
+    EXPECT_FALSE(predicates::incircleSurelyInside(b, a, c, {0.5, 0.5})); // clockwise
 }
 
 TEST(Incircle, MatchesExactSign_WhenCoordinatesSpanManyMagnitudes) {
