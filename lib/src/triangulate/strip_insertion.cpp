@@ -6,7 +6,6 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
-#include <barrier>
 #include <bit>
 
 namespace terratin::detail {
@@ -191,16 +190,15 @@ StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned
     // before the level starts, if the group may touch it. A thread whose walk is cut off by
     // another group's triangles (its points jump from one cluster to another, or the Hilbert
     // curve enters the group along a boundary) starts again from the checkpoint of the
-    // point's stretch instead of giving up on everything after it. Each thread finds its own
-    // group's checkpoints, all before any thread inserts (the walks read the whole mesh);
-    // after that only the group's thread edits the group's triangles, so a checkpoint stays
-    // the group's.
+    // point's stretch instead of giving up on everything after it. The threads find their
+    // groups' checkpoints first, all before any thread inserts (the walks read the whole
+    // mesh); after that only the group's thread edits the group's triangles, so a checkpoint
+    // stays the group's.
     std::vector<std::vector<CavityTriangleId>> checkpoints(groups);
     for (unsigned g = 0; g < groups; ++g)
         checkpoints[g].reserve((groupStart[g + 1] - groupStart[g]) / kCheckpointStride + 1);
     std::vector<CavityTriangleId> hints(groups, kNoCavityTriangle);
     std::vector<std::vector<std::uint32_t>> refused(groups);
-    std::barrier checkpointsFound(static_cast<std::ptrdiff_t>(groups));
     runOnThreads(groups, [&](unsigned g) {
         const auto owner = static_cast<std::uint8_t>(g);
         CavityTriangleId walkStart = m_hint;
@@ -217,8 +215,9 @@ StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned
             }
             checkpoints[g].push_back(checkpoint);
         }
-        checkpointsFound.arrive_and_wait();
-
+    });
+    runOnThreads(groups, [&](unsigned g) {
+        const auto owner = static_cast<std::uint8_t>(g);
         CavityTriangleId hint = kNoCavityTriangle;
         for (std::size_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
             const std::uint32_t p = byGroup[i];
