@@ -5,6 +5,8 @@
 /// circumcircle cannot reach, without reading their active points. A filter in front of a
 /// hint: the owner tags, not these tests, keep every triangle to one worker.
 
+#include "box.hpp"
+
 #include "terratin/geometry/point.hpp"
 
 #include <algorithm>
@@ -12,23 +14,6 @@
 #include <limits>
 
 namespace terratin::detail {
-
-/// An axis-aligned box; empty (maxX < minX) until a point is added.
-struct Box {
-    double minX = std::numeric_limits<double>::infinity();
-    double minY = std::numeric_limits<double>::infinity();
-    double maxX = -std::numeric_limits<double>::infinity();
-    double maxY = -std::numeric_limits<double>::infinity();
-
-    void add(const Point2& p) {
-        minX = std::min(minX, p.x);
-        minY = std::min(minY, p.y);
-        maxX = std::max(maxX, p.x);
-        maxY = std::max(maxY, p.y);
-    }
-
-    [[nodiscard]] bool empty() const { return maxX < minX || maxY < minY; }
-};
 
 /// A circle, or the whole plane (infinite radius) when it could not be computed reliably.
 struct Circle {

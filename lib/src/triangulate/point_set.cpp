@@ -3,6 +3,7 @@
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 
+#include "box.hpp"
 #include "distinct_points.hpp"
 #include "parallel_for.hpp"
 
@@ -16,6 +17,8 @@
 namespace terratin {
 
 namespace {
+
+using detail::Box;
 
 // Vertex ids are 32-bit and the triangulator reserves ids for its two symbolic vertices and a
 // "none" marker, so the input must leave room for them.
@@ -104,22 +107,6 @@ double roundedCentre(double lo, double hi) {
     const double ulp = std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest;
     return std::round(centre / ulp) * ulp;
 }
-
-// The bounding box of some points.
-struct Box {
-    double minX = std::numeric_limits<double>::infinity();
-    double minY = std::numeric_limits<double>::infinity();
-    double maxX = -std::numeric_limits<double>::infinity();
-    double maxY = -std::numeric_limits<double>::infinity();
-
-    void add(const Box& other) {
-        minX = std::min(minX, other.minX);
-        minY = std::min(minY, other.minY);
-        maxX = std::max(maxX, other.maxX);
-        maxY = std::max(maxY, other.maxY);
-    }
-    void add(const Point3& p) { add(Box{p.x, p.y, p.x, p.y}); }
-};
 
 Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_t> distinct,
                     unsigned threads) {

@@ -18,8 +18,8 @@ using detail::Circle;
 
 Box boxAround(const Point2& p, double halfWidth) {
     Box box;
-    box.add({p.x - halfWidth, p.y - halfWidth});
-    box.add({p.x + halfWidth, p.y + halfWidth});
+    box.add(Point2{p.x - halfWidth, p.y - halfWidth});
+    box.add(Point2{p.x + halfWidth, p.y + halfWidth});
     return box;
 }
 
@@ -64,7 +64,7 @@ TEST(ConflictRegion, NeverMissesABoxWithAPointInsideTheCircle) {
         const Point2 corner{coordinate(rng), coordinate(rng)};
         Box box;
         box.add(corner);
-        box.add({corner.x + width(rng), corner.y + width(rng)});
+        box.add(Point2{corner.x + width(rng), corner.y + width(rng)});
         if (predicates::incircle(a, b, c, corner) > 0) {
             ASSERT_TRUE(circle.mayReach(box)) << trial;
             ++reached;
