@@ -123,7 +123,8 @@ public:
                 const std::size_t length = roundEnd - roundBegin;
                 const std::size_t begin = roundBegin + length * index / workers;
                 const std::size_t end = roundBegin + length * (index + 1) / workers;
-                publishRegion(index, m_order.subspan(begin, end - begin));
+                if (filterByRegion())
+                    publishRegion(index, m_order.subspan(begin, end - begin));
                 for (std::size_t i = begin; i < end && !stopping(); ++i) {
                     insertPoint(worker, m_order[i]);
                     const std::size_t sinceCounted = (i + 1 - begin) % kCountBatch;
@@ -192,6 +193,8 @@ private:
     }
 
     enum class WaitOutcome { Retry, Override, Aborted };
+
+    [[nodiscard]] bool filterByRegion() const { return m_slots.size() >= kRegionFilterWorkers; }
 
     // Publishes the box of the points the worker inserts next. A reader may pair a stale box
     // with a new active point around a round's start and skip a real conflict; the owner tags
@@ -357,13 +360,13 @@ private:
         const SymbolicPredicates& predicates = m_triangulator.predicates();
         const bool finite = predicates.isFinite(node.v[0]) && predicates.isFinite(node.v[1]) &&
                             predicates.isFinite(node.v[2]);
+        const bool filter = filterByRegion() && finite;
         const Circle circle =
-            finite && m_slots.size() >= kRegionFilterWorkers
-                ? Circle::through(predicates.point(node.v[0]), predicates.point(node.v[1]),
-                                  predicates.point(node.v[2]))
-                : Circle{};
+            filter ? Circle::through(predicates.point(node.v[0]), predicates.point(node.v[1]),
+                                     predicates.point(node.v[2]))
+                   : Circle{};
         for (unsigned k = 0; k < m_slots.size(); ++k) {
-            if (k == worker.index || !circle.mayReach(m_slots[k].region.load()))
+            if (k == worker.index || (filter && !circle.mayReach(m_slots[k].region.load())))
                 continue;
             const VertexId point = m_slots[k].activePoint.load(std::memory_order_acquire);
             if (point != kNoVertex &&
