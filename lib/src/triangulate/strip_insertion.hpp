@@ -77,8 +77,8 @@ private:
     /// One level: each group's points on a thread of its own. Returns the points refused.
     std::vector<std::vector<std::uint32_t>> insertAtLevel(std::span<const std::uint32_t> points,
                                                           unsigned level);
-    /// The level at which a point refused at `level` may succeed: the first one whose groups
-    /// hold the strip boundary nearer to it on both sides.
+    /// The level at which a point refused at `level` may succeed: the first at which the
+    /// boundary of its group nearer to it lies inside a group.
     [[nodiscard]] unsigned retryLevel(std::uint32_t point, unsigned level) const;
 
     unsigned m_strips;
