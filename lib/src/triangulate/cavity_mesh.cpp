@@ -65,13 +65,7 @@ CavityMesh::Scratch CavityMesh::makeScratch(std::size_t slots) {
 }
 
 std::uint8_t CavityMesh::ownerFromCorners(const std::array<CavityVertex, 3>& corners) const {
-    if (m_vertexStrip.empty())
-        return 0;
-    const std::uint8_t strip = m_vertexStrip[corners[0]];
-    if (m_vertexStrip[corners[1]] != strip ||
-        (corners[2] != kGhostVertex && m_vertexStrip[corners[2]] != strip))
-        return kSharedOwner;
-    return strip;
+    return m_vertexStrip.empty() ? 0 : groupFromCorners(corners, 0);
 }
 
 std::uint8_t CavityMesh::groupFromCorners(const std::array<CavityVertex, 3>& corners,

@@ -112,8 +112,6 @@ public:
     [[nodiscard]] CavityTriangleId locate(CavityVertex p, CavityTriangleId start,
                                           std::uint8_t owner = kAnyOwner, unsigned level = 0) const;
 
-    [[nodiscard]] std::uint8_t ownerOf(CavityTriangleId t) const { return m_owner[t]; }
-
     /// Whether an insertion restricted to `owner` at `level` may touch triangle t.
     [[nodiscard]] bool mayTouch(CavityTriangleId t, std::uint8_t owner, unsigned level) const {
         if (owner == kAnyOwner)

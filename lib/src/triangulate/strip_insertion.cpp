@@ -134,17 +134,20 @@ void StripTriangulator::insertSequentially(std::span<const std::uint32_t> points
 }
 
 void StripTriangulator::insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level) {
-    // queued[l]: the points level l tries, each level's in the order of the level before.
+    // queued[l]: the points refused below level l that level l retries, in the order they
+    // were refused.
     std::vector<std::vector<std::uint32_t>> queued(m_topLevel + 1);
-    queued[level].assign(round.begin(), round.end());
-    for (unsigned l = level; l < m_topLevel; ++l) {
-        if (l > level && queued[l].size() < kMinimumRetriedPoints) {
-            queued[m_topLevel].insert(queued[m_topLevel].end(), queued[l].begin(), queued[l].end());
-            continue;
-        }
-        for (const std::vector<std::uint32_t>& refused : insertAtLevel(queued[l], l))
+    const auto insertAndQueueRefused = [&](std::span<const std::uint32_t> points, unsigned l) {
+        for (const std::vector<std::uint32_t>& refused : insertAtLevel(points, l))
             for (const std::uint32_t p : refused)
                 queued[retryLevel(p, l)].push_back(p);
+    };
+    insertAndQueueRefused(round, level);
+    for (unsigned l = level + 1; l < m_topLevel; ++l) {
+        if (queued[l].size() < kMinimumRetriedPoints)
+            queued[m_topLevel].insert(queued[m_topLevel].end(), queued[l].begin(), queued[l].end());
+        else
+            insertAndQueueRefused(queued[l], l);
     }
     m_deferred += queued[m_topLevel].size();
     insertSequentially(queued[m_topLevel]);
