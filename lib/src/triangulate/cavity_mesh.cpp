@@ -272,7 +272,7 @@ void CavityMesh::extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int
     // triangles are numbered in position order: counted per block, then numbered. Only the
     // used slots are written (and so only their pages touched).
     constexpr std::uint32_t kGhostNumber = 0xFFFFFFFFU;
-    const auto number = std::make_unique_for_overwrite<std::uint32_t[]>(m_reserved);
+    const HugePageBuffer<std::uint32_t> number(m_reserved);
     const unsigned blocks = parallelForThreads(total, threads);
     std::vector<std::uint32_t> blockFirst(blocks + 1, 0);
     parallelFor(total, threads, [&](unsigned block, std::size_t begin, std::size_t end) {

@@ -333,9 +333,10 @@ void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
                m_predicates.isFinite(node.v[2]);
     };
     struct BlockLeaves {
-        std::vector<NodeId> finite;
+        /// On huge pages: a quarter of the arena's entries.
+        HugePageArray<NodeId> finite;
         /// Leaves with a symbolic corner: outside the mesh.
-        std::vector<NodeId> outside;
+        HugePageArray<NodeId> outside;
     };
     std::vector<BlockLeaves> blockLeaves(parallelForThreads(nodeCount, threads));
     parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
@@ -366,7 +367,7 @@ void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
     triangles.resize(3 * blockFirst.back());
     neighbours.resize(3 * blockFirst.back());
     parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
-        const std::vector<NodeId>& outputs = blockLeaves[block].finite;
+        const HugePageArray<NodeId>& outputs = blockLeaves[block].finite;
         for (std::size_t k = 0; k < outputs.size(); ++k) {
             const DagNode& node = m_nodes[outputs[k]];
             const std::size_t t = blockFirst[block] + k;

@@ -69,7 +69,7 @@ void findDuplicatesInPartition(std::span<const PartitionEntry> entries,
 // starts (one more entry than groups). Two streaming passes over blocks of the input on the
 // threads: count per block and partition, then scatter.
 struct Partitions {
-    std::vector<PartitionEntry> entries;
+    HugePageArray<PartitionEntry> entries;
     std::vector<std::size_t> start;
 };
 
@@ -109,15 +109,15 @@ Partitions scatterIntoPartitions(std::span<const Point3> points, unsigned partit
 
 // The indices in [0, count) that are not duplicates (sorted by index), in order: each block
 // of the range writes its own after those of the blocks before it.
-std::vector<std::uint32_t> indicesBesides(std::span<const DuplicatePoint> duplicates,
-                                          std::size_t count, unsigned threads) {
+HugePageArray<std::uint32_t> indicesBesides(std::span<const DuplicatePoint> duplicates,
+                                            std::size_t count, unsigned threads) {
     const auto duplicatesBefore = [&](std::size_t i) {
         return static_cast<std::size_t>(
             std::lower_bound(duplicates.begin(), duplicates.end(), i,
                              [](const DuplicatePoint& d, std::size_t v) { return d.index < v; }) -
             duplicates.begin());
     };
-    std::vector<std::uint32_t> others(count - duplicates.size());
+    HugePageArray<std::uint32_t> others(count - duplicates.size());
     parallelFor(count, threads, [&](unsigned, std::size_t begin, std::size_t end) {
         std::size_t duplicate = duplicatesBefore(begin);
         std::size_t out = begin - duplicate;

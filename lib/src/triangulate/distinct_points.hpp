@@ -4,6 +4,7 @@
 /// with an earlier point.
 
 #include "terratin/geometry/point.hpp"
+#include "terratin/huge_pages.hpp"
 
 #include <cstdint>
 #include <span>
@@ -21,7 +22,7 @@ struct DuplicatePoint {
 
 struct DistinctPoints {
     /// Input index of the first occurrence of every distinct (x, y), ascending.
-    std::vector<std::uint32_t> firstOccurrences;
+    HugePageArray<std::uint32_t> firstOccurrences;
     /// Every other point, by ascending index.
     std::vector<DuplicatePoint> duplicates;
 };

@@ -124,10 +124,10 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
 // million keys costs several times more. (11-bit digits, three passes instead of four, were
 // no faster on a million keys.) Each pass runs on up to `threads` threads: every block
 // counts its digits, and scatters from its own offsets, which keeps the sort stable.
-void radixSort(std::vector<std::uint64_t>& keys, unsigned lowBit, unsigned threads) {
+void radixSort(HugePageArray<std::uint64_t>& keys, unsigned lowBit, unsigned threads) {
     constexpr unsigned kDigitBits = 8;
     constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
-    std::vector<std::uint64_t> buffer(keys.size());
+    HugePageArray<std::uint64_t> buffer(keys.size());
     const unsigned blocks = parallelForThreads(keys.size(), threads);
     std::vector<std::array<std::size_t, kBuckets>> offsets(blocks);
     for (unsigned shift = lowBit; shift < 64; shift += kDigitBits) {
@@ -161,9 +161,9 @@ std::uint32_t gridCell(double value, double lo, double hi) {
 
 } // namespace
 
-std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32_t skip,
-                                                std::uint64_t seed) {
-    std::vector<std::uint32_t> order;
+HugePageArray<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32_t skip,
+                                                  std::uint64_t seed) {
+    HugePageArray<std::uint32_t> order;
     order.reserve(count);
     for (std::uint32_t v = 0; v < count; ++v)
         if (v != skip)
@@ -176,10 +176,10 @@ std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32
     return order;
 }
 
-std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
-                                              std::uint64_t seed,
-                                              std::vector<std::size_t>* roundStarts,
-                                              unsigned threads) {
+HugePageArray<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
+                                                std::uint64_t seed,
+                                                std::vector<std::size_t>* roundStarts,
+                                                unsigned threads) {
     double minX = std::numeric_limits<double>::infinity();
     double minY = minX;
     double maxX = -minX;
@@ -199,7 +199,7 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
     constexpr unsigned kRoundShift = kHilbertShift + 2 * kHilbertOrder;
     // The round comes from a hash of (seed, vertex) rather than one random stream, so that
     // threads can compute the keys of their blocks independently and identically.
-    std::vector<std::uint64_t> keys(points.size() - (skip < points.size() ? 1 : 0));
+    HugePageArray<std::uint64_t> keys(points.size() - (skip < points.size() ? 1 : 0));
     parallelFor(points.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
         for (auto v = static_cast<std::uint32_t>(begin); v < end; ++v) {
             if (v == skip)
@@ -214,7 +214,7 @@ std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, st
         }
     });
     radixSort(keys, kHilbertShift, threads);
-    std::vector<std::uint32_t> order(keys.size());
+    HugePageArray<std::uint32_t> order(keys.size());
     parallelFor(keys.size(), threads, [&](unsigned, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
             order[i] = static_cast<std::uint32_t>(keys[i]);

@@ -4,6 +4,7 @@
 /// distributions are implementation-defined, so they are not used).
 
 #include "terratin/geometry/point.hpp"
+#include "terratin/huge_pages.hpp"
 
 #include <cstdint>
 #include <span>
@@ -13,8 +14,8 @@ namespace terratin::detail {
 
 /// A uniformly random permutation of the ids 0..count-1 except `skip`, drawn with
 /// splitmix64 and Lemire's unbiased bounded integers.
-std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32_t skip,
-                                                std::uint64_t seed);
+HugePageArray<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32_t skip,
+                                                  std::uint64_t seed);
 
 /// A biased randomized insertion order (Amenta, Choi & Rote, "Incremental constructions con
 /// BRIO", SoCG 2003) of the ids of `points` except `skip`: each point falls in round k with
@@ -24,9 +25,9 @@ std::vector<std::uint32_t> randomInsertionOrder(std::uint32_t count, std::uint32
 /// makes consecutive insertions walk almost the same DAG path, so memory access is local.
 /// When `roundStarts` is given it receives the index in the order where each round begins.
 /// The sort keys are computed with up to `threads` threads; the order does not depend on it.
-std::vector<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
-                                              std::uint64_t seed,
-                                              std::vector<std::size_t>* roundStarts = nullptr,
-                                              unsigned threads = 1);
+HugePageArray<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, std::uint32_t skip,
+                                                std::uint64_t seed,
+                                                std::vector<std::size_t>* roundStarts = nullptr,
+                                                unsigned threads = 1);
 
 } // namespace terratin::detail

@@ -11,8 +11,10 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace terratin {
 
@@ -146,7 +148,7 @@ Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_
 constexpr double kSmallestCoordinate = 1e-60;
 constexpr double kLargestCoordinate = 1e70;
 
-void requirePredicateRange(const std::vector<Point2>& local, unsigned threads) {
+void requirePredicateRange(std::span<const Point2> local, unsigned threads) {
     const auto outside = [](double value) {
         const double magnitude = std::abs(value);
         return magnitude != 0.0 &&
@@ -168,7 +170,7 @@ void requirePredicateRange(const std::vector<Point2>& local, unsigned threads) {
                                     ") is outside the supported magnitude range 1e-60 .. 1e70");
 }
 
-void requireTwoDimensions(const std::vector<Point2>& local) {
+void requireTwoDimensions(std::span<const Point2> local) {
     if (local.size() >= 3) {
         const Point2& a = local[0];
         const Point2& b = local[1];

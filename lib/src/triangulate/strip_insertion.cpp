@@ -36,9 +36,9 @@ std::vector<double> stripThresholds(std::span<const Point2> points, unsigned str
 }
 
 // The strip of every point (none with one strip).
-std::vector<std::uint8_t> assignStrips(std::span<const Point2> points,
-                                       std::span<const double> thresholds) {
-    std::vector<std::uint8_t> vertexStrip;
+HugePageArray<std::uint8_t> assignStrips(std::span<const Point2> points,
+                                         std::span<const double> thresholds) {
+    HugePageArray<std::uint8_t> vertexStrip;
     if (thresholds.empty())
         return vertexStrip;
     vertexStrip.resize(points.size());
@@ -103,7 +103,7 @@ void StripTriangulator::insertAll(std::span<const std::uint32_t> order,
                                   "triangulating"))
             throw Cancelled("Triangulator: cancelled");
     };
-    std::vector<std::uint32_t> round;
+    HugePageArray<std::uint32_t> round;
     for (std::size_t r = 0; r + 1 < starts.size(); ++r) {
         // The round without the first triangle's corners.
         round.clear();
@@ -183,7 +183,7 @@ StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned
         ++groupStart[(m_vertexStrip[p] >> level) + 1];
     for (unsigned g = 0; g < groups; ++g)
         groupStart[g + 1] += groupStart[g];
-    std::vector<std::uint32_t> byGroup(points.size());
+    HugePageArray<std::uint32_t> byGroup(points.size());
     {
         std::vector<std::size_t> fill(groupStart.begin(), groupStart.end() - 1);
         for (const std::uint32_t p : points)

@@ -87,7 +87,7 @@ private:
     /// Strip s holds the points with m_thresholds[s - 1] <= x < m_thresholds[s].
     std::vector<double> m_thresholds;
     /// The strip of each vertex (empty with one strip).
-    std::vector<std::uint8_t> m_vertexStrip;
+    HugePageArray<std::uint8_t> m_vertexStrip;
     /// The first level with a single group: its points are inserted unrestricted.
     unsigned m_topLevel = 0;
     CavityMesh m_mesh;

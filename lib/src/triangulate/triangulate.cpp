@@ -58,13 +58,13 @@ struct InsertionPlan {
     /// A MeshArray, so that sizing it writes nothing: the threads fill it.
     MeshArray<Point2> local;
     /// preparedIndex[v]: the index in PreparedPoints of vertex v.
-    std::vector<std::uint32_t> preparedIndex;
+    HugePageArray<std::uint32_t> preparedIndex;
     /// Where each BRIO round begins in the order of the vertices after vertex 0 (index 0 is
     /// vertex 1; {0} for a random order: one round).
     std::vector<std::size_t> roundStarts;
 };
 
-InsertionPlan planInsertion(const std::vector<Point2>& local, const TriangulationOptions& options,
+InsertionPlan planInsertion(std::span<const Point2> local, const TriangulationOptions& options,
                             unsigned threads) {
     const auto count = static_cast<std::uint32_t>(local.size());
     const VertexId highest = detail::DagTriangulator::highestOf(local);
@@ -102,7 +102,7 @@ void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& option
     const bool walk = options.locate == PointLocation::Walk;
     detail::DagTriangulator triangulator(plan.local);
     // 1, 2, ..., n-1: every vertex but the auxiliary corner (vertex 0), in insertion order.
-    std::vector<VertexId> vertices(count - 1);
+    HugePageArray<VertexId> vertices(count - 1);
     std::iota(vertices.begin(), vertices.end(), VertexId{1});
     const std::span<const VertexId> order(vertices);
     switch (result.method) {
@@ -148,7 +148,7 @@ void insertWithoutHistory(const InsertionPlan& plan, unsigned threads,
                           const ProgressCallback& progress, TriangulationResult& result) {
     Clock::time_point phase = Clock::now();
     // Every vertex, the DAG's auxiliary corner (vertex 0) first: no auxiliary triangle here.
-    std::vector<VertexId> order(plan.local.size());
+    HugePageArray<VertexId> order(plan.local.size());
     std::iota(order.begin(), order.end(), VertexId{0});
     std::vector<std::size_t> roundStarts{0};
     for (std::size_t r = 1; r < plan.roundStarts.size(); ++r)

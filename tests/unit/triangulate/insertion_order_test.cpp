@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
+#include <vector>
 
 namespace terratin {
 namespace {
@@ -24,7 +26,9 @@ std::vector<Point2> planar(const std::vector<Point3>& points) {
 }
 
 // True when `order` holds every id below `count` but `skip`, each once.
-bool isPermutationWithout(std::vector<std::uint32_t> order, std::uint32_t count, std::uint32_t skip) {
+bool isPermutationWithout(std::span<const std::uint32_t> ids, std::uint32_t count,
+                          std::uint32_t skip) {
+    std::vector<std::uint32_t> order(ids.begin(), ids.end());
     std::vector<std::uint32_t> expected(count);
     std::iota(expected.begin(), expected.end(), 0U);
     expected.erase(expected.begin() + skip);
@@ -32,7 +36,7 @@ bool isPermutationWithout(std::vector<std::uint32_t> order, std::uint32_t count,
     return order == expected;
 }
 
-double tourLength(const std::vector<Point2>& points, const std::vector<std::uint32_t>& order,
+double tourLength(const std::vector<Point2>& points, std::span<const std::uint32_t> order,
                   std::size_t begin, std::size_t end) {
     double length = 0.0;
     for (std::size_t i = begin + 1; i < end; ++i)

@@ -15,12 +15,18 @@
 namespace terratin {
 namespace {
 
+// The elements of a prepared array (on huge pages), to compare with a plain vector.
+template <class T, class Allocator>
+std::vector<T> elements(const std::vector<T, Allocator>& array) {
+    return {array.begin(), array.end()};
+}
+
 TEST(PreparePoints, KeepsFirstOccurrenceOrder_WhenMergingDuplicates) {
     const std::vector<Point3> points{{2, 2, 1}, {0, 0, 2}, {2, 2, 3}, {1, 0, 4}, {0, 0, 5}};
     const PreparedPoints prepared = preparePoints(points, DuplicateZPolicy::First);
     EXPECT_EQ(prepared.duplicateCount, 2U);
-    EXPECT_EQ(prepared.sourceIndex, (std::vector<std::uint32_t>{0, 1, 3}));
-    EXPECT_EQ(prepared.z, (std::vector<double>{1, 2, 4}));
+    EXPECT_EQ(elements(prepared.sourceIndex), (std::vector<std::uint32_t>{0, 1, 3}));
+    EXPECT_EQ(elements(prepared.z), (std::vector<double>{1, 2, 4}));
 }
 
 TEST(PreparePoints, ShiftsExactly_WhenCoordinatesAreLarge) {

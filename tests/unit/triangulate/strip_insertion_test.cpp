@@ -44,8 +44,7 @@ StripRun triangulateInStrips(const std::vector<Point3>& points, unsigned strips)
     for (const Point3& p : points)
         planar.push_back({p.x, p.y});
     std::vector<std::size_t> roundStarts;
-    const std::vector<std::uint32_t> order =
-        detail::brioInsertionOrder(planar, 0xFFFFFFFFU, 7, &roundStarts);
+    const auto order = detail::brioInsertionOrder(planar, 0xFFFFFFFFU, 7, &roundStarts);
     StripTriangulator triangulator(planar, strips, kSmallStripMinimum);
     triangulator.insertAll(order, roundStarts, {});
     StripRun run;

@@ -4,11 +4,11 @@
 /// to a local origin.
 
 #include "terratin/geometry/point.hpp"
+#include "terratin/huge_pages.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <vector>
 
 namespace terratin {
 
@@ -21,15 +21,15 @@ enum class DuplicateZPolicy {
     Mean,  ///< the mean elevation of the group
 };
 
-/// Distinct input points ready for the triangulator.
+/// Distinct input points ready for the triangulator, in arrays on huge pages (huge_pages.hpp).
 struct PreparedPoints {
     /// Planar coordinates minus `origin`, exactly (see prepareOrigin).
-    std::vector<Point2> local;
+    HugePageArray<Point2> local;
     /// Elevation of each distinct point after the duplicate policy.
-    std::vector<double> z;
+    HugePageArray<double> z;
     /// Input index of the point each distinct point stands for (the first of its group for
     /// the Min, Max and Mean policies).
-    std::vector<std::uint32_t> sourceIndex;
+    HugePageArray<std::uint32_t> sourceIndex;
     /// Added to `local` gives the input coordinates back exactly.
     Point2 origin;
     /// Input points merged into an earlier point with exactly the same (x, y).

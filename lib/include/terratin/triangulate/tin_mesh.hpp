@@ -7,34 +7,16 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <new>
-#include <utility>
-#include <vector>
 
 namespace terratin {
 
 /// Marks "no neighbour" (a convex hull edge) in TinMesh::neighbours.
 inline constexpr std::int32_t kNoNeighbour = -1;
 
-/// The allocator of TinMesh's arrays: large ones on huge pages (huge_pages.hpp), and
-/// resize() leaves new elements default-initialised. The triangulator sizes an array and
-/// then fills it on all its threads; zeros written first by resize() would be a pass over
-/// tens of megabytes on one thread (a tenth of a million-point triangulation).
-template <class T> struct MeshAllocator : HugePageAllocator<T> {
-    template <class U> struct rebind { using other = MeshAllocator<U>; };
-    MeshAllocator() = default;
-    template <class U> explicit MeshAllocator(const MeshAllocator<U>& /*other*/) noexcept {}
-
-    /// Default-initialises (a no-op for the mesh's trivial types) where std::allocator
-    /// value-initialises.
-    template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
-    template <class U, class... Args> void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-};
-
-/// A vector whose resize() leaves new elements unwritten (see MeshAllocator).
-template <class T> using MeshArray = std::vector<T, MeshAllocator<T>>;
+/// The arrays of TinMesh: on huge pages, and resize() leaves new elements unwritten (the
+/// triangulator sizes an array and then fills it on all its threads).
+template <class T> using MeshAllocator = HugePageArrayAllocator<T>;
+template <class T> using MeshArray = HugePageArray<T>;
 
 /// A triangulated irregular network.
 ///
