@@ -84,7 +84,7 @@ public:
         std::vector<BoundaryEdge> boundary;
     };
 
-    /// `points`: distinct, they must outlive the mesh. `vertexStrip[v]`: the strip of vertex
+    /// `points`: distinct, they must outlive the insertions. `vertexStrip[v]`: the strip of vertex
     /// v (empty: one strip). `capacity`: slots of all regions together (address space only:
     /// pages are taken as slots are first used).
     CavityMesh(std::span<const Point2> points, std::span<const std::uint8_t> vertexStrip,
@@ -127,7 +127,8 @@ public:
     void closeScratch(const Scratch& scratch);
 
     /// The real triangles in TinMesh form (corner order kept; neighbours across the edge from
-    /// corner i to corner i + 1, kNoNeighbour on the hull), numbered in slot order.
+    /// corner i to corner i + 1, kNoNeighbour on the hull), numbered in slot order. Reads the
+    /// triangles alone: the points may be gone by then.
     void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads) const;
 

@@ -44,7 +44,7 @@ public:
     /// the threads of another level.
     static constexpr std::size_t kMinimumRetriedPoints = 256;
 
-    /// `points`: distinct, not all collinear; they must outlive the triangulator. `strips`:
+    /// `points`: distinct, not all collinear; they must outlive insertAll. `strips`:
     /// threads of level 0 (1: a plain sequential Bowyer-Watson insertion).
     /// `minimumPointsPerStrip`: see kMinimumPointsPerStrip (tests lower it).
     StripTriangulator(std::span<const Point2> points, unsigned strips,
@@ -55,6 +55,7 @@ public:
     void insertAll(std::span<const std::uint32_t> order, std::span<const std::size_t> roundStarts,
                    const ProgressCallback& progress);
 
+    /// The mesh (CavityMesh::extract): the points need not outlive insertAll for this.
     void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads) const {
         m_mesh.extract(triangles, neighbours, threads);

@@ -143,9 +143,9 @@ void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& option
 }
 
 // Inserts with the history-free Bowyer-Watson core (strip method, or sequential walk) and
-// extracts the mesh.
-void insertWithoutHistory(const InsertionPlan& plan, unsigned threads,
-                          const ProgressCallback& progress, TriangulationResult& result) {
+// extracts the mesh. Frees plan.local on the way.
+void insertWithoutHistory(InsertionPlan& plan, unsigned threads, const ProgressCallback& progress,
+                          TriangulationResult& result) {
     Clock::time_point phase = Clock::now();
     // Every vertex, the DAG's auxiliary corner (vertex 0) first: no auxiliary triangle here.
     HugePageArray<VertexId> order(plan.local.size());
@@ -159,6 +159,10 @@ void insertWithoutHistory(const InsertionPlan& plan, unsigned threads,
     result.threads = triangulator.strips();
     result.deferredPoints = triangulator.deferredPoints();
     result.historyBytes = triangulator.memoryBytes();
+    // The extraction reads the mesh alone: freed first, the order and the points lend their
+    // pages to the output arrays.
+    HugePageArray<VertexId>().swap(order);
+    HugePageArray<Point2>().swap(plan.local);
     triangulator.extract(result.mesh.triangles, result.mesh.neighbours, threads);
     result.seconds.extract = lap(phase);
 }
@@ -191,11 +195,14 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     // The sequential method is the baseline of the parallel ones: one thread throughout.
     const unsigned phaseThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
 
-    const PreparedPoints prepared = preparePoints(points, options.duplicateZ, phaseThreads);
+    PreparedPoints prepared = preparePoints(points, options.duplicateZ, phaseThreads);
     result.seconds.prepare = lap(phase);
     const auto count = static_cast<std::uint32_t>(prepared.local.size());
 
-    const InsertionPlan plan = planInsertion(prepared.local, options, phaseThreads);
+    InsertionPlan plan = planInsertion(prepared.local, options, phaseThreads);
+    // The plan holds the points in insertion order. Freed now, this copy's pages serve the
+    // triangulator's first arrays: a fresh page costs a page fault, a freed one is reused.
+    HugePageArray<Point2>().swap(prepared.local);
     result.seconds.order = lap(phase);
 
     const bool historyFree = result.method == TriangulationMethod::Strips ||
