@@ -41,7 +41,7 @@ constexpr int previousCorner(int i) { return i == 0 ? 2 : i - 1; }
 class DagTriangulator {
 public:
     /// `points`: distinct points, not all collinear (see preparePoints); they must outlive the
-    /// triangulator. The highest point becomes the finite corner of the auxiliary triangle
+    /// insertions (extract() does not read them). The highest point becomes the finite corner of the auxiliary triangle
     /// and is inserted by construction.
     explicit DagTriangulator(std::span<const Point2> points);
 
@@ -97,7 +97,8 @@ public:
 
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
-    /// Uses up to `threads` threads; the result does not depend on it.
+    /// Uses up to `threads` threads; the result does not depend on it. Reads the DAG alone:
+    /// the points may be gone by then.
     void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads = 1) const;
 

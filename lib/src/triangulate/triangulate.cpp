@@ -94,8 +94,9 @@ double lap(Clock::time_point& start) {
     return seconds;
 }
 
-// Inserts with the DAG (sequential, batch or circum-circle) and extracts the mesh.
-void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& options, unsigned threads,
+// Inserts with the DAG (sequential, batch or circum-circle) and extracts the mesh. Frees
+// plan.local on the way.
+void insertWithDag(InsertionPlan& plan, const TriangulationOptions& options, unsigned threads,
                    const ProgressCallback& progress, TriangulationResult& result) {
     Clock::time_point phase = Clock::now();
     const auto count = static_cast<std::uint32_t>(plan.local.size());
@@ -138,6 +139,9 @@ void insertWithDag(const InsertionPlan& plan, const TriangulationOptions& option
     result.historyNodes = triangulator.nodeCount();
     result.historyBytes = triangulator.memoryBytes();
     const unsigned extractThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
+    // As in insertWithoutHistory: the extraction reads the DAG alone.
+    HugePageArray<VertexId>().swap(vertices);
+    HugePageArray<Point2>().swap(plan.local);
     triangulator.extract(result.mesh.triangles, result.mesh.neighbours, extractThreads);
     result.seconds.extract = lap(phase);
 }
