@@ -1,5 +1,6 @@
-// Storage on huge pages: small and large blocks hold what is written, buffers move, and a
-// worst-case capacity far beyond what is touched is only address space.
+// Storage on huge pages: small and large blocks hold what is written, buffers move, arrays
+// behave like vectors, and a worst-case capacity far beyond what is touched is only address
+// space.
 
 #include "terratin/huge_pages.hpp"
 
@@ -40,6 +41,21 @@ TEST(HugePages, VectorsWithTheAllocatorBehaveLikeVectors) {
     EXPECT_EQ(values.back(), 0.0F);
     std::vector<float, HugePageAllocator<float>> small(16, 1.5F); // below the threshold
     EXPECT_EQ(small[15], 1.5F);
+}
+
+TEST(HugePages, ArraysBehaveLikeVectors_AndLargeOnesStartOnAHugePage) {
+    HugePageArray<std::uint64_t> values(std::size_t{3} << 18U, 7); // 6 MiB, every element 7
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % kHugePageBytes, 0U);
+    EXPECT_EQ(values.front(), 7U);
+    EXPECT_EQ(values.back(), 7U);
+    std::iota(values.begin(), values.end(), std::uint64_t{0});
+    values.push_back(42); // grows through a reallocation, keeping what was written
+    EXPECT_EQ(values[123457], 123457U);
+    EXPECT_EQ(values.back(), 42U);
+    values.resize(10); // shrinking keeps the front
+    EXPECT_EQ(values[9], 9U);
+    HugePageArray<std::uint64_t>().swap(values); // the way the triangulator frees one early
+    EXPECT_EQ(values.capacity(), 0U);
 }
 
 TEST(HugePages, ALargeCapacityIsOnlyAddressSpaceUntilTouched) {
