@@ -41,8 +41,8 @@ constexpr int previousCorner(int i) { return i == 0 ? 2 : i - 1; }
 class DagTriangulator {
 public:
     /// `points`: distinct points, not all collinear (see preparePoints); they must outlive the
-    /// insertions (extract() does not read them). The highest point becomes the finite corner of the auxiliary triangle
-    /// and is inserted by construction.
+    /// insertions (extract() does not read them). The highest point becomes the finite corner
+    /// of the auxiliary triangle and is inserted by construction.
     explicit DagTriangulator(std::span<const Point2> points);
 
     /// The finite corner of the auxiliary triangle (already part of the triangulation).
