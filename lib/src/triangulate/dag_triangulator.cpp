@@ -323,7 +323,7 @@ std::size_t DagTriangulator::repairAllEdges(unsigned threads) {
 }
 
 void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
-                              MeshArray<std::int32_t>& neighbours, unsigned threads) const {
+                              MeshArray<std::int32_t>& neighbours, unsigned threads) {
     // Each thread takes a contiguous block of the arena: it lists the output triangles
     // (finite leaves) of its block, numbers them after the blocks before it, and then writes
     // their corners and neighbours. Three passes, since a neighbour may be in any block.
@@ -352,16 +352,22 @@ void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
     for (std::size_t block = 0; block < blockLeaves.size(); ++block)
         blockFirst[block + 1] = blockFirst[block] + blockLeaves[block].finite.size();
 
-    // The output index of every leaf, -1 outside the mesh. Links lead only to leaves, so the
-    // entries of inner nodes (three in four) are never read and never written: the array is
-    // left uninitialised, on huge pages for the random reads below.
-    const HugePageBuffer<std::int32_t> outputIndex(nodeCount);
+    // The output index of every leaf, kOutside outside the mesh, in its owner word: the
+    // insertions are over, so the word is free, and the corners beside it are read below
+    // anyway. (An array of one entry per node took 37 MB of fresh pages per million points.)
+    constexpr std::uint32_t kOutside = 0xFFFFFFFFU; // -1 as an int32_t
+    const auto setOutput = [this](NodeId n, std::size_t output) {
+        m_nodes[n].owner.store(static_cast<std::uint32_t>(output), std::memory_order_relaxed);
+    };
+    const auto outputOf = [this](NodeId n) {
+        return static_cast<std::int32_t>(m_nodes[n].owner.load(std::memory_order_relaxed));
+    };
     parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
         const BlockLeaves& leaves = blockLeaves[block];
         for (std::size_t k = 0; k < leaves.finite.size(); ++k)
-            outputIndex[leaves.finite[k]] = static_cast<std::int32_t>(blockFirst[block] + k);
+            setOutput(leaves.finite[k], blockFirst[block] + k);
         for (const NodeId n : leaves.outside)
-            outputIndex[n] = -1;
+            setOutput(n, kOutside);
     });
 
     triangles.resize(3 * blockFirst.back());
@@ -375,7 +381,7 @@ void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
                 triangles[3 * t + i] = node.v[i];
                 // The edge from corner i to corner i+1 is opposite corner i+2.
                 const NodeId across = node.link[prev(i)];
-                neighbours[3 * t + i] = across == kNoNode ? -1 : outputIndex[across];
+                neighbours[3 * t + i] = across == kNoNode ? -1 : outputOf(across);
             }
         }
     });

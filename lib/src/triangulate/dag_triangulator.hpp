@@ -98,9 +98,10 @@ public:
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
     /// Uses up to `threads` threads; the result does not depend on it. Reads the DAG alone:
-    /// the points may be gone by then.
+    /// the points may be gone by then. Numbers the leaves in their owner words, so no
+    /// circum-circle insertion may follow (repairAllEdges and another extract() may).
     void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
-                 unsigned threads = 1) const;
+                 unsigned threads = 1);
 
     [[nodiscard]] DagNode& node(NodeId id) { return m_nodes[id]; }
     [[nodiscard]] const DagNode& node(NodeId id) const { return m_nodes[id]; }

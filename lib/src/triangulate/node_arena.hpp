@@ -43,7 +43,8 @@ struct DagNode {
     /// kNoNode for a leaf, else the first of the consecutive children.
     std::atomic<NodeId> firstChild;
     /// Circum-circle method only: 0 when free, else 1 + the index of the worker that holds
-    /// the triangle exclusively (see circumcircle_insertion.hpp).
+    /// the triangle exclusively (see circumcircle_insertion.hpp). Once the insertions are
+    /// over, DagTriangulator::extract numbers the leaves here.
     std::atomic<std::uint32_t> owner;
 
     [[nodiscard]] bool isLeaf() const {
