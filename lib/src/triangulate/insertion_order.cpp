@@ -1,12 +1,12 @@
 #include "insertion_order.hpp"
 
+#include "box.hpp"
 #include "parallel_for.hpp"
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
-#include <limits>
 #include <utility>
 
 namespace terratin::detail {
@@ -180,16 +180,9 @@ HugePageArray<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, 
                                                 std::uint64_t seed,
                                                 std::vector<std::size_t>* roundStarts,
                                                 unsigned threads) {
-    double minX = std::numeric_limits<double>::infinity();
-    double minY = minX;
-    double maxX = -minX;
-    double maxY = -minX;
-    for (const Point2& p : points) {
-        minX = std::min(minX, p.x);
-        maxX = std::max(maxX, p.x);
-        minY = std::min(minY, p.y);
-        maxY = std::max(maxY, p.y);
-    }
+    Box box;
+    for (const Point2& p : points)
+        box.add(p);
     // Sort key, from the top: the round (sparsest first), the Hilbert index, the vertex id.
     // The round of a point is the number of trailing zero bits of a random word, so k with
     // probability 2^-(k+1), capped at kMaxRound (a round of 2^-32 of the points).
@@ -207,8 +200,8 @@ HugePageArray<std::uint32_t> brioInsertionOrder(std::span<const Point2> points, 
             const std::uint64_t word = SplitMix64(seed ^ (std::uint64_t{v} << 32U))();
             const auto round =
                 static_cast<std::uint64_t>(std::countr_zero(word | (1ULL << kMaxRound)));
-            const std::uint64_t hilbert =
-                hilbertIndex(gridCell(points[v].x, minX, maxX), gridCell(points[v].y, minY, maxY));
+            const std::uint64_t hilbert = hilbertIndex(gridCell(points[v].x, box.minX, box.maxX),
+                                                       gridCell(points[v].y, box.minY, box.maxY));
             keys[v < skip ? v : v - 1] =
                 ((kMaxRound - round) << kRoundShift) | (hilbert << kHilbertShift) | v;
         }
