@@ -28,8 +28,9 @@ struct Located {
     NodeId node;
 };
 
-// State shared by the searching threads and the specialised thread.
-class BatchRun {
+// State shared by the searching threads and the specialised thread. Aligned to a cache line,
+// as CircumcircleRun is: it lives on the specialised thread's stack.
+class alignas(64) BatchRun {
 public:
     BatchRun(DagTriangulator& triangulator, std::span<const VertexId> order,
              const BatchSettings& settings)

@@ -1,6 +1,7 @@
 #include "circumcircle_insertion.hpp"
 
 #include "conflict_region.hpp"
+#include "repair_rendezvous.hpp"
 
 #include "terratin/error.hpp"
 
@@ -81,6 +82,11 @@ struct alignas(64) WorkerSlot {
     int waitingFor = -1;
     /// The worker's current owner tag (ownerTag), read by a worker that overrides it.
     std::atomic<std::uint32_t> tag{0};
+    /// No node the worker creates for its current point, or any later one, has a lower id
+    /// (see repair_rendezvous.hpp).
+    std::atomic<NodeId> lowestNewNode{0};
+    /// Points the worker has inserted: a worker that stepped aside waits for it to change.
+    std::atomic<std::uint32_t> finishedPoints{0};
     /// Where activePoint lies during the worker's current round.
     WorkerRegion region;
 };
@@ -93,20 +99,32 @@ struct Worker {
     std::uint32_t attempt = 0;
     std::vector<NodeId> held;
     PendingEdges pending;
+    /// Points inserted so far (published in WorkerSlot::finishedPoints).
+    std::uint32_t finishedPoints = 0;
     /// A triangle this worker created for its previous point: where walks start.
     NodeId recent = 0;
     /// Set when the worker learns it was overridden: an overriding worker may have taken
     /// some of the triangles it holds.
     bool overridden = false;
+    /// Set once the current attempt has subdivided: from then on it cannot simply restart.
+    bool changedMesh = false;
+    /// Set when the worker gave up an unchanged attempt to break a deadlock: the worker it
+    /// would have waited for and that worker's count of finished points then (stepAside).
+    bool backedOff = false;
+    int backedOffFrom = -1;
+    std::uint32_t blockerFinishedPoints = 0;
     CircumcircleStatistics statistics;
 };
 
-class CircumcircleRun {
+// On a cache line of its own: it lives on the calling thread's stack, whose other writes
+// would otherwise make every worker's read of the fields below a cache miss (measured: an
+// eighth of `take` went to the load of m_triangulator on the second worker).
+class alignas(64) CircumcircleRun {
 public:
     CircumcircleRun(DagTriangulator& triangulator, std::span<const VertexId> order,
                     std::span<const std::size_t> roundStarts, unsigned workers, bool walk)
         : m_triangulator(triangulator), m_order(order), m_roundStarts(roundStarts),
-          m_slots(workers), m_walk(walk) {}
+          m_slots(workers), m_walk(walk), m_repair(triangulator, workers) {}
 
     void work(unsigned index, const ProgressCallback* progress) {
         Worker worker;
@@ -126,6 +144,8 @@ public:
                 if (filterByRegion())
                     publishRegion(index, m_order.subspan(begin, end - begin));
                 for (std::size_t i = begin; i < end && !stopping(); ++i) {
+                    if (m_repair.requested())
+                        m_repair.arrive();
                     insertPoint(worker, m_order[i]);
                     const std::size_t sinceCounted = (i + 1 - begin) % kCountBatch;
                     if (sinceCounted == 0 || i + 1 == end)
@@ -134,30 +154,30 @@ public:
                 }
             }
         } catch (...) {
-            const std::lock_guard lock(m_failureMutex);
-            if (!m_failure)
-                m_failure = std::current_exception();
-            m_stop.store(true, std::memory_order_release);
+            fail(std::current_exception());
         }
         releaseAll(worker);
         m_slots[index].activePoint.store(kNoVertex, std::memory_order_release);
+        try {
+            m_repair.leave(); // may run a repair, which allocates
+        } catch (...) {
+            fail(std::current_exception());
+        }
         m_finishedWorkers.fetch_add(1, std::memory_order_release);
         const std::lock_guard lock(m_statisticsMutex);
         m_statistics.waits += worker.statistics.waits;
         m_statistics.overrides += worker.statistics.overrides;
+        m_statistics.backOffs += worker.statistics.backOffs;
         m_statistics.deferredEdges += worker.statistics.deferredEdges;
     }
 
-    void finish(unsigned threads) {
+    void finish() {
         if (m_failure)
             std::rethrow_exception(m_failure);
         if (m_cancelled.load())
             throw Cancelled("Triangulator: cancelled");
-        // Without an override every insertion ran to completion as one atomic step, so the
-        // result is what sequential insertion in some order gives. With one, edges were left
-        // unchecked: repair (checking every edge keeps this simple and certain).
-        if (m_statistics.overrides > 0 || m_statistics.deferredEdges > 0)
-            m_statistics.repairFlips = m_triangulator.repairAllEdges(threads);
+        m_statistics.repairs = m_repair.repairs();
+        m_statistics.repairFlips = m_repair.flips();
     }
 
     [[nodiscard]] const CircumcircleStatistics& statistics() const { return m_statistics; }
@@ -188,11 +208,11 @@ private:
         if (!(*progress)(static_cast<double>(done) / static_cast<double>(m_order.size()),
                          "triangulating")) {
             m_cancelled.store(true, std::memory_order_relaxed);
-            m_stop.store(true, std::memory_order_release);
+            requestStop();
         }
     }
 
-    enum class WaitOutcome { Retry, Override, Aborted };
+    enum class WaitOutcome { Retry, Override, Aborted, BackOff };
 
     [[nodiscard]] bool filterByRegion() const { return m_slots.size() >= kRegionFilterWorkers; }
 
@@ -209,21 +229,43 @@ private:
 
     bool stopping() const { return m_stop.load(std::memory_order_acquire); }
 
+    void fail(std::exception_ptr failure) {
+        {
+            const std::lock_guard lock(m_failureMutex);
+            if (!m_failure)
+                m_failure = std::move(failure);
+        }
+        requestStop();
+    }
+
+    void requestStop() {
+        m_stop.store(true, std::memory_order_release);
+        m_repair.stop();
+    }
+
     // The published point is a hint for the others' geometric test, not the guarantee (the
     // owner tags are), so release stores suffice, not sequentially consistent ones. It is
     // withdrawn as soon as the point is in: a point left published makes the others wait for
     // nothing (measured: a wait on every other insertion).
     void insertPoint(Worker& worker, VertexId q) {
+        m_slots[worker.index].lowestNewNode.store(m_triangulator.lowestFutureNodeOfThisThread(),
+                                                  std::memory_order_relaxed);
         m_slots[worker.index].activePoint.store(q, std::memory_order_release);
         NodeId hint = 0;
         while (!subdivide(worker, q, hint)) {
             releaseAll(worker);
+            if (std::exchange(worker.backedOff, false))
+                stepAside(worker, q);
             if (stopping())
                 return;
         }
+        worker.changedMesh = true;
         legalize(worker, q);
         releaseAll(worker);
-        m_slots[worker.index].activePoint.store(kNoVertex, std::memory_order_release);
+        WorkerSlot& self = m_slots[worker.index];
+        self.activePoint.store(kNoVertex, std::memory_order_release);
+        // Only this worker writes its count: a plain store, not a locked increment.
+        self.finishedPoints.store(++worker.finishedPoints, std::memory_order_release);
     }
 
     // Locates q, takes the triangles the subdivision changes and subdivides. False when the
@@ -315,6 +357,28 @@ private:
         }
     }
 
+    // After giving up an attempt to break a deadlock: withdraws the point until the worker
+    // it would have waited for has finished its own. Published again at once, the point
+    // would keep that worker waiting (it is inside the circles around it), and the deadlock
+    // would recur for every triangle that worker still needs (measured: millions of
+    // deadlocks in a run on points of one circle).
+    //
+    // These waits cannot close a cycle: a worker steps aside only for one that is waiting
+    // (the deadlock was found along the chain of waits), hence not stepping aside itself,
+    // and a worker that stepped aside is waited for by no one: it holds nothing and shows
+    // no point. So the last of any cycle's waits would have begun for a worker that was
+    // already stepping aside.
+    void stepAside(const Worker& worker, VertexId q) {
+        WorkerSlot& self = m_slots[worker.index];
+        self.activePoint.store(kNoVertex, std::memory_order_release);
+        const WorkerSlot& blocker = m_slots[worker.backedOffFrom];
+        while (blocker.finishedPoints.load(std::memory_order_acquire) ==
+                   worker.blockerFinishedPoints &&
+               !stopping())
+            std::this_thread::yield();
+        self.activePoint.store(q, std::memory_order_release);
+    }
+
     void deferPending(Worker& worker) {
         worker.statistics.deferredEdges += worker.pending.size();
         worker.pending.clear();
@@ -343,6 +407,7 @@ private:
                 m_triangulator.node(n).owner.store(0, std::memory_order_release);
         }
         worker.held.clear();
+        worker.changedMesh = false;
         ++worker.attempt;
         worker.tag = ownerTag(worker.index, worker.attempt & (~0U >> kWorkerBits));
         m_slots[worker.index].tag.store(worker.tag, std::memory_order_relaxed);
@@ -405,6 +470,9 @@ private:
             case WaitOutcome::Aborted:
                 worker.overridden = true;
                 return false;
+            case WaitOutcome::BackOff:
+                worker.backedOff = true;
+                return false;
             case WaitOutcome::Override:
                 // Ignore the circum-circle test; take the triangle even from the blocker's
                 // overridden attempt: it is waiting and will give up when it sees its flag.
@@ -418,6 +486,14 @@ private:
                 continue;
             }
         }
+    }
+
+    // Called before an override takes its first triangle (repair_rendezvous.hpp).
+    void requestRepair() {
+        NodeId lowest = kNoNode;
+        for (const WorkerSlot& slot : m_slots)
+            lowest = std::min(lowest, slot.lowestNewNode.load(std::memory_order_relaxed));
+        m_repair.request(lowest);
     }
 
     bool stillBlocked(const DagNode& node, int blocker, VertexId watchedPoint) const {
@@ -442,9 +518,20 @@ private:
                  ++steps)
                 next = m_slots[next].waitingFor;
             if (next == static_cast<int>(worker.index)) {
+                // A worker that has changed nothing yet breaks the cycle by giving up its
+                // own attempt: no edge is left unchecked, and no repair is needed.
+                if (!worker.changedMesh) {
+                    ++worker.statistics.backOffs;
+                    worker.backedOffFrom = blocker;
+                    // The blocker is waiting: its count cannot change before the wait ends.
+                    worker.blockerFinishedPoints =
+                        m_slots[blocker].finishedPoints.load(std::memory_order_relaxed);
+                    return WaitOutcome::BackOff;
+                }
                 // The blocker is waiting, so its attempt (and tag) cannot change until it
                 // sees the flag and gives up.
                 overriddenTag = m_slots[blocker].tag.load(std::memory_order_relaxed);
+                requestRepair();
                 m_slots[blocker].overridden.store(true, std::memory_order_release);
                 ++worker.statistics.overrides;
                 return WaitOutcome::Override;
@@ -478,6 +565,7 @@ private:
     std::exception_ptr m_failure;
     std::mutex m_statisticsMutex;
     CircumcircleStatistics m_statistics;
+    RepairRendezvous m_repair;
 };
 
 } // namespace
@@ -497,7 +585,7 @@ CircumcircleStatistics insertWithCircumcircleMethod(DagTriangulator& triangulato
         run.work(0, &progress);
         run.reportUntilOthersFinish(progress);
     }
-    run.finish(workers);
+    run.finish();
     return run.statistics();
 }
 

@@ -14,14 +14,18 @@
 ///   cannot see a thread that activates a point just after the test; the tag closes that gap,
 ///   so each insertion is atomic with respect to the others.
 /// - Deadlock detection in a short critical section: before waiting for worker B, worker A
-///   records it and follows the chain of waits from B; if it leads back to A, A does not wait
-///   but overrides: it ignores the test (taking the triangle, from B if B holds it) and sets
-///   B's override flag.
+///   records it and follows the chain of waits from B; if it leads back to A, A does not wait.
+///   If A has changed nothing yet (it has not subdivided), it steps aside: it gives up what it
+///   holds, withdraws its point until no worker waits for it, and starts the point again.
+///   Otherwise it overrides, as the paper does: it ignores the test (taking the triangle, from
+///   B if B holds it) and sets B's override flag.
 /// - Re-validation by the overridden worker: when B wakes up and finds its flag, it gives up
 ///   what it holds. Before its subdivision nothing was changed and it simply starts the point
-///   again; during legalisation its remaining unchecked edges are recorded ("swaps left
-///   unprocessed" in the paper) and repaired after all workers finish, so the result is always
-///   exactly Delaunay (the paper accepted a few wrong triangles).
+///   again; during legalisation its remaining unchecked edges ("swaps left unprocessed" in
+///   the paper) are counted and given up. Every override asks for a repair: the workers meet
+///   between two points and the leaves created since the override began are made Delaunay
+///   again (repair_rendezvous.hpp), so the result is always exactly Delaunay (the paper
+///   accepted a few wrong triangles).
 
 #include "dag_triangulator.hpp"
 
@@ -36,8 +40,12 @@ struct CircumcircleStatistics {
     std::size_t waits = 0;
     /// Deadlocks resolved by overriding another worker.
     std::size_t overrides = 0;
-    /// Edges left unchecked by overridden workers and flips made to repair them afterwards.
+    /// Deadlocks resolved by a worker giving up its own attempt, which had changed nothing.
+    std::size_t backOffs = 0;
+    /// Edges left unchecked by overridden workers; repairs of the triangulation after
+    /// overrides (repair_rendezvous.hpp) and the flips they made.
     std::size_t deferredEdges = 0;
+    std::size_t repairs = 0;
     std::size_t repairFlips = 0;
 };
 

@@ -5,6 +5,7 @@
 
 #include "parallel_for.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <memory>
 #include <thread>
@@ -270,23 +271,26 @@ bool DagTriangulator::isIllegal(NodeId t, int pos, NodeId u) const {
                                  uNode.v[m]) > 0;
 }
 
-std::size_t DagTriangulator::repairAllEdges(unsigned threads) {
-    // Every edge of every leaf is checked once, from its leaf with the lower id (the in-circle
-    // determinant is alternating, so the other side gives the same answer); only the illegal
-    // ones start the flips. A flipped edge queues its four surrounding edges (the new
-    // triangles' edges away from the flipped diagonal): no other edge's legality changes.
+std::size_t DagTriangulator::repairEdgesFrom(NodeId first, unsigned threads) {
+    // Every edge of the leaves from `first` on is checked; an edge between two of them only
+    // from the one with the lower id (the in-circle determinant is alternating, so the other
+    // side gives the same answer). Only the illegal ones start the flips. A flipped edge
+    // queues its four surrounding edges (the new triangles' edges away from the flipped
+    // diagonal): no other edge's legality changes.
     const std::size_t nodeCount = m_nodes.size();
-    std::vector<PendingEdges> illegal(parallelForThreads(nodeCount, threads));
-    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
-        for (std::size_t n = begin; n < end; ++n) {
+    const std::size_t checked = nodeCount - std::min<std::size_t>(first, nodeCount);
+    std::vector<PendingEdges> illegal(parallelForThreads(checked, threads));
+    parallelFor(checked, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        for (std::size_t n = first + begin; n < first + end; ++n) {
             const auto t = static_cast<NodeId>(n);
             const DagNode& tNode = m_nodes[t];
             if (!tNode.isLeaf() || tNode.v[0] == kNoNode)
                 continue;
-            for (int pos = 0; pos < 3; ++pos)
-                if (tNode.link[pos] != kNoNode && tNode.link[pos] > t &&
-                    isIllegal(t, pos, tNode.link[pos]))
+            for (int pos = 0; pos < 3; ++pos) {
+                const NodeId u = tNode.link[pos];
+                if (u != kNoNode && (u > t || u < first) && isIllegal(t, pos, u))
                     illegal[block].emplace_back(t, pos);
+            }
         }
     });
     PendingEdges work;
@@ -314,10 +318,10 @@ std::size_t DagTriangulator::repairAllEdges(unsigned threads) {
         // The new triangles are (k, i, l) and (k, l, j), k = the old tNode.v[pos]: their four
         // edges other than the new diagonal (opposite i in the first, j in the second) may
         // now fail.
-        const NodeId first = created[0].first;
-        const NodeId second = created[1].first;
+        const NodeId left = created[0].first;
+        const NodeId right = created[1].first;
         created.clear();
-        work.insert(work.end(), {{first, 0}, {first, 2}, {second, 0}, {second, 1}});
+        work.insert(work.end(), {{left, 0}, {left, 2}, {right, 0}, {right, 1}});
     }
     return flips;
 }

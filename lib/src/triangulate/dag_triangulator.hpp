@@ -37,8 +37,9 @@ using PendingEdges = std::vector<std::pair<NodeId, int>>;
 constexpr int nextCorner(int i) { return i == 2 ? 0 : i + 1; }
 constexpr int previousCorner(int i) { return i == 0 ? 2 : i - 1; }
 
-/// DAG triangulator over the finite points given at construction.
-class DagTriangulator {
+/// DAG triangulator over the finite points given at construction. Aligned to a cache line:
+/// the parallel methods' threads read it constantly, and it lives on a thread's stack.
+class alignas(64) DagTriangulator {
 public:
     /// `points`: distinct points, not all collinear (see preparePoints); they must outlive the
     /// insertions (extract() does not read them). The highest point becomes the finite corner
@@ -89,17 +90,18 @@ public:
     /// Lawson's legalisation of the pending edges opposite the inserted vertex p.
     void legalize(VertexId p, PendingEdges& pending);
 
-    /// Makes every edge of the current triangulation locally Delaunay: checks them all, on up
-    /// to `threads` threads, and flips from the illegal ones until none is left (Lawson's
-    /// algorithm, which terminates from any triangulation; the flips run on the calling
-    /// thread). Returns the number of flips.
-    std::size_t repairAllEdges(unsigned threads = 1);
+    /// Makes the current triangulation Delaunay when its illegal edges all lie on leaves with
+    /// ids from `first` on (first = 0: any triangulation): checks every edge of those leaves,
+    /// on up to `threads` threads, and flips from the illegal ones until none is left
+    /// (Lawson's algorithm, which terminates from any triangulation; the flips run on the
+    /// calling thread). Returns the number of flips.
+    std::size_t repairEdgesFrom(NodeId first, unsigned threads = 1);
 
     /// The triangles with three finite corners, as TinMesh arrays: corners counter-clockwise
     /// and neighbours[3t+i] across the edge from corner i to corner i+1 (-1 on the hull).
     /// Uses up to `threads` threads; the result does not depend on it. Reads the DAG alone:
     /// the points may be gone by then. Numbers the leaves in their owner words, so no
-    /// circum-circle insertion may follow (repairAllEdges and another extract() may).
+    /// circum-circle insertion may follow (repairEdgesFrom and another extract() may).
     void extract(MeshArray<std::uint32_t>& triangles, MeshArray<std::int32_t>& neighbours,
                  unsigned threads = 1);
 
@@ -108,6 +110,10 @@ public:
     [[nodiscard]] const SymbolicPredicates& predicates() const { return m_predicates; }
     [[nodiscard]] std::size_t nodeCount() const { return m_nodes.size(); }
     /// The node the calling thread created last (a leaf unless edited since), or the root.
+    /// No node the calling thread creates from now on has a lower id than this.
+    [[nodiscard]] NodeId lowestFutureNodeOfThisThread() const {
+        return m_nodes.lowestFutureIdOfThisThread();
+    }
     [[nodiscard]] NodeId newestNode() const {
         const NodeId newest = m_nodes.newestOfThisThread();
         return newest == kNoNode ? 0 : newest;

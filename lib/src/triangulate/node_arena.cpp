@@ -75,4 +75,11 @@ NodeId NodeArena::newestOfThisThread() const {
     return static_cast<NodeId>(block.next - 1);
 }
 
+NodeId NodeArena::lowestFutureIdOfThisThread() const {
+    const ThreadBlock& block = threadBlock;
+    if (block.generation == m_generation)
+        return static_cast<NodeId>(block.next);
+    return static_cast<NodeId>(m_next.load(std::memory_order_relaxed));
+}
+
 } // namespace terratin::detail

@@ -90,6 +90,9 @@ public:
 
     /// The id the calling thread allocated last in this arena, or kNoNode.
     [[nodiscard]] NodeId newestOfThisThread() const;
+    /// A lower bound on the ids the calling thread allocates from now on: its current block's
+    /// next id, and every later block starts above every block reserved before it.
+    [[nodiscard]] NodeId lowestFutureIdOfThisThread() const;
 
     /// Nodes per block a thread reserves. Every id reserved is initialised as a dead node (a
     /// leaf with no finite corner, which every traversal of the whole arena ignores) until
@@ -110,7 +113,8 @@ private:
     /// their current block.
     const std::uint64_t m_generation;
     std::unique_ptr<std::atomic<DagNode*>[]> m_chunks;
-    std::atomic<std::size_t> m_next{0};
+    /// Away from m_chunks, which every node access reads: each block reservation writes it.
+    alignas(64) std::atomic<std::size_t> m_next{0};
     std::atomic<std::size_t> m_chunkCount{0};
     std::mutex m_growth;
 };

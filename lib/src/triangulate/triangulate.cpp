@@ -126,7 +126,9 @@ void insertWithDag(InsertionPlan& plan, const TriangulationOptions& options, uns
         result.threads = threads;
         result.waits = statistics.waits;
         result.overrides = statistics.overrides;
+        result.backOffs = statistics.backOffs;
         result.deferredEdges = statistics.deferredEdges;
+        result.repairs = statistics.repairs;
         result.repairFlips = statistics.repairFlips;
         break;
     }

@@ -1,8 +1,10 @@
-// Lawson repair (DagTriangulator::repairAllEdges), the safety net that makes the circum-circle
+// Lawson repair (DagTriangulator::repairEdgesFrom), the safety net that makes the circum-circle
 // method exact after an override: starting from a triangulation built with no legalisation at
-// all, repair alone must reach an exact Delaunay triangulation, hull included.
+// all, repair alone must reach an exact Delaunay triangulation, hull included; and the
+// rendezvous where the method's workers meet for it (RepairRendezvous).
 
 #include "dag_triangulator.hpp"
+#include "repair_rendezvous.hpp"
 
 #include "mesh_invariants.hpp"
 #include "point_distributions.hpp"
@@ -10,6 +12,9 @@
 #include "terratin/triangulate/point_set.hpp"
 
 #include <gtest/gtest.h>
+
+#include <memory>
+#include <thread>
 
 namespace terratin {
 namespace {
@@ -38,7 +43,7 @@ TinMesh triangulateByRepairOnly(const std::vector<Point3>& input, std::size_t& r
         before.vertices.push_back(input[source]);
     illegalBeforeRepair = validateDelaunay(before).nonDelaunayEdges;
 
-    repairFlips = triangulator.repairAllEdges(threads);
+    repairFlips = triangulator.repairEdgesFrom(0, threads);
     TinMesh mesh;
     triangulator.extract(mesh.triangles, mesh.neighbours);
     mesh.vertices = before.vertices;
@@ -79,6 +84,98 @@ TEST(DagRepair, ReachesExactDelaunay_ForCocircularAndCollinearInputs) {
         test::expectExactDelaunayOf(triangulateByRepairOnly(points, flips, illegalBefore),
                                     points);
     }
+}
+
+// A triangulation that is Delaunay except on the leaves of its newer half: the first half of
+// the points is inserted with legalisation, the rest by subdivision alone. `firstUnlegalised`
+// receives the first node id of the second half.
+struct HalfLegalised {
+    PreparedPoints prepared;
+    std::unique_ptr<detail::DagTriangulator> triangulator;
+    detail::NodeId firstUnlegalised = 0;
+};
+
+HalfLegalised triangulateHalfLegalised(const std::vector<Point3>& input) {
+    HalfLegalised result{preparePoints(input, DuplicateZPolicy::First), nullptr, 0};
+    result.triangulator = std::make_unique<detail::DagTriangulator>(result.prepared.local);
+    detail::DagTriangulator& triangulator = *result.triangulator;
+    detail::PendingEdges pending;
+    const auto count = static_cast<detail::VertexId>(result.prepared.local.size());
+    for (detail::VertexId q = 0; q < count; ++q) {
+        if (q == triangulator.highestVertex())
+            continue;
+        if (q == count / 2)
+            result.firstUnlegalised = triangulator.lowestFutureNodeOfThisThread();
+        const detail::NodeId leaf = triangulator.locate(q);
+        if (q < count / 2) {
+            triangulator.insertAtLeaf(leaf, q);
+            continue;
+        }
+        const int edge = triangulator.edgeContaining(leaf, q);
+        if (edge >= 0)
+            triangulator.splitEdge(leaf, edge, q, pending);
+        else
+            triangulator.splitTriangle(leaf, q, pending);
+        pending.clear(); // no legalisation
+    }
+    return result;
+}
+
+TinMesh extractMesh(detail::DagTriangulator& triangulator, const PreparedPoints& prepared,
+                    const std::vector<Point3>& input) {
+    TinMesh mesh;
+    triangulator.extract(mesh.triangles, mesh.neighbours);
+    for (const std::uint32_t source : prepared.sourceIndex)
+        mesh.vertices.push_back(input[source]);
+    return mesh;
+}
+
+TEST(DagRepair, ReachesExactDelaunay_FromTheNewestLeavesAlone) {
+    // The illegal edges lie on leaves of the second half, some of them against older leaves:
+    // checking the leaves from the first unlegalised node on must find them all.
+    for (const test::Distribution distribution :
+         {test::Distribution::Uniform, test::Distribution::Grid, test::Distribution::Arc}) {
+        const std::vector<Point3> points = test::generatePoints(distribution, 4000, 23);
+        HalfLegalised half = triangulateHalfLegalised(points);
+        EXPECT_GT(half.firstUnlegalised, 0U);
+        const std::size_t flips = half.triangulator->repairEdgesFrom(half.firstUnlegalised);
+        EXPECT_GT(flips, 0U) << test::toString(distribution) << ": nothing to repair";
+        test::expectExactDelaunayOf(extractMesh(*half.triangulator, half.prepared, points), points);
+    }
+}
+
+TEST(RepairRendezvous, RepairsOnce_WhenEveryWorkerHasArrivedOrLeft) {
+    const std::vector<Point3> points = test::generatePoints(test::Distribution::Uniform, 3000, 24);
+    HalfLegalised half = triangulateHalfLegalised(points);
+    detail::RepairRendezvous rendezvous(*half.triangulator, 3);
+    rendezvous.arrive(); // nothing asked for: returns at once
+    EXPECT_FALSE(rendezvous.requested());
+
+    rendezvous.request(half.firstUnlegalised + 100);
+    rendezvous.request(half.firstUnlegalised); // the lower request wins
+    EXPECT_TRUE(rendezvous.requested());
+    {
+        std::jthread arriving([&rendezvous] { rendezvous.arrive(); });
+        std::jthread leaving([&rendezvous] { rendezvous.leave(); });
+        rendezvous.arrive();
+    }
+    EXPECT_FALSE(rendezvous.requested());
+    EXPECT_EQ(rendezvous.repairs(), 1U);
+    EXPECT_GT(rendezvous.flips(), 0U);
+    test::expectExactDelaunayOf(extractMesh(*half.triangulator, half.prepared, points), points);
+}
+
+TEST(RepairRendezvous, Stop_ReleasesAWaitingWorkerWithoutARepair) {
+    const std::vector<Point3> points = test::generatePoints(test::Distribution::Uniform, 500, 25);
+    HalfLegalised half = triangulateHalfLegalised(points);
+    detail::RepairRendezvous rendezvous(*half.triangulator, 2);
+    rendezvous.request(half.firstUnlegalised);
+    {
+        std::jthread waiting([&rendezvous] { rendezvous.arrive(); });
+        rendezvous.stop();
+    }
+    EXPECT_EQ(rendezvous.repairs(), 0U);
+    rendezvous.arrive(); // after stop(): returns at once
 }
 
 } // namespace

@@ -194,6 +194,7 @@ TEST(StripMethod, ThrowsCancelled) {
 TEST(CircumcircleMethod, IsExactlyDelaunay_WhenThreadsCrowdOneCircle) {
     // Points on one circle: every triangle's circumcircle is (nearly) that circle, so every
     // thread's point conflicts with every other's and the waits and overrides are exercised.
+    std::size_t overrides = 0;
     for (const PointLocation locate : {PointLocation::Dag, PointLocation::Walk}) {
         for (const unsigned threads : {2U, 4U, 8U}) {
             std::vector<Point3> points = test::cocircularRings(1.0);
@@ -203,8 +204,13 @@ TEST(CircumcircleMethod, IsExactlyDelaunay_WhenThreadsCrowdOneCircle) {
                 points, parallelOptions(TriangulationMethod::Circumcircle, threads, locate));
             EXPECT_EQ(result.threads, threads);
             test::expectExactDelaunayOf(result.mesh, points);
+            // Every override is followed by a repair; several may share one.
+            EXPECT_EQ(result.repairs > 0, result.overrides > 0);
+            EXPECT_LE(result.repairs, result.overrides);
+            overrides += result.overrides;
         }
     }
+    EXPECT_GT(overrides, 0U) << "the input no longer provokes overrides";
 }
 
 TEST(CircumcircleMethod, ThrowsCancelled_AndStopsEveryThread) {

@@ -101,11 +101,14 @@ struct TriangulationResult {
     /// Batch method: searching threads, and locations they completed on a full queue.
     unsigned searchers = 0;
     std::size_t helpedLocations = 0;
-    /// Circum-circle method: waits for another thread, deadlocks resolved by an override,
-    /// edges an overridden thread left unchecked, and flips that repaired them afterwards.
+    /// Circum-circle method: waits for another thread, deadlocks resolved by an override or
+    /// by a thread giving up its own unchanged attempt, edges an overridden thread left
+    /// unchecked, and the repairs after overrides with the flips they made.
     std::size_t waits = 0;
     std::size_t overrides = 0;
+    std::size_t backOffs = 0;
     std::size_t deferredEdges = 0;
+    std::size_t repairs = 0;
     std::size_t repairFlips = 0;
     /// Strip method: points left to the single-threaded phase (near a strip boundary).
     std::size_t deferredPoints = 0;
