@@ -317,8 +317,13 @@ private:
         return true;
     }
 
-    // Lawson's legalisation, taking each triangle before touching it. When overridden, the
-    // unchecked edges are left for the repair after all workers finish.
+    // Lawson's legalisation. The neighbour u across a pending edge of t is read without
+    // taking it: t is ours, and every edit that could change u or its link to t (a split or
+    // flip of u, which rewrites the links of u's neighbours) must take t first. So u stays a
+    // leaf beside t, its corners never change, and the in-circle test is exact. Only a flip
+    // takes u and the four triangles around the quadrilateral; most tests flip nothing, and
+    // each take saved is a compare-and-swap and a release. When overridden, the unchecked
+    // edges are left to the repair (repair_rendezvous.hpp).
     void legalize(Worker& worker, VertexId p) {
         const SymbolicPredicates& predicates = m_triangulator.predicates();
         while (!worker.pending.empty()) {
@@ -329,18 +334,18 @@ private:
                 worker.pending.pop_back();
                 continue;
             }
-            if (!take(worker, u)) {
-                deferPending(worker);
-                return;
-            }
             const DagNode& uNode = m_triangulator.node(u);
             int m = 0;
-            while (uNode.link[m] != t)
+            while (uNode.loadLink(m) != t) // u's other links may be changing
                 ++m;
             if (!predicates.shouldFlip(tNode.v[nextCorner(pos)], tNode.v[previousCorner(pos)], p,
                                        uNode.v[m])) {
                 worker.pending.pop_back();
                 continue;
+            }
+            if (!take(worker, u)) {
+                deferPending(worker);
+                return;
             }
             // The flip rewrites the links of the four triangles around the quadrilateral.
             for (const NodeId n : {tNode.link[nextCorner(pos)], tNode.link[previousCorner(pos)],
