@@ -118,6 +118,9 @@ po::options_description benchOptionsDescription() {
          "that distribution")
         ("no-cgal", "do not run CGAL")
         ("no-gdal", "do not run GDAL (slow and memory-hungry above a few million points)")
+        ("no-warm-memory", "time each run on whatever memory it gets, without first touching "
+                           "as much fresh memory as the previous run used (which takes a "
+                           "hypervisor's cost of first touch out of the timer)")
         ("csv", "print comma-separated rows instead of the table")
         ("refine", "terrain refinement table instead: N44W072 at E = 1, 5, 10 m and Mt Hood at "
                    "E = 1, 5 m (points, triangles, achieved max error, seconds per thread count)")
@@ -262,6 +265,7 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
         throw UsageError("--peer-limit must be a positive number of seconds");
     bench.runCgal = values.count("no-cgal") == 0;
     bench.runGdal = values.count("no-gdal") == 0;
+    bench.warmMemory = values.count("no-warm-memory") == 0;
     bench.csv = values.count("csv") != 0;
     bench.refine = values.count("refine") != 0;
     bench.demDirectory = values["dems"].as<std::string>();

@@ -58,6 +58,8 @@ struct BenchOptions {
     double peerLimitSeconds = 10.0;
     bool runCgal = true;
     bool runGdal = true;
+    /// Warm the memory each run will touch before timing it (warmFreeMemory).
+    bool warmMemory = true;
     /// Comma-separated rows instead of the aligned table.
     bool csv = false;
     /// Terrain refinement table instead (refine_bench.cpp): real DEMs from `demDirectory`.

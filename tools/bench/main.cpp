@@ -7,7 +7,10 @@
 //   terratin::triangulate(points, options) (which includes merging duplicates and the BRIO
 //   order), CGAL's dt.insert(first, last) (which includes its spatial sort), GDAL's
 //   GDALTriangulationCreateDelaunay. Converting points into a peer's input and freeing any
-//   result are outside the timer.
+//   result are outside the timer, and so is a touch of as much fresh memory as the previous
+//   run used (warmFreeMemory; --no-warm-memory leaves it out): on a virtual machine whose
+//   hypervisor takes free memory back, first touches otherwise cost up to a second more in
+//   some runs than in others.
 // - speed-up: terratin's sequential median / this median, same points.
 // - hist B/pt: TriangulationResult::historyBytes / N, the DAG's reserved bytes.
 // - mesh B/pt: the capacities of the returned TinMesh's four arrays, in bytes, / N.
@@ -62,19 +65,32 @@ struct RunSamples {
     std::vector<double> peakBytes;
 };
 
+// The most memory one run has touched so far: what the first run of a configuration warms.
+std::size_t largestPeakBytes = 0;
+// Warmed beyond the previous run's peak: runs of one configuration differ a little.
+constexpr std::size_t kWarmMarginBytes = std::size_t{64} << 20U;
+
 // Times `run` up to `runs` times, fewer when one run takes longer than `limitSeconds`;
-// `afterRun` reads and frees what it made, outside the timer.
+// `afterRun` reads and frees what it made, outside the timer. With `warmMemory`, each run
+// is preceded, untimed, by a touch of as much fresh memory as the previous run used.
 template <typename Run, typename AfterRun>
-RunSamples sampleRuns(unsigned runs, double limitSeconds, Run run, AfterRun afterRun) {
+RunSamples sampleRuns(unsigned runs, double limitSeconds, bool warmMemory, Run run,
+                      AfterRun afterRun) {
     RunSamples samples;
     PeakMemoryProbe probe;
+    std::size_t warmBytes = largestPeakBytes + kWarmMarginBytes;
     while (samples.seconds.size() < runs) {
+        if (warmMemory)
+            warmFreeMemory(warmBytes);
         probe.start();
         const Stopwatch stopwatch;
         run();
         samples.seconds.push_back(stopwatch.seconds());
-        if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
+        if (const std::optional<std::size_t> peak = probe.peakGrowthBytes()) {
             samples.peakBytes.push_back(static_cast<double>(*peak));
+            warmBytes = *peak + kWarmMarginBytes;
+            largestPeakBytes = std::max(largestPeakBytes, *peak);
+        }
         afterRun();
         if (samples.seconds.back() > limitSeconds)
             break;
@@ -132,7 +148,8 @@ ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& be
     row.threadsRequested = threads;
     std::optional<TriangulationResult> result;
     const RunSamples samples = sampleRuns(
-        bench.runs, kNoLimitSeconds, [&] { result.emplace(triangulate(points, options)); },
+        bench.runs, kNoLimitSeconds, bench.warmMemory,
+        [&] { result.emplace(triangulate(points, options)); },
         [&] {
             row.threadsUsed = result->threads;
             row.searchers = result->searchers;
@@ -187,8 +204,8 @@ ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
     try {
         peer.prepare(points);
         const RunSamples samples = sampleRuns(
-            bench.runs, bench.peerLimitSeconds, [&] { row.triangles = peer.triangulate(); },
-            [&] { peer.release(); });
+            bench.runs, bench.peerLimitSeconds, bench.warmMemory,
+            [&] { row.triangles = peer.triangulate(); }, [&] { peer.release(); });
         row.runs = static_cast<unsigned>(samples.seconds.size());
         row.seconds = median(samples.seconds);
         row.peakBytesPerPoint = perPoint(samples.peakBytes, points.size());

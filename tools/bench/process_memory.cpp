@@ -1,6 +1,7 @@
 #include "process_memory.hpp"
 
 #include <malloc.h>
+#include <sys/mman.h>
 
 #include <fstream>
 #include <string>
@@ -35,11 +36,30 @@ bool resetPeakResidentSet() {
 
 } // namespace
 
+std::optional<std::size_t> residentBytes() {
+    return statusBytes("VmRSS");
+}
+
 void PeakMemoryProbe::start() {
     // Memory freed by the previous run but kept by malloc would otherwise sit in the baseline
     // and be reused unseen by this one.
     malloc_trim(0);
-    m_baselineBytes = resetPeakResidentSet() ? statusBytes("VmRSS") : std::nullopt;
+    m_baselineBytes = resetPeakResidentSet() ? residentBytes() : std::nullopt;
+}
+
+void warmFreeMemory(std::size_t bytes) {
+    if (bytes == 0)
+        return;
+    void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (memory == MAP_FAILED)
+        return; // only a warm-up: the run will fault its pages in itself
+    // The triangulators' large arrays are on huge pages: take the same kind of blocks.
+    madvise(memory, bytes, MADV_HUGEPAGE);
+    constexpr std::size_t kPageBytes = 4096;
+    auto* const bytePointer = static_cast<volatile unsigned char*>(memory);
+    for (std::size_t offset = 0; offset < bytes; offset += kPageBytes)
+        bytePointer[offset] = 1;
+    munmap(memory, bytes);
 }
 
 std::optional<std::size_t> PeakMemoryProbe::peakGrowthBytes() const {

@@ -27,4 +27,16 @@ private:
     std::optional<std::size_t> m_baselineBytes;
 };
 
+/// The process's resident set now (VmRSS), or nothing where /proc/self/status is missing.
+[[nodiscard]] std::optional<std::size_t> residentBytes();
+
+/// Touches `bytes` of fresh memory, one write per page, and frees it again, so that a call
+/// made right after gets pages the host backs. On a virtual machine that hands free memory
+/// back to its hypervisor (virtio-balloon free page reporting), the first touch of such
+/// memory is costly: measured here, 300 MB took 0.79 s the first time and 0.016 s after.
+/// Which pages a timed run got then changed its time by up to a second between identical
+/// runs, for every method and peer alike; this takes that cost out of the timer, leaving
+/// the kernel's own page zeroing in it.
+void warmFreeMemory(std::size_t bytes);
+
 } // namespace terratin::bench
