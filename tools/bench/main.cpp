@@ -2,8 +2,9 @@
 // distributions of Kohout & Kolingerova ("Parallel Delaunay triangulation in E2 and E3 for
 // computers with shared memory", Parallel Computing 31, 2005; Tables 2-4).
 //
-// What is measured, for each distribution x size, on one point set generated before any timer:
-// - time [s]: median over --runs runs of the wall-clock time of the triangulation call alone:
+// What is measured, for each distribution x size, on one point set generated before any timer,
+// in --runs rounds of one run of every configuration and peer (interleaved_runs.hpp):
+// - time [s]: median over the runs of the wall-clock time of the triangulation call alone:
 //   terratin::triangulate(points, options) (which includes merging duplicates and the BRIO
 //   order), CGAL's dt.insert(first, last) (which includes its spatial sort), GDAL's
 //   GDALTriangulationCreateDelaunay. Converting points into a peer's input and freeing any
@@ -29,6 +30,7 @@
 #include "distributions.hpp"
 #include "host_scaling.hpp"
 #include "host_steal.hpp"
+#include "interleaved_runs.hpp"
 #include "peers.hpp"
 #include "process_memory.hpp"
 #include "refine_bench.hpp"
@@ -59,47 +61,6 @@ constexpr int kExitOk = 0;
 constexpr int kExitError = 1;
 constexpr int kExitUsage = 2;
 
-/// Seconds and peak memory growth of each run.
-struct RunSamples {
-    std::vector<double> seconds;
-    std::vector<double> peakBytes;
-};
-
-// The most memory one run has touched so far: what the first run of a configuration warms.
-std::size_t largestPeakBytes = 0;
-// Warmed beyond the previous run's peak: runs of one configuration differ a little.
-constexpr std::size_t kWarmMarginBytes = std::size_t{64} << 20U;
-
-// Times `run` up to `runs` times, fewer when one run takes longer than `limitSeconds`;
-// `afterRun` reads and frees what it made, outside the timer. With `warmMemory`, each run
-// is preceded, untimed, by a touch of as much fresh memory as the previous run used.
-template <typename Run, typename AfterRun>
-RunSamples sampleRuns(unsigned runs, double limitSeconds, bool warmMemory, Run run,
-                      AfterRun afterRun) {
-    RunSamples samples;
-    PeakMemoryProbe probe;
-    std::size_t warmBytes = largestPeakBytes + kWarmMarginBytes;
-    while (samples.seconds.size() < runs) {
-        if (warmMemory)
-            warmFreeMemory(warmBytes);
-        probe.start();
-        const Stopwatch stopwatch;
-        run();
-        samples.seconds.push_back(stopwatch.seconds());
-        if (const std::optional<std::size_t> peak = probe.peakGrowthBytes()) {
-            samples.peakBytes.push_back(static_cast<double>(*peak));
-            warmBytes = *peak + kWarmMarginBytes;
-            largestPeakBytes = std::max(largestPeakBytes, *peak);
-        }
-        afterRun();
-        if (samples.seconds.back() > limitSeconds)
-            break;
-    }
-    return samples;
-}
-
-constexpr double kNoLimitSeconds = std::numeric_limits<double>::infinity();
-
 /// A peer, and whether it proved too slow on the current distribution.
 struct PeerSlot {
     std::unique_ptr<Peer> peer;
@@ -128,8 +89,11 @@ const char* locationName(PointLocation locate) {
     return locate == PointLocation::Dag ? "dag" : "walk";
 }
 
-ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& bench,
-                          const NamedMethod& method, PointLocation locate, unsigned threads) {
+// A job timing terratin with these options; it fills `row` (which must outlive it) as runs
+// come back.
+TimedJob terratinJob(std::span<const Point3> points, const BenchOptions& bench,
+                     const NamedMethod& method, PointLocation locate, unsigned threads,
+                     ResultRow& row) {
     TriangulationOptions options;
     options.seed = bench.seed;
     options.order = bench.order;
@@ -140,31 +104,38 @@ ResultRow measureTerratin(std::span<const Point3> points, const BenchOptions& be
     options.queueLength = bench.queueLength;
     options.searchersHelpWhenQueueFull = bench.helpWhenFull;
 
-    ResultRow row;
     row.points = points.size();
     row.method = method.name;
     // The strip method always walks.
     row.locate = method.method == TriangulationMethod::Strips ? "walk" : locationName(locate);
     row.threadsRequested = threads;
-    std::optional<TriangulationResult> result;
-    const RunSamples samples = sampleRuns(
-        bench.runs, kNoLimitSeconds, bench.warmMemory,
-        [&] { result.emplace(triangulate(points, options)); },
-        [&] {
-            row.threadsUsed = result->threads;
-            row.searchers = result->searchers;
-            row.helpedLocations = result->helpedLocations;
-            row.triangles = result->mesh.triangleCount();
-            row.historyBytesPerPoint =
-                static_cast<double>(result->historyBytes) / static_cast<double>(points.size());
-            row.meshBytesPerPoint =
-                static_cast<double>(meshBytes(result->mesh)) / static_cast<double>(points.size());
-            result.reset();
-        });
-    row.runs = static_cast<unsigned>(samples.seconds.size());
-    row.seconds = median(samples.seconds);
-    row.peakBytesPerPoint = perPoint(samples.peakBytes, points.size());
-    return row;
+    auto result = std::make_shared<std::optional<TriangulationResult>>();
+    TimedJob job;
+    job.run = [points, options, result] {
+        result->emplace(triangulate(points, options));
+        return true;
+    };
+    job.afterRun = [points, result, &row] {
+        const TriangulationResult& done = **result;
+        row.threadsUsed = done.threads;
+        row.searchers = done.searchers;
+        row.helpedLocations = done.helpedLocations;
+        row.triangles = done.mesh.triangleCount();
+        row.historyBytesPerPoint =
+            static_cast<double>(done.historyBytes) / static_cast<double>(points.size());
+        row.meshBytesPerPoint =
+            static_cast<double>(meshBytes(done.mesh)) / static_cast<double>(points.size());
+        result->reset();
+    };
+    return job;
+}
+
+// The runs' median time and peak memory into `row`.
+void summarise(const TimedJob& job, std::size_t points, ResultRow& row) {
+    row.runs = static_cast<unsigned>(job.seconds.size());
+    if (!job.seconds.empty())
+        row.seconds = median(job.seconds);
+    row.peakBytesPerPoint = perPoint(job.peakBytes, points);
 }
 
 std::string groupName(const std::string& distribution, std::size_t points) {
@@ -177,13 +148,13 @@ std::string secondsText(double seconds) {
     return text;
 }
 
-// A peer that fails is reported in `notes` and as a "failed" row; one too slow is cut short
-// and then skipped at larger sizes (a "skipped" row); the bench goes on.
-ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
-                      std::span<const Point3> points, const BenchOptions& bench,
-                      std::vector<std::string>& notes) {
+// A job timing a peer on `points`, or nothing when the peer is skipped (too slow at a smaller
+// size of this distribution; `row` and `notes` say so) or cannot take the points. A failed run
+// becomes a note and ends the job; `row` and `notes` must outlive it.
+std::optional<TimedJob> peerJob(PeerSlot& slot, const std::string& distribution,
+                                std::span<const Point3> points, const BenchOptions& bench,
+                                ResultRow& row, std::vector<std::string>& notes) {
     Peer& peer = *slot.peer;
-    ResultRow row;
     row.distribution = distribution;
     row.points = points.size();
     row.method = peer.name();
@@ -199,33 +170,54 @@ ResultRow measurePeer(PeerSlot& slot, const std::string& distribution,
                         " skipped, a run took (or would take) over " +
                         secondsText(bench.peerLimitSeconds) +
                         " at N=" + std::to_string(*slot.tooSlowAt));
-        return row;
+        return std::nullopt;
     }
+    const auto failed = [&notes, &row, distribution, size = points.size()](const std::string& why) {
+        notes.push_back(groupName(distribution, size) + ": " + row.method + ": " + why);
+    };
     try {
         peer.prepare(points);
-        const RunSamples samples = sampleRuns(
-            bench.runs, bench.peerLimitSeconds, bench.warmMemory,
-            [&] { row.triangles = peer.triangulate(); }, [&] { peer.release(); });
-        row.runs = static_cast<unsigned>(samples.seconds.size());
-        row.seconds = median(samples.seconds);
-        row.peakBytesPerPoint = perPoint(samples.peakBytes, points.size());
-        slot.lastSize = points.size();
-        slot.lastSeconds = *row.seconds;
-        if (samples.seconds.back() > bench.peerLimitSeconds) {
-            slot.tooSlowAt = points.size();
-            notes.push_back(groupName(distribution, points.size()) + ": " + row.method + " ran " +
-                            std::to_string(row.runs) + " of " + std::to_string(bench.runs) +
-                            " runs, the last took " + secondsText(samples.seconds.back()) +
-                            " (over --peer-limit)");
-        }
     } catch (const Error& error) {
-        notes.push_back(groupName(distribution, points.size()) + ": " + error.what());
+        failed(error.what());
+        return std::nullopt;
     } catch (const std::bad_alloc&) {
-        notes.push_back(groupName(distribution, points.size()) + ": " + row.method +
-                        " ran out of memory");
+        failed("ran out of memory");
+        return std::nullopt;
     }
-    peer.release();
-    return row;
+    TimedJob job;
+    job.limitSeconds = bench.peerLimitSeconds;
+    job.run = [&peer, &row, failed] {
+        try {
+            row.triangles = peer.triangulate();
+            return true;
+        } catch (const Error& error) {
+            failed(error.what());
+        } catch (const std::bad_alloc&) {
+            failed("ran out of memory");
+        }
+        peer.release();
+        return false;
+    };
+    job.afterRun = [&peer] { peer.release(); };
+    return job;
+}
+
+// After the rounds: the peer's row, and whether it proved too slow for larger sizes.
+void finishPeer(PeerSlot& slot, const TimedJob& job, const BenchOptions& bench, ResultRow& row,
+                std::vector<std::string>& notes) {
+    summarise(job, row.points, row);
+    slot.peer->release();
+    if (!row.seconds)
+        return;
+    slot.lastSize = row.points;
+    slot.lastSeconds = *row.seconds;
+    if (job.seconds.back() > bench.peerLimitSeconds) {
+        slot.tooSlowAt = row.points;
+        notes.push_back(groupName(row.distribution, row.points) + ": " + row.method + " ran " +
+                        std::to_string(row.runs) + " of " + std::to_string(bench.runs) +
+                        " runs, the last took " + secondsText(job.seconds.back()) +
+                        " (over --peer-limit)");
+    }
 }
 
 std::optional<double> ratio(const std::optional<double>& numerator,
@@ -263,17 +255,37 @@ std::vector<Configuration> configurations(const BenchOptions& bench) {
     return runs;
 }
 
-// One distribution at one size: the peers first (our rows' ratios need their times), then
-// terratin's configurations, each row printed as soon as it is measured.
+// One distribution at one size: every configuration and peer is timed in rounds, one run of
+// each per round (interleaved_runs.hpp), and the rows are printed when the rounds are over.
 void runGroup(Distribution distribution, std::size_t size, const BenchOptions& bench,
               std::vector<PeerSlot>& peers, ResultTable& table, std::vector<std::string>& notes) {
     const std::vector<Point3> points = generatePoints(distribution, size, bench.seed);
     const std::string name(toString(distribution));
+    const std::vector<Configuration> ours = configurations(bench);
 
-    std::vector<ResultRow> peerRows;
-    peerRows.reserve(peers.size());
-    for (PeerSlot& peer : peers)
-        peerRows.push_back(measurePeer(peer, name, points, bench, notes));
+    // Jobs hold references to their rows: neither vector may grow once jobs exist.
+    std::vector<ResultRow> peerRows(peers.size());
+    std::vector<ResultRow> rows(ours.size());
+    std::vector<TimedJob> jobs;
+    std::vector<std::optional<std::size_t>> peerJobIndex(peers.size());
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+        if (std::optional<TimedJob> job =
+                peerJob(peers[p], name, points, bench, peerRows[p], notes)) {
+            peerJobIndex[p] = jobs.size();
+            jobs.push_back(std::move(*job));
+        }
+    }
+    const std::size_t firstOurs = jobs.size();
+    for (std::size_t c = 0; c < ours.size(); ++c) {
+        rows[c].distribution = name;
+        jobs.push_back(
+            terratinJob(points, bench, ours[c].method, ours[c].locate, ours[c].threads, rows[c]));
+    }
+    runInterleaved(jobs, bench.runs, bench.warmMemory);
+
+    for (std::size_t p = 0; p < peers.size(); ++p)
+        if (peerJobIndex[p])
+            finishPeer(peers[p], jobs[*peerJobIndex[p]], bench, peerRows[p], notes);
     const auto peerSeconds = [&](std::string_view peerName) -> std::optional<double> {
         for (const ResultRow& row : peerRows)
             if (row.method == peerName)
@@ -283,10 +295,10 @@ void runGroup(Distribution distribution, std::size_t size, const BenchOptions& b
 
     std::optional<double> sequentialSeconds;
     std::optional<std::size_t> ourTriangles;
-    for (const auto& [method, locate, threads] : configurations(bench)) {
-        ResultRow row = measureTerratin(points, bench, method, locate, threads);
-        row.distribution = name;
-        if (method.method == TriangulationMethod::Sequential)
+    for (std::size_t c = 0; c < ours.size(); ++c) {
+        ResultRow& row = rows[c];
+        summarise(jobs[firstOurs + c], points.size(), row);
+        if (ours[c].method.method == TriangulationMethod::Sequential)
             sequentialSeconds = row.seconds; // rows of one location follow their sequential one
         row.speedUp = ratio(sequentialSeconds, row.seconds);
         row.vsCgal = ratio(row.seconds, peerSeconds("cgal"));
