@@ -6,8 +6,9 @@
 /// Why a repair of the newest leaves suffices: let the first override since the last repair
 /// (or the start) take a triangle at time T. Every insertion that completed before T ran as
 /// one atomic step on triangles it held (two-phase locking on the owner tags), and no
-/// unfinished one released a triangle before T, so those insertions serialise before all
-/// others and leave an exactly Delaunay triangulation. An edge whose two leaves both come
+/// unfinished one that had changed anything released a triangle before T (an attempt given
+/// up before its subdivision changed nothing, so it does not count), so those insertions
+/// serialise before all others and leave an exactly Delaunay triangulation. An edge whose two leaves both come
 /// from them is therefore legal; every other leaf was created by an insertion still running
 /// at T or begun later. Each worker publishes, as it starts a point, the lowest node id it
 /// can create from then on; the smallest of these read at T bounds all such leaves from
