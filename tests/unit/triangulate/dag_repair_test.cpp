@@ -19,35 +19,39 @@
 namespace terratin {
 namespace {
 
+// Inserts q into the leaf holding it by subdivision alone, leaving every edge unchecked.
+void subdivideOnly(detail::DagTriangulator& triangulator, detail::VertexId q) {
+    const detail::NodeId leaf = triangulator.locate(q);
+    const int edge = triangulator.edgeContaining(leaf, q);
+    detail::PendingEdges pending;
+    if (edge >= 0)
+        triangulator.splitEdge(leaf, edge, q, pending);
+    else
+        triangulator.splitTriangle(leaf, q, pending);
+}
+
+TinMesh extractMesh(detail::DagTriangulator& triangulator, const PreparedPoints& prepared,
+                    const std::vector<Point3>& input) {
+    TinMesh mesh;
+    triangulator.extract(mesh.triangles, mesh.neighbours);
+    for (const std::uint32_t source : prepared.sourceIndex)
+        mesh.vertices.push_back(input[source]);
+    return mesh;
+}
+
 // Inserts every point by subdivision only, so the result is a valid but (almost surely)
 // non-Delaunay triangulation; then repairs it, checking the edges on `threads` threads.
 TinMesh triangulateByRepairOnly(const std::vector<Point3>& input, std::size_t& repairFlips,
                                 std::size_t& illegalBeforeRepair, unsigned threads = 1) {
     const PreparedPoints prepared = preparePoints(input, DuplicateZPolicy::First);
     detail::DagTriangulator triangulator(prepared.local);
-    detail::PendingEdges pending;
-    for (detail::VertexId q = 0; q < prepared.local.size(); ++q) {
-        if (q == triangulator.highestVertex())
-            continue;
-        const detail::NodeId leaf = triangulator.locate(q);
-        const int edge = triangulator.edgeContaining(leaf, q);
-        if (edge >= 0)
-            triangulator.splitEdge(leaf, edge, q, pending);
-        else
-            triangulator.splitTriangle(leaf, q, pending);
-        pending.clear(); // no legalisation
-    }
-    TinMesh before;
-    triangulator.extract(before.triangles, before.neighbours);
-    for (const std::uint32_t source : prepared.sourceIndex)
-        before.vertices.push_back(input[source]);
-    illegalBeforeRepair = validateDelaunay(before).nonDelaunayEdges;
-
+    for (detail::VertexId q = 0; q < prepared.local.size(); ++q)
+        if (q != triangulator.highestVertex())
+            subdivideOnly(triangulator, q);
+    illegalBeforeRepair =
+        validateDelaunay(extractMesh(triangulator, prepared, input)).nonDelaunayEdges;
     repairFlips = triangulator.repairEdgesFrom(0, threads);
-    TinMesh mesh;
-    triangulator.extract(mesh.triangles, mesh.neighbours);
-    mesh.vertices = before.vertices;
-    return mesh;
+    return extractMesh(triangulator, prepared, input);
 }
 
 TEST(DagRepair, ReachesExactDelaunay_FromAnUnlegalisedTriangulation) {
@@ -99,35 +103,18 @@ HalfLegalised triangulateHalfLegalised(const std::vector<Point3>& input) {
     HalfLegalised result{preparePoints(input, DuplicateZPolicy::First), nullptr, 0};
     result.triangulator = std::make_unique<detail::DagTriangulator>(result.prepared.local);
     detail::DagTriangulator& triangulator = *result.triangulator;
-    detail::PendingEdges pending;
     const auto count = static_cast<detail::VertexId>(result.prepared.local.size());
     for (detail::VertexId q = 0; q < count; ++q) {
         if (q == triangulator.highestVertex())
             continue;
         if (q == count / 2)
             result.firstUnlegalised = triangulator.lowestFutureNodeOfThisThread();
-        const detail::NodeId leaf = triangulator.locate(q);
-        if (q < count / 2) {
-            triangulator.insertAtLeaf(leaf, q);
-            continue;
-        }
-        const int edge = triangulator.edgeContaining(leaf, q);
-        if (edge >= 0)
-            triangulator.splitEdge(leaf, edge, q, pending);
+        if (q < count / 2)
+            triangulator.insertAtLeaf(triangulator.locate(q), q);
         else
-            triangulator.splitTriangle(leaf, q, pending);
-        pending.clear(); // no legalisation
+            subdivideOnly(triangulator, q);
     }
     return result;
-}
-
-TinMesh extractMesh(detail::DagTriangulator& triangulator, const PreparedPoints& prepared,
-                    const std::vector<Point3>& input) {
-    TinMesh mesh;
-    triangulator.extract(mesh.triangles, mesh.neighbours);
-    for (const std::uint32_t source : prepared.sourceIndex)
-        mesh.vertices.push_back(input[source]);
-    return mesh;
 }
 
 TEST(DagRepair, ReachesExactDelaunay_FromTheNewestLeavesAlone) {
