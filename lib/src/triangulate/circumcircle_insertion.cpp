@@ -108,9 +108,8 @@ struct Worker {
     bool overridden = false;
     /// Set once the current attempt has subdivided: from then on it cannot simply restart.
     bool changedMesh = false;
-    /// Set when the worker gave up an unchanged attempt to break a deadlock: the worker it
-    /// would have waited for and that worker's count of finished points then (stepAside).
-    bool backedOff = false;
+    /// When the worker gave up an unchanged attempt to break a deadlock (else -1): the worker
+    /// it would have waited for, and that worker's count of finished points then (stepAside).
     int backedOffFrom = -1;
     std::uint32_t blockerFinishedPoints = 0;
     CircumcircleStatistics statistics;
@@ -254,7 +253,7 @@ private:
         NodeId hint = 0;
         while (!subdivide(worker, q, hint)) {
             releaseAll(worker);
-            if (std::exchange(worker.backedOff, false))
+            if (worker.backedOffFrom >= 0)
                 stepAside(worker, q);
             if (stopping())
                 return;
@@ -373,7 +372,7 @@ private:
     // and a worker that stepped aside is waited for by no one: it holds nothing and shows
     // no point. So the last of any cycle's waits would have begun for a worker that was
     // already stepping aside.
-    void stepAside(const Worker& worker, VertexId q) {
+    void stepAside(Worker& worker, VertexId q) {
         WorkerSlot& self = m_slots[worker.index];
         self.activePoint.store(kNoVertex, std::memory_order_release);
         const WorkerSlot& blocker = m_slots[worker.backedOffFrom];
@@ -381,6 +380,7 @@ private:
                    worker.blockerFinishedPoints &&
                !stopping())
             std::this_thread::yield();
+        worker.backedOffFrom = -1;
         self.activePoint.store(q, std::memory_order_release);
     }
 
@@ -476,8 +476,7 @@ private:
                 worker.overridden = true;
                 return false;
             case WaitOutcome::BackOff:
-                worker.backedOff = true;
-                return false;
+                return false; // waitFor recorded whom to step aside for
             case WaitOutcome::Override:
                 // Ignore the circum-circle test; take the triangle even from the blocker's
                 // overridden attempt: it is waiting and will give up when it sees its flag.

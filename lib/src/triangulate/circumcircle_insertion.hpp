@@ -16,7 +16,8 @@
 /// - Deadlock detection in a short critical section: before waiting for worker B, worker A
 ///   records it and follows the chain of waits from B; if it leads back to A, A does not wait.
 ///   If A has changed nothing yet (it has not subdivided), it steps aside: it gives up what it
-///   holds, withdraws its point until no worker waits for it, and starts the point again.
+///   holds, withdraws its point until the worker it would have waited for has finished its
+///   own, and starts the point again.
 ///   Otherwise it overrides, as the paper does: it ignores the test (taking the triangle, from
 ///   B if B holds it) and sets B's override flag.
 /// - Re-validation by the overridden worker: when B wakes up and finds its flag, it gives up
