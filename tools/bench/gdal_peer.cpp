@@ -2,6 +2,7 @@
 
 #include "terratin/error.hpp"
 
+#ifdef TERRATIN_HAVE_GDAL
 #include <cpl_error.h>
 #include <gdal.h>
 #include <gdal_alg.h>
@@ -9,8 +10,11 @@
 #include <limits>
 #include <string>
 #include <vector>
+#endif
 
 namespace terratin::bench {
+
+#ifdef TERRATIN_HAVE_GDAL
 
 namespace {
 
@@ -66,6 +70,10 @@ private:
 
 } // namespace
 
+bool gdalBuilt() {
+    return true;
+}
+
 bool gdalHasTriangulation() {
     return GDALHasTriangulation() != 0;
 }
@@ -75,5 +83,21 @@ std::unique_ptr<Peer> makeGdalPeer() {
         throw Error("GdalPeer: this GDAL was built without qhull, so it cannot triangulate");
     return std::make_unique<GdalPeer>();
 }
+
+#else
+
+bool gdalBuilt() {
+    return false;
+}
+
+bool gdalHasTriangulation() {
+    return false;
+}
+
+std::unique_ptr<Peer> makeGdalPeer() {
+    throw Error("GdalPeer: terratin-bench was built without GDAL (TERRATIN_BUILD_IO=OFF)");
+}
+
+#endif
 
 } // namespace terratin::bench

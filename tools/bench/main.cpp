@@ -338,6 +338,8 @@ std::vector<PeerSlot> makePeers(const BenchOptions& bench, std::vector<std::stri
         add(makeCgalPeer());
     if (!bench.runGdal)
         preamble.emplace_back("GDAL: skipped (--no-gdal)");
+    else if (!gdalBuilt())
+        preamble.emplace_back("GDAL: not built");
     else if (!gdalHasTriangulation())
         preamble.emplace_back("GDAL: built without qhull, cannot triangulate");
     else

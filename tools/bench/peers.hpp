@@ -46,11 +46,14 @@ bool cgalBuilt();
 /// Throws terratin::Error when terratin-bench was built without CGAL (see cgalBuilt()).
 std::unique_ptr<Peer> makeCgalPeer();
 
-/// Whether the GDAL linked in can triangulate (it needs qhull).
+/// Whether terratin-bench was built with GDAL (TERRATIN_HAVE_GDAL: with terratin::io).
+bool gdalBuilt();
+
+/// Whether the GDAL linked in can triangulate (it needs qhull); false when none is.
 bool gdalHasTriangulation();
 
 /// GDAL's GDALTriangulationCreateDelaunay (qhull underneath).
-/// Throws terratin::Error when GDAL was built without triangulation support.
+/// Throws terratin::Error when GDAL was built without triangulation support, or not built in.
 std::unique_ptr<Peer> makeGdalPeer();
 
 } // namespace terratin::bench

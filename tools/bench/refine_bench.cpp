@@ -1,5 +1,8 @@
 #include "refine_bench.hpp"
 
+#include "terratin/error.hpp"
+
+#ifdef TERRATIN_HAVE_IO
 #include "host_scaling.hpp"
 #include "host_steal.hpp"
 #include "process_memory.hpp"
@@ -16,8 +19,11 @@
 #include <optional>
 #include <string>
 #include <vector>
+#endif
 
 namespace terratin::bench {
+
+#ifdef TERRATIN_HAVE_IO
 
 namespace {
 
@@ -124,5 +130,14 @@ int runRefineBench(const BenchOptions& options) {
                      *std::max_element(threads.begin(), threads.end()));
     return 0;
 }
+
+#else
+
+int runRefineBench(const BenchOptions& /*options*/) {
+    throw Error("--refine reads DEMs: it needs terratin-bench built with terratin::io "
+                "(TERRATIN_BUILD_IO=ON)");
+}
+
+#endif
 
 } // namespace terratin::bench
