@@ -9,7 +9,7 @@ namespace terratin::bench {
 /// extraction, hole dropping and the error check) for each tolerance and thread count, median
 /// of --runs runs, and prints points, triangles, achieved max error, RMSE, seconds, the
 /// speed-up against 1 thread, and the peak resident memory growth of the call. Returns the exit
-/// status.
+/// status. Throws terratin::Error when terratin-bench was built without terratin::io.
 int runRefineBench(const BenchOptions& options);
 
 } // namespace terratin::bench
