@@ -109,11 +109,11 @@ public:
     [[nodiscard]] const DagNode& node(NodeId id) const { return m_nodes[id]; }
     [[nodiscard]] const SymbolicPredicates& predicates() const { return m_predicates; }
     [[nodiscard]] std::size_t nodeCount() const { return m_nodes.size(); }
-    /// The node the calling thread created last (a leaf unless edited since), or the root.
     /// No node the calling thread creates from now on has a lower id than this.
     [[nodiscard]] NodeId lowestFutureNodeOfThisThread() const {
         return m_nodes.lowestFutureIdOfThisThread();
     }
+    /// The node the calling thread created last (a leaf unless edited since), or the root.
     [[nodiscard]] NodeId newestNode() const {
         const NodeId newest = m_nodes.newestOfThisThread();
         return newest == kNoNode ? 0 : newest;

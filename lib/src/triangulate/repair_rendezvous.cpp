@@ -15,9 +15,9 @@ void RepairRendezvous::arrive() {
     if (!m_requested.load(std::memory_order_relaxed) || m_stopped)
         return;
     ++m_arrivedWorkers;
-    const std::size_t generation = m_generation;
+    const std::size_t repairsBefore = m_repairs;
     repairIfAllArrived();
-    m_repaired.wait(lock, [&] { return m_generation != generation || m_stopped; });
+    m_repaired.wait(lock, [&] { return m_repairs != repairsBefore || m_stopped; });
 }
 
 void RepairRendezvous::leave() {
@@ -38,12 +38,11 @@ void RepairRendezvous::stop() {
 void RepairRendezvous::repairIfAllArrived() {
     if (m_arrivedWorkers < m_workingWorkers)
         return;
-    // Everyone else waits on the mutex-guarded generation, so the flips run alone.
+    // Everyone else waits for the mutex-guarded count of repairs, so the flips run alone.
     m_flips += m_triangulator.repairEdgesFrom(m_firstNode);
     ++m_repairs;
     m_firstNode = kNoNode;
     m_arrivedWorkers = 0;
-    ++m_generation;
     m_requested.store(false, std::memory_order_release);
     m_repaired.notify_all();
 }

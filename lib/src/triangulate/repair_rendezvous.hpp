@@ -8,13 +8,13 @@
 /// one atomic step on triangles it held (two-phase locking on the owner tags), and no
 /// unfinished one that had changed anything released a triangle before T (an attempt given
 /// up before its subdivision changed nothing, so it does not count), so those insertions
-/// serialise before all others and leave an exactly Delaunay triangulation. An edge whose two leaves both come
-/// from them is therefore legal; every other leaf was created by an insertion still running
-/// at T or begun later. Each worker publishes, as it starts a point, the lowest node id it
-/// can create from then on; the smallest of these read at T bounds all such leaves from
-/// below, and DagTriangulator::repairEdgesFrom that id makes the triangulation Delaunay
-/// again. The workers meet first, between two of their points, so that no one holds a
-/// triangle while the repair flips.
+/// serialise before all others and leave an exactly Delaunay triangulation. An edge whose two
+/// leaves both come from them is therefore legal; every other leaf was created by an
+/// insertion still running at T or begun later. Each worker publishes, as it starts a point,
+/// the lowest node id it can create from then on; the smallest of these read at T bounds all
+/// such leaves from below, and DagTriangulator::repairEdgesFrom that id makes the
+/// triangulation Delaunay again. The workers meet first, between two of their points, so that
+/// no one holds a triangle while the repair flips.
 
 #include "dag_triangulator.hpp"
 
@@ -65,10 +65,9 @@ private:
     NodeId m_firstNode = kNoNode;
     unsigned m_workingWorkers;
     unsigned m_arrivedWorkers = 0;
-    /// Counts repairs done, so that a waiting worker knows its repair is over.
-    std::size_t m_generation = 0;
-    bool m_stopped = false;
+    /// Repairs done: a waiting worker knows its repair is over when this changes.
     std::size_t m_repairs = 0;
+    bool m_stopped = false;
     std::size_t m_flips = 0;
 };
 
