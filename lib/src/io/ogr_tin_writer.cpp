@@ -1,33 +1,14 @@
 /// @file
-/// OgrTinWriter: GeoPackage, Shapefile and FlatGeobuf through OGR.
+/// OgrTinWriter: Shapefile and FlatGeobuf through OGR; GeoPackage is gpkg/gpkg_tin_writer.cpp.
 ///
-/// Atomicity: see atomic_output.hpp. A GeoPackage replaces an existing output in one rename;
-/// with appendLayer the existing GeoPackage is copied under the temporary name first, the copy
-/// extended, and renamed over the original, so a failure leaves the original as it was. A
-/// Shapefile is several files; they are renamed one at a time, .shp last, so readers can
-/// briefly see a mixed set while an existing output is overwritten. That is the format's
-/// limit, not something a writer can fix.
+/// Atomicity: see atomic_output.hpp. A Shapefile is several files; they are renamed one at a
+/// time, .shp last, so readers can briefly see a mixed set while an existing output is
+/// overwritten. That is the format's limit, not something a writer can fix.
 ///
-/// Speed (measured on Mt Hood, 1.57 M triangles, GDAL 3.6.2 / SQLite 3.40, 2 shared cores):
-/// - One transaction for every insert, and one OGRFeature and one polygon reused for all
-///   triangles (the ring's points are overwritten in place, nothing is allocated per
-///   triangle); attributes are computed with TBB a chunk ahead of the inserts.
-/// - The GeoPackage R-tree is what costs. SQLite's R*-tree inserts one entry at a time at
-///   about 60-70 k entries/s here, whether GDAL fills it per insert, deferred to the end of the
-///   transaction, or in one pass with CreateSpatialIndex; neither a larger page cache
-///   (OGR_SQLITE_CACHE), page size, nor a Hilbert order of the inserts changed that by more
-///   than the run-to-run noise (the SQLite shell, with no GDAL at all, needs as long for as
-///   many boxes). GDAL 3.7's bulk R-tree loader is not in 3.6. The layer is therefore created
-///   with SPATIAL_INDEX=NO and the index built in one pass after the commit, as its own
-///   progress step; TinWriteOptions::spatialIndex = false skips it, which is the fast path.
-/// - Why one transaction rather than a commit every 100k features: a Ctrl-C rolls one
-///   transaction back in milliseconds, and in a new database SQLite journals only the pages
-///   that existed when it began, so the journal stays tiny and memory flat.
-/// - FlatGeobuf's packed Hilbert R-tree is built by GDAL when the file is closed: it sorts the
-///   features (recomputing both Hilbert keys in every comparison) and copies each from a
-///   temporary file, about 6-7 s for 1.57 M triangles here whatever the order the features
-///   arrive in (measured with input already in GDAL's own Hilbert order: no faster).
-///   TinWriteOptions::spatialIndex = false streams the file directly, several times faster.
+/// One OGRFeature and one polygon are reused for all triangles (the ring's points are
+/// overwritten in place, nothing is allocated per triangle); attributes are computed with TBB
+/// a chunk ahead of the inserts. FlatGeobuf's packed Hilbert R-tree is built by GDAL when the
+/// file is closed. Measured figures are in docs/benchmarks.md.
 ///
 /// A Shapefile's and a FlatGeobuf's layer is named after its file; TinWriteOptions::layerName
 /// applies to GeoPackage only.
@@ -35,6 +16,8 @@
 #include "ogr_tin_writer.hpp"
 
 #include "atomic_output.hpp"
+#include "gpkg/gpkg_tin_writer.hpp"
+#include "ogr_dataset_support.hpp"
 #include "attribute_columns.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
@@ -65,12 +48,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::string_view kStage = "OgrTinWriter";
+constexpr std::string_view kStage = kOgrStage;
 
-/// Share of the writer's progress range given to inserting features when a spatial index
-/// follows; the rest is the index (measured: the GeoPackage R-tree takes about three times as
-/// long as the inserts) and the rename. Without an index the inserts are nearly everything.
-constexpr double kInsertShareWithIndex = 0.25;
+/// Share of the writer's progress range given to inserting features; the rest is closing the
+/// dataset (FlatGeobuf builds its index then) and the rename.
 constexpr double kInsertShareWithoutIndex = 0.98;
 
 /// The ESRI Shapefile specification limits .shp and .dbf to 2 GB (offsets in 16-bit words
@@ -103,9 +84,6 @@ constexpr int kDbfDefaultColumnWidth = 10;
 constexpr std::array<std::string_view, 11> kShapefileSidecars = {
     ".prj", ".cpg", ".qix", ".sbn", ".sbx", ".fix", ".qpj", ".shp.xml", ".aih", ".ain", ".atx"};
 
-/// The local CS that GDAL's GPKG driver files under the GeoPackage's srs_id -1.
-constexpr const char* kUndefinedCartesianWkt = "LOCAL_CS[\"Undefined Cartesian SRS\"]";
-
 std::string toLower(std::string_view text) {
     std::string lower(text);
     std::transform(lower.begin(), lower.end(), lower.begin(),
@@ -135,70 +113,6 @@ fs::path shapefileComponent(const fs::path& shp, std::string_view extension) {
     return component.string() + ext;
 }
 
-std::optional<OGRSpatialReference> parseCrs(const std::string& wkt) {
-    if (wkt.empty())
-        return std::nullopt;
-    std::optional<OGRSpatialReference> srs(std::in_place);
-    if (srs->importFromWkt(wkt.c_str()) != OGRERR_NONE)
-        throw CrsError(std::string(kStage) +
-                       ": the output CRS is not valid WKT: " + lastGdalErrorMessage());
-    // x = easting, y = northing whatever the CRS's declared axis order: that is how the mesh
-    // stores its coordinates.
-    srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    return srs;
-}
-
-/// Closes the dataset and turns a failure while flushing (disk full...) into IoError.
-/// GDAL 3.6's GDALClose reports nothing, so the error state is the only witness.
-void closeDataset(GDALDatasetUniquePtr& dataset, const fs::path& output) {
-    CPLErrorReset();
-    dataset.reset();
-    if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-        throwGdalError(kStage, "cannot finish writing", output.string());
-}
-
-GDALDatasetUniquePtr createDataset(const char* driverName, const fs::path& path,
-                                   const fs::path& output) {
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driverName);
-    if (driver == nullptr)
-        throwIo(std::string("GDAL has no '") + driverName + "' driver, needed for " +
-                quoted(output));
-    CPLErrorReset();
-    GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    if (!dataset)
-        throwGdalError(kStage, "cannot create a temporary file for", output.string());
-    return dataset;
-}
-
-/// Opens the copy of an existing GeoPackage for update; refuses anything else.
-GDALDatasetUniquePtr openGeoPackageForUpdate(const fs::path& path, const fs::path& output) {
-    const char* const drivers[] = {"GPKG", nullptr};
-    CPLErrorReset();
-    GDALDatasetUniquePtr dataset(
-        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, drivers));
-    if (!dataset)
-        throwInvalid("cannot add layers to " + quoted(output) +
-                     ": it is not a GeoPackage GDAL can update (" + lastGdalErrorMessage() +
-                     ")");
-    return dataset;
-}
-
-/// Removes layer `name` when it exists and `overwrite` allows; refuses otherwise.
-void makeRoomForLayer(GDALDataset& dataset, const std::string& name, bool overwrite,
-                      const fs::path& output) {
-    for (int i = 0; i < dataset.GetLayerCount(); ++i) {
-        OGRLayer* layer = dataset.GetLayer(i);
-        if (layer == nullptr || !EQUAL(layer->GetName(), name.c_str()))
-            continue;
-        if (!overwrite)
-            throwInvalid("the GeoPackage " + quoted(output) + " already has a layer '" + name +
-                         "'; choose another --layer or use --overwrite to replace it");
-        if (dataset.DeleteLayer(i) != OGRERR_NONE)
-            throwGdalError(kStage, "cannot replace the layer '" + name + "' of", output.string());
-        return;
-    }
-}
-
 struct LayerSpec {
     std::string name;
     OGRwkbGeometryType type;
@@ -210,12 +124,6 @@ OGRLayer* createLayer(GDALDataset& dataset, const LayerSpec& spec,
                       const fs::path& output) {
     CPLStringList layerOptions;
     switch (spec.format) {
-    case TinFormat::GeoPackage:
-        layerOptions.SetNameValue("GEOMETRY_NAME", "geom");
-        layerOptions.SetNameValue("FID", "fid");
-        // Built in one pass after the commit (see the file comment), or not at all.
-        layerOptions.SetNameValue("SPATIAL_INDEX", "NO");
-        break;
     case TinFormat::Shapefile:
         layerOptions.SetNameValue("SHPT", spec.type == wkbPolygon25D ? "POLYGONZ" : "ARCZ");
         layerOptions.SetNameValue("ENCODING", "UTF-8");
@@ -352,238 +260,6 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
     }
 }
 
-void writeNodes(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions& options,
-                const ProgressTicker& ticker, std::uint64_t done, const fs::path& output) {
-    const int idIndex = fieldIndex(layer, "id", output);
-    const bool cells = !options.vertexCells.empty();
-    const int rowIndex = cells ? fieldIndex(layer, "row", output) : -1;
-    const int colIndex = cells ? fieldIndex(layer, "col", output) : -1;
-    OGRFeatureUniquePtr feature(OGRFeature::CreateFeature(layer.GetLayerDefn()));
-    auto* point = new OGRPoint(0.0, 0.0, 0.0);
-    feature->SetGeometryDirectly(point);
-    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-        ticker.tick(done + v, "Writing nodes");
-        const Point3& p = mesh.vertices[v];
-        point->setX(p.x);
-        point->setY(p.y);
-        point->setZ(p.z);
-        const auto id = static_cast<GIntBig>(v + 1);
-        feature->SetField(idIndex, id);
-        if (cells) {
-            feature->SetField(rowIndex, static_cast<GIntBig>(options.vertexCells[v].row));
-            feature->SetField(colIndex, static_cast<GIntBig>(options.vertexCells[v].col));
-        }
-        feature->SetFID(id);
-        createFeature(layer, *feature, "node", v, output);
-    }
-}
-
-/// Edges once each: the half-edge of triangle t whose neighbour is on the hull or has a
-/// larger number. tri_left is the triangle on the left going from node_from to node_to
-/// (triangles are counter-clockwise), tri_right the one on the right, NULL on the hull.
-std::uint64_t writeEdges(OGRLayer& layer, const TinMesh& mesh, const ProgressTicker& ticker,
-                         std::uint64_t done, const fs::path& output) {
-    const int fromIndex = fieldIndex(layer, "node_from", output);
-    const int toIndex = fieldIndex(layer, "node_to", output);
-    const int leftIndex = fieldIndex(layer, "tri_left", output);
-    const int rightIndex = fieldIndex(layer, "tri_right", output);
-    const int lengthIndex = fieldIndex(layer, "length", output);
-    OGRFeatureUniquePtr feature(OGRFeature::CreateFeature(layer.GetLayerDefn()));
-    auto* line = new OGRLineString();
-    line->setPoint(0, 0.0, 0.0, 0.0);
-    line->setPoint(1, 0.0, 0.0, 0.0);
-    feature->SetGeometryDirectly(line);
-    std::uint64_t written = 0;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        for (std::size_t k = 0; k < 3; ++k) {
-            const std::int32_t neighbour = mesh.neighbours[3 * t + k];
-            if (neighbour != kNoNeighbour && static_cast<std::size_t>(neighbour) < t)
-                continue;
-            ticker.tick(done + written, "Writing edges");
-            const std::uint32_t from = mesh.triangles[3 * t + k];
-            const std::uint32_t to = mesh.triangles[3 * t + (k + 1) % 3];
-            const Point3& a = mesh.vertices[from];
-            const Point3& b = mesh.vertices[to];
-            line->setPoint(0, a.x, a.y, a.z);
-            line->setPoint(1, b.x, b.y, b.z);
-            feature->SetField(fromIndex, static_cast<GIntBig>(from) + 1);
-            feature->SetField(toIndex, static_cast<GIntBig>(to) + 1);
-            feature->SetField(leftIndex, static_cast<GIntBig>(t) + 1);
-            if (neighbour == kNoNeighbour)
-                feature->SetFieldNull(rightIndex);
-            else
-                feature->SetField(rightIndex, static_cast<GIntBig>(neighbour) + 1);
-            feature->SetField(lengthIndex,
-                              std::hypot(std::hypot(b.x - a.x, b.y - a.y), b.z - a.z));
-            feature->SetFID(static_cast<GIntBig>(written + 1));
-            createFeature(layer, *feature, "edge", written, output);
-            ++written;
-        }
-    }
-    return written;
-}
-
-/// Interior edges are shared by two triangles, hull edges belong to one: E = (3T + H) / 2.
-std::uint64_t edgeCount(const TinMesh& mesh) {
-    const auto hull = static_cast<std::uint64_t>(
-        std::count(mesh.neighbours.begin(), mesh.neighbours.end(), kNoNeighbour));
-    return (3 * static_cast<std::uint64_t>(mesh.triangleCount()) + hull) / 2;
-}
-
-/// The layers of one write and their features, in writing order.
-struct Plan {
-    std::uint64_t triangles = 0;
-    std::uint64_t nodes = 0;
-    std::uint64_t edges = 0;
-    [[nodiscard]] std::uint64_t total() const { return triangles + nodes + edges; }
-};
-
-Plan planFor(const TinMesh& mesh, const TinWriteOptions& options) {
-    Plan plan;
-    plan.triangles = mesh.triangleCount();
-    if (options.nodes)
-        plan.nodes = mesh.vertexCount();
-    if (options.edges)
-        plan.edges = edgeCount(mesh);
-    return plan;
-}
-
-void buildSpatialIndex(GDALDataset& dataset, const std::string& layerName,
-                       const fs::path& output) {
-    // OGR SQL (the GPKG driver's own function), not GeoPackage SQL: GDAL creates the R-tree
-    // table, its triggers and the gpkg_extensions row, and fills it in one pass.
-    std::string escaped;
-    for (const char ch : layerName) {
-        escaped += ch;
-        if (ch == '\'')
-            escaped += '\'';
-    }
-    const std::string sql = "SELECT CreateSpatialIndex('" + escaped + "', 'geom')";
-    CPLErrorReset();
-    OGRLayer* result = dataset.ExecuteSQL(sql.c_str(), nullptr, nullptr);
-    bool ok = CPLGetLastErrorType() != CE_Failure && CPLGetLastErrorType() != CE_Fatal;
-    if (result != nullptr) {
-        OGRFeatureUniquePtr row(result->GetNextFeature());
-        ok = ok && row && row->GetFieldAsInteger(0) == 1;
-        dataset.ReleaseResultSet(result);
-    } else {
-        ok = false;
-    }
-    if (!ok)
-        throwGdalError(kStage, "cannot build the spatial index of layer '" + layerName + "' in",
-                       output.string());
-}
-
-TinWriteResult writeGeoPackage(const TinMesh& mesh, const fs::path& output,
-                               const TinWriteOptions& options,
-                               std::optional<OGRSpatialReference>& srs,
-                               const ProgressCallback& progress) {
-    // Without a CRS, GDAL 3.6 files a GeoPackage layer under srs_id 0, "Undefined geographic
-    // SRS", which tells readers the easting/northing are degrees. The GeoPackage spec's
-    // srs_id -1, "Undefined Cartesian SRS", is the honest "unknown" for a DEM's planar
-    // coordinates; GDAL maps this local CS to it (GDAL 3.6 has no SRID creation option).
-    if (!srs) {
-        srs.emplace();
-        if (srs->importFromWkt(kUndefinedCartesianWkt) != OGRERR_NONE)
-            throwGdalError(kStage, "cannot set up the undefined Cartesian SRS of", output.string());
-    }
-    const Plan plan = planFor(mesh, options);
-    const double insertShare =
-        options.spatialIndex ? kInsertShareWithIndex : kInsertShareWithoutIndex;
-    const ProgressTicker ticker(kStage, progress, output, 0.0, insertShare, plan.total());
-
-    const AtomicOutput temporaries(kStage, output);
-    const fs::path temporary = temporaries.temporary(".gpkg");
-    const bool appending = options.appendLayer && !existingFiles({output}).empty();
-    if (appending) {
-        std::error_code error;
-        fs::copy_file(output, temporary, error);
-        if (error)
-            throwIo("cannot copy " + quoted(output) + " to add layers to it: " + error.message());
-    }
-
-    const std::string triangleLayerName = options.layerName;
-    const std::string nodesName = nodeLayerName(options.layerName);
-    const std::string edgesName = edgeLayerName(options.layerName);
-    {
-        GDALDatasetUniquePtr dataset = appending ? openGeoPackageForUpdate(temporary, output)
-                                                 : createDataset("GPKG", temporary, output);
-        if (appending) {
-            makeRoomForLayer(*dataset, triangleLayerName, options.overwrite, output);
-            if (options.nodes)
-                makeRoomForLayer(*dataset, nodesName, options.overwrite, output);
-            if (options.edges)
-                makeRoomForLayer(*dataset, edgesName, options.overwrite, output);
-        }
-
-        OGRLayer* triangles = createLayer(
-            *dataset, {triangleLayerName, wkbPolygon25D, TinFormat::GeoPackage}, srs, options,
-            output);
-        for (const auto& column : attributeColumns(options.attributes))
-            addField(*triangles, column.name, OFTReal, TinFormat::GeoPackage, output);
-        OGRLayer* nodes = nullptr;
-        if (options.nodes) {
-            nodes = createLayer(*dataset, {nodesName, wkbPoint25D, TinFormat::GeoPackage}, srs,
-                                options, output);
-            addField(*nodes, "id", OFTInteger64, TinFormat::GeoPackage, output);
-            if (!options.vertexCells.empty()) {
-                addField(*nodes, "row", OFTInteger64, TinFormat::GeoPackage, output);
-                addField(*nodes, "col", OFTInteger64, TinFormat::GeoPackage, output);
-            }
-        }
-        OGRLayer* edges = nullptr;
-        if (options.edges) {
-            edges = createLayer(*dataset, {edgesName, wkbLineString25D, TinFormat::GeoPackage},
-                                srs, options, output);
-            for (const char* name : {"node_from", "node_to", "tri_left", "tri_right"})
-                addField(*edges, name, OFTInteger64, TinFormat::GeoPackage, output);
-            addField(*edges, "length", OFTReal, TinFormat::GeoPackage, output);
-        }
-
-        if (dataset->StartTransaction() != OGRERR_NONE)
-            throwGdalError(kStage, "cannot start a transaction in", output.string());
-        try {
-            writeTriangles(*triangles, mesh, options, ticker, output);
-            if (nodes != nullptr)
-                writeNodes(*nodes, mesh, options, ticker, plan.triangles, output);
-            if (edges != nullptr)
-                writeEdges(*edges, mesh, ticker, plan.triangles + plan.nodes, output);
-            // The last chance to cancel: nothing is committed before it.
-            ticker.report(plan.total(), options.spatialIndex ? "Building spatial index"
-                                                             : "Finishing GeoPackage");
-        } catch (...) {
-            dataset->RollbackTransaction();
-            throw;
-        }
-        if (dataset->CommitTransaction() != OGRERR_NONE)
-            throwGdalError(kStage, "cannot commit the features to", output.string());
-
-        if (options.spatialIndex) {
-            buildSpatialIndex(*dataset, triangleLayerName, output);
-            if (nodes != nullptr)
-                buildSpatialIndex(*dataset, nodesName, output);
-            if (edges != nullptr)
-                buildSpatialIndex(*dataset, edgesName, output);
-        }
-        // Writes the extents now, where a failure can still be reported, rather than silently
-        // inside the dataset's destructor.
-        CPLErrorReset();
-        for (OGRLayer* layer : {triangles, nodes, edges})
-            if (layer != nullptr && layer->SyncToDisk() != OGRERR_NONE)
-                throwGdalError(kStage, "cannot finish the layers of", output.string());
-        closeDataset(dataset, output);
-    }
-
-    // A journal or WAL left by an earlier SQLite session on the old output would be replayed
-    // into the new file under the same name and corrupt it: remove them before the rename.
-    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
-        std::error_code error;
-        fs::remove(output.string() + suffix, error);
-    }
-    temporaries.commit(temporary, output);
-    return {plan.total()};
-}
-
 TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                                const TinWriteOptions& options,
                                std::optional<OGRSpatialReference>& srs,
@@ -702,10 +378,10 @@ TinWriteResult writeOgrTin(const TinMesh& mesh, const fs::path& output,
     initialiseGdal();
     if (options.format == TinFormat::Shapefile && toLower(output.extension().string()) != ".shp")
         throwInvalid("a Shapefile output must end in .shp, not " + quoted(output));
-    std::optional<OGRSpatialReference> srs = parseCrs(options.crsWkt);
+    std::optional<OGRSpatialReference> srs = parseOutputCrs(options.crsWkt);
     switch (options.format) {
     case TinFormat::GeoPackage:
-        return writeGeoPackage(mesh, output, options, srs, progress);
+        return writeGeoPackageTin(mesh, output, options, progress);
     case TinFormat::Shapefile:
         return writeShapefile(mesh, output, options, srs, progress);
     case TinFormat::FlatGeobuf:

@@ -72,6 +72,10 @@ struct TinWriteResult {
     /// Features (vector formats: triangles + nodes + edges) or elements (mesh formats:
     /// vertices + faces) written.
     std::uint64_t features = 0;
+    /// GeoPackage: seconds spent inserting the rows of every layer, and building their
+    /// spatial indexes (0 for the other formats).
+    double rowSeconds = 0.0;
+    double indexSeconds = 0.0;
 };
 
 /// Throws InvalidInputError when the options contradict each other or the format (nodes,

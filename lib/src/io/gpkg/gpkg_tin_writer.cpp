@@ -1,0 +1,272 @@
+#include "gpkg_tin_writer.hpp"
+
+#include "../atomic_output.hpp"
+#include "../attribute_columns.hpp"
+#include "../ogr_dataset_support.hpp"
+#include "../writer_support.hpp"
+#include "gpkg_spatial_index.hpp"
+#include "gpkg_tin_layers.hpp"
+#include "sqlite_connection.hpp"
+#include "terratin/error.hpp"
+#include "terratin/io/gdal_error.hpp"
+
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <ogrsf_frmts.h>
+
+#include <chrono>
+#include <future>
+#include <optional>
+#include <system_error>
+
+namespace terratin::io::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The local CS that GDAL's GPKG driver files under the GeoPackage's srs_id -1.
+constexpr const char* kUndefinedCartesianWkt = "LOCAL_CS[\"Undefined Cartesian SRS\"]";
+/// Share of the writer's progress range for rows and index; the rest is closing and renaming.
+constexpr double kWritingShare = 0.98;
+/// SQLite page cache while writing, in KiB (a negative cache_size is KiB): enough for the
+/// B-tree's right edge and the index tables; the rows themselves are written once.
+constexpr int kPageCacheKiB = 16 * 1024;
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Without a CRS, GDAL 3.6 files a GeoPackage layer under srs_id 0, "Undefined geographic
+/// SRS", which tells readers the easting/northing are degrees. The GeoPackage spec's srs_id
+/// -1, "Undefined Cartesian SRS", is the honest "unknown" for a DEM's planar coordinates; GDAL
+/// maps this local CS to it (GDAL 3.6 has no SRID creation option).
+OGRSpatialReference outputCrs(const std::string& wkt, const fs::path& output) {
+    if (std::optional<OGRSpatialReference> srs = parseOutputCrs(wkt))
+        return *srs;
+    OGRSpatialReference undefined;
+    if (undefined.importFromWkt(kUndefinedCartesianWkt) != OGRERR_NONE)
+        throwGdalError(kOgrStage, "cannot set up the undefined Cartesian SRS of", output.string());
+    return undefined;
+}
+
+struct LayerNames {
+    std::string triangles;
+    std::string nodes; // empty: no node layer
+    std::string edges; // empty: no edge layer
+};
+
+LayerNames layerNamesFor(const TinWriteOptions& options) {
+    return {options.layerName, options.nodes ? nodeLayerName(options.layerName) : "",
+            options.edges ? edgeLayerName(options.layerName) : ""};
+}
+
+/// Opens the copy of an existing GeoPackage for update; refuses anything else.
+GDALDatasetUniquePtr openGeoPackageForUpdate(const fs::path& path, const fs::path& output) {
+    const char* const drivers[] = {"GPKG", nullptr};
+    CPLErrorReset();
+    GDALDatasetUniquePtr dataset(
+        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, drivers));
+    if (!dataset)
+        throw InvalidInputError(std::string(kOgrStage) + ": cannot add layers to " +
+                                quoted(output) + ": it is not a GeoPackage GDAL can update (" +
+                                lastGdalErrorMessage() + ")");
+    return dataset;
+}
+
+/// Removes layer `name` when it exists and `overwrite` allows; refuses otherwise.
+void makeRoomForLayer(GDALDataset& dataset, const std::string& name, bool overwrite,
+                      const fs::path& output) {
+    for (int i = 0; i < dataset.GetLayerCount(); ++i) {
+        OGRLayer* layer = dataset.GetLayer(i);
+        if (layer == nullptr || !EQUAL(layer->GetName(), name.c_str()))
+            continue;
+        if (!overwrite)
+            throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
+                                    " already has a layer '" + name +
+                                    "'; choose another --layer or use --overwrite to replace it");
+        if (dataset.DeleteLayer(i) != OGRERR_NONE)
+            throwGdalError(kOgrStage, "cannot replace the layer '" + name + "' of",
+                           output.string());
+        return;
+    }
+}
+
+/// A feature table with its fields, no spatial index (that comes with the rows).
+void createLayer(GDALDataset& dataset, const std::string& name, OGRwkbGeometryType type,
+                 OGRSpatialReference& srs,
+                 const std::vector<std::pair<const char*, OGRFieldType>>& fields,
+                 const fs::path& output) {
+    CPLStringList layerOptions;
+    layerOptions.SetNameValue("GEOMETRY_NAME", "geom");
+    layerOptions.SetNameValue("FID", "fid");
+    layerOptions.SetNameValue("SPATIAL_INDEX", "NO");
+    CPLErrorReset();
+    OGRLayer* layer = dataset.CreateLayer(name.c_str(), &srs, type, layerOptions.List());
+    if (layer == nullptr)
+        throwGdalError(kOgrStage, "cannot create the layer '" + name + "' of", output.string());
+    for (const auto& [fieldName, fieldType] : fields) {
+        OGRFieldDefn definition(fieldName, fieldType);
+        if (layer->CreateField(&definition) != OGRERR_NONE)
+            throwGdalError(kOgrStage, std::string("cannot create the field ") + fieldName + " of",
+                           output.string());
+    }
+}
+
+/// OGR's part: the file (or the copy being extended), its layers, fields and CRS.
+void createLayers(const fs::path& temporary, bool appending, const LayerNames& names,
+                  const TinWriteOptions& options, const fs::path& output) {
+    OGRSpatialReference srs = outputCrs(options.crsWkt, output);
+    GDALDatasetUniquePtr dataset = appending ? openGeoPackageForUpdate(temporary, output)
+                                             : createDataset("GPKG", temporary, output);
+    if (appending)
+        for (const std::string* name : {&names.triangles, &names.nodes, &names.edges})
+            if (!name->empty())
+                makeRoomForLayer(*dataset, *name, options.overwrite, output);
+
+    std::vector<std::pair<const char*, OGRFieldType>> triangleFields;
+    for (const auto& column : attributeColumns(options.attributes))
+        triangleFields.emplace_back(column.name, OFTReal);
+    createLayer(*dataset, names.triangles, wkbPolygon25D, srs, triangleFields, output);
+    if (!names.nodes.empty()) {
+        std::vector<std::pair<const char*, OGRFieldType>> nodeFields{{"id", OFTInteger64}};
+        if (!options.vertexCells.empty())
+            nodeFields.insert(nodeFields.end(), {{"row", OFTInteger64}, {"col", OFTInteger64}});
+        createLayer(*dataset, names.nodes, wkbPoint25D, srs, nodeFields, output);
+    }
+    if (!names.edges.empty())
+        createLayer(*dataset, names.edges, wkbLineString25D, srs,
+                    {{"node_from", OFTInteger64},
+                     {"node_to", OFTInteger64},
+                     {"tri_left", OFTInteger64},
+                     {"tri_right", OFTInteger64},
+                     {"length", OFTReal}},
+                    output);
+    closeDataset(dataset, output);
+}
+
+/// One layer's rows and index, in writing order.
+struct LayerJob {
+    std::string name;
+    std::uint64_t features = 0;
+    std::string_view rowMessage;
+    std::function<void(SqliteConnection&, const GpkgFeatureTable&, const RowProgress&)> rows;
+    std::function<std::vector<RtreeBox>()> boxes;
+};
+
+std::vector<LayerJob> layerJobs(const TinMesh& mesh, const TinWriteOptions& options,
+                                const LayerNames& names) {
+    std::vector<LayerJob> jobs;
+    jobs.push_back(
+        {names.triangles, mesh.triangleCount(), "Writing triangles",
+         [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
+             insertTriangleRows(db, table, mesh, options.attributes, progress);
+         },
+         [&] { return triangleBoxes(mesh); }});
+    if (!names.nodes.empty())
+        jobs.push_back(
+            {names.nodes, mesh.vertexCount(), "Writing nodes",
+             [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
+                 insertNodeRows(db, table, mesh, options.vertexCells, progress);
+             },
+             [&] { return nodeBoxes(mesh); }});
+    if (!names.edges.empty())
+        jobs.push_back(
+            {names.edges, edgeCount(mesh), "Writing edges",
+             [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
+                 insertEdgeRows(db, table, mesh, progress);
+             },
+             [&] { return edgeBoxes(mesh); }});
+    return jobs;
+}
+
+/// Fast settings for a file nobody else sees until it is renamed: no rollback journal (a
+/// failed write deletes the temporary file instead), no fsync per commit, one lock for the run.
+void configureForBulkWriting(SqliteConnection& db) {
+    db.execute("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; "
+               "PRAGMA locking_mode = EXCLUSIVE; PRAGMA cache_size = -" +
+               std::to_string(kPageCacheKiB));
+}
+
+} // namespace
+
+TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
+                                  const TinWriteOptions& options,
+                                  const ProgressCallback& progress) {
+    const LayerNames names = layerNamesFor(options);
+    const std::vector<LayerJob> jobs = layerJobs(mesh, options, names);
+    std::uint64_t features = 0;
+    for (const auto& job : jobs)
+        features += job.features;
+    // Progress counts rows, then index entries as much again.
+    const std::uint64_t work = options.spatialIndex ? 2 * features : features;
+    const ProgressTicker ticker(kOgrStage, progress, output, 0.0, kWritingShare, work);
+    ticker.report(0, "Creating GeoPackage");
+
+    const AtomicOutput temporaries(kOgrStage, output);
+    const fs::path temporary = temporaries.temporary(".gpkg");
+    const bool appending = options.appendLayer && !existingFiles({output}).empty();
+    if (appending) {
+        std::error_code error;
+        fs::copy_file(output, temporary, error);
+        if (error)
+            throw IoError(std::string(kOgrStage) + ": cannot copy " + quoted(output) +
+                          " to add layers to it: " + error.message());
+    }
+    createLayers(temporary, appending, names, options, output);
+
+    TinWriteResult result;
+    {
+        SqliteConnection db(kOgrStage, temporary, output);
+        configureForBulkWriting(db);
+        const int capacity =
+            rtreeNodeCapacity(static_cast<int>(db.queryInteger("PRAGMA page_size")));
+        db.execute("BEGIN");
+
+        // The triangles' tree is packed on another thread while the rows go in.
+        std::future<PackedRtree> firstTree;
+        if (options.spatialIndex)
+            firstTree = std::async(std::launch::async,
+                                   [&] { return PackedRtree(jobs.front().boxes(), capacity); });
+
+        const Extent2d extent = meshExtent(mesh);
+        const auto rowsStart = Clock::now();
+        std::uint64_t done = 0;
+        for (const auto& job : jobs) {
+            GpkgFeatureTable table(db, job.name);
+            job.rows(db, table,
+                     [&](std::uint64_t rows) { ticker.report(done + rows, job.rowMessage); });
+            table.finish(job.features, extent);
+            done += job.features;
+        }
+        result.rowSeconds = secondsSince(rowsStart);
+
+        const auto indexStart = Clock::now();
+        for (std::size_t i = 0; options.spatialIndex && i < jobs.size(); ++i) {
+            const PackedRtree tree =
+                i == 0 ? firstTree.get() : PackedRtree(jobs[i].boxes(), capacity);
+            writeGpkgSpatialIndex(db, {jobs[i].name, "geom", "fid"}, tree,
+                                  [&](std::uint64_t entries) {
+                                      ticker.report(done + entries, "Building spatial index");
+                                  });
+            done += jobs[i].features;
+        }
+        result.indexSeconds = secondsSince(indexStart);
+        db.execute("COMMIT");
+        db.close();
+    }
+
+    // A journal or WAL left by an earlier SQLite session on the old output would be replayed
+    // into the new file under the same name and corrupt it: remove them before the rename.
+    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+        std::error_code error;
+        fs::remove(output.string() + suffix, error);
+    }
+    temporaries.commit(temporary, output);
+    result.features = features;
+    return result;
+}
+
+} // namespace terratin::io::detail
