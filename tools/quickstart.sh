@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 
 readonly packages=(
   g++ cmake ninja-build pkg-config
-  libgdal-dev gdal-bin libsqlite3-dev libproj-dev libgeographiclib-dev libboost-program-options-dev libtbb-dev
+  libgdal-dev gdal-bin libsqlite3-dev sqlite3 python3-gdal libproj-dev libgeographiclib-dev libboost-program-options-dev libtbb-dev
   googletest libgtest-dev
   libxml2-dev libxml2-utils
 )

@@ -450,6 +450,19 @@ case "$case_name" in
     expect_one_error_line "GeoPackage"
     expect_no_leftovers
     ;;
+  gpkg_validates)
+    # GDAL's own GeoPackage validator and SQLite's rtreecheck on the fast writer's files: the
+    # triangle, node and edge layers, and a layer appended to an existing file.
+    validator=/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py
+    [ -f "$validator" ] || fail "no $validator (Debian package python3-gdal)"
+    run 0 build "$sample" -o tin.gpkg --nodes --edges --quiet
+    run 0 build "$sample" -o tin.gpkg --layer refined --max-error 5 --append-layer --quiet
+    /usr/bin/python3 "$validator" tin.gpkg >validate.txt 2>&1 || fail "validate_gpkg.py: $(cat validate.txt)"
+    for layer in tin nodes edges refined; do
+      check=$(sqlite3 tin.gpkg "SELECT rtreecheck('rtree_${layer}_geom')")
+      [ "$check" = ok ] || fail "rtreecheck of $layer: $check"
+    done
+    ;;
   qgis_style)
     run 0 build "$sample" -o tin.gpkg --qgis-style --no-spatial-index --quiet
     [ -s tin.qml ] || fail "no tin.qml"

@@ -102,6 +102,8 @@ BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
                          const ProgressCallback& progress) {
     report.timings.write = secondsSince(writeStart);
     report.writeFeatures = written.features;
+    report.writeRowSeconds = written.rowSeconds;
+    report.writeIndexSeconds = written.indexSeconds;
     report.writeFeaturesPerSecond =
         report.timings.write > 0.0 ? static_cast<double>(written.features) / report.timings.write
                                    : 0.0;

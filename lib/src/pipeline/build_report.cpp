@@ -114,7 +114,9 @@ std::string toJson(const BuildReport& report) {
     if (report.longEdgeTriangles > 0)
         json << ", \"long_edge_triangles\": " << report.longEdgeTriangles;
     json << ", \"writing\": {\"features\": " << report.writeFeatures
-         << ", \"features_per_second\": " << report.writeFeaturesPerSecond << "}}";
+         << ", \"features_per_second\": " << report.writeFeaturesPerSecond
+         << ", \"rows_seconds\": " << report.writeRowSeconds
+         << ", \"index_seconds\": " << report.writeIndexSeconds << "}}";
     return json.str();
 }
 

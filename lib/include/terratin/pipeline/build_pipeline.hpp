@@ -183,6 +183,10 @@ struct BuildReport {
     /// written, and their rate over the write phase.
     std::uint64_t writeFeatures = 0;
     double writeFeaturesPerSecond = 0.0;
+    /// GeoPackage: seconds of the write phase spent inserting rows and building spatial
+    /// indexes (0 for the other formats).
+    double writeRowSeconds = 0.0;
+    double writeIndexSeconds = 0.0;
 };
 
 /// The writer's options for a build writing `format`: the output options of BuildOptions

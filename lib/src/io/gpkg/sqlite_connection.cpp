@@ -35,7 +35,10 @@ std::string quoteLiteral(std::string_view text) {
 SqliteConnection::SqliteConnection(std::string_view stage, const std::filesystem::path& path,
                                    std::filesystem::path displayPath)
     : m_stage(stage), m_displayPath(std::move(displayPath)) {
-    const int status = sqlite3_open_v2(path.c_str(), &m_database, SQLITE_OPEN_READWRITE, nullptr);
+    // One thread at a time uses a connection (the writer's), so SQLite's lock around every
+    // call, bind included, is not needed.
+    const int status = sqlite3_open_v2(path.c_str(), &m_database,
+                                       SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr);
     if (status != SQLITE_OK) {
         const std::string message =
             m_database != nullptr ? sqlite3_errmsg(m_database) : sqlite3_errstr(status);
