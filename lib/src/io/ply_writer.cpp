@@ -14,8 +14,7 @@ namespace terratin::io::detail {
 namespace {
 
 /// Copies the object representation of `value` to `out` in little-endian byte order.
-template <typename T>
-void putLittleEndian(unsigned char* out, T value) {
+template <typename T> void putLittleEndian(unsigned char* out, T value) {
     std::memcpy(out, &value, sizeof value);
     if constexpr (std::endian::native == std::endian::big)
         std::reverse(out, out + sizeof value);

@@ -38,9 +38,9 @@ TinWriteOptions optionsFor(TinFormat format, std::string crsWkt = {}) {
 /// Coordinates that need all 17 significant digits, and ones a short decimal cannot hold.
 TinMesh awkwardMesh() {
     TinMesh mesh = test::gridTin(4);
-    mesh.vertices[5].z = 0.1 + 0.2;              // 0.30000000000000004
-    mesh.vertices[6].x = 500010.00000000006;     // a hair above a round easting
-    mesh.vertices[9].z = -1e-300;                // tiny and negative
+    mesh.vertices[5].z = 0.1 + 0.2;          // 0.30000000000000004
+    mesh.vertices[6].x = 500010.00000000006; // a hair above a round easting
+    mesh.vertices[9].z = -1e-300;            // tiny and negative
     mesh.vertices[10].z = 8848.860000000001;
     return mesh;
 }
@@ -128,11 +128,10 @@ TEST(MeshWriters, KeepOldOutputAndLeaveNoTemporaries_WhenCancelledOrRefused) {
         // Cancelled at the last report before the rename.
         TinWriteOptions options = optionsFor(format);
         options.overwrite = true;
-        EXPECT_THROW(writeTin(test::gridTin(3), directory / name, options,
-                              [](double, std::string_view message) {
-                                  return message != "Finishing";
-                              }),
-                     Cancelled)
+        EXPECT_THROW(
+            writeTin(test::gridTin(3), directory / name, options,
+                     [](double, std::string_view message) { return message != "Finishing"; }),
+            Cancelled)
             << name;
         EXPECT_EQ(test::fileBytes(directory / name), "precious") << name;
         EXPECT_EQ(directory.entries(), (std::set<std::string>{name})) << name;
