@@ -119,8 +119,8 @@ ReadMesh readPly(const std::filesystem::path& path) {
     std::vector<std::string> properties;
     for (std::size_t i = 2; i < header.size(); ++i) {
         const std::string& h = header[i];
-        if (h.starts_with("comment crs "))
-            mesh.crs = h.substr(12);
+        if (h.starts_with("comment crs: "))
+            mesh.crs = h.substr(13);
         else if (h.starts_with("comment "))
             continue;
         else if (h.starts_with("element vertex "))

@@ -76,6 +76,25 @@ TEST(PlyWriter, ReadsBackExactly_WhenBinaryLittleEndian) {
     EXPECT_EQ(bytes.size() - headerEnd, 24 * mesh.vertexCount() + 13 * mesh.triangleCount());
 }
 
+// Regression: the header said "comment crs <WKT>"; MDAL reads PLY comments as "key: value",
+// so QGIS 3.22 opened the mesh layer without a CRS. tests/qgis checks the same in QGIS itself.
+TEST(PlyWriter, WritesCrsCommentWithColon_SoQgisMeshLayerHasCrs) {
+    TemporaryDirectory directory;
+    writeTin(test::gridTin(3), directory / "tin.ply", optionsFor(TinFormat::Ply, utm10nWkt()));
+    const std::string bytes = test::fileBytes(directory / "tin.ply");
+    const std::string header = bytes.substr(0, bytes.find("end_header\n"));
+    const auto line = header.find("\ncomment crs: ");
+    ASSERT_NE(line, std::string::npos) << header;
+    const auto wktBegin = line + 14;
+    const std::string wkt = header.substr(wktBegin, header.find('\n', wktBegin) - wktBegin);
+    OGRSpatialReference crs;
+    ASSERT_EQ(crs.importFromWkt(wkt.c_str()), OGRERR_NONE) << wkt;
+    OGRSpatialReference utm;
+    utm.importFromEPSG(26910);
+    EXPECT_TRUE(crs.IsSame(&utm)) << wkt;
+    EXPECT_EQ(header.find("\ncomment crs "), std::string::npos) << header;
+}
+
 TEST(PlyWriter, WritesNoCrsComment_WhenThereIsNoCrs) {
     TemporaryDirectory directory;
     writeTin(test::gridTin(3), directory / "tin.ply", optionsFor(TinFormat::Ply));
