@@ -13,6 +13,7 @@ readonly packages=(
   libgdal-dev gdal-bin libsqlite3-dev sqlite3 python3-gdal libproj-dev libgeographiclib-dev libboost-program-options-dev libtbb-dev
   googletest libgtest-dev
   libxml2-dev libxml2-utils
+  python3-qgis python3-gdal  # tests/qgis: the outputs opened in QGIS, headless
 )
 
 # Only for 'fuzz': clang and its libFuzzer runtime.

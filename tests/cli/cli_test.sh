@@ -405,7 +405,7 @@ case "$case_name" in
     head -c 400 tin.ply | grep -aq 'format binary_little_endian 1.0' || fail "not binary PLY"
     head -c 2000 tin.ply | grep -aq "element vertex $(report_count vertices)" || fail "vertex count"
     head -c 2000 tin.ply | grep -aq "element face $(report_count triangles)" || fail "face count"
-    head -c 2000 tin.ply | grep -aq 'comment crs PROJCS\["WGS 84 / UTM zone 33N"' || fail "no CRS comment"
+    head -c 2000 tin.ply | grep -aq 'comment crs: PROJCS\["WGS 84 / UTM zone 33N"' || fail "no CRS comment"
     expect_no_leftovers
     ;;
   build_obj)

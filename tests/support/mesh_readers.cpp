@@ -43,8 +43,7 @@ std::vector<std::string> split(const std::string& line) {
     return tokens;
 }
 
-template <typename T>
-T readLittleEndian(std::istream& in, const std::filesystem::path& path) {
+template <typename T> T readLittleEndian(std::istream& in, const std::filesystem::path& path) {
     unsigned char bytes[sizeof(T)];
     if (!in.read(reinterpret_cast<char*>(bytes), sizeof bytes))
         fail(path, "truncated binary data");
@@ -120,8 +119,8 @@ ReadMesh readPly(const std::filesystem::path& path) {
     std::vector<std::string> properties;
     for (std::size_t i = 2; i < header.size(); ++i) {
         const std::string& h = header[i];
-        if (h.starts_with("comment crs "))
-            mesh.crs = h.substr(12);
+        if (h.starts_with("comment crs: "))
+            mesh.crs = h.substr(13);
         else if (h.starts_with("comment "))
             continue;
         else if (h.starts_with("element vertex "))
@@ -133,9 +132,9 @@ ReadMesh readPly(const std::filesystem::path& path) {
         else
             fail(path, "unexpected header line: " + h);
     }
-    const std::vector<std::string> expectedProperties = {
-        "property double x", "property double y", "property double z",
-        "property list uchar int vertex_indices"};
+    const std::vector<std::string> expectedProperties = {"property double x", "property double y",
+                                                         "property double z",
+                                                         "property list uchar int vertex_indices"};
     if (properties != expectedProperties)
         fail(path, "unexpected properties");
     for (std::uint64_t v = 0; v < vertexCount; ++v) {

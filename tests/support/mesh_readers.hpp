@@ -20,7 +20,7 @@ struct ReadMesh {
     std::vector<std::uint32_t> triangles;
     /// 2DM: MESHNAME; OBJ: the "o" name.
     std::string name;
-    /// PLY: the text after "comment crs "; empty when absent.
+    /// PLY: the text after "comment crs: " (MDAL's key: value form); empty when absent.
     std::string crs;
     /// OBJ: the "# terratin-origin" line's values (already added to the vertices).
     Point3 origin;

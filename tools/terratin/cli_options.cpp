@@ -138,7 +138,8 @@ po::options_description buildOptionsDescription() {
          "renamed when complete")
         ("format,f", po::value<std::string>()->value_name("FORMAT"),
          "output format: gpkg, shp, fgb, 2dm, ply, obj, landxml (default: from the output's "
-         "extension)")
+         "extension); 2dm has no CRS (QGIS opens it without one): use ply for a QGIS mesh "
+         "layer with its CRS")
         ("band,b", po::value<int>()->default_value(1)->value_name("N"), "raster band, from 1")
         ("seed", po::value<std::uint64_t>()->default_value(1)->value_name("S"),
          "seed of the randomized insertion order (same seed, same TIN)")

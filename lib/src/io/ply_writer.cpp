@@ -14,8 +14,7 @@ namespace terratin::io::detail {
 namespace {
 
 /// Copies the object representation of `value` to `out` in little-endian byte order.
-template <typename T>
-void putLittleEndian(unsigned char* out, T value) {
+template <typename T> void putLittleEndian(unsigned char* out, T value) {
     std::memcpy(out, &value, sizeof value);
     if constexpr (std::endian::native == std::endian::big)
         std::reverse(out, out + sizeof value);
@@ -35,9 +34,10 @@ std::uint64_t writePly(const TinMesh& mesh, const MeshFileInfo& info, BufferedFi
     header += info.softwareVersion;
     header += '\n';
     if (!info.crs.empty()) {
-        // MDAL hands the rest of the line to QGIS, which reads it as WKT: "EPSG:26910" alone
-        // leaves the mesh layer without CRS (checked with QGIS 3.22).
-        header += "comment crs ";
+        // MDAL's PLY reader takes a comment as "key: value" and hands the value of key "crs"
+        // to QGIS as the layer's CRS; without the colon QGIS 3.22 shows no CRS at all. The
+        // WKT (one line) rather than "EPSG:26910" keeps CRSs that have no EPSG code.
+        header += "comment crs: ";
         header += info.crs.wkt;
         header += '\n';
     }

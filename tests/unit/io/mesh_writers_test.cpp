@@ -38,9 +38,9 @@ TinWriteOptions optionsFor(TinFormat format, std::string crsWkt = {}) {
 /// Coordinates that need all 17 significant digits, and ones a short decimal cannot hold.
 TinMesh awkwardMesh() {
     TinMesh mesh = test::gridTin(4);
-    mesh.vertices[5].z = 0.1 + 0.2;              // 0.30000000000000004
-    mesh.vertices[6].x = 500010.00000000006;     // a hair above a round easting
-    mesh.vertices[9].z = -1e-300;                // tiny and negative
+    mesh.vertices[5].z = 0.1 + 0.2;          // 0.30000000000000004
+    mesh.vertices[6].x = 500010.00000000006; // a hair above a round easting
+    mesh.vertices[9].z = -1e-300;            // tiny and negative
     mesh.vertices[10].z = 8848.860000000001;
     return mesh;
 }
@@ -74,6 +74,25 @@ TEST(PlyWriter, ReadsBackExactly_WhenBinaryLittleEndian) {
     const std::string bytes = test::fileBytes(directory / "tin.ply");
     const auto headerEnd = bytes.find("end_header\n") + 11;
     EXPECT_EQ(bytes.size() - headerEnd, 24 * mesh.vertexCount() + 13 * mesh.triangleCount());
+}
+
+// Regression: the header said "comment crs <WKT>"; MDAL reads PLY comments as "key: value",
+// so QGIS 3.22 opened the mesh layer without a CRS. tests/qgis checks the same in QGIS itself.
+TEST(PlyWriter, WritesCrsCommentWithColon_SoQgisMeshLayerHasCrs) {
+    TemporaryDirectory directory;
+    writeTin(test::gridTin(3), directory / "tin.ply", optionsFor(TinFormat::Ply, utm10nWkt()));
+    const std::string bytes = test::fileBytes(directory / "tin.ply");
+    const std::string header = bytes.substr(0, bytes.find("end_header\n"));
+    const auto line = header.find("\ncomment crs: ");
+    ASSERT_NE(line, std::string::npos) << header;
+    const auto wktBegin = line + 14;
+    const std::string wkt = header.substr(wktBegin, header.find('\n', wktBegin) - wktBegin);
+    OGRSpatialReference crs;
+    ASSERT_EQ(crs.importFromWkt(wkt.c_str()), OGRERR_NONE) << wkt;
+    OGRSpatialReference utm;
+    utm.importFromEPSG(26910);
+    EXPECT_TRUE(crs.IsSame(&utm)) << wkt;
+    EXPECT_EQ(header.find("\ncomment crs "), std::string::npos) << header;
 }
 
 TEST(PlyWriter, WritesNoCrsComment_WhenThereIsNoCrs) {
@@ -128,11 +147,10 @@ TEST(MeshWriters, KeepOldOutputAndLeaveNoTemporaries_WhenCancelledOrRefused) {
         // Cancelled at the last report before the rename.
         TinWriteOptions options = optionsFor(format);
         options.overwrite = true;
-        EXPECT_THROW(writeTin(test::gridTin(3), directory / name, options,
-                              [](double, std::string_view message) {
-                                  return message != "Finishing";
-                              }),
-                     Cancelled)
+        EXPECT_THROW(
+            writeTin(test::gridTin(3), directory / name, options,
+                     [](double, std::string_view message) { return message != "Finishing"; }),
+            Cancelled)
             << name;
         EXPECT_EQ(test::fileBytes(directory / name), "precious") << name;
         EXPECT_EQ(directory.entries(), (std::set<std::string>{name})) << name;
