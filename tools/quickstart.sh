@@ -10,10 +10,12 @@ cd "$(dirname "$0")/.."
 
 readonly packages=(
   g++ cmake ninja-build pkg-config
-  libgdal-dev gdal-bin libsqlite3-dev sqlite3 python3-gdal libproj-dev libgeographiclib-dev libboost-program-options-dev libtbb-dev
+  libgdal-dev gdal-bin libproj-dev libgeographiclib-dev libboost-program-options-dev libtbb-dev
+  libsqlite3-dev  # the GeoPackage writer's rows and R-tree
   googletest libgtest-dev
   libxml2-dev libxml2-utils
-  python3-qgis python3-gdal  # tests/qgis: the outputs opened in QGIS, headless
+  sqlite3 python3-gdal  # tests: rtreecheck and GDAL's validate_gpkg.py on written GeoPackages
+  python3-qgis  # tests/qgis: the outputs opened in QGIS, headless
 )
 
 # Only for 'fuzz': clang and its libFuzzer runtime.
