@@ -124,8 +124,11 @@ po::options_description benchOptionsDescription() {
         ("csv", "print comma-separated rows instead of the table")
         ("refine", "terrain refinement table instead: N44W072 at E = 1, 5, 10 m and Mt Hood at "
                    "E = 1, 5 m (points, triangles, achieved max error, seconds per thread count)")
+        ("write", "output table instead: Mt Hood in every format and N44W072 at --max-error 1 "
+                  "as a GeoPackage, end to end, against a GDAL + CGAL + OGR script, a plain OGR "
+                  "loop and the SQLite bound")
         ("dems", po::value<std::string>()->default_value("../shared/dems")->value_name("DIR"),
-         "--refine: folder of the shared DEMs")
+         "--refine, --write: folder of the shared DEMs")
         ("help,h", "show this help");
     // clang-format on
     return options;
@@ -268,6 +271,9 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
     bench.warmMemory = values.count("no-warm-memory") == 0;
     bench.csv = values.count("csv") != 0;
     bench.refine = values.count("refine") != 0;
+    bench.write = values.count("write") != 0;
+    if (bench.refine && bench.write)
+        throw UsageError("--refine and --write are two different tables: choose one");
     bench.demDirectory = values["dems"].as<std::string>();
     bench.threadsGiven = values.count("threads") != 0;
     return command;

@@ -64,6 +64,9 @@ struct BenchOptions {
     bool csv = false;
     /// Terrain refinement table instead (refine_bench.cpp): real DEMs from `demDirectory`.
     bool refine = false;
+    /// Output table instead (write_bench.cpp): every format end to end on real DEMs from
+    /// `demDirectory`, against the GDAL + CGAL + OGR script, a plain OGR loop and SQLite's bound.
+    bool write = false;
     std::string demDirectory = "../shared/dems";
     /// Whether --threads was given (the refinement table defaults to 1 and 2 threads).
     bool threadsGiven = false;

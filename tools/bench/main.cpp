@@ -34,6 +34,7 @@
 #include "peers.hpp"
 #include "process_memory.hpp"
 #include "refine_bench.hpp"
+#include "write_bench.hpp"
 #include "results_table.hpp"
 #include "stats.hpp"
 
@@ -410,6 +411,8 @@ int main(int argc, char** argv) {
     try {
         if (command.options.refine)
             return runRefineBench(command.options);
+        if (command.options.write)
+            return runWriteBench(command.options);
         return runBench(command.options);
     } catch (const Error& error) {
         std::fprintf(stderr, "terratin-bench: %s\n", error.what());

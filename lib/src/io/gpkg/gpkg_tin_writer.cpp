@@ -10,6 +10,7 @@
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
 
+#include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_string.h>
 #include <ogrsf_frmts.h>
@@ -115,12 +116,40 @@ void createLayer(GDALDataset& dataset, const std::string& name, OGRwkbGeometryTy
     }
 }
 
+/// A new GeoPackage, with SQLite pages of `pageBytes`: the page size is fixed when the file
+/// is created, by a pragma GDAL runs before it creates its tables.
+GDALDatasetUniquePtr createGeoPackage(const fs::path& temporary, int pageBytes,
+                                      const fs::path& output) {
+    const std::string pragma = "page_size=" + std::to_string(pageBytes);
+    CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", pragma.c_str());
+    try {
+        GDALDatasetUniquePtr dataset = createDataset("GPKG", temporary, output);
+        CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", nullptr);
+        return dataset;
+    } catch (...) {
+        CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", nullptr);
+        throw;
+    }
+}
+
+/// SQLite page size for a new file of `features`: large pages for large tables (SQLite's work
+/// per page is then spread over many more rows, and inserting gets markedly faster, see
+/// docs/benchmarks.md); SQLite's default for small files, which large pages would pad out
+/// (every table and index takes at least one page).
+int pageBytesFor(std::uint64_t features) {
+    constexpr std::uint64_t kLargeTableFeatures = 65'536;
+    constexpr int kLargePageBytes = 65'536;
+    constexpr int kDefaultPageBytes = 4096;
+    return features >= kLargeTableFeatures ? kLargePageBytes : kDefaultPageBytes;
+}
+
 /// OGR's part: the file (or the copy being extended), its layers, fields and CRS.
-void createLayers(const fs::path& temporary, bool appending, const LayerNames& names,
-                  const TinWriteOptions& options, const fs::path& output) {
+void createLayers(const fs::path& temporary, bool appending, std::uint64_t features,
+                  const LayerNames& names, const TinWriteOptions& options, const fs::path& output) {
     OGRSpatialReference srs = outputCrs(options.crsWkt, output);
-    GDALDatasetUniquePtr dataset = appending ? openGeoPackageForUpdate(temporary, output)
-                                             : createDataset("GPKG", temporary, output);
+    GDALDatasetUniquePtr dataset =
+        appending ? openGeoPackageForUpdate(temporary, output)
+                  : createGeoPackage(temporary, pageBytesFor(features), output);
     if (appending)
         for (const std::string* name : {&names.triangles, &names.nodes, &names.edges})
             if (!name->empty())
@@ -215,7 +244,7 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
             throw IoError(std::string(kOgrStage) + ": cannot copy " + quoted(output) +
                           " to add layers to it: " + error.message());
     }
-    createLayers(temporary, appending, names, options, output);
+    createLayers(temporary, appending, features, names, options, output);
 
     TinWriteResult result;
     {

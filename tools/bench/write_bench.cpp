@@ -1,0 +1,232 @@
+#include "write_bench.hpp"
+
+#include "terratin/error.hpp"
+
+#ifdef TERRATIN_HAVE_IO
+#include "interleaved_runs.hpp"
+#include "stats.hpp"
+#include "write_peers.hpp"
+
+#include "terratin/io/raster_reader.hpp"
+#include "terratin/pipeline/build_pipeline.hpp"
+#include "terratin/triangulate/triangulate.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+#endif
+
+namespace terratin::bench {
+
+#ifdef TERRATIN_HAVE_IO
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// One row of the table: a timed job and what its runs reported.
+struct WriteRow {
+    std::string label;
+    TimedJob job;
+    /// terratin runs: the write phase of each run, and the GeoPackage rows / index phases.
+    std::vector<double> writeSeconds;
+    std::vector<double> rowSeconds;
+    std::vector<double> indexSeconds;
+    std::uint64_t features = 0;
+};
+
+/// A scratch folder for the outputs, removed at the end.
+class ScratchDirectory {
+public:
+    ScratchDirectory()
+        : m_path(fs::temp_directory_path() /
+                 ("terratin-write-bench-" + std::to_string(::getpid()))) {
+        fs::create_directories(m_path);
+    }
+    ~ScratchDirectory() {
+        std::error_code ignored;
+        fs::remove_all(m_path, ignored);
+    }
+    [[nodiscard]] fs::path operator/(const std::string& name) const { return m_path / name; }
+
+private:
+    fs::path m_path;
+};
+
+/// Adds a row that runs `terratin build` through the library, as the CLI does.
+void addTerratinRow(std::vector<WriteRow>& rows, const std::string& label, BuildOptions build) {
+    rows.push_back(WriteRow{label, {}, {}, {}, {}, 0});
+    const std::size_t index = rows.size() - 1;
+    rows[index].job.afterRun = [] {};
+    build.overwrite = true;
+    rows[index].job.run = [&rows, index, build = std::move(build)] {
+        const BuildReport report = runBuild(build);
+        WriteRow& row = rows[index];
+        row.writeSeconds.push_back(report.timings.write);
+        row.rowSeconds.push_back(report.writeRowSeconds);
+        row.indexSeconds.push_back(report.writeIndexSeconds);
+        row.features = report.writeFeatures;
+        return true;
+    };
+}
+
+void addRow(std::vector<WriteRow>& rows, const std::string& label, std::uint64_t features,
+            std::function<void()> run) {
+    WriteRow row{label, {}, {}, {}, {}, features};
+    row.job.afterRun = [] {};
+    row.job.run = [run = std::move(run)] {
+        run();
+        return true;
+    };
+    rows.push_back(std::move(row));
+}
+
+double medianOr(const std::vector<double>& values, double fallback) {
+    return values.empty() ? fallback : median(values);
+}
+
+void printTable(const std::string& title, std::vector<WriteRow>& rows, const WriteRow* script,
+                const WriteRow* base, const WriteRow* limit) {
+    std::printf("\n%s\n", title.c_str());
+    std::printf("%-28s %8s %8s %7s %7s %12s %8s %9s %9s\n", "run", "total s", "write s", "rows s",
+                "index s", "features/s", "peak MiB", "vs script", "vs bound");
+    const double scriptSeconds = script != nullptr ? medianOr(script->job.seconds, 0.0) : 0.0;
+    // The bound on a GeoPackage run: terratin's own read + triangulation, then the minimal
+    // SQLite program's rows and index.
+    const double bound = base != nullptr && limit != nullptr
+                             ? medianOr(base->job.seconds, 0.0) + medianOr(limit->job.seconds, 0.0)
+                             : 0.0;
+    for (const WriteRow& row : rows) {
+        const double total = medianOr(row.job.seconds, -1.0);
+        const double write = medianOr(row.writeSeconds, total);
+        const double peakMiB = medianOr(row.job.peakBytes, -1.0 * 1048576.0) / 1048576.0;
+        std::printf("%-28s %8.3f %8.3f %7.3f %7.3f %12.0f %8.1f", row.label.c_str(), total, write,
+                    medianOr(row.rowSeconds, 0.0), medianOr(row.indexSeconds, 0.0),
+                    write > 0.0 ? static_cast<double>(row.features) / write : 0.0, peakMiB);
+        if (scriptSeconds > 0.0 && total > 0.0)
+            std::printf(" %8.2fx", scriptSeconds / total);
+        else
+            std::printf(" %9s", "-");
+        if (bound > 0.0 && total > 0.0 && !row.writeSeconds.empty())
+            std::printf(" %8.2fx", total / bound);
+        std::printf("\n");
+    }
+    if (bound > 0.0)
+        std::printf("bound = median(read + triangulate) + median(SQLite bound) = %.3f s; "
+                    "'vs bound' is total / bound (1.2x is the issue's target)\n",
+                    bound);
+}
+
+const WriteRow* findRow(const std::vector<WriteRow>& rows, const std::string& label) {
+    for (const WriteRow& row : rows)
+        if (row.label == label)
+            return &row;
+    return nullptr;
+}
+
+void mtHoodTable(const BenchOptions& options, const ScratchDirectory& scratch) {
+    const fs::path dem = fs::path(options.demDirectory) / "gdalraster__lf_elev_220_mt_hood_utm.tif";
+    if (!fs::exists(dem)) {
+        std::fprintf(stderr, "terratin-bench: %s not found, Mt Hood skipped\n", dem.c_str());
+        return;
+    }
+    // Untimed: the mesh the SQLite bound stores.
+    const io::RasterPoints raster = io::readRasterPoints(dem.string(), {});
+    SqliteLimitPeer limit;
+    limit.prepare(triangulate(raster.points).mesh);
+
+    std::vector<WriteRow> rows;
+    rows.reserve(16);
+    addRow(rows, "read + triangulate", 0, [&] {
+        const io::RasterPoints points = io::readRasterPoints(dem.string(), {});
+        const TriangulationResult result = triangulate(points.points);
+        if (result.mesh.triangleCount() == 0)
+            throw Error("no triangles");
+    });
+    for (const char* extension : {"gpkg", "fgb", "shp", "ply", "2dm", "obj", "xml"}) {
+        BuildOptions build;
+        build.input = dem.string();
+        build.output = scratch / (std::string("hood.") + extension);
+        addTerratinRow(rows, std::string("terratin -> .") + extension, build);
+    }
+    addRow(rows, "SQLite bound (rows + index)", 0, [&] { limit.write(scratch / "bound.gpkg"); });
+    if (scriptPeerBuilt())
+        addRow(rows, "GDAL + CGAL + OGR script", 0, [&] {
+            fs::remove(scratch / "script.gpkg");
+            runGdalCgalOgrScript(dem.string(), scratch / "script.gpkg");
+        });
+    std::vector<TimedJob> jobs;
+    for (WriteRow& row : rows)
+        jobs.push_back(row.job);
+    runInterleaved(jobs, options.runs, options.warmMemory);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        rows[i].job = std::move(jobs[i]);
+    printTable("Mt Hood, full resolution (" + std::to_string(raster.points.size()) +
+                   " points), defaults: all attributes, spatial index",
+               rows, findRow(rows, "GDAL + CGAL + OGR script"), findRow(rows, "read + triangulate"),
+               findRow(rows, "SQLite bound (rows + index)"));
+}
+
+void n44w072Table(const BenchOptions& options, const ScratchDirectory& scratch) {
+    const fs::path dem = fs::path(options.demDirectory) / "srtmpy__N44W072" / "N44W072.hgt";
+    if (!fs::exists(dem)) {
+        std::fprintf(stderr, "terratin-bench: %s not found, N44W072 skipped\n", dem.c_str());
+        return;
+    }
+    BuildOptions build;
+    build.input = dem.string();
+    build.output = scratch / "n44.gpkg";
+    build.overwrite = true;
+    build.refine = RefineOptions{};
+    build.refine->maxError = 1.0;
+    // Untimed: the same triangles for the plain OGR loop.
+    runBuild(build);
+    std::string crsWkt;
+    const auto triangles = readTriangles(build.output, &crsWkt);
+
+    std::vector<WriteRow> rows;
+    rows.reserve(2);
+    addTerratinRow(rows, "terratin -> .gpkg", build);
+    addRow(rows, "plain OGR loop (write only)", triangles.size(), [&] {
+        fs::remove(scratch / "loop.gpkg");
+        writeWithOgrLoop(triangles, crsWkt, scratch / "loop.gpkg");
+    });
+    std::vector<TimedJob> jobs;
+    for (WriteRow& row : rows)
+        jobs.push_back(row.job);
+    runInterleaved(jobs, options.runs, options.warmMemory);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        rows[i].job = std::move(jobs[i]);
+    printTable("N44W072, --max-error 1 (" + std::to_string(triangles.size()) + " triangles)", rows,
+               nullptr, nullptr, nullptr);
+    const double ours = medianOr(rows[0].job.seconds, 0.0);
+    const double loop = medianOr(rows[1].job.seconds, 0.0);
+    if (ours > 0.0)
+        std::printf("terratin end to end is %.2fx faster than the plain OGR loop's write alone\n",
+                    loop / ours);
+}
+
+} // namespace
+
+int runWriteBench(const BenchOptions& options) {
+    const ScratchDirectory scratch;
+    mtHoodTable(options, scratch);
+    n44w072Table(options, scratch);
+    return 0;
+}
+
+#else
+
+int runWriteBench(const BenchOptions& /*options*/) {
+    throw Error("--write writes files: it needs terratin-bench built with terratin::io "
+                "(TERRATIN_BUILD_IO=ON)");
+}
+
+#endif
+
+} // namespace terratin::bench
