@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <memory>
 #include <random>
 #include <set>
@@ -419,6 +420,19 @@ TEST(GeoPackageRows, StoresGdalsOwnGeometryBytesAndCounts_WhenWrittenDirectly) {
                          "SELECT min_x || ' ' || max_y FROM gpkg_contents WHERE table_name = "
                          "'tin'"),
               "500000.0 5000020.0");
+}
+
+TEST(GeoPackageRows, KeepsTheExistingOutput_WhenAnOverwriteIsCancelledInTheIndex) {
+    TemporaryDirectory directory;
+    std::ofstream(directory / "tin.gpkg") << "the user's old file";
+    TinWriteOptions options = geoPackageOptions();
+    options.overwrite = true;
+    const auto cancelInIndex = [](double, std::string_view message) {
+        return message.find("spatial index") == std::string_view::npos;
+    };
+    EXPECT_THROW(writeTin(utmTin(2000), directory / "tin.gpkg", options, cancelInIndex), Cancelled);
+    EXPECT_EQ(test::fileBytes(directory / "tin.gpkg"), "the user's old file");
+    EXPECT_EQ(directory.entries(), (std::set<std::string>{"tin.gpkg"}));
 }
 
 TEST(GeoPackageRows, LeavesNothingBehind_WhenCancelledWhileWritingRowsOrIndex) {
