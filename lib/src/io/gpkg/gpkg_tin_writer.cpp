@@ -219,6 +219,49 @@ void configureForBulkWriting(SqliteConnection& db) {
                std::to_string(kPageCacheKiB));
 }
 
+/// SQLite's part: every layer's rows, then every layer's spatial index, in one transaction.
+/// Returns the seconds each took.
+TinWriteResult fillTables(const fs::path& temporary, const fs::path& output, const TinMesh& mesh,
+                          const std::vector<LayerJob>& jobs, bool spatialIndex,
+                          const ProgressTicker& ticker) {
+    TinWriteResult result;
+    SqliteConnection db(kOgrStage, temporary, output);
+    configureForBulkWriting(db);
+    const int capacity = rtreeNodeCapacity(static_cast<int>(db.queryInteger("PRAGMA page_size")));
+    db.execute("BEGIN");
+
+    // The triangles' tree is packed on another thread while the rows go in.
+    std::future<PackedRtree> firstTree;
+    if (spatialIndex)
+        firstTree = std::async(std::launch::async,
+                               [&] { return PackedRtree(jobs.front().boxes(), capacity); });
+
+    const Extent2d extent = meshExtent(mesh);
+    const auto rowsStart = Clock::now();
+    std::uint64_t done = 0;
+    for (const auto& job : jobs) {
+        GpkgFeatureTable table(db, job.name);
+        job.rows(db, table,
+                 [&](std::uint64_t rows) { ticker.report(done + rows, job.rowMessage); });
+        table.finish(job.features, extent);
+        done += job.features;
+    }
+    result.rowSeconds = secondsSince(rowsStart);
+
+    const auto indexStart = Clock::now();
+    for (std::size_t i = 0; spatialIndex && i < jobs.size(); ++i) {
+        const PackedRtree tree = i == 0 ? firstTree.get() : PackedRtree(jobs[i].boxes(), capacity);
+        writeGpkgSpatialIndex(db, {jobs[i].name, "geom", "fid"}, tree, [&](std::uint64_t entries) {
+            ticker.report(done + entries, "Building spatial index");
+        });
+        done += jobs[i].features;
+    }
+    result.indexSeconds = secondsSince(indexStart);
+    db.execute("COMMIT");
+    db.close();
+    return result;
+}
+
 } // namespace
 
 TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
@@ -246,46 +289,7 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     }
     createLayers(temporary, appending, features, names, options, output);
 
-    TinWriteResult result;
-    {
-        SqliteConnection db(kOgrStage, temporary, output);
-        configureForBulkWriting(db);
-        const int capacity =
-            rtreeNodeCapacity(static_cast<int>(db.queryInteger("PRAGMA page_size")));
-        db.execute("BEGIN");
-
-        // The triangles' tree is packed on another thread while the rows go in.
-        std::future<PackedRtree> firstTree;
-        if (options.spatialIndex)
-            firstTree = std::async(std::launch::async,
-                                   [&] { return PackedRtree(jobs.front().boxes(), capacity); });
-
-        const Extent2d extent = meshExtent(mesh);
-        const auto rowsStart = Clock::now();
-        std::uint64_t done = 0;
-        for (const auto& job : jobs) {
-            GpkgFeatureTable table(db, job.name);
-            job.rows(db, table,
-                     [&](std::uint64_t rows) { ticker.report(done + rows, job.rowMessage); });
-            table.finish(job.features, extent);
-            done += job.features;
-        }
-        result.rowSeconds = secondsSince(rowsStart);
-
-        const auto indexStart = Clock::now();
-        for (std::size_t i = 0; options.spatialIndex && i < jobs.size(); ++i) {
-            const PackedRtree tree =
-                i == 0 ? firstTree.get() : PackedRtree(jobs[i].boxes(), capacity);
-            writeGpkgSpatialIndex(db, {jobs[i].name, "geom", "fid"}, tree,
-                                  [&](std::uint64_t entries) {
-                                      ticker.report(done + entries, "Building spatial index");
-                                  });
-            done += jobs[i].features;
-        }
-        result.indexSeconds = secondsSince(indexStart);
-        db.execute("COMMIT");
-        db.close();
-    }
+    TinWriteResult result = fillTables(temporary, output, mesh, jobs, options.spatialIndex, ticker);
 
     // A journal or WAL left by an earlier SQLite session on the old output would be replayed
     // into the new file under the same name and corrupt it: remove them before the rename.
