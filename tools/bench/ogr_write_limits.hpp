@@ -19,7 +19,9 @@ struct MinimalWriteOptions {
     int dbfWidth = 24;
     int dbfPrecision = 12;
     /// Shapefile: the layer creation option DBF_EOF_CHAR (the 0x1A after the last record).
-    bool dbfEofChar = true;
+    /// terratin writes its records without it and appends the last one in a second session
+    /// that writes the mark; one record more or less is noise here.
+    bool dbfEofChar = false;
     /// FlatGeobuf: the packed Hilbert R-tree GDAL builds at close.
     bool spatialIndex = true;
     /// FlatGeobuf: the layer creation option TEMPORARY_DIR (where GDAL keeps the features
