@@ -7,8 +7,25 @@
 ///
 /// One OGRFeature and one polygon are reused for all triangles (the ring's points are
 /// overwritten in place, nothing is allocated per triangle); attributes are computed with TBB
-/// a chunk ahead of the inserts. FlatGeobuf's packed Hilbert R-tree is built by GDAL when the
-/// file is closed. Measured figures are in docs/benchmarks.md.
+/// a chunk ahead of the inserts. Measured figures are in docs/benchmarks.md.
+///
+/// FlatGeobuf's packed Hilbert R-tree is built by GDAL when the file is closed: it keeps every
+/// feature in a temporary file, sorts them along a Hilbert curve (recomputing both keys in
+/// every comparison, a cost no input order removes) and copies them into the output. Two
+/// things are ours to choose. The temporary file goes to /vsimem/ (layer creation option
+/// TEMPORARY_DIR) when it fits comfortably in memory, which spares writing and reading it back
+/// through the kernel; larger outputs keep it on disk. And the triangles are handed over
+/// already in the order the index stores them (packed_rtree_order.hpp), so that the sort and
+/// the copy walk memory in order. The sort itself stays GDAL's and bounds the speed;
+/// TinWriteOptions::spatialIndex = false streams the file directly.
+///
+/// A Shapefile's time goes to the DBF: shapelib formats every attribute with printf
+/// ("%24.12f"), which no option changes. What an option does change: by default shapelib
+/// writes the DBF end-of-file mark (0x1A) after each record and seeks back over it before the
+/// next, and each such seek makes stdio read the file's current block back (a seek, a 4 KiB
+/// read and a write per record). The layer is therefore created with DBF_EOF_CHAR=NO, and the
+/// last triangle appended in a second session opened with DBF_EOF_CHAR=YES, which writes the
+/// mark: the files are the same bytes as a single session's.
 ///
 /// A Shapefile's and a FlatGeobuf's layer is named after its file; TinWriteOptions::layerName
 /// applies to GeoPackage only.
@@ -19,6 +36,7 @@
 #include "gpkg/gpkg_tin_writer.hpp"
 #include "ogr_dataset_support.hpp"
 #include "attribute_columns.hpp"
+#include "packed_rtree_order.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
 #include "writer_support.hpp"
@@ -37,6 +55,7 @@
 #include <cmath>
 #include <cstdint>
 #include <future>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <system_error>
@@ -78,6 +97,16 @@ constexpr double kDbfMaxMagnitude = 1e22;
 /// A DBF without any attribute column still needs one: GDAL adds a 10-character "FID" column.
 constexpr int kDbfDefaultColumnWidth = 10;
 
+/// FlatGeobuf: bytes GDAL keeps per triangle in its temporary file, an upper estimate: the
+/// size prefix, the feature and geometry tables and the xy and z vectors (about 160 bytes),
+/// plus a column index and a double per attribute. Measured: about 300 bytes with 14 columns.
+constexpr std::uint64_t kFgbFeatureBytes = 176;
+constexpr std::uint64_t kFgbColumnBytes = 10;
+/// The temporary file goes to memory only while it takes at most this share of the RAM GDAL
+/// reports usable: it comes on top of the mesh, GDAL's own index entries (about 100 bytes per
+/// feature) and whatever the caller holds.
+constexpr std::uint64_t kFgbInMemoryRamDivisor = 4;
+
 /// Sidecar extensions another tool may have left next to an old Shapefile of the same name;
 /// they describe the old geometry (spatial indexes, metadata) and are stale once it is
 /// replaced.
@@ -117,6 +146,9 @@ struct LayerSpec {
     std::string name;
     OGRwkbGeometryType type;
     TinFormat format;
+    /// FlatGeobuf with a spatial index: TEMPORARY_DIR, empty for GDAL's default (the output's
+    /// directory).
+    std::string temporaryDirectory = {};
 };
 
 OGRLayer* createLayer(GDALDataset& dataset, const LayerSpec& spec,
@@ -129,9 +161,13 @@ OGRLayer* createLayer(GDALDataset& dataset, const LayerSpec& spec,
         layerOptions.SetNameValue("ENCODING", "UTF-8");
         // Backstop for the up-front size check: GDAL would otherwise grow files to 4 GB.
         layerOptions.SetNameValue("2GB_LIMIT", "YES");
+        // The end-of-file mark is written by a second session (see the file comment).
+        layerOptions.SetNameValue("DBF_EOF_CHAR", "NO");
         break;
     case TinFormat::FlatGeobuf:
         layerOptions.SetNameValue("SPATIAL_INDEX", options.spatialIndex ? "YES" : "NO");
+        if (!spec.temporaryDirectory.empty())
+            layerOptions.SetNameValue("TEMPORARY_DIR", spec.temporaryDirectory.c_str());
         break;
     default:
         throwInvalid("not an OGR format");
@@ -176,10 +212,17 @@ void createFeature(OGRLayer& layer, OGRFeature& feature, std::string_view what, 
 /// Triangles per attribute chunk: the progress interval, so each chunk ends with a report.
 constexpr std::size_t kChunkTriangles = kProgressInterval;
 
-/// Inserts one feature per triangle. Attributes of chunk k + 1 are computed (in parallel)
-/// while chunk k is inserted.
+/// Triangles [first, last) of a mesh, `last` clamped to its triangle count.
+struct TriangleRange {
+    std::size_t first = 0;
+    std::size_t last = std::numeric_limits<std::size_t>::max();
+};
+
+/// Inserts one feature per triangle of `range`. Attributes of chunk k + 1 are computed (in
+/// parallel) while chunk k is inserted.
 void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions& options,
-                    const ProgressTicker& ticker, const fs::path& output) {
+                    const ProgressTicker& ticker, const fs::path& output,
+                    TriangleRange range = {}) {
     const auto columns = attributeColumns(options.attributes);
     std::vector<int> indices;
     for (const auto& column : columns)
@@ -199,8 +242,8 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
     for (const int index : indices)
         feature->SetField(index, 0.0);
 
-    const std::size_t triangleCount = mesh.triangleCount();
-    const bool explicitFid = options.format == TinFormat::GeoPackage;
+    const std::size_t first = range.first;
+    const std::size_t last = std::min(mesh.triangleCount(), range.last);
     const bool checkDbf = options.format == TinFormat::Shapefile;
 
     // Two buffers: the one being inserted, and the one the next chunk is computed into. The
@@ -208,11 +251,12 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
     std::array<std::vector<TriangleAttributes>, 2> buffers;
     std::future<void> next;
     const auto computeChunk = [&](std::size_t chunk) {
-        const std::size_t begin = chunk * kChunkTriangles;
-        const std::size_t end = std::min(triangleCount, begin + kChunkTriangles);
+        const std::size_t begin = first + chunk * kChunkTriangles;
+        const std::size_t end = std::min(last, begin + kChunkTriangles);
         computeAttributes(mesh, begin, end, buffers[chunk % 2]);
     };
-    const std::size_t chunks = (triangleCount + kChunkTriangles - 1) / kChunkTriangles;
+    const std::size_t chunks =
+        last > first ? (last - first + kChunkTriangles - 1) / kChunkTriangles : 0;
     if (!columns.empty())
         computeChunk(0);
 
@@ -220,8 +264,8 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
         if (!columns.empty() && chunk + 1 < chunks)
             next = std::async(std::launch::async, computeChunk, chunk + 1);
         const std::vector<TriangleAttributes>& attributes = buffers[chunk % 2];
-        const std::size_t begin = chunk * kChunkTriangles;
-        const std::size_t end = std::min(triangleCount, begin + kChunkTriangles);
+        const std::size_t begin = first + chunk * kChunkTriangles;
+        const std::size_t end = std::min(last, begin + kChunkTriangles);
         ticker.report(begin, "Writing triangles");
         for (std::size_t t = begin; t < end; ++t) {
             const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
@@ -249,10 +293,9 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
                     feature->GetRawFieldRef(indices[i])->Real = value;
                 }
             }
-            // GeoPackage fids are the triangle numbers from 1, which the edge layer refers
-            // to. Elsewhere the driver numbers; a reused feature must be reset, or the next
-            // insert would collide with the FID CreateFeature stored in it.
-            feature->SetFID(explicitFid ? static_cast<GIntBig>(t + 1) : OGRNullFID);
+            // The driver numbers; a reused feature must be reset, or the next insert would
+            // collide with the FID CreateFeature stored in it.
+            feature->SetFID(OGRNullFID);
             createFeature(layer, *feature, "triangle", t, output);
         }
         if (next.valid())
@@ -264,24 +307,56 @@ TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                                const TinWriteOptions& options,
                                std::optional<OGRSpatialReference>& srs,
                                const ProgressCallback& progress) {
-    const double insertShare = options.spatialIndex ? 0.8 : kInsertShareWithoutIndex;
+    const double insertShare = options.spatialIndex ? 0.5 : kInsertShareWithoutIndex;
     const ProgressTicker ticker(kStage, progress, output, 0.0, insertShare, mesh.triangleCount());
     const AtomicOutput temporaries(kStage, output);
     const fs::path temporary = temporaries.temporary(".fgb");
+
+    // With an index: the triangles in the order GDAL will store them, and GDAL's temporary
+    // copy of the features in memory when it fits (see the file comment).
+    std::optional<TinMesh> indexOrdered;
+    LayerSpec spec{output.stem().string(), wkbPolygon25D, TinFormat::FlatGeobuf};
+    if (options.spatialIndex) {
+        indexOrdered = reorderTriangles(mesh, packedRtreeOrder(mesh));
+        const std::uint64_t temporaryBytes =
+            mesh.triangleCount() *
+            (kFgbFeatureBytes + kFgbColumnBytes * attributeColumns(options.attributes).size());
+        const auto usableRam =
+            static_cast<std::uint64_t>(std::max<GIntBig>(0, CPLGetUsablePhysicalRAM()));
+        if (temporaryBytes <= usableRam / kFgbInMemoryRamDivisor)
+            spec.temporaryDirectory = "/vsimem/";
+    }
+    const TinMesh& triangles = indexOrdered ? *indexOrdered : mesh;
     {
+        // Closing the dataset, on every path, removes GDAL's temporary file, in /vsimem/ too.
         GDALDatasetUniquePtr dataset = createDataset("FlatGeobuf", temporary, output);
-        OGRLayer* layer = createLayer(
-            *dataset, {output.stem().string(), wkbPolygon25D, TinFormat::FlatGeobuf}, srs,
-            options, output);
+        OGRLayer* layer = createLayer(*dataset, spec, srs, options, output);
         for (const auto& column : attributeColumns(options.attributes))
             addField(*layer, column.name, OFTReal, TinFormat::FlatGeobuf, output);
-        writeTriangles(*layer, mesh, options, ticker, output);
-        ticker.report(mesh.triangleCount(), options.spatialIndex ? "Building spatial index"
-                                                                 : "Finishing FlatGeobuf");
+        writeTriangles(*layer, triangles, options, ticker, output);
+        ticker.report(mesh.triangleCount(),
+                      options.spatialIndex ? "Building spatial index" : "Finishing FlatGeobuf");
         closeDataset(dataset, output);
     }
     temporaries.commit(temporary, output);
     return {mesh.triangleCount()};
+}
+
+/// Appends the last triangle of `mesh` to the Shapefile `shp`, in an update session whose DBF
+/// writes the end-of-file mark after the record, as a single session would have.
+void appendLastTriangle(const TinMesh& mesh, const fs::path& shp, const TinWriteOptions& options,
+                        const ProgressTicker& ticker, const fs::path& output) {
+    const char* const drivers[] = {"ESRI Shapefile", nullptr};
+    const char* const openOptions[] = {"DBF_EOF_CHAR=YES", nullptr};
+    CPLErrorReset();
+    GDALDatasetUniquePtr dataset(GDALDataset::Open(shp.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE,
+                                                   drivers, openOptions, nullptr));
+    OGRLayer* layer = dataset ? dataset->GetLayer(0) : nullptr;
+    if (layer == nullptr)
+        throwGdalError(kStage, "cannot reopen the Shapefile being written for", output.string());
+    writeTriangles(*layer, mesh, options, ticker, output,
+                   {mesh.triangleCount() - 1, mesh.triangleCount()});
+    closeDataset(dataset, output);
 }
 
 TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
@@ -301,16 +376,20 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
     // names the case of the requested .shp.
     const std::string stem = output.stem().string();
     const fs::path temporaryShp = temporaryDirectory / (stem + ".shp");
+    const std::size_t count = mesh.triangleCount();
     {
+        // Every triangle but the last, without the DBF end-of-file mark (see the file comment).
         GDALDatasetUniquePtr dataset = createDataset("ESRI Shapefile", temporaryShp, output);
         OGRLayer* layer = createLayer(*dataset, {stem, wkbPolygon25D, TinFormat::Shapefile}, srs,
                                       options, output);
         for (const auto& column : attributeColumns(options.attributes))
             addField(*layer, column.name, OFTReal, TinFormat::Shapefile, output);
-        writeTriangles(*layer, mesh, options, ticker, output);
-        ticker.report(mesh.triangleCount(), "Finishing Shapefile");
+        writeTriangles(*layer, mesh, options, ticker, output, {0, count == 0 ? 0 : count - 1});
         closeDataset(dataset, output);
     }
+    if (count > 0)
+        appendLastTriangle(mesh, temporaryShp, options, ticker, output);
+    ticker.report(count, "Finishing Shapefile");
 
     // Every file GDAL wrote, by its extension after the stem (".shp", ".shx", ".dbf", ".prj",
     // ".cpg").
