@@ -6,8 +6,7 @@
 #include "chunk_pipeline.hpp"
 #include "gpkg_geometry.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,8 +18,6 @@ namespace {
 
 /// Rows per chunk of the pipeline: one progress report each.
 constexpr std::size_t kChunkRows = kProgressInterval;
-/// Rows per TBB task when encoding geometry blobs.
-constexpr std::size_t kEncodeGrain = 4096;
 
 std::size_t chunkCount(std::size_t rows) {
     return (rows + kChunkRows - 1) / kChunkRows;
@@ -32,17 +29,25 @@ std::pair<std::size_t, std::size_t> chunkRange(std::size_t k, std::size_t rows) 
     return {begin, std::min(rows, begin + kChunkRows)};
 }
 
-/// Encodes blob i of [begin, end) with encode(i, span) into `blobs`, in parallel.
+/// Encodes blob i of [begin, end) with encode(i, span) into `blobs`.
 template <std::size_t Bytes, class Encode>
 void encodeBlobs(std::size_t begin, std::size_t end, std::vector<std::uint8_t>& blobs,
                  Encode&& encode) {
     blobs.resize((end - begin) * Bytes);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kEncodeGrain),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i)
-                              encode(i, std::span<std::uint8_t, Bytes>(
-                                            blobs.data() + (i - begin) * Bytes, Bytes));
-                      });
+    for (std::size_t i = begin; i < end; ++i)
+        encode(i, std::span<std::uint8_t, Bytes>(blobs.data() + (i - begin) * Bytes, Bytes));
+}
+
+/// Runs a chunk pipeline whose preparation stays on one thread: SQLite, inserting on the
+/// calling thread, is the slower stage by far, and preparation on more threads would only take
+/// cores from it (attributes are otherwise computed with TBB on every core).
+template <class Buffer, class Prepare, class Consume>
+void runBesideSqlite(std::size_t chunks, Prepare&& prepare, Consume&& consume) {
+    tbb::task_arena oneThread(1);
+    runChunkPipeline<Buffer>(
+        chunks,
+        [&](std::size_t k, Buffer& buffer) { oneThread.execute([&] { prepare(k, buffer); }); },
+        consume);
 }
 
 template <std::size_t Bytes>
@@ -137,7 +142,7 @@ void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& ta
                                    chunk.attributes[row].*(columns[i].member));
         });
     };
-    runChunkPipeline<TriangleChunk>(chunkCount(rows), prepare, consume);
+    runBesideSqlite<TriangleChunk>(chunkCount(rows), prepare, consume);
 }
 
 void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
@@ -171,7 +176,7 @@ void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
             }
         });
     };
-    runChunkPipeline<std::vector<std::uint8_t>>(chunkCount(rows), prepare, consume);
+    runBesideSqlite<std::vector<std::uint8_t>>(chunkCount(rows), prepare, consume);
 }
 
 void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
@@ -224,7 +229,7 @@ void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
             statement.bindReal(p + 6, row.length);
         });
     };
-    runChunkPipeline<EdgeChunk>(chunks, prepare, consume);
+    runBesideSqlite<EdgeChunk>(chunks, prepare, consume);
 }
 
 std::uint64_t edgeCount(const TinMesh& mesh) {
