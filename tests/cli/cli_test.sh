@@ -485,6 +485,75 @@ case "$case_name" in
     expect_one_error_line "GeoPackage"
     [ ! -e tin.shp ] && [ ! -e tin.2dm ] || fail "output written despite the usage error"
     ;;
+  # Issue 22: every count option bounded, refused with status 2 and one line before reading.
+  d2_queue_length_bounded)
+    for value in -1 0 1048577 4294967295 18446744073709551617 9223372036854775809; do
+      run 2 build "$sample" -o out.gpkg --method batch --queue-length "$value"
+      expect_one_error_line "queue"
+    done
+    run 0 --help
+    grep -q 'queue-length L.*' out.txt && grep -q '1 to 1048576' out.txt || fail "no bound in --help"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d3_searchers_bounded)
+    for value in -1 1024 100000 4294967296; do
+      run 2 build "$sample" -o out.gpkg --method batch --searchers "$value"
+      expect_one_error_line "search"
+    done
+    run 0 --help
+    grep -q '0 to 1023' out.txt || fail "no bound in --help"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d4_threads_bounded)
+    for method in circumcircle strips batch; do
+      for value in -1 1025 3000 100000; do
+        run 2 build "$sample" -o out.gpkg --method "$method" --threads "$value"
+        expect_one_error_line "thread"
+      done
+    done
+    run 2 build "$sample" -o out.gpkg --max-error 1 -j 100000
+    expect_one_error_line "thread"
+    run 0 --help
+    grep -q '0 to 1024' out.txt || fail "no bound in --help"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d12_invalid_values_refused)
+    for option in '--threads -1' '--threads=-1' '--max-points -5' '--max-points 2' \
+                  '--max-triangles -1' '--max-triangles 0' '--max-hole -3' '--max-hole 4294967292' \
+                  '--searchers -1' '--queue-length 4294967295' '--seed -1' '--threads 1.5' \
+                  '--max-points 99999999999999999999999'; do
+      # shellcheck disable=SC2086
+      run 2 build "$sample" -o out.gpkg $option
+      expect_one_error_line "${option%%[ =]*}\|point\|triangle\|hole\|queue\|thread\|search"
+    done
+    for option in --t_srs --s_srs; do
+      run 2 build "$sample" -o out.gpkg "$option" ''
+      expect_one_error_line "$option"
+      run 2 build "$sample" -o out.gpkg "$option" ' '
+      expect_one_error_line "$option"
+    done
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d13_limits_hold_or_refused)
+    # The sample's valid cells fill the raster: a hull of 4 corners, 2 triangles.
+    run 1 build "$sample" -o out.gpkg --max-points 3 --quiet
+    expect_one_error_line "4 corners"
+    run 1 build "$sample" -o out.gpkg --max-triangles 1 --quiet
+    expect_one_error_line "4 corners"
+    [ ! -e out.gpkg ] || fail "output written for a limit below the hull"
+    run 0 build "$sample" -o four.gpkg --max-points 4 --json --quiet
+    report_at_most vertices 4
+    run 0 build "$sample" -o two.gpkg --max-triangles 2 --json --quiet
+    report_at_most triangles 2
+    for limit in 5 6 7 50; do
+      run 0 build "$sample" -o "p$limit.gpkg" --max-points "$limit" --json --quiet
+      report_at_most vertices "$limit"
+      run 0 build "$sample" -o "t$limit.gpkg" --max-triangles "$limit" --json --quiet
+      report_at_most triangles "$limit"
+    done
+    run 0 --help
+    grep -q 'corner count is refused' out.txt || fail "--help does not state the hull guarantee"
+    ;;
   *)
     fail "unknown case"
     ;;

@@ -10,6 +10,7 @@
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -28,21 +29,16 @@ double lap(Clock::time_point& start) {
     return seconds;
 }
 
-// Vertex ids are 32-bit and the triangulator needs two more for its symbolic vertices; cell
-// indices are 32-bit in TinMesh::sourceIndex.
-constexpr std::uint64_t kMaxCells = (std::uint64_t{1} << 32U) - 5;
-
 void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
                 const RefineOptions& options) {
+    checkRefineOptions(options);
     if (grid.width <= 0 || grid.height <= 0)
         throw InvalidInputError("Refiner: the grid is empty");
     if (grid.z.size() != grid.cellCount())
         throw InvalidInputError("Refiner: the grid has " + std::to_string(grid.z.size()) +
                                 " elevations for " + std::to_string(grid.cellCount()) + " cells");
-    if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxCells)
+    if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxRefineCells)
         throw InvalidInputError("Refiner: more than 2^32 - 5 cells; split the raster");
-    if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
-        throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
     if (!positions.empty() && positions.size() != grid.cellCount())
         throw InvalidInputError("Refiner: " + std::to_string(positions.size()) + " positions for " +
                                 std::to_string(grid.cellCount()) + " cells");
@@ -56,8 +52,9 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     checkInput(grid, positions, options);
     RefineResult result;
     Clock::time_point phase = Clock::now();
-    const unsigned threads =
-        options.threads != 0 ? options.threads : std::max(1U, std::thread::hardware_concurrency());
+    const unsigned threads = options.threads != 0
+                                 ? options.threads
+                                 : std::clamp(std::thread::hardware_concurrency(), 1U, kMaxThreads);
     result.threads = threads;
 
     detail::CellFlags flags =
@@ -126,6 +123,25 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
 }
 
 } // namespace
+
+void checkRefineOptions(const RefineOptions& options) {
+    const auto got = [](std::uint64_t value) { return " (got " + std::to_string(value) + ")"; };
+    if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
+        throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
+    if (options.maxPoints && (*options.maxPoints < 3 || *options.maxPoints > kMaxRefineCells))
+        throw InvalidInputError("Refiner: the point limit must be 3 to " +
+                                std::to_string(kMaxRefineCells) + got(*options.maxPoints));
+    if (options.maxTriangles &&
+        (*options.maxTriangles < 1 || *options.maxTriangles > 2 * kMaxRefineCells))
+        throw InvalidInputError("Refiner: the triangle limit must be 1 to " +
+                                std::to_string(2 * kMaxRefineCells) + got(*options.maxTriangles));
+    if (options.maxHole > kMaxRefineCells)
+        throw InvalidInputError("Refiner: the largest hole to fill must be 0 to " +
+                                std::to_string(kMaxRefineCells) + " cells" + got(options.maxHole));
+    if (options.threads > kMaxThreads)
+        throw InvalidInputError("Refiner: the thread count must be 0 (all) to " +
+                                std::to_string(kMaxThreads) + got(options.threads));
+}
 
 const char* toString(RefineStop stop) {
     switch (stop) {
