@@ -56,6 +56,16 @@ small_sample() {
   gdal_translate -q -srcwin 90 90 40 40 "$sample" small.tif || fail "gdal_translate failed"
 }
 
+# rotated_sample OUT.tif: the small sample turned 30 degrees about its corner (GT[2], GT[4] set).
+rotated_sample() {
+  small_sample
+  gdal_translate -q -of VRT small.tif north_up.vrt || fail "gdal_translate failed"
+  sed 's|<GeoTransform>.*</GeoTransform>|<GeoTransform>455900, 8.660254037844387, 5, 5104100, 5, -8.660254037844387</GeoTransform>|' \
+    north_up.vrt >rotated.vrt
+  gdal_translate -q rotated.vrt "$1" || fail "gdal_translate of the rotated VRT failed"
+  gdalinfo "$1" | grep -q 'GeoTransform' || fail "$1 is not rotated"
+}
+
 # feature_count_of FILE LAYER
 feature_count_of() {
   ogrinfo -ro -so "$1" "$2" 2>/dev/null | sed -n 's/^Feature Count: //p' | head -1
@@ -553,6 +563,71 @@ case "$case_name" in
     done
     run 0 --help
     grep -q 'corner count is refused' out.txt || fail "--help does not state the hull guarantee"
+    ;;
+  d6_rotated_raster_simplified)
+    rotated_sample rot.tif
+    for limit in '--max-error 1' '--max-points 200' '--max-triangles 300'; do
+      # shellcheck disable=SC2086
+      run 0 build rot.tif -o out.gpkg $limit --validate --json --quiet --overwrite
+      grep -q '"validated": true' out.txt || fail "$limit: not validated"
+      grep -q '"uncovered_cells": 0' out.txt || fail "$limit: cells left uncovered"
+    done
+    report_at_most triangles 300
+    run 0 build rot.tif -o points.gpkg --max-points 200 --json --quiet
+    report_at_most vertices 200
+    run 0 build rot.tif -o error.gpkg --max-error 1 --json --quiet
+    report_at_most achieved_max_error 1
+    ;;
+  d7_infinite_elevations_refused)
+    gdal_create -q -of GTiff -outsize 20 10 -bands 1 -ot Float32 -burn inf -a_srs EPSG:32633 \
+      -a_ullr 0 100 200 0 all_inf.tif || fail "gdal_create failed"
+    small_sample
+    gdal_create -q -of GTiff -outsize 1 1 -bands 1 -ot Float32 -burn inf inf_cell.tif ||
+      fail "gdal_create failed"
+    gdal_translate -q -of VRT small.tif one_inf.vrt || fail "gdal_translate failed"
+    sed 's|</VRTRasterBand>|<SimpleSource><SourceFilename relativeToVRT="1">inf_cell.tif</SourceFilename><SourceBand>1</SourceBand><SrcRect xOff="0" yOff="0" xSize="1" ySize="1"/><DstRect xOff="5" yOff="7" xSize="1" ySize="1"/></SimpleSource></VRTRasterBand>|' \
+      one_inf.vrt >one_inf_src.vrt
+    gdal_translate -q one_inf_src.vrt one_inf.tif || fail "gdal_translate failed"
+    for input in all_inf.tif one_inf.tif; do
+      for limit in '--max-error 1' '--max-points 50' '--max-triangles 50'; do
+        # shellcheck disable=SC2086
+        run 1 build "$input" -o out.gpkg $limit --quiet
+        expect_one_error_line "infinite elevation"
+      done
+      run 1 build "$input" -o out.gpkg --quiet # as the full-resolution path does
+      expect_one_error_line "non-finite"
+    done
+    run 1 build one_inf.tif -o out.gpkg --max-error 1 --quiet
+    grep -q 'row 7, column 5' err.txt || fail "the infinite cell is not named"
+    [ ! -e out.gpkg ] || fail "output written for infinite elevations"
+    ;;
+  d11_non_horizontal_crs_refused)
+    small_sample
+    for crs in EPSG:5703 EPSG:4978 '+proj=geocent +datum=WGS84'; do
+      for option in --t_srs --s_srs; do
+        run 1 build small.tif -o out.gpkg "$option" "$crs" --quiet
+        expect_one_error_line "$option.*horizontal CRS"
+        run 1 build small.tif -o out.gpkg "$option" "$crs" --max-error 1 --quiet
+        expect_one_error_line "$option.*horizontal CRS"
+      done
+    done
+    [ ! -e out.gpkg ] || fail "output written in a non-horizontal CRS"
+    # A compound CRS brings its horizontal part (RD New + NAP height), a 3D geographic one too.
+    run 0 build small.tif -o compound.2dm --t_srs EPSG:7415 --quiet
+    run 0 build small.tif -o geographic3d.2dm --t_srs EPSG:4979 --quiet
+    ;;
+  d14_layer_control_characters_refused)
+    for format in obj 2dm ply xml gpkg shp fgb; do
+      for name in "$(printf 'two\nlines')" "$(printf 'tab\there')" "$(printf 'cr\r')" \
+                  "$(printf 'esc\033[31m')"; do
+        run 2 build "$sample" -o "out.$format" --layer "$name"
+        expect_one_error_line "layer name.*control character"
+      done
+      [ ! -e "out.$format" ] || fail "out.$format written despite the control character"
+    done
+    # Printable names, spaces and UTF-8 included, still work.
+    run 0 build "$sample" -o tin.obj --layer 'Mt Hood – 1 m' --quiet
+    [ "$(grep -c '^v ' tin.obj)" -gt 0 ] || fail "no vertices written"
     ;;
   *)
     fail "unknown case"

@@ -11,10 +11,12 @@
 #include "terratin/triangulate/mesh_validation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace terratin {
 
@@ -39,6 +41,17 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
                                 " elevations for " + std::to_string(grid.cellCount()) + " cells");
     if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxRefineCells)
         throw InvalidInputError("Refiner: more than 2^32 - 5 cells; split the raster");
+    // NaN marks nodata; an infinite elevation is a value no TIN can carry (the full-resolution
+    // path refuses it too, issue 22, D7).
+    const auto infinite =
+        std::find_if(grid.z.begin(), grid.z.end(), [](float z) { return std::isinf(z); });
+    if (infinite != grid.z.end()) {
+        const auto cell = static_cast<std::size_t>(infinite - grid.z.begin());
+        const auto width = static_cast<std::size_t>(grid.width);
+        throw InvalidInputError("Refiner: cell " + std::to_string(cell) + " (row " +
+                                std::to_string(cell / width) + ", column " +
+                                std::to_string(cell % width) + ") has an infinite elevation");
+    }
     if (!positions.empty() && positions.size() != grid.cellCount())
         throw InvalidInputError("Refiner: " + std::to_string(positions.size()) + " positions for " +
                                 std::to_string(grid.cellCount()) + " cells");
@@ -157,6 +170,22 @@ const char* toString(RefineStop stop) {
 
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress) {
+    // A rotated geotransform (GT[2] or GT[4] != 0) rounds the centres of a row off their
+    // common line by an ulp or so. The pixel-space scans then disagree with the TIN, which is
+    // built at the rounded centres, about the cells on its border: the hull's corners include
+    // border cells the rounding pushed out, and a cell on a pixel-space edge may lie in the
+    // sliver beside it (issue 22, D6: "a point outside the hull", then cells left unchecked).
+    // The path for reprojected grids locates every cell exactly at its position, so the
+    // rotated grid takes it with the centres as positions (16 bytes per cell).
+    const std::array<double, 6>& c = grid.geoTransform;
+    if ((c[2] != 0.0 || c[4] != 0.0) && grid.width > 0 && grid.height > 0 &&
+        static_cast<std::uint64_t>(grid.cellCount()) <= kMaxRefineCells) {
+        checkRefineOptions(options);
+        std::vector<Point2> centres(grid.cellCount());
+        for (std::size_t cell = 0; cell < centres.size(); ++cell)
+            centres[cell] = grid.cellCentre(static_cast<std::uint64_t>(cell));
+        return refineAt(grid, centres, options, progress);
+    }
     return refineAt(grid, {}, options, progress);
 }
 

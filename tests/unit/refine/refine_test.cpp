@@ -10,7 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <string>
 
 namespace terratin {
@@ -289,6 +292,68 @@ TEST(Refine, Throws_WhenTheInputIsUnusable) {
     EXPECT_THROW(refine(oneRow, {}), InvalidInputError);
     const HeightGrid fine = test::roughTerrain(5, 5, 1);
     EXPECT_THROW(refine(fine, withError(-1.0)), InvalidInputError);
+}
+
+// Issue 22, D7: an infinite elevation is refused as the full-resolution path refuses it
+// (one infinite cell used to collapse the TIN to a few points; all infinite gave z = Inf).
+TEST(Refine, RefusesInfiniteElevations_D7) {
+    const auto expectRefused = [](const HeightGrid& grid, const std::string& where) {
+        RefineOptions options;
+        options.maxError = 1.0;
+        try {
+            refine(grid, options);
+            ADD_FAILURE() << "an infinite elevation accepted";
+        } catch (const InvalidInputError& error) {
+            EXPECT_NE(std::string(error.what()).find("infinite elevation"), std::string::npos)
+                << error.what();
+            EXPECT_NE(std::string(error.what()).find(where), std::string::npos) << error.what();
+        }
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    expectRefused(makeGrid(6, 5, [&](int, int) { return inf; }), "row 0, column 0");
+    expectRefused(
+        makeGrid(6, 5, [&](int row, int col) { return row == 3 && col == 2 ? -inf : 7.0; }),
+        "row 3, column 2");
+    HeightGrid rotated =
+        makeGrid(6, 5, [&](int row, int col) { return row == 4 && col == 5 ? inf : 1.0; });
+    rotated.geoTransform = {1000.0, 0.8, 0.6, 2000.0, 0.6, -0.8};
+    expectRefused(rotated, "row 4, column 5");
+}
+
+// Issue 22, D6: a rotated geotransform used to fail with "a point outside the hull" (the
+// rounded centres of the first row were not on one line). Every limit, UTM-sized
+// coordinates, square and non-square cells, 30 degrees and a shear; each cell checked.
+TEST(Refine, SimplifiesRotatedGrids_D6) {
+    const double angle = 30.0 * std::numbers::pi / 180.0;
+    const double cs = std::cos(angle);
+    const double sn = std::sin(angle);
+    for (const std::array<double, 6>& transform :
+         {std::array<double, 6>{455900.0, 10.0 * cs, 10.0 * sn, 5104100.0, 10.0 * sn, -10.0 * cs},
+          std::array<double, 6>{455900.0, 10.0 * cs, -25.0 * sn, 5104100.0, 10.0 * sn, 25.0 * cs},
+          std::array<double, 6>{455900.0, 10.0, 1.0, 5104100.0, 0.0, -10.0},
+          std::array<double, 6>{455900.0, 10.0, 0.0, 5104100.0, 0.5, -10.0}}) {
+        HeightGrid grid = test::roughTerrain(61, 47, 8);
+        grid.geoTransform = transform;
+        for (int limit = 0; limit < 3; ++limit) {
+            RefineOptions options = withError(1.0, 2);
+            if (limit == 1)
+                options.maxPoints = 300;
+            if (limit == 2)
+                options.maxTriangles = 300;
+            const RefineResult result = refine(grid, options);
+            EXPECT_TRUE(result.validated);
+            EXPECT_EQ(result.uncoveredCells, 0U);
+            EXPECT_EQ(result.coveredCells, grid.cellCount());
+            if (limit == 0) {
+                EXPECT_LE(result.maxError, 1.0);
+                test::expectWithinError(result.mesh, grid, 1.0);
+            }
+            if (limit == 1)
+                EXPECT_LE(result.mesh.vertexCount(), 300U);
+            if (limit == 2)
+                EXPECT_LE(result.mesh.triangleCount(), 300U);
+        }
+    }
 }
 
 TEST(Refine, CancelledByProgress) {
