@@ -629,6 +629,24 @@ case "$case_name" in
     run 0 build "$sample" -o tin.obj --layer 'Mt Hood – 1 m' --quiet
     [ "$(grep -c '^v ' tin.obj)" -gt 0 ] || fail "no vertices written"
     ;;
+  d19_rotated_slivers_have_sane_attributes)
+    # The exact hull of the rotated centres keeps border slivers (area ~1e-10 m2); their
+    # slope is 0 and aspect -1, not the 1e15 % the rounding made, and areas sum to the hull's
+    # (39 x 39 cells of 10 m: 152100 m2).
+    rotated_sample rot.tif
+    run 0 build rot.tif -o full.gpkg --validate --quiet
+    ogrinfo -ro -q full.gpkg -sql 'SELECT MAX(slope_pct) AS m FROM tin' >sql.txt
+    max=$(sed -n 's/.*m (Real) = //p' sql.txt)
+    awk -v m="$max" 'BEGIN { exit !(m + 0 < 1000) }' || fail "max slope_pct $max"
+    ogrinfo -ro -q full.gpkg -sql 'SELECT SUM(area_2d) AS s FROM tin' >sql.txt
+    sum=$(sed -n 's/.*s (Real) = //p' sql.txt)
+    awk -v s="$sum" 'BEGIN { exit !(s > 152099.999 && s < 152100.001) }' || fail "area sum $sum"
+    ogrinfo -ro -q full.gpkg -sql 'SELECT COUNT(*) AS n FROM tin WHERE area_2d < 1e-3' >sql.txt
+    slivers=$(sed -n 's/.*n (Integer) = //p' sql.txt)
+    ogrinfo -ro -q full.gpkg -sql \
+      'SELECT COUNT(*) AS n FROM tin WHERE area_2d < 1e-3 AND slope_deg = 0 AND aspect_deg = -1' >sql.txt
+    [ "$(sed -n 's/.*n (Integer) = //p' sql.txt)" = "$slivers" ] || fail "a sliver has a slope"
+    ;;
   *)
     fail "unknown case"
     ;;
