@@ -56,6 +56,16 @@ small_sample() {
   gdal_translate -q -srcwin 90 90 40 40 "$sample" small.tif || fail "gdal_translate failed"
 }
 
+# rotated_sample OUT.tif: the small sample turned 30 degrees about its corner (GT[2], GT[4] set).
+rotated_sample() {
+  small_sample
+  gdal_translate -q -of VRT small.tif north_up.vrt || fail "gdal_translate failed"
+  sed 's|<GeoTransform>.*</GeoTransform>|<GeoTransform>455900, 8.660254037844387, 5, 5104100, 5, -8.660254037844387</GeoTransform>|' \
+    north_up.vrt >rotated.vrt
+  gdal_translate -q rotated.vrt "$1" || fail "gdal_translate of the rotated VRT failed"
+  gdalinfo "$1" | grep -q 'GeoTransform' || fail "$1 is not rotated"
+}
+
 # feature_count_of FILE LAYER
 feature_count_of() {
   ogrinfo -ro -so "$1" "$2" 2>/dev/null | sed -n 's/^Feature Count: //p' | head -1
@@ -484,6 +494,158 @@ case "$case_name" in
     run 2 build "$sample" -o tin.2dm --edges
     expect_one_error_line "GeoPackage"
     [ ! -e tin.shp ] && [ ! -e tin.2dm ] || fail "output written despite the usage error"
+    ;;
+  # Issue 22: every count option bounded, refused with status 2 and one line before reading.
+  d2_queue_length_bounded)
+    for value in -1 0 1048577 4294967295 18446744073709551617 9223372036854775809; do
+      run 2 build "$sample" -o out.gpkg --method batch --queue-length "$value"
+      expect_one_error_line "queue"
+    done
+    run 0 --help
+    grep -q 'queue-length L.*' out.txt && grep -q '1 to 1048576' out.txt || fail "no bound in --help"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d3_searchers_bounded)
+    for value in -1 1024 100000 4294967296; do
+      run 2 build "$sample" -o out.gpkg --method batch --searchers "$value"
+      expect_one_error_line "search"
+    done
+    run 0 --help
+    grep -q '0 to 1023' out.txt || fail "no bound in --help"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d4_threads_bounded)
+    for method in circumcircle strips batch; do
+      for value in -1 1025 3000 100000; do
+        run 2 build "$sample" -o out.gpkg --method "$method" --threads "$value"
+        expect_one_error_line "thread"
+      done
+    done
+    run 2 build "$sample" -o out.gpkg --max-error 1 -j 100000
+    expect_one_error_line "thread"
+    run 0 --help
+    grep -q '0 to 1024' out.txt || fail "no bound in --help"
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d12_invalid_values_refused)
+    for option in '--threads -1' '--threads=-1' '--max-points -5' '--max-points 2' \
+                  '--max-triangles -1' '--max-triangles 0' '--max-hole -3' '--max-hole 4294967292' \
+                  '--searchers -1' '--queue-length 4294967295' '--seed -1' '--threads 1.5' \
+                  '--max-points 99999999999999999999999'; do
+      # shellcheck disable=SC2086
+      run 2 build "$sample" -o out.gpkg $option
+      expect_one_error_line "${option%%[ =]*}\|point\|triangle\|hole\|queue\|thread\|search"
+    done
+    for option in --t_srs --s_srs; do
+      run 2 build "$sample" -o out.gpkg "$option" ''
+      expect_one_error_line "$option"
+      run 2 build "$sample" -o out.gpkg "$option" ' '
+      expect_one_error_line "$option"
+    done
+    [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    ;;
+  d13_limits_hold_or_refused)
+    # The sample's valid cells fill the raster: a hull of 4 corners, 2 triangles.
+    run 1 build "$sample" -o out.gpkg --max-points 3 --quiet
+    expect_one_error_line "4 corners"
+    run 1 build "$sample" -o out.gpkg --max-triangles 1 --quiet
+    expect_one_error_line "4 corners"
+    [ ! -e out.gpkg ] || fail "output written for a limit below the hull"
+    run 0 build "$sample" -o four.gpkg --max-points 4 --json --quiet
+    report_at_most vertices 4
+    run 0 build "$sample" -o two.gpkg --max-triangles 2 --json --quiet
+    report_at_most triangles 2
+    for limit in 5 6 7 50; do
+      run 0 build "$sample" -o "p$limit.gpkg" --max-points "$limit" --json --quiet
+      report_at_most vertices "$limit"
+      run 0 build "$sample" -o "t$limit.gpkg" --max-triangles "$limit" --json --quiet
+      report_at_most triangles "$limit"
+    done
+    run 0 --help
+    grep -q 'corner count is refused' out.txt || fail "--help does not state the hull guarantee"
+    ;;
+  d6_rotated_raster_simplified)
+    rotated_sample rot.tif
+    for limit in '--max-error 1' '--max-points 200' '--max-triangles 300'; do
+      # shellcheck disable=SC2086
+      run 0 build rot.tif -o out.gpkg $limit --validate --json --quiet --overwrite
+      grep -q '"validated": true' out.txt || fail "$limit: not validated"
+      grep -q '"uncovered_cells": 0' out.txt || fail "$limit: cells left uncovered"
+    done
+    report_at_most triangles 300
+    run 0 build rot.tif -o points.gpkg --max-points 200 --json --quiet
+    report_at_most vertices 200
+    run 0 build rot.tif -o error.gpkg --max-error 1 --json --quiet
+    report_at_most achieved_max_error 1
+    ;;
+  d7_infinite_elevations_refused)
+    gdal_create -q -of GTiff -outsize 20 10 -bands 1 -ot Float32 -burn inf -a_srs EPSG:32633 \
+      -a_ullr 0 100 200 0 all_inf.tif || fail "gdal_create failed"
+    small_sample
+    gdal_create -q -of GTiff -outsize 1 1 -bands 1 -ot Float32 -burn inf inf_cell.tif ||
+      fail "gdal_create failed"
+    gdal_translate -q -of VRT small.tif one_inf.vrt || fail "gdal_translate failed"
+    sed 's|</VRTRasterBand>|<SimpleSource><SourceFilename relativeToVRT="1">inf_cell.tif</SourceFilename><SourceBand>1</SourceBand><SrcRect xOff="0" yOff="0" xSize="1" ySize="1"/><DstRect xOff="5" yOff="7" xSize="1" ySize="1"/></SimpleSource></VRTRasterBand>|' \
+      one_inf.vrt >one_inf_src.vrt
+    gdal_translate -q one_inf_src.vrt one_inf.tif || fail "gdal_translate failed"
+    for input in all_inf.tif one_inf.tif; do
+      for limit in '--max-error 1' '--max-points 50' '--max-triangles 50'; do
+        # shellcheck disable=SC2086
+        run 1 build "$input" -o out.gpkg $limit --quiet
+        expect_one_error_line "infinite elevation"
+      done
+      run 1 build "$input" -o out.gpkg --quiet # as the full-resolution path does
+      expect_one_error_line "non-finite"
+    done
+    run 1 build one_inf.tif -o out.gpkg --max-error 1 --quiet
+    grep -q 'row 7, column 5' err.txt || fail "the infinite cell is not named"
+    [ ! -e out.gpkg ] || fail "output written for infinite elevations"
+    ;;
+  d11_non_horizontal_crs_refused)
+    small_sample
+    for crs in EPSG:5703 EPSG:4978 '+proj=geocent +datum=WGS84'; do
+      for option in --t_srs --s_srs; do
+        run 1 build small.tif -o out.gpkg "$option" "$crs" --quiet
+        expect_one_error_line "$option.*horizontal CRS"
+        run 1 build small.tif -o out.gpkg "$option" "$crs" --max-error 1 --quiet
+        expect_one_error_line "$option.*horizontal CRS"
+      done
+    done
+    [ ! -e out.gpkg ] || fail "output written in a non-horizontal CRS"
+    # A compound CRS brings its horizontal part (RD New + NAP height), a 3D geographic one too.
+    run 0 build small.tif -o compound.2dm --t_srs EPSG:7415 --quiet
+    run 0 build small.tif -o geographic3d.2dm --t_srs EPSG:4979 --quiet
+    ;;
+  d14_layer_control_characters_refused)
+    for format in obj 2dm ply xml gpkg shp fgb; do
+      for name in "$(printf 'two\nlines')" "$(printf 'tab\there')" "$(printf 'cr\r')" \
+                  "$(printf 'esc\033[31m')"; do
+        run 2 build "$sample" -o "out.$format" --layer "$name"
+        expect_one_error_line "layer name.*control character"
+      done
+      [ ! -e "out.$format" ] || fail "out.$format written despite the control character"
+    done
+    # Printable names, spaces and UTF-8 included, still work.
+    run 0 build "$sample" -o tin.obj --layer 'Mt Hood – 1 m' --quiet
+    [ "$(grep -c '^v ' tin.obj)" -gt 0 ] || fail "no vertices written"
+    ;;
+  d19_rotated_slivers_have_sane_attributes)
+    # The exact hull of the rotated centres keeps border slivers (area ~1e-10 m2); their
+    # slope is 0 and aspect -1, not the 1e15 % the rounding made, and areas sum to the hull's
+    # (39 x 39 cells of 10 m: 152100 m2).
+    rotated_sample rot.tif
+    run 0 build rot.tif -o full.gpkg --validate --quiet
+    ogrinfo -ro -q full.gpkg -sql 'SELECT MAX(slope_pct) AS m FROM tin' >sql.txt
+    max=$(sed -n 's/.*m (Real) = //p' sql.txt)
+    awk -v m="$max" 'BEGIN { exit !(m + 0 < 1000) }' || fail "max slope_pct $max"
+    ogrinfo -ro -q full.gpkg -sql 'SELECT SUM(area_2d) AS s FROM tin' >sql.txt
+    sum=$(sed -n 's/.*s (Real) = //p' sql.txt)
+    awk -v s="$sum" 'BEGIN { exit !(s > 152099.999 && s < 152100.001) }' || fail "area sum $sum"
+    ogrinfo -ro -q full.gpkg -sql 'SELECT COUNT(*) AS n FROM tin WHERE area_2d < 1e-3' >sql.txt
+    slivers=$(sed -n 's/.*n (Integer) = //p' sql.txt)
+    ogrinfo -ro -q full.gpkg -sql \
+      'SELECT COUNT(*) AS n FROM tin WHERE area_2d < 1e-3 AND slope_deg = 0 AND aspect_deg = -1' >sql.txt
+    [ "$(sed -n 's/.*n (Integer) = //p' sql.txt)" = "$slivers" ] || fail "a sliver has a slope"
     ;;
   *)
     fail "unknown case"

@@ -9,6 +9,8 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <system_error>
 
 namespace terratin::cli {
 
@@ -66,8 +68,33 @@ TriangulationMethod parseMethod(const std::string& name) {
           TriangulationMethod::Auto})
         if (key == toString(method))
             return method;
-    throw UsageError("--method must be sequential, batch, circumcircle, strips or auto (got '" + name +
-                     "')");
+    throw UsageError("--method must be sequential, batch, circumcircle, strips or auto (got '" +
+                     name + "')");
+}
+
+// Boost.Program_options reads "-1" into an unsigned option as 2^64 - 1 (it wraps through
+// strtoul): count options are read as text and parsed here, digits only, so that a sign is
+// refused instead of wrapped. Their ranges are the library's to check (checkBuildOptions).
+template <class Count> Count parseCount(const po::variables_map& values, const std::string& name) {
+    const std::string& text = values[name].as<std::string>();
+    Count count{};
+    const char* end = text.data() + text.size();
+    const auto [ptr, error] = std::from_chars(text.data(), end, count);
+    if (error == std::errc::result_out_of_range)
+        throw UsageError("--" + name + " is too large (got '" + text + "')");
+    if (text.empty() || error != std::errc() || ptr != end)
+        throw UsageError("--" + name + " takes a whole number without sign (got '" + text + "')");
+    return count;
+}
+
+// A CRS option given as an empty (or blank) string would mean "no CRS" to the library, which
+// is not what a user typing it asks for.
+std::string parseCrsOption(const po::variables_map& values, const std::string& name) {
+    const std::string& text = values[name].as<std::string>();
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw UsageError("--" + name +
+                         " needs a CRS (EPSG:n, WKT, PROJ string, .prj file), not an empty string");
+    return text;
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -118,9 +145,9 @@ void parsePointCloudOptions(const po::variables_map& values, BuildOptions& build
     if (values.count("input-layer"))
         build.inputLayer = values["input-layer"].as<std::string>();
     if (values.count("s_srs"))
-        build.sourceSrs = values["s_srs"].as<std::string>();
+        build.sourceSrs = parseCrsOption(values, "s_srs");
     if (values.count("t_srs"))
-        build.targetSrs = values["t_srs"].as<std::string>();
+        build.targetSrs = parseCrsOption(values, "t_srs");
     build.keepGeographic = values.count("keep-geographic") > 0;
     if (build.keepGeographic && !build.targetSrs.empty())
         throw UsageError("--keep-geographic and --t_srs contradict each other");
@@ -141,7 +168,7 @@ po::options_description buildOptionsDescription() {
          "extension); 2dm has no CRS (QGIS opens it without one): use ply for a QGIS mesh "
          "layer with its CRS")
         ("band,b", po::value<int>()->default_value(1)->value_name("N"), "raster band, from 1")
-        ("seed", po::value<std::uint64_t>()->default_value(1)->value_name("S"),
+        ("seed", po::value<std::string>()->default_value("1")->value_name("S"),
          "seed of the randomized insertion order (same seed, same TIN)")
         ("order", po::value<std::string>()->default_value("brio")->value_name("ORDER"),
          "insertion order: brio (random rounds, each sorted along a Hilbert curve) or random")
@@ -154,22 +181,30 @@ po::options_description buildOptionsDescription() {
         ("locate", po::value<std::string>()->default_value("dag")->value_name("HOW"),
          "point location of sequential, batch and circumcircle: dag (the history DAG) or "
          "walk (from the previous point; sequential then keeps no history)")
-        ("threads,j", po::value<unsigned>()->default_value(0)->value_name("N"),
-         "threads to use; 0 = all hardware threads")
-        ("searchers", po::value<unsigned>()->default_value(0)->value_name("K"),
-         "batch method: searching threads (0 = chosen from the input size and --threads)")
-        ("queue-length", po::value<std::size_t>()->default_value(1024)->value_name("L"),
-         "batch method: length of the queue to the inserting thread")
+        ("threads,j", po::value<std::string>()->default_value("0")->value_name("N"),
+         ("threads to use, 0 to " + std::to_string(kMaxThreads) +
+          "; 0 = all hardware threads").c_str())
+        ("searchers", po::value<std::string>()->default_value("0")->value_name("K"),
+         ("batch method: searching threads, 0 to " + std::to_string(kMaxThreads - 1) +
+          " (0 = chosen from the input size and --threads)").c_str())
+        ("queue-length", po::value<std::string>()->default_value("1024")->value_name("L"),
+         ("batch method: length of the queue to the inserting thread, 1 to " +
+          std::to_string(kMaxQueueLength)).c_str())
         ("searchers-help",
          "batch method: searchers complete queued locations when the queue is full")
         ("max-error", po::value<double>()->value_name("E"),
          "simplify: greedy insertion until every valid cell is within E (z units) of the TIN")
-        ("max-points", po::value<std::size_t>()->value_name("N"),
-         "simplify: at most N vertices (the first limit reached stops)")
-        ("max-triangles", po::value<std::size_t>()->value_name("N"),
-         "simplify: at most N triangles (the first limit reached stops)")
-        ("max-hole", po::value<std::size_t>()->value_name("N"),
-         "simplify: nodata regions (8-connected) of more than N cells stay open (default 1)")
+        ("max-points", po::value<std::string>()->value_name("N"),
+         ("simplify: at most N vertices, 3 to " + std::to_string(kMaxRefineCells) +
+          " (the first limit reached stops); the hull of the valid cells is always kept, so N "
+          "below its corner count is refused").c_str())
+        ("max-triangles", po::value<std::string>()->value_name("N"),
+         ("simplify: at most N triangles, 1 to " + std::to_string(2 * kMaxRefineCells) +
+          " (the first limit reached stops); the hull's corners alone make corners - 2 "
+          "triangles, so a smaller N is refused").c_str())
+        ("max-hole", po::value<std::string>()->value_name("N"),
+         ("simplify: nodata regions (8-connected) of more than N cells stay open, 0 to " +
+          std::to_string(kMaxRefineCells) + " (default 1)").c_str())
         ("fill-holes", "simplify: triangulate across every nodata region")
         ("max-edge", po::value<double>()->value_name("L"),
          "drop triangles with an edge longer than L (CRS units), e.g. across point-cloud gaps")
@@ -197,9 +232,11 @@ po::options_description buildOptionsDescription() {
         ("input-layer", po::value<std::string>()->value_name("NAME"),
          "vector points: the layer to read (default: the first point layer)")
         ("s_srs", po::value<std::string>()->value_name("SRS"),
-         "CRS of the inputs, overriding theirs (EPSG:n, WKT, PROJ string, .prj file...)")
+         "CRS of the inputs, overriding theirs (EPSG:n, WKT, PROJ string, .prj file...); "
+         "horizontal: projected or geographic 2D, or compound with such a part")
         ("t_srs", po::value<std::string>()->value_name("SRS"),
-         "reproject every point (x, y) to this CRS before triangulating; the output carries it")
+         "reproject every point (x, y) to this CRS before triangulating; the output carries "
+         "it; horizontal, as --s_srs (not vertical-only, not geocentric)")
         ("keep-geographic",
          "triangulate geographic input in degrees instead of its UTM/UPS zone")
         ("z-factor", po::value<double>()->default_value(1.0)->value_name("F"),
@@ -274,7 +311,7 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     if (build.band < 1)
         throw UsageError("--band must be 1 or more");
     TriangulationOptions& triangulation = build.triangulation;
-    triangulation.seed = values["seed"].as<std::uint64_t>();
+    triangulation.seed = parseCount<std::uint64_t>(values, "seed");
     triangulation.duplicateZ = parseDuplicatePolicy(values["duplicate-z"].as<std::string>());
     triangulation.method = parseMethod(values["method"].as<std::string>());
     const std::string order = lowercase(values["order"].as<std::string>());
@@ -285,11 +322,9 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     if (locate != "dag" && locate != "walk")
         throw UsageError("--locate must be dag or walk (got '" + locate + "')");
     triangulation.locate = locate == "walk" ? PointLocation::Walk : PointLocation::Dag;
-    triangulation.threads = values["threads"].as<unsigned>();
-    triangulation.searchers = values["searchers"].as<unsigned>();
-    triangulation.queueLength = values["queue-length"].as<std::size_t>();
-    if (triangulation.queueLength == 0)
-        throw UsageError("--queue-length must be 1 or more");
+    triangulation.threads = parseCount<unsigned>(values, "threads");
+    triangulation.searchers = parseCount<unsigned>(values, "searchers");
+    triangulation.queueLength = parseCount<std::size_t>(values, "queue-length");
     triangulation.searchersHelpWhenQueueFull = values.count("searchers-help") > 0;
     // Simplification: any of its options selects the refinement path.
     if (values.count("max-error") || values.count("max-points") || values.count("max-triangles") ||
@@ -301,18 +336,12 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
                 throw UsageError("--max-error must be a finite number >= 0");
             refine.maxError = maxError;
         }
-        if (values.count("max-points")) {
-            refine.maxPoints = values["max-points"].as<std::size_t>();
-            if (*refine.maxPoints < 3)
-                throw UsageError("--max-points must be 3 or more");
-        }
-        if (values.count("max-triangles")) {
-            refine.maxTriangles = values["max-triangles"].as<std::size_t>();
-            if (*refine.maxTriangles < 1)
-                throw UsageError("--max-triangles must be 1 or more");
-        }
+        if (values.count("max-points"))
+            refine.maxPoints = parseCount<std::size_t>(values, "max-points");
+        if (values.count("max-triangles"))
+            refine.maxTriangles = parseCount<std::size_t>(values, "max-triangles");
         if (values.count("max-hole"))
-            refine.maxHole = values["max-hole"].as<std::size_t>();
+            refine.maxHole = parseCount<std::size_t>(values, "max-hole");
         refine.fillHoles = values.count("fill-holes") > 0;
         build.refine = refine;
     }
@@ -330,14 +359,14 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     build.appendLayer = values.count("append-layer") > 0;
     build.spatialIndex = values.count("no-spatial-index") == 0;
     build.qgisStyle = values.count("qgis-style") > 0;
-    // A format that cannot be named or inferred, or output options that contradict it, are
-    // command-line mistakes (status 2).
+    // A format that cannot be named or inferred, output options that contradict it, and
+    // values out of the library's ranges are command-line mistakes (status 2).
     try {
         build.format = values.count("format")
                            ? io::parseTinFormat(values["format"].as<std::string>())
                            : io::tinFormatFromPath(build.output);
         build.attributes = io::parseAttributeSet(values["attributes"].as<std::string>());
-        io::checkTinWriteOptions(tinWriteOptions(build, *build.format));
+        checkBuildOptions(build);
     } catch (const Error& error) {
         throw UsageError(error.what());
     }

@@ -51,6 +51,18 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
     if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE)
         throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
                        "' is not a CRS PROJ knows: " + io::lastGdalErrorMessage());
+    // The TIN is triangulated in x, y of this CRS: a vertical-only CRS has no x, y, and a
+    // geocentric one's x, y are a slice through the Earth (issue 22, D11: both used to be
+    // accepted and label nonsense). A compound CRS brings its horizontal part.
+    if (!srs.IsProjected() && !srs.IsGeographic() && !srs.IsLocal()) {
+        const char* kind = srs.IsGeocentric() ? "geocentric (x, y, z from the Earth's centre)"
+                           : srs.IsVertical() ? "vertical only (heights, no x, y)"
+                                              : "not horizontal";
+        throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
+                       "' is " + kind +
+                       "; a TIN needs a horizontal CRS: projected or geographic, or compound "
+                       "with one of them");
+    }
     std::string wkt = detail::exportWkt(srs);
     if (wkt.empty())
         throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +

@@ -11,6 +11,8 @@
 ///               of Geographical Information Systems", 1998, ch. 8)
 ///   area2d    = |nz| / 2,   area3d = |n| / 2,   unit normal = n / |n|.
 /// Turning n up makes every result independent of the corner order (CW or CCW).
+/// A triangle within rounding of no planimetric extent (a sliver of points collinear in exact
+/// arithmetic; see kFlatHeightUlps) gets the slope and aspect of one without extent.
 /// Every quantity is a correctly rounded operation (or hypot / atan2) of the exact-as-possible
 /// cross product, so Pythagorean test triangles give exact areas, normals and percentages.
 
@@ -18,12 +20,36 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace terratin {
 
 namespace {
 constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
+
+// A triangle whose height over its longest edge (x, y) is below this many units in the last
+// place of its largest coordinate is flat in x, y as far as its input can tell: a vertex is
+// known to about an ulp of its coordinates (a cell centre from a geotransform is off its
+// exact position by two or three roundings, a reprojected point by more), so three points
+// that are collinear in exact arithmetic come out with a height of a few ulps at most. A
+// rotated grid's border gives such slivers (issue 22, D19: heights of 1e-11 m at UTM
+// northings, 1.3e15 % slope). 64 ulps leaves a margin over those roundings and is still
+// 3e-8 m at a northing of 5e6 m, far below any real triangle of terrain.
+constexpr double kFlatHeightUlps = 64.0;
+
+// Whether the triangle with planimetric doubled area `doubleArea` (= nz) is within rounding
+// of having no planimetric extent.
+bool isPlanimetricSliver(const Point3& a, const Point3& b, const Point3& c, double doubleArea) {
+    const double longest =
+        std::max({std::hypot(b.x - a.x, b.y - a.y), std::hypot(c.x - b.x, c.y - b.y),
+                  std::hypot(a.x - c.x, a.y - c.y)});
+    const double magnitude = std::max(
+        {std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y), std::abs(c.x), std::abs(c.y)});
+    const double tolerance = kFlatHeightUlps * std::numeric_limits<double>::epsilon() * magnitude;
+    // height = doubleArea / longest; compared without the division.
+    return doubleArea <= tolerance * longest;
+}
 } // namespace
 
 TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, const Point3& c) {
@@ -75,6 +101,14 @@ TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, c
     }
 
     attributes.area2d = 0.5 * nz;
+    // Within rounding of no extent: the same slope and aspect as above, the (tiny) area kept
+    // so that areas still sum to the hull's.
+    if (isPlanimetricSliver(a, b, c, nz)) {
+        attributes.slopeDeg = 0.0;
+        attributes.slopePct = 0.0;
+        attributes.aspectDeg = -1.0;
+        return attributes;
+    }
     attributes.slopeDeg = std::atan2(horizontal, nz) * kDegreesPerRadian;
     attributes.slopePct = 100.0 * (horizontal / nz);
 

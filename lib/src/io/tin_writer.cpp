@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -179,6 +180,19 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
         throwInvalid(kStage, "--qgis-style colours by z_mean: it needs --attributes basic or all");
     if (geoPackage && options.layerName.empty())
         throwInvalid(kStage, "the layer name is empty");
+    // The mesh formats write the name raw into a line of text (2DM MESHNAME, OBJ "o"): a
+    // newline in it starts a record of its own and shifts every index after it (issue 22,
+    // D14). No format has a use for control characters in a name, so every one refuses them.
+    const auto control = std::find_if(options.layerName.begin(), options.layerName.end(),
+                                      [](unsigned char ch) { return ch < 0x20 || ch == 0x7F; });
+    if (control != options.layerName.end()) {
+        char code[8];
+        std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned char>(*control));
+        throwInvalid(kStage, "the layer name holds a control character (" + std::string(code) +
+                                 " at byte " +
+                                 std::to_string(control - options.layerName.begin() + 1) +
+                                 "); use printable characters only");
+    }
     if (geoPackage && (options.nodes || options.edges) &&
         (nodeLayerName(options.layerName) == options.layerName ||
          edgeLayerName(options.layerName) == options.layerName))

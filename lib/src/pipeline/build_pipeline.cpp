@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
 #include <utility>
 
 namespace terratin {
@@ -71,7 +72,9 @@ void describeCrs(const std::string& wkt, BuildReport& report) {
         report.crsCode = std::string(authority) + ":" + code;
 }
 
-std::string formatName(io::TinFormat format) { return std::string(io::tinFormatName(format)); }
+std::string formatName(io::TinFormat format) {
+    return std::string(io::tinFormatName(format));
+}
 
 // The raster cell of every vertex, for the GeoPackage nodes layer: `cellOf(source)` is the
 // row-major cell index of input point `source`.
@@ -199,10 +202,26 @@ io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat f
     return writeOptions;
 }
 
+void checkBuildOptions(const BuildOptions& options) {
+    checkTriangulationOptions(options.triangulation);
+    if (options.refine)
+        checkRefineOptions(*options.refine);
+    if (options.band < 1)
+        throw InvalidInputError("Build: the raster band must be 1 or more (got " +
+                                std::to_string(options.band) + ")");
+    if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
+        throw InvalidInputError("Build: the z factor must be a finite number other than 0");
+    if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
+        throw InvalidInputError("Build: the longest edge kept must be a positive length");
+    if (options.format)
+        io::checkTinWriteOptions(tinWriteOptions(options, *options.format));
+}
+
 BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
+    checkBuildOptions(options);
     const Clock::time_point start = Clock::now();
-    const io::TinFormat format = options.format ? *options.format
-                                                : io::tinFormatFromPath(options.output);
+    const io::TinFormat format =
+        options.format ? *options.format : io::tinFormatFromPath(options.output);
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
     io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
     checkOutputPath(options);

@@ -210,6 +210,19 @@ void GreedyRefiner::setVertex(VertexId vertex, std::uint32_t cell) {
 void GreedyRefiner::startFromHull() {
     const std::vector<std::uint32_t> hull = validHullCells(m_grid, m_positions);
     m_hullPoints = hull.size();
+    // Every valid cell stays covered, so the hull's corners are the fewest points and
+    // (corners - 2) the fewest triangles: a smaller limit could not hold (issue 22, D13).
+    if (m_options.maxPoints && *m_options.maxPoints < hull.size())
+        throw InvalidInputError("Refiner: the convex hull of the valid cells has " +
+                                std::to_string(hull.size()) +
+                                " corners, which every simplified TIN keeps: a point limit of " +
+                                std::to_string(*m_options.maxPoints) + " is below that");
+    if (m_options.maxTriangles && *m_options.maxTriangles < hull.size() - 2)
+        throw InvalidInputError(
+            "Refiner: the convex hull of the valid cells has " + std::to_string(hull.size()) +
+            " corners, which every simplified TIN keeps, in at least " +
+            std::to_string(hull.size() - 2) + " triangles: a triangle limit of " +
+            std::to_string(*m_options.maxTriangles) + " is below that");
     planStrips();
     std::vector<VertexId> hullVertices(hull.size());
     for (std::size_t k = 0; k < hull.size(); ++k) {

@@ -10,10 +10,13 @@
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace terratin {
 
@@ -28,21 +31,27 @@ double lap(Clock::time_point& start) {
     return seconds;
 }
 
-// Vertex ids are 32-bit and the triangulator needs two more for its symbolic vertices; cell
-// indices are 32-bit in TinMesh::sourceIndex.
-constexpr std::uint64_t kMaxCells = (std::uint64_t{1} << 32U) - 5;
-
 void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
                 const RefineOptions& options) {
+    checkRefineOptions(options);
     if (grid.width <= 0 || grid.height <= 0)
         throw InvalidInputError("Refiner: the grid is empty");
     if (grid.z.size() != grid.cellCount())
         throw InvalidInputError("Refiner: the grid has " + std::to_string(grid.z.size()) +
                                 " elevations for " + std::to_string(grid.cellCount()) + " cells");
-    if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxCells)
+    if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxRefineCells)
         throw InvalidInputError("Refiner: more than 2^32 - 5 cells; split the raster");
-    if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
-        throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
+    // NaN marks nodata; an infinite elevation is a value no TIN can carry (the full-resolution
+    // path refuses it too, issue 22, D7).
+    const auto infinite =
+        std::find_if(grid.z.begin(), grid.z.end(), [](float z) { return std::isinf(z); });
+    if (infinite != grid.z.end()) {
+        const auto cell = static_cast<std::size_t>(infinite - grid.z.begin());
+        const auto width = static_cast<std::size_t>(grid.width);
+        throw InvalidInputError("Refiner: cell " + std::to_string(cell) + " (row " +
+                                std::to_string(cell / width) + ", column " +
+                                std::to_string(cell % width) + ") has an infinite elevation");
+    }
     if (!positions.empty() && positions.size() != grid.cellCount())
         throw InvalidInputError("Refiner: " + std::to_string(positions.size()) + " positions for " +
                                 std::to_string(grid.cellCount()) + " cells");
@@ -56,8 +65,9 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     checkInput(grid, positions, options);
     RefineResult result;
     Clock::time_point phase = Clock::now();
-    const unsigned threads =
-        options.threads != 0 ? options.threads : std::max(1U, std::thread::hardware_concurrency());
+    const unsigned threads = options.threads != 0
+                                 ? options.threads
+                                 : std::clamp(std::thread::hardware_concurrency(), 1U, kMaxThreads);
     result.threads = threads;
 
     detail::CellFlags flags =
@@ -127,6 +137,25 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
 
 } // namespace
 
+void checkRefineOptions(const RefineOptions& options) {
+    const auto got = [](std::uint64_t value) { return " (got " + std::to_string(value) + ")"; };
+    if (options.maxError && (!std::isfinite(*options.maxError) || *options.maxError < 0.0))
+        throw InvalidInputError("Refiner: the maximum error must be finite and >= 0");
+    if (options.maxPoints && (*options.maxPoints < 3 || *options.maxPoints > kMaxRefineCells))
+        throw InvalidInputError("Refiner: the point limit must be 3 to " +
+                                std::to_string(kMaxRefineCells) + got(*options.maxPoints));
+    if (options.maxTriangles &&
+        (*options.maxTriangles < 1 || *options.maxTriangles > 2 * kMaxRefineCells))
+        throw InvalidInputError("Refiner: the triangle limit must be 1 to " +
+                                std::to_string(2 * kMaxRefineCells) + got(*options.maxTriangles));
+    if (options.maxHole > kMaxRefineCells)
+        throw InvalidInputError("Refiner: the largest hole to fill must be 0 to " +
+                                std::to_string(kMaxRefineCells) + " cells" + got(options.maxHole));
+    if (options.threads > kMaxThreads)
+        throw InvalidInputError("Refiner: the thread count must be 0 (all) to " +
+                                std::to_string(kMaxThreads) + got(options.threads));
+}
+
 const char* toString(RefineStop stop) {
     switch (stop) {
     case RefineStop::ErrorReached:
@@ -141,6 +170,22 @@ const char* toString(RefineStop stop) {
 
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress) {
+    // A rotated geotransform (GT[2] or GT[4] != 0) rounds the centres of a row off their
+    // common line by an ulp or so. The pixel-space scans then disagree with the TIN, which is
+    // built at the rounded centres, about the cells on its border: the hull's corners include
+    // border cells the rounding pushed out, and a cell on a pixel-space edge may lie in the
+    // sliver beside it (issue 22, D6: "a point outside the hull", then cells left unchecked).
+    // The path for reprojected grids locates every cell exactly at its position, so the
+    // rotated grid takes it with the centres as positions (16 bytes per cell).
+    const std::array<double, 6>& c = grid.geoTransform;
+    if ((c[2] != 0.0 || c[4] != 0.0) && grid.width > 0 && grid.height > 0 &&
+        static_cast<std::uint64_t>(grid.cellCount()) <= kMaxRefineCells) {
+        checkRefineOptions(options);
+        std::vector<Point2> centres(grid.cellCount());
+        for (std::size_t cell = 0; cell < centres.size(); ++cell)
+            centres[cell] = grid.cellCentre(static_cast<std::uint64_t>(cell));
+        return refineAt(grid, centres, options, progress);
+    }
     return refineAt(grid, {}, options, progress);
 }
 

@@ -39,7 +39,8 @@ std::vector<Candidate> rowEnds(const HeightGrid& grid) {
     return candidates;
 }
 
-// The valid cells on the boundary of the valid area (a 4-neighbour outside or nodata).
+// The valid cells on the boundary of the valid area (a 4-neighbour outside or nodata), at
+// `positions`, or at their cell centres when it is empty.
 std::vector<Candidate> boundaryCells(const HeightGrid& grid, std::span<const Point2> positions) {
     std::vector<Candidate> candidates;
     const std::int64_t width = grid.width;
@@ -56,7 +57,8 @@ std::vector<Candidate> boundaryCells(const HeightGrid& grid, std::span<const Poi
                 valid(row, col + 1))
                 continue;
             const auto cell = static_cast<std::uint32_t>(row * width + col);
-            candidates.push_back({positions[cell], cell});
+            candidates.push_back(
+                {positions.empty() ? grid.cellCentre(cell) : positions[cell], cell});
         }
     return candidates;
 }
@@ -65,8 +67,11 @@ std::vector<Candidate> boundaryCells(const HeightGrid& grid, std::span<const Poi
 
 std::vector<std::uint32_t> validHullCells(const HeightGrid& grid,
                                           std::span<const Point2> positions) {
+    // Rows are exactly horizontal lines only when GT[4] is 0 (see the header); GT[2] alone
+    // keeps them so, but is rare enough that the general candidates cost nothing noticeable.
+    const bool northUp = grid.geoTransform[2] == 0.0 && grid.geoTransform[4] == 0.0;
     std::vector<Candidate> candidates =
-        positions.empty() ? rowEnds(grid) : boundaryCells(grid, positions);
+        positions.empty() && northUp ? rowEnds(grid) : boundaryCells(grid, positions);
     if (candidates.empty())
         throw InvalidInputError("Refiner: the grid has no valid cell");
 

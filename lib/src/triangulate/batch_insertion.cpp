@@ -1,6 +1,7 @@
 #include "batch_insertion.hpp"
 
 #include "bounded_queue.hpp"
+#include "watched_threads.hpp"
 
 #include "terratin/error.hpp"
 
@@ -20,9 +21,6 @@ namespace {
 // cursor is not contended and consecutive locations reuse the same DAG paths in cache.
 constexpr std::size_t kClaimedPoints = 64;
 
-// Progress from the specialised thread every this many insertions.
-constexpr std::size_t kProgressInterval = 1U << 16;
-
 struct Located {
     VertexId vertex;
     NodeId node;
@@ -41,8 +39,9 @@ public:
         NodeId previous = 0; // where the previous point was found
         try {
             for (;;) {
-                const std::size_t begin = m_cursor.fetch_add(kClaimedPoints, std::memory_order_relaxed);
-                if (begin >= m_order.size())
+                const std::size_t begin =
+                    m_cursor.fetch_add(kClaimedPoints, std::memory_order_relaxed);
+                if (begin >= m_order.size() || stopping())
                     return;
                 const std::size_t end = std::min(begin + kClaimedPoints, m_order.size());
                 for (std::size_t i = begin; i < end; ++i) {
@@ -58,21 +57,18 @@ public:
         }
     }
 
-    void insertAll(const ProgressCallback& progress) {
+    // The specialised thread: completes each location, subdivides and legalises. Publishes
+    // its count for the watching thread's progress reports.
+    void insertAll() {
         for (std::size_t done = 0; done < m_order.size(); ++done) {
-            if (progress && done % kProgressInterval == 0 &&
-                !progress(static_cast<double>(done) / static_cast<double>(m_order.size()),
-                          "triangulating")) {
-                m_cancelled = true;
-                stop();
-                return;
-            }
             Located item{};
             while (!m_queue.tryPop(item)) {
-                if (m_stop.load(std::memory_order_acquire))
+                if (stopping())
                     return;
                 std::this_thread::yield();
             }
+            if (stopping())
+                return;
             try {
                 m_triangulator.insertAtLeaf(m_triangulator.locate(item.vertex, item.node),
                                             item.vertex);
@@ -80,7 +76,18 @@ public:
                 fail(std::current_exception());
                 return;
             }
+            m_inserted.store(done + 1, std::memory_order_relaxed);
         }
+    }
+
+    // The watching thread's report; false once the callback asked to stop.
+    bool report(const ProgressCallback& progress) {
+        const std::size_t done = m_inserted.load(std::memory_order_relaxed);
+        if (!progress || progress(static_cast<double>(done) / static_cast<double>(m_order.size()),
+                                  "triangulating"))
+            return true;
+        m_cancelled = true; // read after the threads have joined
+        return false;
     }
 
     void stop() { m_stop.store(true, std::memory_order_release); }
@@ -97,10 +104,12 @@ public:
     }
 
 private:
+    [[nodiscard]] bool stopping() const { return m_stop.load(std::memory_order_acquire); }
+
     // Pushes `item`, waiting (or helping) while the queue is full; false when the run stops.
     bool deliver(Located item, bool mayHelp) {
         while (!m_queue.tryPush(item)) {
-            if (m_stop.load(std::memory_order_acquire))
+            if (stopping())
                 return false;
             if (mayHelp && helpSpecialisedThread())
                 continue;
@@ -140,6 +149,7 @@ private:
     const BatchSettings& m_settings;
     BoundedQueue<Located> m_queue;
     std::atomic<std::size_t> m_cursor{0};
+    std::atomic<std::size_t> m_inserted{0};
     std::atomic<bool> m_stop{false};
     std::atomic<std::size_t> m_helped{0};
     bool m_cancelled = false;
@@ -154,14 +164,19 @@ BatchStatistics insertWithBatchMethod(DagTriangulator& triangulator,
                                       const BatchSettings& settings,
                                       const ProgressCallback& progress) {
     BatchRun run(triangulator, order, settings);
-    {
-        std::vector<std::jthread> searchers;
-        searchers.reserve(std::max(1U, settings.searchers));
-        for (unsigned i = 0; i < std::max(1U, settings.searchers); ++i)
-            searchers.emplace_back([&run] { run.search(); });
-        run.insertAll(progress);
-        run.stop(); // releases searchers still waiting on a full queue after a failure
-    }
+    // Thread 0 is the specialised one, the others search; the calling thread watches.
+    const unsigned searchers = std::max(1U, settings.searchers);
+    runWatched(
+        searchers + 1,
+        [&run](unsigned index) {
+            if (index == 0) {
+                run.insertAll();
+                run.stop(); // releases searchers waiting on a full queue after a failure
+            } else {
+                run.search();
+            }
+        },
+        [&run, &progress] { return run.report(progress); }, [&run] { run.stop(); });
     run.rethrowFailure();
     return {run.helpedLocations()};
 }

@@ -1,6 +1,7 @@
 #include "strip_insertion.hpp"
 
 #include "parallel_for.hpp"
+#include "watched_threads.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
@@ -114,7 +115,8 @@ void StripTriangulator::insertAll(std::span<const std::uint32_t> order,
         while (level < m_topLevel && round.size() < m_minimumPointsPerStrip * groupsAt(level))
             ++level;
         if (level < m_topLevel) {
-            insertRoundInGroups(round, level);
+            insertRoundInGroups(round, level, progress,
+                                static_cast<double>(starts[r]) / static_cast<double>(order.size()));
         } else {
             for (std::size_t i = 0; i < round.size(); i += kProgressInterval) {
                 const std::size_t end = std::min(round.size(), i + kProgressInterval);
@@ -133,12 +135,24 @@ void StripTriangulator::insertSequentially(std::span<const std::uint32_t> points
         m_mesh.insert(p, m_hint, m_scratch.back());
 }
 
-void StripTriangulator::insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level) {
+template <class Body>
+void StripTriangulator::runGroups(unsigned groups, const ProgressCallback& progress,
+                                  double fraction, Body&& body) {
+    const bool finished = runWatched(
+        groups, body, [&] { return !progress || progress(fraction, "triangulating"); },
+        [this] { m_stop.store(true, std::memory_order_relaxed); });
+    if (!finished)
+        throw Cancelled("Triangulator: cancelled");
+}
+
+void StripTriangulator::insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level,
+                                            const ProgressCallback& progress, double fraction) {
     // queued[l]: the points refused below level l that level l retries, in the order they
     // were refused.
     std::vector<std::vector<std::uint32_t>> queued(m_topLevel + 1);
     const auto insertAndQueueRefused = [&](std::span<const std::uint32_t> points, unsigned l) {
-        for (const std::vector<std::uint32_t>& refused : insertAtLevel(points, l))
+        for (const std::vector<std::uint32_t>& refused :
+             insertAtLevel(points, l, progress, fraction))
             for (const std::uint32_t p : refused)
                 queued[retryLevel(p, l)].push_back(p);
     };
@@ -175,7 +189,8 @@ unsigned StripTriangulator::retryLevel(std::uint32_t point, unsigned level) cons
 }
 
 std::vector<std::vector<std::uint32_t>>
-StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned level) {
+StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned level,
+                                 const ProgressCallback& progress, double fraction) {
     const unsigned groups = groupsAt(level);
     // The points by group, each group keeping the given (Hilbert) order.
     std::vector<std::size_t> groupStart(groups + 1, 0);
@@ -202,10 +217,10 @@ StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned
         checkpoints[g].reserve((groupStart[g + 1] - groupStart[g]) / kCheckpointStride + 1);
     std::vector<CavityTriangleId> hints(groups, kNoCavityTriangle);
     std::vector<std::vector<std::uint32_t>> refused(groups);
-    runOnThreads(groups, [&](unsigned g) {
+    runGroups(groups, progress, fraction, [&](unsigned g) {
         const auto owner = static_cast<std::uint8_t>(g);
         CavityTriangleId walkStart = m_hint;
-        for (std::size_t first = groupStart[g]; first < groupStart[g + 1];
+        for (std::size_t first = groupStart[g]; first < groupStart[g + 1] && !stopping();
              first += kCheckpointStride) {
             // The stretch's first point may lie by a boundary: a few more are tried.
             const std::size_t length = std::min(kCheckpointStride, groupStart[g + 1] - first);
@@ -219,10 +234,10 @@ StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned
             checkpoints[g].push_back(checkpoint);
         }
     });
-    runOnThreads(groups, [&](unsigned g) {
+    runGroups(groups, progress, fraction, [&](unsigned g) {
         const auto owner = static_cast<std::uint8_t>(g);
         CavityTriangleId hint = kNoCavityTriangle;
-        for (std::size_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
+        for (std::size_t i = groupStart[g]; i < groupStart[g + 1] && !stopping(); ++i) {
             const std::uint32_t p = byGroup[i];
             CavityMesh::Scratch& scratch = m_scratch[m_vertexStrip[p]];
             bool inserted =

@@ -27,6 +27,7 @@
 #include "terratin/geometry/point.hpp"
 #include "terratin/progress.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -51,7 +52,9 @@ public:
                       std::size_t minimumPointsPerStrip = kMinimumPointsPerStrip);
 
     /// Inserts every vertex of `order` (each point once), whose BRIO rounds begin at
-    /// `roundStarts`. Calls `progress` between rounds; throws Cancelled when it returns false.
+    /// `roundStarts`. Calls `progress` from the calling thread between rounds, and every
+    /// kWatchInterval while a level's threads run (watched_threads.hpp); throws Cancelled
+    /// when it returns false.
     void insertAll(std::span<const std::uint32_t> order, std::span<const std::size_t> roundStarts,
                    const ProgressCallback& progress);
 
@@ -73,11 +76,21 @@ private:
     void insertSequentially(std::span<const std::uint32_t> points);
     /// Groups of strips merged at `level` (strips s with the same s >> level).
     [[nodiscard]] unsigned groupsAt(unsigned level) const { return ((m_strips - 1) >> level) + 1; }
-    /// The round's points from `level` on, by the steps above.
-    void insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level);
+    /// The round's points from `level` on, by the steps above; `fraction` is what the
+    /// watching thread reports to `progress` meanwhile.
+    void insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level,
+                             const ProgressCallback& progress, double fraction);
     /// One level: each group's points on a thread of its own. Returns the points refused.
     std::vector<std::vector<std::uint32_t>> insertAtLevel(std::span<const std::uint32_t> points,
-                                                          unsigned level);
+                                                          unsigned level,
+                                                          const ProgressCallback& progress,
+                                                          double fraction);
+    /// body(group) for each of `groups` on a thread of its own, watched by the calling thread
+    /// (watched_threads.hpp), which reports `fraction`; throws Cancelled once every thread
+    /// has seen m_stop and returned, when the callback asked to stop.
+    template <class Body>
+    void runGroups(unsigned groups, const ProgressCallback& progress, double fraction, Body&& body);
+    [[nodiscard]] bool stopping() const { return m_stop.load(std::memory_order_relaxed); }
     /// The level at which a point refused at `level` may succeed: the first at which the
     /// boundary of its group nearer to it lies inside a group.
     [[nodiscard]] unsigned retryLevel(std::uint32_t point, unsigned level) const;
@@ -97,6 +110,9 @@ private:
     std::vector<CavityMesh::Scratch> m_scratch;
     CavityTriangleId m_hint = 0;
     std::size_t m_deferred = 0;
+    /// Set by the watching thread when the progress callback asks to stop; every group's
+    /// loop tests it once per point.
+    std::atomic<bool> m_stop{false};
 };
 
 } // namespace terratin::detail

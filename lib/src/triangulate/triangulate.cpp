@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
+#include <string>
 #include <thread>
 
 namespace terratin {
@@ -25,7 +26,7 @@ using detail::VertexId;
 unsigned resolveThreads(unsigned requested) {
     if (requested != 0)
         return requested;
-    return std::max(1U, std::thread::hardware_concurrency());
+    return std::clamp(std::thread::hardware_concurrency(), 1U, kMaxThreads);
 }
 
 // The strip method is the fastest at every size and thread count (it inserts small rounds
@@ -46,7 +47,7 @@ unsigned resolveSearchers(unsigned requested, std::size_t points, unsigned threa
         return requested;
     constexpr std::size_t kLargeInputPoints = 100000;
     const unsigned perTwoThreads = points > kLargeInputPoints ? 4U : 3U;
-    return std::max(1U, perTwoThreads * threads / 2U);
+    return std::clamp(perTwoThreads * threads / 2U, 1U, kMaxThreads - 1);
 }
 
 // The points renumbered in insertion order: vertex i is the i-th inserted (vertex 0, the
@@ -175,6 +176,22 @@ void insertWithoutHistory(InsertionPlan& plan, unsigned threads, const ProgressC
 
 } // namespace
 
+void checkTriangulationOptions(const TriangulationOptions& options) {
+    if (options.threads > kMaxThreads)
+        throw InvalidInputError("Triangulator: the thread count must be 0 (all) to " +
+                                std::to_string(kMaxThreads) + " (got " +
+                                std::to_string(options.threads) + ")");
+    if (options.searchers > kMaxThreads - 1)
+        throw InvalidInputError("Triangulator: the batch method's searching threads must be 0 "
+                                "(automatic) to " +
+                                std::to_string(kMaxThreads - 1) + " (got " +
+                                std::to_string(options.searchers) + ")");
+    if (options.queueLength < 1 || options.queueLength > kMaxQueueLength)
+        throw InvalidInputError("Triangulator: the batch method's queue length must be 1 to " +
+                                std::to_string(kMaxQueueLength) + " entries (got " +
+                                std::to_string(options.queueLength) + ")");
+}
+
 const char* toString(TriangulationMethod method) {
     switch (method) {
     case TriangulationMethod::Sequential:
@@ -193,6 +210,7 @@ const char* toString(TriangulationMethod method) {
 
 TriangulationResult triangulate(std::span<const Point3> points, const TriangulationOptions& options,
                                 const ProgressCallback& progress) {
+    checkTriangulationOptions(options);
     TriangulationResult result;
     Clock::time_point phase = Clock::now();
     const unsigned threads = resolveThreads(options.threads);

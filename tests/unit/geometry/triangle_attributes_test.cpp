@@ -196,9 +196,8 @@ TEST(TriangleAttributesExact, EveryAttributeButCornerZIsTheSame_WhenCornersAreCl
 }
 
 TEST(TriangleAttributesExact, NormalIsUpAndAreasEqual_WhenTriangleIsFlat) {
-    const auto attributes =
-        computeTriangleAttributes({500000.0, 5000000.0, 7.0}, {500010.0, 5000000.0, 7.0},
-                                  {500000.0, 5000010.0, 7.0});
+    const auto attributes = computeTriangleAttributes(
+        {500000.0, 5000000.0, 7.0}, {500010.0, 5000000.0, 7.0}, {500000.0, 5000010.0, 7.0});
     EXPECT_EQ(attributes.nx, 0.0);
     EXPECT_EQ(attributes.ny, 0.0);
     EXPECT_EQ(attributes.nz, 1.0);
@@ -227,6 +226,60 @@ TEST(TriangleAttributesExact, VerticalPlaneHasHorizontalNormalAndNoSlope_WhenCol
     EXPECT_DOUBLE_EQ(attributes.nx, std::sqrt(0.5)); // first non-zero component positive
     EXPECT_DOUBLE_EQ(attributes.ny, -std::sqrt(0.5));
     EXPECT_EQ(attributes.slopePct, 0.0);
+}
+
+} // namespace
+} // namespace terratin
+
+namespace terratin {
+namespace {
+
+// Centres of the first row of a 30-degree rotated geotransform at UTM coordinates, computed
+// as HeightGrid::cellCentre does: collinear in exact arithmetic, not after rounding.
+Point3 rotatedRowCentre(int col) {
+    const double angle = 30.0 * std::numbers::pi / 180.0;
+    const double c[6] = {455900.0,  10.0 * std::cos(angle), 10.0 * std::sin(angle),
+                         5104100.0, 10.0 * std::sin(angle), -10.0 * std::cos(angle)};
+    const double px = col + 0.5;
+    const double py = 0.5;
+    return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5], 100.0 + 3.0 * col};
+}
+
+// Issue 22, D19: border slivers of a rotated raster's TIN (corners collinear but for
+// rounding) had slopes of 1e15 %; they now get the slope and aspect of a triangle without
+// planimetric extent, and keep their tiny positive area.
+TEST(TriangleAttributes, SliverOfRoundedCollinearCentresHasNoSlope_D19) {
+    int slivers = 0;
+    for (int i = 0; i < 40; ++i)
+        for (int j = i + 1; j < 40; ++j) {
+            const Point3 a = rotatedRowCentre(i);
+            const Point3 b = rotatedRowCentre(j);
+            const Point3 c = rotatedRowCentre((i + j) / 2 == i ? j + 1 : (i + j) / 2);
+            const double doubleArea = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+            if (doubleArea == 0.0)
+                continue;
+            ++slivers;
+            const TriangleAttributes attributes = computeTriangleAttributes(a, b, c);
+            EXPECT_EQ(attributes.slopeDeg, 0.0);
+            EXPECT_EQ(attributes.slopePct, 0.0);
+            EXPECT_EQ(attributes.aspectDeg, -1.0);
+            EXPECT_GT(attributes.area2d, 0.0);
+            EXPECT_LT(attributes.area2d, 1e-6);
+            EXPECT_TRUE(std::isfinite(attributes.nx) && std::isfinite(attributes.ny) &&
+                        std::isfinite(attributes.nz));
+        }
+    EXPECT_GT(slivers, 0) << "no rounded-off triple found: the test tests nothing";
+}
+
+// The rule is about rounding, not thinness: a real thin triangle (1 mm high over a 30 m
+// edge, at UTM coordinates) keeps its slope and aspect.
+TEST(TriangleAttributes, ThinTriangleKeepsItsSlope_WhenHeightIsFarAboveRounding_D19) {
+    const Point3 a{500000.0, 5000000.0, 100.0};
+    const Point3 b{500030.0, 5000000.0, 100.0};
+    const Point3 c{500015.0, 5000000.001, 100.0005}; // rises 0.5 mm over 1 mm northwards
+    const TriangleAttributes attributes = computeTriangleAttributes(a, b, c);
+    EXPECT_NEAR(attributes.slopePct, 50.0, 1e-3);
+    EXPECT_NEAR(attributes.aspectDeg, 180.0, 1e-3); // downhill to the south
 }
 
 } // namespace

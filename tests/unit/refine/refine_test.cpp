@@ -10,7 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
 
 namespace terratin {
 namespace {
@@ -22,9 +26,8 @@ RefineOptions withError(double maxError, unsigned threads = 1) {
 }
 
 TEST(Refine, PlaneNeedsOnlyItsCorners) {
-    const HeightGrid grid = makeGrid(40, 30, [](int row, int col) {
-        return 2.0 * col - 3.0 * row + 100.0;
-    });
+    const HeightGrid grid =
+        makeGrid(40, 30, [](int row, int col) { return 2.0 * col - 3.0 * row + 100.0; });
     const RefineResult result = refine(grid, withError(0.01));
     EXPECT_EQ(result.mesh.vertexCount(), 4U);
     EXPECT_EQ(result.mesh.triangleCount(), 2U);
@@ -37,9 +40,8 @@ TEST(Refine, PlaneNeedsOnlyItsCorners) {
 
 TEST(Refine, SingleSpikeAddsOnePoint_WhenItsNeighboursLieOnTheHull) {
     // On a 3 x 3 grid the spike's neighbours lie on the hull edges between flat corners.
-    const HeightGrid grid = makeGrid(3, 3, [](int row, int col) {
-        return row == 1 && col == 1 ? 250.0 : 12.0;
-    });
+    const HeightGrid grid =
+        makeGrid(3, 3, [](int row, int col) { return row == 1 && col == 1 ? 250.0 : 12.0; });
     const RefineResult result = refine(grid, withError(0.5));
     ASSERT_EQ(result.mesh.vertexCount(), 5U);
     // The corners and the spike, in raster order.
@@ -50,9 +52,8 @@ TEST(Refine, SingleSpikeAddsOnePoint_WhenItsNeighboursLieOnTheHull) {
 TEST(Refine, SingleSpikeIsKept_AndOnlyItsNeighbourhoodIsAdded) {
     // In a wide flat grid the spike is the first point inserted; the cone it makes is wrong
     // right beside it, so four points around it follow: 4 corners + 1 + 4.
-    const HeightGrid grid = makeGrid(33, 21, [](int row, int col) {
-        return row == 10 && col == 17 ? 250.0 : 12.0;
-    });
+    const HeightGrid grid =
+        makeGrid(33, 21, [](int row, int col) { return row == 10 && col == 17 ? 250.0 : 12.0; });
     RefineOptions options = withError(0.5);
     options.strips = 1; // strict greedy order: strips may take the points in another order
     const RefineResult result = refine(grid, options);
@@ -72,7 +73,8 @@ TEST(Refine, SingleSpikeIsKept_AndOnlyItsNeighbourhoodIsAdded) {
 TEST(Refine, RidgeIsKept_WhenTheTerrainIsPiecewisePlanar) {
     // A tent along column 20: two planes meeting on the ridge line. The ridge's two ends are
     // the only points besides the corners, and the ridge line is an edge of the TIN.
-    const HeightGrid grid = makeGrid(41, 25, [](int, int col) { return 50.0 - 5.0 * std::abs(col - 20); });
+    const HeightGrid grid =
+        makeGrid(41, 25, [](int, int col) { return 50.0 - 5.0 * std::abs(col - 20); });
     const RefineResult result = refine(grid, withError(0.01));
     EXPECT_EQ(result.mesh.vertexCount(), 6U);
     const std::vector<std::uint32_t> cells(result.mesh.sourceIndex.begin(),
@@ -108,8 +110,8 @@ TEST(Refine, TinComesInRasterOrder) {
               mesh.sourceIndex.end());
     std::vector<std::uint32_t> lowest;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        lowest.push_back(std::min({mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                                   mesh.triangles[3 * t + 2]}));
+        lowest.push_back(std::min(
+            {mesh.triangles[3 * t], mesh.triangles[3 * t + 1], mesh.triangles[3 * t + 2]}));
     EXPECT_TRUE(std::is_sorted(lowest.begin(), lowest.end()));
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
         const std::size_t cell = mesh.sourceIndex[v];
@@ -169,14 +171,100 @@ TEST(Refine, FirstLimitReachedStops) {
     EXPECT_EQ(result.mesh.vertexCount(), 40U);
 }
 
-TEST(Refine, PointLimitBelowTheHullKeepsTheHull) {
+// Issue 22, D13: "at most N" holds or is refused. The hull's 4 corners are the fewest points
+// (2 triangles); a smaller limit is refused with that count, the hull's own is met exactly.
+TEST(Refine, LimitBelowTheHullIsRefused_D13) {
     const HeightGrid grid = test::roughTerrain(30, 30, 1);
     RefineOptions options;
-    options.maxPoints = 2;
     options.threads = 1;
-    const RefineResult result = refine(grid, options);
+    options.maxPoints = 2;
+    EXPECT_THROW(refine(grid, options), InvalidInputError); // below any TIN
+    options.maxPoints = 3;
+    try {
+        refine(grid, options);
+        ADD_FAILURE() << "a point limit of 3 accepted for a hull of 4 corners";
+    } catch (const InvalidInputError& error) {
+        EXPECT_NE(std::string(error.what()).find("4 corners"), std::string::npos) << error.what();
+    }
+    options.maxPoints = 4;
+    RefineResult result = refine(grid, options);
     EXPECT_EQ(result.mesh.vertexCount(), 4U);
     EXPECT_EQ(result.stop, RefineStop::PointLimit);
+    options.maxPoints.reset();
+    options.maxTriangles = 1;
+    EXPECT_THROW(refine(grid, options), InvalidInputError);
+    options.maxTriangles = 2;
+    result = refine(grid, options);
+    EXPECT_EQ(result.mesh.triangleCount(), 2U);
+    EXPECT_EQ(result.stop, RefineStop::TriangleLimit);
+}
+
+// D13: whatever the limit, the TIN has at most that many points and triangles, on one
+// thread and on several, with a ragged nodata border (a hull of many corners).
+TEST(Refine, LimitsHoldForEveryValue_D13) {
+    HeightGrid grid = test::roughTerrain(48, 40, 5);
+    for (int row = 0; row < grid.height; ++row)
+        for (int col = 0; col < grid.width; ++col)
+            if (col + row % 7 < 3 || (row > 30 && col > 40 - row % 5))
+                grid.z[static_cast<std::size_t>(row * grid.width + col)] = std::nanf("");
+    for (const unsigned threads : {1U, 3U})
+        for (const std::size_t limit : {3U, 5U, 6U, 7U, 8U, 9U, 10U, 17U, 64U, 333U}) {
+            RefineOptions options;
+            options.threads = threads;
+            options.maxPoints = limit;
+            try {
+                const RefineResult result = refine(grid, options);
+                EXPECT_LE(result.mesh.vertexCount(), limit) << threads << " threads";
+            } catch (const InvalidInputError& error) {
+                EXPECT_LT(limit, 9U) << error.what(); // only below the hull's corners
+            }
+            options.maxPoints.reset();
+            options.maxTriangles = limit;
+            try {
+                const RefineResult result = refine(grid, options);
+                EXPECT_LE(result.mesh.triangleCount(), limit) << threads << " threads";
+            } catch (const InvalidInputError& error) {
+                EXPECT_LT(limit, 9U) << error.what();
+            }
+        }
+}
+
+// D12: the options' ranges, checked before anything runs, in words that name no CLI flag.
+TEST(RefineOptionsCheck, RefusesValuesOutOfRange_D12) {
+    const auto expectRefused = [](const RefineOptions& options, const std::string& word) {
+        try {
+            checkRefineOptions(options);
+            ADD_FAILURE() << "accepted; expected a message about " << word;
+        } catch (const InvalidInputError& error) {
+            EXPECT_NE(std::string(error.what()).find(word), std::string::npos) << error.what();
+            EXPECT_EQ(std::string(error.what()).find("--"), std::string::npos) << error.what();
+        }
+    };
+    RefineOptions options;
+    options.maxPoints = 2;
+    expectRefused(options, "point limit");
+    options.maxPoints = static_cast<std::size_t>(-5); // what "-5" wrapped to
+    expectRefused(options, "point limit");
+    options = {};
+    options.maxTriangles = 0;
+    expectRefused(options, "triangle limit");
+    options.maxTriangles = static_cast<std::size_t>(-1);
+    expectRefused(options, "triangle limit");
+    options = {};
+    options.maxHole = static_cast<std::size_t>(-3);
+    expectRefused(options, "hole");
+    options = {};
+    options.threads = kMaxThreads + 1;
+    expectRefused(options, "thread");
+    options = {};
+    options.maxError = -1.0;
+    expectRefused(options, "maximum error");
+    options = {};
+    options.maxPoints = 3;
+    options.maxTriangles = 1;
+    options.maxHole = kMaxRefineCells;
+    options.threads = kMaxThreads;
+    EXPECT_NO_THROW(checkRefineOptions(options));
 }
 
 TEST(Refine, ExactDelaunay_WithRotatedNonSquareAndBottomUpGeotransforms) {
@@ -204,6 +292,68 @@ TEST(Refine, Throws_WhenTheInputIsUnusable) {
     EXPECT_THROW(refine(oneRow, {}), InvalidInputError);
     const HeightGrid fine = test::roughTerrain(5, 5, 1);
     EXPECT_THROW(refine(fine, withError(-1.0)), InvalidInputError);
+}
+
+// Issue 22, D7: an infinite elevation is refused as the full-resolution path refuses it
+// (one infinite cell used to collapse the TIN to a few points; all infinite gave z = Inf).
+TEST(Refine, RefusesInfiniteElevations_D7) {
+    const auto expectRefused = [](const HeightGrid& grid, const std::string& where) {
+        RefineOptions options;
+        options.maxError = 1.0;
+        try {
+            refine(grid, options);
+            ADD_FAILURE() << "an infinite elevation accepted";
+        } catch (const InvalidInputError& error) {
+            EXPECT_NE(std::string(error.what()).find("infinite elevation"), std::string::npos)
+                << error.what();
+            EXPECT_NE(std::string(error.what()).find(where), std::string::npos) << error.what();
+        }
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    expectRefused(makeGrid(6, 5, [&](int, int) { return inf; }), "row 0, column 0");
+    expectRefused(
+        makeGrid(6, 5, [&](int row, int col) { return row == 3 && col == 2 ? -inf : 7.0; }),
+        "row 3, column 2");
+    HeightGrid rotated =
+        makeGrid(6, 5, [&](int row, int col) { return row == 4 && col == 5 ? inf : 1.0; });
+    rotated.geoTransform = {1000.0, 0.8, 0.6, 2000.0, 0.6, -0.8};
+    expectRefused(rotated, "row 4, column 5");
+}
+
+// Issue 22, D6: a rotated geotransform used to fail with "a point outside the hull" (the
+// rounded centres of the first row were not on one line). Every limit, UTM-sized
+// coordinates, square and non-square cells, 30 degrees and a shear; each cell checked.
+TEST(Refine, SimplifiesRotatedGrids_D6) {
+    const double angle = 30.0 * std::numbers::pi / 180.0;
+    const double cs = std::cos(angle);
+    const double sn = std::sin(angle);
+    for (const std::array<double, 6>& transform :
+         {std::array<double, 6>{455900.0, 10.0 * cs, 10.0 * sn, 5104100.0, 10.0 * sn, -10.0 * cs},
+          std::array<double, 6>{455900.0, 10.0 * cs, -25.0 * sn, 5104100.0, 10.0 * sn, 25.0 * cs},
+          std::array<double, 6>{455900.0, 10.0, 1.0, 5104100.0, 0.0, -10.0},
+          std::array<double, 6>{455900.0, 10.0, 0.0, 5104100.0, 0.5, -10.0}}) {
+        HeightGrid grid = test::roughTerrain(61, 47, 8);
+        grid.geoTransform = transform;
+        for (int limit = 0; limit < 3; ++limit) {
+            RefineOptions options = withError(1.0, 2);
+            if (limit == 1)
+                options.maxPoints = 300;
+            if (limit == 2)
+                options.maxTriangles = 300;
+            const RefineResult result = refine(grid, options);
+            EXPECT_TRUE(result.validated);
+            EXPECT_EQ(result.uncoveredCells, 0U);
+            EXPECT_EQ(result.coveredCells, grid.cellCount());
+            if (limit == 0) {
+                EXPECT_LE(result.maxError, 1.0);
+                test::expectWithinError(result.mesh, grid, 1.0);
+            }
+            if (limit == 1)
+                EXPECT_LE(result.mesh.vertexCount(), 300U);
+            if (limit == 2)
+                EXPECT_LE(result.mesh.triangleCount(), 300U);
+        }
+    }
 }
 
 TEST(Refine, CancelledByProgress) {

@@ -20,7 +20,8 @@ namespace terratin::crs {
 /// The CRS a user names: anything OGR's SetFromUserInput accepts ("EPSG:32619", "ESRI:102003",
 /// WKT, PROJJSON, a PROJ string, "WGS84", a .prj file name). Returns it as WKT2:2019.
 /// `option` (e.g. "--t_srs") appears in the message of the CrsError thrown when the text is not
-/// a CRS.
+/// a CRS, or is not horizontal: a vertical-only or geocentric CRS is refused; projected,
+/// geographic (2D or 3D), engineering and compound CRSs with such a horizontal part pass.
 std::string crsFromUserInput(const std::string& definition, std::string_view option);
 
 /// What reports say about a CRS.

@@ -41,7 +41,8 @@ struct TinWriteOptions {
     std::string crsWkt;
     /// Name of the triangle layer (GeoPackage; FlatGeobuf and Shapefile name the layer after
     /// the file). The node and edge layers are "nodes" and "edges" when it is "tin", else
-    /// "<layerName>_nodes" and "<layerName>_edges".
+    /// "<layerName>_nodes" and "<layerName>_edges". No control characters (U+0000 to U+001F,
+    /// U+007F): checkTinWriteOptions refuses them.
     std::string layerName = "tin";
     /// Attribute columns of the triangles (vector formats; the mesh formats carry none).
     AttributeSet attributes = AttributeSet::All;
@@ -80,7 +81,8 @@ struct TinWriteResult {
 
 /// Throws InvalidInputError when the options contradict each other or the format (nodes,
 /// edges, appendLayer or spatialIndex=false outside GeoPackage; qgisStyle with a mesh format
-/// or without attributes; vertexCells of the wrong size is checked by writeTin).
+/// or without attributes; a layer name holding a control character, such as a newline, which
+/// would corrupt the text formats; vertexCells of the wrong size is checked by writeTin).
 void checkTinWriteOptions(const TinWriteOptions& options);
 
 /// Writes the mesh in options.format.

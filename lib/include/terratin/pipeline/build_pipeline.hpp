@@ -195,7 +195,16 @@ struct BuildReport {
 /// they contradict each other.
 io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat format);
 
-/// Runs the build. Before reading anything it refuses an existing output without
+/// Throws InvalidInputError, with a message that names the option by its meaning (not by a
+/// command-line flag), when an option of `options` is outside its documented range:
+/// checkTriangulationOptions, checkRefineOptions (when `refine` is set), a band below 1, a
+/// zFactor that is 0 or not finite, a maxEdge that is not a positive finite length, and
+/// io::checkTinWriteOptions for the output format (given, or inferred from the output's
+/// extension when that is known). Reads nothing. runBuild calls it first.
+void checkBuildOptions(const BuildOptions& options);
+
+/// Runs the build. Before reading anything it checks the options (checkBuildOptions) and
+/// refuses an existing output without
 /// `overwrite` (InvalidInputError) and a missing output directory (IoError); every error is a
 /// terratin::Error whose message names the stage; the output is written atomically (see
 /// io::writeTin). `progress` receives the fraction of the whole build (reading 10 %,

@@ -15,6 +15,7 @@
 #include "terratin/progress.hpp"
 #include "terratin/refine/height_grid.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
+#include "terratin/triangulate/triangulate.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -24,25 +25,35 @@
 
 namespace terratin {
 
+/// Most cells a grid may have for refine(): vertex ids are 32-bit and the triangulation needs
+/// a few for itself. Also the largest point limit and hole size that mean anything.
+inline constexpr std::uint64_t kMaxRefineCells = (std::uint64_t{1} << 32U) - 5;
+
 /// How much to simplify. With no limit at all every valid cell becomes a vertex.
+/// checkRefineOptions states the ranges.
 struct RefineOptions {
     /// Target vertical tolerance E, z units, >= 0: refinement stops when every valid cell
     /// covered by the TIN is within E of it (error <= E; a cell exactly E away is kept out).
     std::optional<double> maxError;
-    /// Stop before the TIN has more than this many vertices. The convex hull of the valid
-    /// cells is always kept, so a smaller limit still gives the hull's corners.
+    /// Stop before the TIN has more than this many vertices, 3 to kMaxRefineCells. The limit
+    /// always holds: the refinement starts from the convex hull of the valid cells, so a limit
+    /// below the hull's corner count is refused (InvalidInputError naming that count).
     std::optional<std::size_t> maxPoints;
-    /// Stop before the TIN has more than this many triangles (counted before the triangles
-    /// over holes are dropped, so the output has at most as many).
+    /// Stop before the TIN has more than this many triangles, 1 to 2 * kMaxRefineCells
+    /// (counted before the triangles over holes are dropped, so the output has at most as
+    /// many). The limit always holds: the hull's corners alone make (corners - 2) triangles,
+    /// and a smaller limit is refused (InvalidInputError naming that count).
     std::optional<std::size_t> maxTriangles;
-    /// Hardware threads for insertion and scans; 0 = all. The TIN does not depend on it.
+    /// Hardware threads for insertion and scans, 0 to kMaxThreads; 0 = all. The TIN does not
+    /// depend on it.
     unsigned threads = 0;
     /// Vertical strips of the raster refined at once (the unit of parallel work, see the
     /// refiner); 0 chooses from the raster's width. Fixed by the raster, not the threads, so
     /// that the result does not depend on the thread count; 1 gives strict greedy insertion.
     std::size_t strips = 0;
     /// Nodata regions (8-connected) of at most this many cells may be covered by triangles;
-    /// larger ones stay open: no triangle covers the centre of one of their cells.
+    /// larger ones stay open: no triangle covers the centre of one of their cells. 0 to
+    /// kMaxRefineCells.
     std::size_t maxHole = 1;
     /// Cover every hole (interpolate across nodata), ignoring maxHole.
     bool fillHoles = false;
@@ -106,6 +117,13 @@ struct RefineResult {
 /// "error", "points" or "triangles".
 const char* toString(RefineStop stop);
 
+/// Throws InvalidInputError, naming the option and its range, when an option is outside the
+/// range its documentation states (maxError negative or not finite, maxPoints below 3,
+/// maxTriangles below 1, a count above its bound, threads above kMaxThreads). refine() calls
+/// it first; a caller that maps user input onto the options calls it to refuse bad values
+/// before reading anything.
+void checkRefineOptions(const RefineOptions& options);
+
 /// Builds the simplified TIN of `grid`.
 ///
 /// Starts from the convex hull of the valid cells (found from each row's first and last
@@ -118,10 +136,11 @@ const char* toString(RefineStop stop);
 /// is within maxError (checked, else Error); the undropped triangulation is exactly Delaunay
 /// over the vertices; the same options give the same TIN for any thread count.
 ///
-/// Throws InvalidInputError (empty grid, no valid cell, valid cells all collinear, more than
-/// 2^32 - 5 cells, negative or non-finite maxError), Cancelled when `progress` returns false,
-/// Error when a check fails. Complexity: O(cells log points) expected for the scans;
-/// memory: the grid, one byte per cell of flags, and O(points) for the triangulation.
+/// Throws InvalidInputError (options out of range, see checkRefineOptions; empty grid, no
+/// valid cell, an infinite elevation, valid cells all collinear, more than kMaxRefineCells
+/// cells, a point or triangle limit below what the hull needs), Cancelled when `progress`
+/// returns false, Error when a check fails. Complexity: O(cells log points) expected for the
+/// scans; memory: the grid, one byte per cell of flags, and O(points) for the triangulation.
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress = {});
 

@@ -52,7 +52,16 @@ enum class TriangulationMethod {
     Auto,
 };
 
-/// How to triangulate.
+/// Most threads any parallel method (and the refiner) runs: far more than any machine's
+/// hardware threads today (oversubscribed threads only wait for each other), and few enough
+/// that starting and joining them all stays well under a second.
+inline constexpr unsigned kMaxThreads = 1024;
+
+/// Longest queue of the batch method, in entries (16 bytes each: 16 MiB). The queue only
+/// has to absorb the searchers' bursts; the paper's runs used a few hundred entries.
+inline constexpr std::size_t kMaxQueueLength = std::size_t{1} << 20;
+
+/// How to triangulate. checkTriangulationOptions states the ranges.
 struct TriangulationOptions {
     /// Seed of the random insertion order. The same seed gives the same mesh.
     std::uint64_t seed = 1;
@@ -62,11 +71,14 @@ struct TriangulationOptions {
     TriangulationMethod method = TriangulationMethod::Auto;
     /// How every method locates points (batch: its searching threads).
     PointLocation locate = PointLocation::Dag;
-    /// Hardware threads to use; 0 means all (std::thread::hardware_concurrency()).
+    /// Hardware threads to use, 0 to kMaxThreads; 0 means all
+    /// (std::thread::hardware_concurrency(), at most kMaxThreads).
     unsigned threads = 0;
-    /// Batch method: searching threads; 0 chooses from the point and thread counts.
+    /// Batch method: searching threads, 0 to kMaxThreads - 1 (one more thread inserts); 0
+    /// chooses from the point and thread counts.
     unsigned searchers = 0;
-    /// Batch method: capacity of the queue between searchers and the specialised thread.
+    /// Batch method: capacity of the queue between searchers and the specialised thread,
+    /// entries, 1 to kMaxQueueLength (rounded up to a power of two).
     std::size_t queueLength = 1024;
     /// Batch method: searchers finish queued locations instead of waiting on a full queue
     /// (the improvement in the paper's footnote).
@@ -115,6 +127,12 @@ struct TriangulationResult {
     TriangulationPhases seconds;
 };
 
+/// Throws InvalidInputError, naming the option and its range, when `threads`, `searchers` or
+/// `queueLength` is outside the range its documentation states. triangulate() calls it first;
+/// a caller that maps user input onto the options (the CLI) calls it to refuse bad values
+/// before reading anything.
+void checkTriangulationOptions(const TriangulationOptions& options);
+
 /// "sequential", "batch", "circumcircle", "strips" or "auto".
 const char* toString(TriangulationMethod method);
 
@@ -124,8 +142,11 @@ const char* toString(TriangulationMethod method);
 /// distinct point is a vertex; across every interior edge the opposite vertex is never strictly
 /// inside a triangle's circumcircle, decided with exact predicates (so the result is exactly
 /// Delaunay; among cocircular points, as on grids, the diagonal choice follows the insertion
-/// order). Throws InvalidInputError (non-finite values, fewer than three non-collinear points,
-/// too many points) and Cancelled when `progress` returns false.
+/// order). Throws InvalidInputError (options out of range, see checkTriangulationOptions;
+/// non-finite values, fewer than three non-collinear points, too many points) and Cancelled
+/// when `progress` returns false; every method, the parallel ones included, polls `progress`
+/// a few times a second from the calling thread and stops within a fraction of a second,
+/// however many threads run.
 /// The parallel methods give an equally exact result; among cocircular points the diagonals
 /// may differ from run to run, as the insertion order does.
 /// Complexity: expected O(n log n) time, O(n) memory (about 9 history nodes of 28 bytes per
