@@ -348,10 +348,12 @@ TEST(Refine, SimplifiesRotatedGrids_D6) {
                 EXPECT_LE(result.maxError, 1.0);
                 test::expectWithinError(result.mesh, grid, 1.0);
             }
-            if (limit == 1)
+            if (limit == 1) {
                 EXPECT_LE(result.mesh.vertexCount(), 300U);
-            if (limit == 2)
+            }
+            if (limit == 2) {
                 EXPECT_LE(result.mesh.triangleCount(), 300U);
+            }
         }
     }
 }
