@@ -1,5 +1,7 @@
 #include "ogr_write_limits.hpp"
 
+#include "attribute_columns.hpp"
+
 #include "terratin/error.hpp"
 #include "terratin/geometry/triangle_attributes.hpp"
 
@@ -21,30 +23,9 @@ namespace terratin::bench {
 namespace {
 
 namespace fs = std::filesystem;
-using A = TriangleAttributes;
-
-struct Column {
-    const char* name;
-    double A::*member;
-};
 
 /// The columns of AttributeSet::All, in terratin's output order.
-constexpr std::array<Column, 14> kColumns = {{
-    {"z1", &A::z1},
-    {"z2", &A::z2},
-    {"z3", &A::z3},
-    {"z_min", &A::zMin},
-    {"z_max", &A::zMax},
-    {"z_mean", &A::zMean},
-    {"slope_deg", &A::slopeDeg},
-    {"slope_pct", &A::slopePct},
-    {"aspect_deg", &A::aspectDeg},
-    {"area_2d", &A::area2d},
-    {"area_3d", &A::area3d},
-    {"nx", &A::nx},
-    {"ny", &A::ny},
-    {"nz", &A::nz},
-}};
+const auto kColumns = io::detail::attributeColumns(io::AttributeSet::All);
 
 [[noreturn]] void fail(const std::string& what, const fs::path& path) {
     throw IoError("ogr_write_limits: " + what + " " + path.string() + ": " + CPLGetLastErrorMsg());
@@ -81,7 +62,7 @@ double timeWrite(const TinMesh& mesh, const char* driverName, const fs::path& pa
         if (layer == nullptr)
             fail("cannot create the layer of", path);
         if (options.attributes) {
-            for (const Column& column : kColumns) {
+            for (const auto& column : kColumns) {
                 OGRFieldDefn definition(column.name, OFTReal);
                 definition.SetWidth(realWidth);
                 definition.SetPrecision(realPrecision);

@@ -4,8 +4,8 @@
 
 #ifdef TERRATIN_HAVE_IO
 #include "interleaved_runs.hpp"
-#include "stats.hpp"
 #include "ogr_write_limits.hpp"
+#include "stats.hpp"
 #include "write_peers.hpp"
 
 #include "terratin/io/raster_reader.hpp"
@@ -14,9 +14,9 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
-#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -110,8 +110,8 @@ double medianOr(const std::vector<double>& values, double fallback) {
 
 /// Prints the rows; "vs script" is the script's time over the row's, "vs bound" the row's time
 /// over `boundSeconds` (0: no bound column).
-void printTable(const std::string& title, const std::vector<WriteRow>& rows,
-                const WriteRow* script, double boundSeconds) {
+void printTable(const std::string& title, const std::vector<WriteRow>& rows, const WriteRow* script,
+                double boundSeconds) {
     std::printf("\n%s\n", title.c_str());
     std::printf("%-28s %8s %8s %7s %7s %12s %8s %9s %9s\n", "run", "total s", "write s", "rows s",
                 "index s", "features/s", "peak MiB", "vs script", "vs bound");
@@ -184,7 +184,6 @@ void runRows(std::vector<WriteRow>& rows, const BenchOptions& options) {
         rows[i].job = std::move(jobs[i]);
 }
 
-
 void mtHoodTable(const BenchOptions& options, const ScratchDirectory& scratch) {
     const fs::path dem = fs::path(options.demDirectory) / "gdalraster__lf_elev_220_mt_hood_utm.tif";
     if (!fs::exists(dem)) {
@@ -214,12 +213,10 @@ void mtHoodTable(const BenchOptions& options, const ScratchDirectory& scratch) {
     // The GDAL bounds of the other two OGR formats: plain OGR loops with terratin's fields and
     // options, their attributes computed before their own timer starts (their write column).
     const TinMesh boundMesh = triangulate(raster.points).mesh;
-    addMinimalRow(rows, "GDAL minimal .shp loop", boundMesh.triangleCount(), [&] {
-        return timeMinimalShapefileWrite(boundMesh, scratch.path());
-    });
-    addMinimalRow(rows, "GDAL minimal .fgb loop", boundMesh.triangleCount(), [&] {
-        return timeMinimalFlatGeobufWrite(boundMesh, scratch.path());
-    });
+    addMinimalRow(rows, "GDAL minimal .shp loop", boundMesh.triangleCount(),
+                  [&] { return timeMinimalShapefileWrite(boundMesh, scratch.path()); });
+    addMinimalRow(rows, "GDAL minimal .fgb loop", boundMesh.triangleCount(),
+                  [&] { return timeMinimalFlatGeobufWrite(boundMesh, scratch.path()); });
     if (scriptPeerBuilt())
         addRow(rows, "GDAL + CGAL + OGR script", 0, [&] {
             fs::remove(scratch / "script.gpkg");

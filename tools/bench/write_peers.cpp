@@ -1,5 +1,6 @@
 #include "write_peers.hpp"
 
+#include "attribute_columns.hpp"
 #include "gpkg_geometry.hpp"
 #include "packed_rtree.hpp"
 #include "terratin/error.hpp"
@@ -140,9 +141,7 @@ std::size_t runGdalCgalOgrScript(const std::string&, const fs::path&) {
 
 void writeWithOgrLoop(const std::vector<std::array<Point3, 3>>& triangles,
                       const std::string& crsWkt, const fs::path& output) {
-    static constexpr std::array<const char*, 14> kNames = {
-        "z1",        "z2",         "z3",      "z_min",   "z_max", "z_mean", "slope_deg",
-        "slope_pct", "aspect_deg", "area_2d", "area_3d", "nx",    "ny",     "nz"};
+    const auto columns = io::detail::attributeColumns(io::AttributeSet::All);
     GDALDatasetUniquePtr dataset = createGeoPackage(output);
     OGRSpatialReference srs;
     srs.importFromWkt(crsWkt.c_str());
@@ -150,22 +149,19 @@ void writeWithOgrLoop(const std::vector<std::array<Point3, 3>>& triangles,
     OGRLayer* layer = dataset->CreateLayer("tin", &srs, wkbPolygon25D, nullptr);
     if (layer == nullptr)
         fail("cannot create the layer of " + output.string());
-    for (const char* name : kNames) {
-        OGRFieldDefn field(name, OFTReal);
+    for (const auto& column : columns) {
+        OGRFieldDefn field(column.name, OFTReal);
         if (layer->CreateField(&field) != OGRERR_NONE)
             fail("cannot create a field of " + output.string());
     }
     dataset->StartTransaction();
     for (const auto& [a, b, c] : triangles) {
-        const TriangleAttributes v = computeTriangleAttributes(a, b, c);
-        const double values[] = {v.z1,     v.z2,       v.z3,       v.zMin,      v.zMax,
-                                 v.zMean,  v.slopeDeg, v.slopePct, v.aspectDeg, v.area2d,
-                                 v.area3d, v.nx,       v.ny,       v.nz};
+        const TriangleAttributes values = computeTriangleAttributes(a, b, c);
         OGRFeatureUniquePtr feature(OGRFeature::CreateFeature(layer->GetLayerDefn()));
         OGRPolygon polygon = trianglePolygon(a, b, c);
         feature->SetGeometry(&polygon);
-        for (int i = 0; i < 14; ++i)
-            feature->SetField(i, values[i]);
+        for (std::size_t i = 0; i < columns.size(); ++i)
+            feature->SetField(static_cast<int>(i), values.*(columns[i].member));
         if (layer->CreateFeature(feature.get()) != OGRERR_NONE)
             fail("cannot write to " + output.string());
     }
@@ -222,10 +218,9 @@ void SqliteLimitPeer::prepare(const TinMesh& mesh) {
             a, b, c, 0,
             std::span<std::uint8_t, kGpkgTriangleBytes>(
                 prepared->blobs.data() + t * kGpkgTriangleBytes, kGpkgTriangleBytes));
-        const TriangleAttributes v = computeTriangleAttributes(a, b, c);
-        for (const double value : {v.z1, v.z2, v.z3, v.zMin, v.zMax, v.zMean, v.slopeDeg,
-                                   v.slopePct, v.aspectDeg, v.area2d, v.area3d, v.nx, v.ny, v.nz})
-            prepared->values.push_back(value);
+        const TriangleAttributes values = computeTriangleAttributes(a, b, c);
+        for (const auto& column : io::detail::attributeColumns(io::AttributeSet::All))
+            prepared->values.push_back(values.*(column.member));
         boxes.push_back(
             io::detail::enclosingRtreeBox(std::min({a.x, b.x, c.x}), std::max({a.x, b.x, c.x}),
                                           std::min({a.y, b.y, c.y}), std::max({a.y, b.y, c.y})));
