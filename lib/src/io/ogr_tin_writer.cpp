@@ -33,9 +33,10 @@
 #include "ogr_tin_writer.hpp"
 
 #include "atomic_output.hpp"
+#include "attribute_columns.hpp"
+#include "chunk_pipeline.hpp"
 #include "gpkg/gpkg_tin_writer.hpp"
 #include "ogr_dataset_support.hpp"
-#include "attribute_columns.hpp"
 #include "packed_rtree_order.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
@@ -54,7 +55,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <future>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -176,8 +176,7 @@ OGRLayer* createLayer(GDALDataset& dataset, const LayerSpec& spec,
     OGRLayer* layer = dataset.CreateLayer(spec.name.c_str(), srs ? &*srs : nullptr, spec.type,
                                           layerOptions.List());
     if (layer == nullptr)
-        throwGdalError(kStage, "cannot create the layer '" + spec.name + "' of",
-                       output.string());
+        throwGdalError(kStage, "cannot create the layer '" + spec.name + "' of", output.string());
     return layer;
 }
 
@@ -196,16 +195,15 @@ void addField(OGRLayer& layer, const char* name, OGRFieldType type, TinFormat fo
 int fieldIndex(OGRLayer& layer, const char* name, const fs::path& output) {
     const int index = layer.GetLayerDefn()->GetFieldIndex(name);
     if (index < 0)
-        throwIo(std::string("the driver did not keep the field ") + name + " in " +
-                quoted(output));
+        throwIo(std::string("the driver did not keep the field ") + name + " in " + quoted(output));
     return index;
 }
 
 void createFeature(OGRLayer& layer, OGRFeature& feature, std::string_view what, std::uint64_t id,
                    const fs::path& output) {
     if (layer.CreateFeature(&feature) != OGRERR_NONE)
-        throwGdalError(kStage, "cannot write " + std::string(what) + " " + std::to_string(id) +
-                                   " to",
+        throwGdalError(kStage,
+                       "cannot write " + std::string(what) + " " + std::to_string(id) + " to",
                        output.string());
 }
 
@@ -218,8 +216,8 @@ struct TriangleRange {
     std::size_t last = std::numeric_limits<std::size_t>::max();
 };
 
-/// Inserts one feature per triangle of `range`. Attributes of chunk k + 1 are computed (in
-/// parallel) while chunk k is inserted.
+/// Inserts one feature per triangle of `range`. Attributes of chunk k + 1 are computed while
+/// chunk k is inserted.
 void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions& options,
                     const ProgressTicker& ticker, const fs::path& output,
                     TriangleRange range = {}) {
@@ -246,26 +244,20 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
     const std::size_t last = std::min(mesh.triangleCount(), range.last);
     const bool checkDbf = options.format == TinFormat::Shapefile;
 
-    // Two buffers: the one being inserted, and the one the next chunk is computed into. The
-    // future is declared after them so that it is waited for before they go away.
-    std::array<std::vector<TriangleAttributes>, 2> buffers;
-    std::future<void> next;
-    const auto computeChunk = [&](std::size_t chunk) {
-        const std::size_t begin = first + chunk * kChunkTriangles;
-        const std::size_t end = std::min(last, begin + kChunkTriangles);
-        computeAttributes(mesh, begin, end, buffers[chunk % 2]);
-    };
     const std::size_t chunks =
         last > first ? (last - first + kChunkTriangles - 1) / kChunkTriangles : 0;
-    if (!columns.empty())
-        computeChunk(0);
-
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-        if (!columns.empty() && chunk + 1 < chunks)
-            next = std::async(std::launch::async, computeChunk, chunk + 1);
-        const std::vector<TriangleAttributes>& attributes = buffers[chunk % 2];
+    const auto chunkRange = [&](std::size_t chunk) {
         const std::size_t begin = first + chunk * kChunkTriangles;
-        const std::size_t end = std::min(last, begin + kChunkTriangles);
+        return std::pair{begin, std::min(last, begin + kChunkTriangles)};
+    };
+    const auto prepare = [&](std::size_t chunk, std::vector<TriangleAttributes>& attributes) {
+        if (!columns.empty()) {
+            const auto [begin, end] = chunkRange(chunk);
+            computeAttributes(mesh, begin, end, attributes);
+        }
+    };
+    const auto consume = [&](std::size_t chunk, const std::vector<TriangleAttributes>& attributes) {
+        const auto [begin, end] = chunkRange(chunk);
         ticker.report(begin, "Writing triangles");
         for (std::size_t t = begin; t < end; ++t) {
             const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
@@ -281,8 +273,8 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
                 for (std::size_t i = 0; i < columns.size(); ++i) {
                     const double value = values.*(columns[i].member);
                     if (checkDbf && !(std::fabs(value) < kDbfMaxMagnitude))
-                        throwInvalid("triangle " + std::to_string(t) + " has " +
-                                     columns[i].name + " = " + std::to_string(value) +
+                        throwInvalid("triangle " + std::to_string(t) + " has " + columns[i].name +
+                                     " = " + std::to_string(value) +
                                      ", which does not fit a Shapefile's DBF column; write a "
                                      "GeoPackage (.gpkg) instead of " +
                                      quoted(output));
@@ -298,9 +290,8 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
             feature->SetFID(OGRNullFID);
             createFeature(layer, *feature, "triangle", t, output);
         }
-        if (next.valid())
-            next.get();
-    }
+    };
+    runBesideOneWriter<std::vector<TriangleAttributes>>(chunks, prepare, consume);
 }
 
 TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
@@ -429,9 +420,9 @@ void checkShapefileLimits(std::size_t triangleCount, AttributeSet attributes,
     // .dbf: 32-byte header, 32 bytes per field descriptor, a terminator, one deletion flag
     // plus the fixed-width columns per record, and an end-of-file marker.
     const std::uint64_t columns = attributeColumns(attributes).size();
-    const std::uint64_t recordBytes =
-        columns == 0 ? std::uint64_t{kDbfDefaultColumnWidth}
-                     : columns * static_cast<std::uint64_t>(kDbfRealWidth);
+    const std::uint64_t recordBytes = columns == 0
+                                          ? std::uint64_t{kDbfDefaultColumnWidth}
+                                          : columns * static_cast<std::uint64_t>(kDbfRealWidth);
     const std::uint64_t dbfBytes =
         32 + 32 * std::max<std::uint64_t>(columns, 1) + 1 + count * (1 + recordBytes) + 1;
     const std::uint64_t largest = std::max(shpBytes, dbfBytes);

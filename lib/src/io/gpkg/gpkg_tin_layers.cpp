@@ -1,12 +1,10 @@
 #include "gpkg_tin_layers.hpp"
 
 #include "../attribute_columns.hpp"
+#include "../chunk_pipeline.hpp"
 #include "../writer_support.hpp"
 #include "batched_insert.hpp"
-#include "chunk_pipeline.hpp"
 #include "gpkg_geometry.hpp"
-
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -36,18 +34,6 @@ void encodeBlobs(std::size_t begin, std::size_t end, std::vector<std::uint8_t>& 
     blobs.resize((end - begin) * Bytes);
     for (std::size_t i = begin; i < end; ++i)
         encode(i, std::span<std::uint8_t, Bytes>(blobs.data() + (i - begin) * Bytes, Bytes));
-}
-
-/// Runs a chunk pipeline whose preparation stays on one thread: SQLite, inserting on the
-/// calling thread, is the slower stage by far, and preparation on more threads would only take
-/// cores from it (attributes are otherwise computed with TBB on every core).
-template <class Buffer, class Prepare, class Consume>
-void runBesideSqlite(std::size_t chunks, Prepare&& prepare, Consume&& consume) {
-    tbb::task_arena oneThread(1);
-    runChunkPipeline<Buffer>(
-        chunks,
-        [&](std::size_t k, Buffer& buffer) { oneThread.execute([&] { prepare(k, buffer); }); },
-        consume);
 }
 
 template <std::size_t Bytes>
@@ -142,7 +128,7 @@ void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& ta
                                    chunk.attributes[row].*(columns[i].member));
         });
     };
-    runBesideSqlite<TriangleChunk>(chunkCount(rows), prepare, consume);
+    runBesideOneWriter<TriangleChunk>(chunkCount(rows), prepare, consume);
 }
 
 void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
@@ -176,7 +162,7 @@ void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
             }
         });
     };
-    runBesideSqlite<std::vector<std::uint8_t>>(chunkCount(rows), prepare, consume);
+    runBesideOneWriter<std::vector<std::uint8_t>>(chunkCount(rows), prepare, consume);
 }
 
 void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
@@ -229,7 +215,7 @@ void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
             statement.bindReal(p + 6, row.length);
         });
     };
-    runBesideSqlite<EdgeChunk>(chunks, prepare, consume);
+    runBesideOneWriter<EdgeChunk>(chunks, prepare, consume);
 }
 
 std::uint64_t edgeCount(const TinMesh& mesh) {

@@ -1,12 +1,15 @@
 #pragma once
 /// @file
 /// Two-stage pipeline over chunks: chunk k + 1 is prepared on another thread while chunk k is
-/// consumed on the calling thread. Used where the consumer (SQLite) is single-threaded and the
-/// preparation (geometry blobs, attributes) can run beside it.
+/// consumed on the calling thread. The vector writers use it where the consumer (SQLite, an
+/// OGR driver) is single-threaded and the preparation (attributes, geometry blobs) can run
+/// beside it.
 
 #include <array>
 #include <cstddef>
 #include <future>
+
+#include <tbb/task_arena.h>
 
 namespace terratin::io::detail {
 
@@ -28,6 +31,18 @@ void runChunkPipeline(std::size_t chunks, Prepare&& prepare, Consume&& consume) 
         if (next.valid())
             next.get();
     }
+}
+
+/// runChunkPipeline with the preparation kept on one thread. The consumer is the slower stage
+/// by far, so preparing on more threads (attributes are otherwise computed with TBB on every
+/// core) would only take cores from it.
+template <class Buffer, class Prepare, class Consume>
+void runBesideOneWriter(std::size_t chunks, Prepare&& prepare, Consume&& consume) {
+    tbb::task_arena oneThread(1);
+    runChunkPipeline<Buffer>(
+        chunks,
+        [&](std::size_t k, Buffer& buffer) { oneThread.execute([&] { prepare(k, buffer); }); },
+        consume);
 }
 
 } // namespace terratin::io::detail
