@@ -127,6 +127,9 @@ po::options_description benchOptionsDescription() {
         ("write", "output table instead: Mt Hood in every format and N44W072 at --max-error 1 "
                   "as a GeoPackage, end to end, against a GDAL + CGAL + OGR script, a plain OGR "
                   "loop and the SQLite bound")
+        ("formats", po::value<std::string>()->value_name("LIST"),
+         "--write: the formats to time, of gpkg,fgb,shp,ply,2dm,obj,xml (default: all); the "
+         "GeoPackage peers and N44W072 come with gpkg, the GDAL minimal loops with shp and fgb")
         ("dems", po::value<std::string>()->default_value("../shared/dems")->value_name("DIR"),
          "--refine, --write: folder of the shared DEMs")
         ("help,h", "show this help");
@@ -272,6 +275,17 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
     bench.csv = values.count("csv") != 0;
     bench.refine = values.count("refine") != 0;
     bench.write = values.count("write") != 0;
+    if (values.count("formats")) {
+        const std::vector<std::string> known = bench.writeFormats;
+        bench.writeFormats.clear();
+        for (const std::string& item :
+             splitList(values["formats"].as<std::string>(), "--formats")) {
+            if (std::find(known.begin(), known.end(), item) == known.end())
+                throw UsageError("--formats: unknown format '" + item +
+                                 "' (gpkg, fgb, shp, ply, 2dm, obj, xml)");
+            bench.writeFormats.push_back(item);
+        }
+    }
     if (bench.refine && bench.write)
         throw UsageError("--refine and --write are two different tables: choose one");
     bench.demDirectory = values["dems"].as<std::string>();

@@ -67,6 +67,8 @@ struct BenchOptions {
     /// Output table instead (write_bench.cpp): every format end to end on real DEMs from
     /// `demDirectory`, against the GDAL + CGAL + OGR script, a plain OGR loop and SQLite's bound.
     bool write = false;
+    /// --write: the output formats to time, by extension (gpkg fgb shp ply 2dm obj xml).
+    std::vector<std::string> writeFormats{"gpkg", "fgb", "shp", "ply", "2dm", "obj", "xml"};
     std::string demDirectory = "../shared/dems";
     /// Whether --threads was given (the refinement table defaults to 1 and 2 threads).
     bool threadsGiven = false;

@@ -14,6 +14,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -30,6 +31,11 @@ namespace terratin::bench {
 namespace {
 
 namespace fs = std::filesystem;
+
+bool wants(const BenchOptions& options, const std::string& format) {
+    return std::find(options.writeFormats.begin(), options.writeFormats.end(), format) !=
+           options.writeFormats.end();
+}
 
 /// One row of the table: a timed job and what its runs reported.
 struct WriteRow {
@@ -203,21 +209,25 @@ void mtHoodTable(const BenchOptions& options, const ScratchDirectory& scratch) {
         if (result.mesh.triangleCount() == 0)
             throw Error("no triangles");
     });
-    for (const char* extension : {"gpkg", "fgb", "shp", "ply", "2dm", "obj", "xml"}) {
+    for (const std::string& extension : options.writeFormats) {
         BuildOptions build;
         build.input = dem.string();
-        build.output = scratch / (std::string("hood.") + extension);
-        addTerratinRow(rows, std::string("terratin -> .") + extension, build);
+        build.output = scratch / ("hood." + extension);
+        addTerratinRow(rows, "terratin -> ." + extension, build);
     }
-    addRow(rows, "SQLite bound (rows + index)", 0, [&] { limit.write(scratch / "bound.gpkg"); });
+    if (wants(options, "gpkg"))
+        addRow(rows, "SQLite bound (rows + index)", 0,
+               [&] { limit.write(scratch / "bound.gpkg"); });
     // The GDAL bounds of the other two OGR formats: plain OGR loops with terratin's fields and
     // options, their attributes computed before their own timer starts (their write column).
     const TinMesh boundMesh = triangulate(raster.points).mesh;
-    addMinimalRow(rows, "GDAL minimal .shp loop", boundMesh.triangleCount(),
-                  [&] { return timeMinimalShapefileWrite(boundMesh, scratch.path()); });
-    addMinimalRow(rows, "GDAL minimal .fgb loop", boundMesh.triangleCount(),
-                  [&] { return timeMinimalFlatGeobufWrite(boundMesh, scratch.path()); });
-    if (scriptPeerBuilt())
+    if (wants(options, "shp"))
+        addMinimalRow(rows, "GDAL minimal .shp loop", boundMesh.triangleCount(),
+                      [&] { return timeMinimalShapefileWrite(boundMesh, scratch.path()); });
+    if (wants(options, "fgb"))
+        addMinimalRow(rows, "GDAL minimal .fgb loop", boundMesh.triangleCount(),
+                      [&] { return timeMinimalFlatGeobufWrite(boundMesh, scratch.path()); });
+    if (scriptPeerBuilt() && wants(options, "gpkg"))
         addRow(rows, "GDAL + CGAL + OGR script", 0, [&] {
             fs::remove(scratch / "script.gpkg");
             runGdalCgalOgrScript(dem.string(), scratch / "script.gpkg");
@@ -276,7 +286,8 @@ void n44w072Table(const BenchOptions& options, const ScratchDirectory& scratch) 
 int runWriteBench(const BenchOptions& options) {
     const ScratchDirectory scratch;
     mtHoodTable(options, scratch);
-    n44w072Table(options, scratch);
+    if (wants(options, "gpkg"))
+        n44w072Table(options, scratch);
     return 0;
 }
 
