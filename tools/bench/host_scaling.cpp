@@ -11,7 +11,8 @@ namespace terratin::bench {
 
 namespace {
 
-// Work per thread: about 50 ms of each kind on this class of machine.
+// Work per thread: enough of each kind to dwarf starting the threads (what it took on one
+// machine: docs/benchmarks.md).
 constexpr std::size_t kComputeSteps = std::size_t{40} << 20U;
 constexpr std::size_t kChaseSteps = std::size_t{1} << 20U;
 // 64 MiB per thread: beyond a core's L2, and with two threads most of a shared L3.

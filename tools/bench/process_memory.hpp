@@ -33,7 +33,7 @@ private:
 /// Touches `bytes` of fresh memory, one write per page, and frees it again, so that a call
 /// made right after gets pages the host backs. On a virtual machine that hands free memory
 /// back to its hypervisor (virtio-balloon free page reporting), the first touch of such
-/// memory is costly: measured here, 300 MB took 0.79 s the first time and 0.016 s after.
+/// memory is far slower than the next (figures in docs/benchmarks.md).
 /// Which pages a timed run got then changed its time by up to a second between identical
 /// runs, for every method and peer alike; this takes that cost out of the timer, leaving
 /// the kernel's own page zeroing in it.

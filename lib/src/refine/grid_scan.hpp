@@ -134,7 +134,8 @@ public:
     /// Corners in any order. The corner with the smallest cell index becomes the base of the
     /// interpolation, so that the same triangle always gives bit-identical values. Always
     /// inlined: called, it received its corners through the stack, written field by field
-    /// and read back wider, a store-forwarding stall that cost 5% of a refinement.
+    /// and read back wider, a store-forwarding stall that cost a measurable share of a
+    /// refinement (docs/benchmarks.md).
     [[gnu::always_inline]] PixelTriangle(PixelCorner a, PixelCorner b, PixelCorner c) {
         const auto key = [](const PixelCorner& p) { return std::pair(p.row, p.col); };
         if (key(b) < key(a))

@@ -26,7 +26,8 @@ struct ScanResult {
 };
 
 /// One row of a triangle's cells: columns lo..hi. No initialisers: the scans keep arrays of
-/// them on the stack, written before they are read, and zeroing those cost 3% of a refinement.
+/// them on the stack, written before they are read, and zeroing those cost a measurable share
+/// of a refinement (docs/benchmarks.md).
 struct RowSpan {
     std::int64_t row;
     std::int64_t lo;

@@ -40,8 +40,8 @@ int holderOf(std::uint32_t owner) {
 }
 
 // Workers from which the conflict test filters by region (workerInCircle). With fewer, the
-// circumcircle computed on every take cost more than the cache misses it saved (2 threads,
-// 1 M uniform points: 0.99 s against 0.83 s without it, medians of five).
+// circumcircle computed on every take cost more than the cache misses it saved (figures in
+// docs/benchmarks.md).
 constexpr unsigned kRegionFilterWorkers = 4;
 
 // Workers add to the shared count of insertions (for the watching thread's progress
@@ -115,8 +115,8 @@ struct Worker {
 };
 
 // On a cache line of its own: it lives on the calling thread's stack, whose other writes
-// would otherwise make every worker's read of the fields below a cache miss (measured: an
-// eighth of `take` went to the load of m_triangulator on the second worker).
+// would otherwise make every worker's read of the fields below a cache miss (a profile of
+// `take` found it in the load of m_triangulator; docs/benchmarks.md).
 class alignas(64) CircumcircleRun {
 public:
     CircumcircleRun(DagTriangulator& triangulator, std::span<const VertexId> order,
@@ -399,11 +399,11 @@ private:
     // Another worker whose point lies strictly inside the circumcircle of `node`, or -1.
     // Points too close to the circle for the floating-point filter count as outside: on
     // near-cocircular data (an arc) the exact test went adaptive on nearly every call and
-    // took 40% of a 2-thread run, and the owner tags protect the triangles either way.
+    // took much of the run (docs/benchmarks.md), and the owner tags protect the triangles
+    // either way.
     // From kRegionFilterWorkers on, workers whose region the circumcircle misses are skipped
     // without reading their active point, which another core keeps rewriting. Reading all of
-    // them on every take, the method ran slower on 16 threads than on 1 (1 M uniform points:
-    // 2.85 s against 1.57 s on a 16-core machine).
+    // them on every take, the method ran slower on 16 threads than on 1 (docs/benchmarks.md).
     int workerInCircle(const Worker& worker, const DagNode& node) const {
         const SymbolicPredicates& predicates = m_triangulator.predicates();
         const bool finite = predicates.isFinite(node.v[0]) && predicates.isFinite(node.v[1]) &&

@@ -13,7 +13,7 @@ namespace terratin::detail {
 
 namespace {
 
-// Points of a strip between two checkpoints (see insertRoundInStrips).
+// Points of a strip between two checkpoints (see insertAtLevel).
 constexpr std::size_t kCheckpointStride = 256;
 // Points of a stretch tried for its checkpoint.
 constexpr std::size_t kCheckpointTries = 8;

@@ -1,23 +1,10 @@
 #pragma once
 /// @file
-/// The strip method: history-free parallel Delaunay insertion by spatial ownership.
-///
-/// The paper's methods share one triangulation between all threads and pay for it with a
-/// shared queue (batch) or with circumcircle tests against every other thread's point
-/// (circum-circle). Here the plane is cut into vertical strips of equal point counts, one per
-/// thread, and each BRIO round runs in levels:
-/// 1. Every thread inserts its strip's points of the round into the CavityMesh, touching
-///    only triangles whose corners all lie in its strip (cavity_mesh.hpp explains why
-///    threads then never meet). A point whose walk or cavity reaches a triangle that spans
-///    two strips is deferred; no lock, no atomic but the slot counter, no waiting.
-/// 2. Deferred points lie by a strip boundary. Strips are merged in pairs, level by level
-///    (groups of 2, 4, ... strips, one thread each), and a deferred point is retried at the
-///    first level where its boundary lies inside a group.
-/// 3. When one group would hold every strip, one thread inserts what is left, unrestricted.
-/// Only points within about one triangle of a strip boundary are deferred (a fraction of a
-/// percent of a million uniform points at 2 strips, 6% at 16), so level 0 does almost all
-/// the work. A round too small for every strip to get kMinimumPointsPerStrip points starts
-/// at the first level whose groups do.
+/// The strip method: history-free parallel Delaunay insertion by spatial ownership. Each
+/// thread inserts the points of its own vertical strip into the CavityMesh, touching only its
+/// strip's triangles (cavity_mesh.hpp); points refused by a strip boundary are retried with
+/// strips merged in pairs, level by level, and what is left goes to one thread.
+/// docs/algorithms.md ("The strip method") describes the levels.
 ///
 /// The result is exactly Delaunay (each insertion is an exact Bowyer-Watson step) and depends
 /// only on the points, the order and the strip count: thread timing never changes it.
@@ -65,7 +52,7 @@ public:
     }
 
     [[nodiscard]] unsigned strips() const { return m_strips; }
-    /// Points left to the single-threaded insertion of step 3 (small rounds excluded).
+    /// Points left to the single-threaded insertion of the last level (small rounds excluded).
     [[nodiscard]] std::size_t deferredPoints() const { return m_deferred; }
     [[nodiscard]] std::size_t memoryBytes() const {
         return m_mesh.memoryBytes() + m_vertexStrip.size();
@@ -76,8 +63,8 @@ private:
     void insertSequentially(std::span<const std::uint32_t> points);
     /// Groups of strips merged at `level` (strips s with the same s >> level).
     [[nodiscard]] unsigned groupsAt(unsigned level) const { return ((m_strips - 1) >> level) + 1; }
-    /// The round's points from `level` on, by the steps above; `fraction` is what the
-    /// watching thread reports to `progress` meanwhile.
+    /// The round's points from `level` on, level by level (docs/algorithms.md); `fraction` is
+    /// what the watching thread reports to `progress` meanwhile.
     void insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level,
                              const ProgressCallback& progress, double fraction);
     /// One level: each group's points on a thread of its own. Returns the points refused.

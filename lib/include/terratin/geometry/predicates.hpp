@@ -59,12 +59,12 @@ double incircleAdaptive(const Point2& a, const Point2& b, const Point2& c, const
                         double permanent);
 
 /// The exact stage alone: orient2d's determinant evaluated exactly in expansion arithmetic,
-/// returning its most significant component. Same sign contract as orient2d, no filter; about
-/// 100 ns per call, some 20 times the filtered path. Exposed so that it can be verified on every
-/// input, not only on the few that reach it through the filters.
+/// returning its most significant component. Same sign contract as orient2d, no filter; many
+/// times slower than the filtered path (docs/benchmarks.md). Exposed so that it can be verified
+/// on every input, not only on the few that reach it through the filters.
 double orient2dExact(const Point2& a, const Point2& b, const Point2& c);
 
-/// The exact stage alone for incircle (see orient2dExact); about 1 to 4 microseconds per call.
+/// The exact stage alone for incircle (see orient2dExact); slower still (docs/benchmarks.md).
 double incircleExact(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
 
 } // namespace detail

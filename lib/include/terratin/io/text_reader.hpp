@@ -2,7 +2,7 @@
 /// @file
 /// TextReader: delimited text point files (x y z per line: .xyz, .txt, .csv...). No GDAL: the
 /// parser is plain C++ (std::from_chars on large buffered reads), so that it can be fuzzed and
-/// runs at several million points per second.
+/// is fast (terratin-readbench measures it; docs/benchmarks.md).
 
 #include "terratin/io/point_source.hpp"
 #include "terratin/progress.hpp"

@@ -43,9 +43,8 @@ enum class TriangulationMethod {
     /// Every thread inserts, after testing the points other threads insert against the
     /// circumcircle of each triangle it touches (section 3.4).
     Circumcircle,
-    /// One vertical strip of equal point count per thread; each thread inserts its strip's
-    /// points touching only triangles inside its strip, and points near a strip boundary are
-    /// inserted afterwards by one thread. Always walks, keeps no history. The fastest method.
+    /// One vertical strip of the plane per thread, no history, always walks; the fastest
+    /// method. docs/algorithms.md ("The strip method") describes it.
     Strips,
     /// The strip method (with one thread, a history-free sequential insertion); with the
     /// random order, whose walks would be long, the sequential method.
@@ -149,8 +148,8 @@ const char* toString(TriangulationMethod method);
 /// however many threads run.
 /// The parallel methods give an equally exact result; among cocircular points the diagonals
 /// may differ from run to run, as the insertion order does.
-/// Complexity: expected O(n log n) time, O(n) memory (about 9 history nodes of 28 bytes per
-/// point besides the mesh).
+/// Complexity: expected O(n log n) time, O(n) memory (the DAG methods: about 9 history nodes
+/// of 32 bytes per point besides the mesh).
 TriangulationResult triangulate(std::span<const Point3> points,
                                 const TriangulationOptions& options = {},
                                 const ProgressCallback& progress = {});
