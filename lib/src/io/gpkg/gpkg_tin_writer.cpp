@@ -277,9 +277,13 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     const ProgressTicker ticker(kOgrStage, progress, output, 0.0, kWritingShare, work);
     ticker.report(0, "Creating GeoPackage");
 
-    const AtomicOutput temporaries(kOgrStage, output);
-    const fs::path temporary = temporaries.temporary(".gpkg");
     const bool appending = options.appendLayer && !existingFiles({output}).empty();
+    // The copy extended with new layers replaces the original by design; a new file replaces
+    // only what --overwrite allows, even one that appeared while this run was writing.
+    const AtomicOutput temporaries(kOgrStage, output,
+                                   appending ? ExistingTarget::Replace
+                                             : existingTargetFor(options.overwrite));
+    const fs::path temporary = temporaries.temporary(".gpkg");
     if (appending) {
         std::error_code error;
         fs::copy_file(output, temporary, error);
