@@ -360,6 +360,9 @@ TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                       options.spatialIndex ? "Building spatial index" : "Finishing FlatGeobuf");
         closeDataset(dataset, output);
     }
+    // The last chance to cancel: GDAL builds the index while it closes the file, and a signal
+    // that came meanwhile must still leave the old output in place.
+    ticker.report(mesh.triangleCount(), "Finishing FlatGeobuf");
     temporaries.commit(temporary, output);
     return {mesh.triangleCount()};
 }

@@ -294,6 +294,9 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     createLayers(temporary, appending, features, names, options, output);
 
     TinWriteResult result = fillTables(temporary, output, mesh, jobs, options.spatialIndex, ticker);
+    // The last chance to cancel: a signal that came while SQLite committed and closed must
+    // still leave the old output in place.
+    ticker.report(work, "Finishing GeoPackage");
 
     // A journal or WAL left by an earlier SQLite session on the old output would be replayed
     // into the new file under the same name and corrupt it: remove them before the rename.
