@@ -438,15 +438,17 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
     // Without --overwrite a component that appeared meanwhile refuses the whole set.
     temporaries.commitAll(moves);
 
-    // Only with --overwrite can a sidecar exist here (writeTin refused it otherwise).
-    for (const auto& sidecar : kShapefileSidecars) {
-        for (const auto& stale : shapefileComponentsAnyCase(output, sidecar)) {
-            const bool rewritten = std::any_of(
-                moves.begin(), moves.end(), [&](const auto& move) { return move.second == stale; });
-            if (!rewritten)
-                fs::remove(stale, error);
-        }
-    }
+    // Stale sidecars of the replaced Shapefile go. Without --overwrite none existed at the
+    // start (writeTin refused them), and one that appeared since is another program's.
+    if (options.overwrite)
+        for (const auto& sidecar : kShapefileSidecars)
+            for (const auto& stale : shapefileComponentsAnyCase(output, sidecar)) {
+                const bool rewritten =
+                    std::any_of(moves.begin(), moves.end(),
+                                [&](const auto& move) { return move.second == stale; });
+                if (!rewritten)
+                    fs::remove(stale, error);
+            }
     return {mesh.triangleCount()};
 }
 

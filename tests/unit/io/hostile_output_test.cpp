@@ -124,6 +124,22 @@ TEST(HostileOutput, D5_RefusesAnOutputThatAppearsDuringTheRun_ForEveryFormat) {
     }
 }
 
+TEST(HostileOutput, D5_LeavesASidecarThatAppearsDuringTheRun_WhenNotOverwriting) {
+    // A .qix that another program makes while the Shapefile is written is not the run's: the
+    // Shapefile goes in beside it, and the .qix stays.
+    const TemporaryDirectory directory;
+    bool created = false;
+    writeTin(test::gridTin(5), directory / "tin.shp", optionsFor(TinFormat::Shapefile),
+             [&](double, std::string_view) {
+                 if (!created)
+                     writeText(directory / "tin.qix", "someone's index");
+                 created = true;
+                 return true;
+             });
+    EXPECT_EQ(fileBytes(directory / "tin.qix"), "someone's index");
+    EXPECT_TRUE(fs::exists(directory / "tin.shp"));
+}
+
 TEST(HostileOutput, D5_ReplacesAnOutputThatAppearsDuringTheRun_WhenOverwriting) {
     for (const auto& [format, extension] : everyFormat()) {
         const TemporaryDirectory directory;

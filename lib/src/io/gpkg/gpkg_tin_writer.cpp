@@ -299,11 +299,13 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     ticker.report(work, "Finishing GeoPackage");
 
     // A journal or WAL left by an earlier SQLite session on the old output would be replayed
-    // into the new file under the same name and corrupt it: remove them before the rename.
-    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
-        std::error_code error;
-        fs::remove(output.string() + suffix, error);
-    }
+    // into the new file under the same name and corrupt it: remove them before the rename,
+    // unless the output appeared during the run (the rename refuses it, and they are its own).
+    if (appending || options.overwrite || existingFiles({output}).empty())
+        for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+            std::error_code error;
+            fs::remove(output.string() + suffix, error);
+        }
     temporaries.commit(temporary, output);
     result.features = features;
     return result;
