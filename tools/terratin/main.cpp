@@ -1,14 +1,15 @@
 // terratin: DEM -> exactly Delaunay TIN, on the command line. A thin layer over runBuild.
 
+#include "cancel_signals.hpp"
 #include "cli_options.hpp"
 #include "progress_printer.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 
-#include <atomic>
-#include <csignal>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -19,19 +20,37 @@ constexpr int kExitOk = 0;
 constexpr int kExitError = 1;
 constexpr int kExitUsage = 2;
 
-std::atomic<bool> g_cancelRequested{false};
+// One line on stderr whatever the message holds (a GDAL message may carry newlines).
+void printError(const std::string& text) {
+    std::string line = "terratin: " + text;
+    for (char& ch : line)
+        if (ch == '\n' || ch == '\r')
+            ch = ' ';
+    std::fprintf(stderr, "%s\n", line.c_str());
+}
 
-// Ctrl-C asks the run to stop at the next progress report, so the writer can remove its
-// temporary file instead of leaving it behind.
-extern "C" void requestCancel(int) { g_cancelRequested.store(true); }
+// Writes `text` and a newline to stdout. The report is the run's result: one that cannot be
+// written (a full disk, a closed pipe) is an error, not a silent success (issue 22, D15).
+bool writeReport(const std::string& text) {
+    if (text.empty())
+        return true;
+    errno = 0;
+    if (std::fputs(text.c_str(), stdout) >= 0 && std::fputc('\n', stdout) != EOF &&
+        std::fflush(stdout) == 0)
+        return true;
+    const int error = errno;
+    printError(std::string("cannot write the report to standard output: ") +
+               (error != 0 ? std::strerror(error) : "write error"));
+    return false;
+}
 
 int runBuildCommand(const terratin::cli::Command& command) {
-    terratin::cli::ProgressPrinter printer(stderr, g_cancelRequested);
+    terratin::cli::ProgressPrinter printer(stderr, terratin::cli::cancelledBySignal());
     try {
         // Even a quiet run needs the callback: it is how Ctrl-C reaches the pipeline.
         terratin::ProgressCallback progress =
             command.quiet ? terratin::ProgressCallback([](double, std::string_view) {
-                return !g_cancelRequested.load();
+                return !terratin::cli::cancelledBySignal().load();
             })
                           : printer.callback();
         terratin::BuildOptions build = command.build;
@@ -42,25 +61,23 @@ int runBuildCommand(const terratin::cli::Command& command) {
         const terratin::BuildReport report = terratin::runBuild(build, progress);
         if (!command.quiet)
             printer.finish();
-        if (command.json) {
-            std::printf("%s\n", terratin::toJson(report).c_str());
-            if (!command.quiet)
-                std::fprintf(stderr, "%s%s\n", terratin::toInputSummary(report).c_str(),
-                             terratin::toSummaryLine(report).c_str());
-        } else if (!command.quiet) {
-            std::printf("%s%s\n", terratin::toInputSummary(report).c_str(),
-                        terratin::toSummaryLine(report).c_str());
-        }
-        return kExitOk;
+        // The summary goes to stdout, or to stderr when stdout carries the JSON report.
+        const std::string summary =
+            terratin::toInputSummary(report) + terratin::toSummaryLine(report);
+        if (command.json && !command.quiet)
+            std::fprintf(stderr, "%s\n", summary.c_str());
+        const std::string result =
+            command.json ? terratin::toJson(report) : (command.quiet ? std::string() : summary);
+        return writeReport(result) ? kExitOk : kExitError;
     } catch (const terratin::Error& error) {
-        printer.breakLine();
-        std::fprintf(stderr, "terratin: %s\n", error.what());
+        printer.fail();
+        printError(error.what());
     } catch (const std::bad_alloc&) {
-        printer.breakLine();
-        std::fprintf(stderr, "terratin: out of memory\n");
+        printer.fail();
+        printError("out of memory");
     } catch (const std::exception& error) {
-        printer.breakLine();
-        std::fprintf(stderr, "terratin: unexpected error: %s\n", error.what());
+        printer.fail();
+        printError(std::string("unexpected error: ") + error.what());
     }
     return kExitError;
 }
@@ -68,13 +85,12 @@ int runBuildCommand(const terratin::cli::Command& command) {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::signal(SIGINT, requestCancel);
-    std::signal(SIGTERM, requestCancel);
+    terratin::cli::installCancelSignals();
     terratin::cli::Command command;
     try {
         command = terratin::cli::parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
     } catch (const terratin::cli::UsageError& error) {
-        std::fprintf(stderr, "terratin: %s\n", error.what());
+        printError(error.what());
         return kExitUsage;
     }
     switch (command.kind) {

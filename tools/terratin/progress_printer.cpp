@@ -19,41 +19,41 @@ bool ProgressPrinter::update(double fraction) {
             std::fputc('.', m_stream);
     }
     if (m_ticks == kTicks)
-        std::fputs(" - done.\n", m_stream);
+        endLine(" - done.");
     std::fflush(m_stream);
-    if (m_ticks == kTicks)
-        m_ticks = kTicks + 1; // the line is complete: print nothing more
     return !m_cancelRequested->load();
 }
 
 void ProgressPrinter::finish() {
-    if (m_ticks >= 0 && m_ticks <= kTicks)
+    if (lineUnderWay())
         update(1.0);
 }
 
-void ProgressPrinter::breakLine() {
-    if (m_ticks >= 0 && m_ticks <= kTicks) {
-        std::fputc('\n', m_stream);
-        m_ticks = kTicks + 1;
-    }
+void ProgressPrinter::fail() {
+    if (lineUnderWay())
+        endLine(" - failed.");
+    std::fflush(m_stream);
 }
 
-} // namespace terratin::cli
-
-namespace terratin::cli {
-
 void ProgressPrinter::printLine(std::string_view text) {
-    const bool midLine = m_ticks >= 0 && m_ticks < kTicks;
-    if (midLine)
-        std::fputc('\n', m_stream);
-    std::fprintf(m_stream, "%.*s\n", static_cast<int>(text.size()), text.data());
-    if (midLine) {
-        // Start the progress line again with the ticks already printed.
-        const int printed = m_ticks;
-        m_ticks = -1;
-        update(static_cast<double>(printed) / kTicks);
+    if (lineUnderWay()) {
+        m_pending.emplace_back(text);
+        return;
     }
+    std::fprintf(m_stream, "%.*s\n", static_cast<int>(text.size()), text.data());
     std::fflush(m_stream);
+}
+
+bool ProgressPrinter::lineUnderWay() const {
+    return m_ticks >= 0 && m_ticks <= kTicks;
+}
+
+void ProgressPrinter::endLine(std::string_view ending) {
+    std::fprintf(m_stream, "%.*s\n", static_cast<int>(ending.size()), ending.data());
+    m_ticks = kTicks + 1; // the line is complete: print nothing more
+    for (const auto& line : m_pending)
+        std::fprintf(m_stream, "%s\n", line.c_str());
+    m_pending.clear();
 }
 
 } // namespace terratin::cli

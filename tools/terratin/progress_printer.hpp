@@ -6,7 +6,9 @@
 
 #include <atomic>
 #include <cstdio>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace terratin::cli {
 
@@ -23,11 +25,14 @@ public:
     /// Completes the line ("100 - done.") if it was started.
     void finish();
 
-    /// Ends a half-printed line so that an error message starts on a line of its own.
-    void breakLine();
+    /// Ends a half-printed line with " - failed." so that the error message that follows is
+    /// stderr's last line, whole, and no bare fragment ("0...10") is left before it (issue 22,
+    /// D21).
+    void fail();
 
-    /// Prints `text` as a line of its own (a notice) and, when a progress line was under way,
-    /// starts it again on the next line with the ticks already printed.
+    /// Prints `text` as a line of its own (a notice); while a progress line is under way it
+    /// waits for the line's end, so that no fragment ("0...") is ever left on a line of its
+    /// own (issue 22, D21).
     void printLine(std::string_view text);
 
     ProgressCallback callback() {
@@ -35,10 +40,17 @@ public:
     }
 
 private:
+    /// True between the first tick and the line's end.
+    [[nodiscard]] bool lineUnderWay() const;
+    /// Ends the progress line with `ending`, then prints the lines that waited for it.
+    void endLine(std::string_view ending);
+
     std::FILE* m_stream;
     const std::atomic<bool>* m_cancelRequested;
     /// Ticks printed so far: 0..40, one per 2.5 %.
     int m_ticks = -1;
+    /// Lines printLine received while the progress line was under way.
+    std::vector<std::string> m_pending;
 };
 
 } // namespace terratin::cli

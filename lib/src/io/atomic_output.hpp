@@ -6,10 +6,15 @@
 /// with the run's temporary prefix is removed when the AtomicOutput goes out of scope: SQLite
 /// journals, GDAL side files ("<temporary>.gpkg.tmp_rtree_<layer>.db", FlatGeobuf's feature
 /// buffer) and the temporaries themselves.
+///
+/// An output that is not to be replaced is checked before the first byte is written
+/// (refuseExistingOutputs), and again, atomically, by the final rename: one that another
+/// program created while the run was writing is left as it is (issue 22, D5).
 
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace terratin::io::detail {
@@ -25,27 +30,59 @@ std::filesystem::path outputDirectory(const std::filesystem::path& output);
 void checkOutputLocation(std::string_view stage, const std::filesystem::path& output);
 
 /// The entries of `candidates` that exist (as anything, dangling links included).
-std::vector<std::filesystem::path> existingFiles(const std::vector<std::filesystem::path>& candidates);
+std::vector<std::filesystem::path>
+existingFiles(const std::vector<std::filesystem::path>& candidates);
 
-/// InvalidInputError "<stage>: the output '<first>' exists; use --overwrite" when any of
-/// `candidates` exists and `overwrite` is false; IoError when one of them is a directory.
+/// IoError when one of `candidates` exists and is not a regular file: a directory, a symbolic
+/// link (even to a regular file: replacing it would cut the link, not write its target), a
+/// character or block device (/dev/null), a FIFO or a socket (issue 22, D18).
+void refuseIrregularOutputs(std::string_view stage,
+                            const std::vector<std::filesystem::path>& candidates);
+
+/// refuseIrregularOutputs, then InvalidInputError "<stage>: the output '<first>' exists; use
+/// --overwrite" when any of `candidates` exists and `overwrite` is false.
 void refuseExistingOutputs(std::string_view stage,
                            const std::vector<std::filesystem::path>& candidates, bool overwrite);
+
+/// What the final rename does with a target that exists by then.
+enum class ExistingTarget {
+    /// Leave it as it is and throw InvalidInputError: without --overwrite, a target that exists
+    /// at the end was created by someone else while the run was writing.
+    Refuse,
+    /// Replace it atomically (--overwrite, or a GeoPackage copied to add layers to it).
+    Replace,
+};
+
+/// Replace with `overwrite`, Refuse without.
+inline ExistingTarget existingTargetFor(bool overwrite) {
+    return overwrite ? ExistingTarget::Replace : ExistingTarget::Refuse;
+}
 
 /// One write's temporary names, removed on destruction.
 class AtomicOutput {
 public:
-    /// Prefix ".<stem>.tmp-<pid>-<64 random bits>" in the directory of `output`.
-    AtomicOutput(std::string_view stage, const std::filesystem::path& output);
+    /// Prefix ".<stem>.tmp-<pid>-<64 random bits>" in the directory of `output`; the stem is
+    /// cut short when the temporary names would pass the file system's 255-byte name limit.
+    AtomicOutput(std::string_view stage, const std::filesystem::path& output,
+                 ExistingTarget existing);
     AtomicOutput(const AtomicOutput&) = delete;
     AtomicOutput& operator=(const AtomicOutput&) = delete;
     ~AtomicOutput();
 
-    /// directory / (prefix + suffix): a name no other run uses.
+    /// directory / (prefix + suffix): a name no other run uses. `suffix` is at most as long as
+    /// the output's extension (".gpkg", "" for a directory), or the name may be too long.
     [[nodiscard]] std::filesystem::path temporary(std::string_view suffix) const;
 
-    /// Renames `temporary` onto `target`, replacing it atomically; IoError on failure.
+    /// Renames `temporary` onto `target` as one atomic step. With ExistingTarget::Refuse an
+    /// existing `target` is left untouched and InvalidInputError is thrown; IoError on any
+    /// other failure.
     void commit(const std::filesystem::path& temporary, const std::filesystem::path& target) const;
+
+    /// commit() for each (temporary, target) in order. With ExistingTarget::Refuse, a failure
+    /// removes again the targets this call had already put in place (they did not exist before
+    /// it), so that a refused Shapefile leaves no component of its own behind.
+    void commitAll(
+        const std::vector<std::pair<std::filesystem::path, std::filesystem::path>>& moves) const;
 
 private:
     void removeAll() noexcept;
@@ -53,6 +90,7 @@ private:
     std::string m_stage;
     std::filesystem::path m_directory;
     std::string m_prefix;
+    ExistingTarget m_existing;
 };
 
 } // namespace terratin::io::detail

@@ -3,7 +3,9 @@
 ///
 /// Atomicity: see atomic_output.hpp. A Shapefile is several files; they are renamed one at a
 /// time, .shp last, so readers can briefly see a mixed set while an existing output is
-/// overwritten. That is the format's limit, not something a writer can fix.
+/// overwritten. That is the format's limit, not something a writer can fix. Without
+/// --overwrite, a component that another program created during the run refuses the whole set,
+/// and the components already renamed are taken back.
 ///
 /// One OGRFeature and one polygon are reused for all triangles (the ring's points are
 /// overwritten in place, nothing is allocated per triangle); attributes are computed with TBB
@@ -108,10 +110,13 @@ constexpr std::uint64_t kFgbColumnBytes = 10;
 constexpr std::uint64_t kFgbInMemoryRamDivisor = 4;
 
 /// Sidecar extensions another tool may have left next to an old Shapefile of the same name;
-/// they describe the old geometry (spatial indexes, metadata) and are stale once it is
-/// replaced.
-constexpr std::array<std::string_view, 11> kShapefileSidecars = {
-    ".prj", ".cpg", ".qix", ".sbn", ".sbx", ".fix", ".qpj", ".shp.xml", ".aih", ".ain", ".atx"};
+/// they describe the old data set (CRS, encoding, spatial indexes, metadata, QGIS's style)
+/// and are stale once it is replaced. Each one counts as the output existing: without
+/// --overwrite none is touched, even when it belongs to a raster of the same name (an ESRI
+/// grid's .prj; issue 22, D1).
+constexpr std::array<std::string_view, 12> kShapefileSidecars = {".prj", ".cpg", ".qix", ".sbn",
+                                                                 ".sbx", ".fix", ".qpj", ".shp.xml",
+                                                                 ".aih", ".ain", ".atx", ".qml"};
 
 std::string toLower(std::string_view text) {
     std::string lower(text);
@@ -128,18 +133,37 @@ std::string toLower(std::string_view text) {
     throw InvalidInputError(std::string(kStage) + ": " + message);
 }
 
+std::string toUpper(std::string_view text) {
+    std::string upper(text);
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
+    return upper;
+}
+
+/// `shp` with its extension replaced by `extension` as given.
+fs::path withExtension(const fs::path& shp, std::string_view extension) {
+    fs::path component = shp;
+    component.replace_extension();
+    return component.string() + std::string(extension);
+}
+
 /// Path of the Shapefile component `extension` (".dbf"...) of `shp`, in the case of the
 /// .shp's own extension (GDAL and other readers look for "X.DBF" next to "X.SHP").
 fs::path shapefileComponent(const fs::path& shp, std::string_view extension) {
-    std::string ext(extension);
     const std::string shpExt = shp.extension().string();
-    if (!shpExt.empty() && std::all_of(shpExt.begin() + 1, shpExt.end(),
-                                       [](unsigned char ch) { return std::isupper(ch) != 0; }))
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
-    fs::path component = shp;
-    component.replace_extension();
-    return component.string() + ext;
+    const bool upper =
+        !shpExt.empty() && std::all_of(shpExt.begin() + 1, shpExt.end(),
+                                       [](unsigned char ch) { return std::isupper(ch) != 0; });
+    return withExtension(shp, upper ? toUpper(extension) : std::string(extension));
+}
+
+/// The component `extension` of `shp` in both cases: readers find "X.PRJ" next to "x.shp"
+/// too, so either one belongs to the Shapefile.
+std::vector<fs::path> shapefileComponentsAnyCase(const fs::path& shp, std::string_view extension) {
+    std::vector<fs::path> paths{withExtension(shp, toLower(extension))};
+    if (toUpper(extension) != toLower(extension))
+        paths.push_back(withExtension(shp, toUpper(extension)));
+    return paths;
 }
 
 struct LayerSpec {
@@ -300,7 +324,7 @@ TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                                const ProgressCallback& progress) {
     const double insertShare = options.spatialIndex ? 0.5 : kInsertShareWithoutIndex;
     const ProgressTicker ticker(kStage, progress, output, 0.0, insertShare, mesh.triangleCount());
-    const AtomicOutput temporaries(kStage, output);
+    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite));
     const fs::path temporary = temporaries.temporary(".fgb");
 
     // With an index: the triangles in the order GDAL will store them, and GDAL's temporary
@@ -329,6 +353,9 @@ TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                       options.spatialIndex ? "Building spatial index" : "Finishing FlatGeobuf");
         closeDataset(dataset, output);
     }
+    // The last chance to cancel: GDAL builds the index while it closes the file, and a signal
+    // that came meanwhile must still leave the old output in place.
+    ticker.report(mesh.triangleCount(), "Finishing FlatGeobuf");
     temporaries.commit(temporary, output);
     return {mesh.triangleCount()};
 }
@@ -356,7 +383,7 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
                               const ProgressCallback& progress) {
     const ProgressTicker ticker(kStage, progress, output, 0.0, kInsertShareWithoutIndex,
                                 mesh.triangleCount());
-    const AtomicOutput temporaries(kStage, output);
+    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite));
     const fs::path temporaryDirectory = temporaries.temporary("");
     std::error_code error;
     if (!fs::create_directory(temporaryDirectory, error) || error)
@@ -397,17 +424,24 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
     // The .shp goes last: readers find a Shapefile through it.
     std::stable_partition(written.begin(), written.end(),
                           [](const std::string& ext) { return toLower(ext) != ".shp"; });
+    std::vector<std::pair<fs::path, fs::path>> moves;
     for (const auto& ext : written)
-        temporaries.commit(temporaryDirectory / (stem + ext),
+        moves.emplace_back(temporaryDirectory / (stem + ext),
                            shapefileComponent(output, toLower(ext)));
+    // Without --overwrite a component that appeared meanwhile refuses the whole set.
+    temporaries.commitAll(moves);
 
-    for (const auto& sidecar : kShapefileSidecars) {
-        const bool rewritten = std::any_of(written.begin(), written.end(), [&](const auto& ext) {
-            return toLower(ext) == sidecar;
-        });
-        if (!rewritten)
-            fs::remove(shapefileComponent(output, sidecar), error);
-    }
+    // Stale sidecars of the replaced Shapefile go. Without --overwrite none existed at the
+    // start (writeTin refused them), and one that appeared since is another program's.
+    if (options.overwrite)
+        for (const auto& sidecar : kShapefileSidecars)
+            for (const auto& stale : shapefileComponentsAnyCase(output, sidecar)) {
+                const bool rewritten =
+                    std::any_of(moves.begin(), moves.end(),
+                                [&](const auto& move) { return move.second == stale; });
+                if (!rewritten)
+                    fs::remove(stale, error);
+            }
     return {mesh.triangleCount()};
 }
 
@@ -436,10 +470,19 @@ void checkShapefileLimits(std::size_t triangleCount, AttributeSet attributes,
 
 std::vector<fs::path> ogrOutputFiles(const fs::path& output, TinFormat format) {
     std::vector<fs::path> files{output};
-    if (format == TinFormat::Shapefile) {
-        files.push_back(shapefileComponent(output, ".shx"));
-        files.push_back(shapefileComponent(output, ".dbf"));
-    }
+    if (format != TinFormat::Shapefile)
+        return files;
+    // Every component and sidecar, in both cases (issue 22, D1).
+    const auto add = [&](const fs::path& file) {
+        if (std::find(files.begin(), files.end(), file) == files.end())
+            files.push_back(file);
+    };
+    for (const std::string_view ext : {".shp", ".shx", ".dbf"})
+        for (const auto& file : shapefileComponentsAnyCase(output, ext))
+            add(file);
+    for (const auto& sidecar : kShapefileSidecars)
+        for (const auto& file : shapefileComponentsAnyCase(output, sidecar))
+            add(file);
     return files;
 }
 

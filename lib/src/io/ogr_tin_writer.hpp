@@ -16,7 +16,8 @@ namespace terratin::io::detail {
 void checkShapefileLimits(std::size_t triangleCount, AttributeSet attributes,
                           const std::filesystem::path& output);
 
-/// The files that count as "the output exists" for `format` (a Shapefile's .shx and .dbf too).
+/// The files that count as "the output exists" for `format`: for a Shapefile every component
+/// and sidecar (.shx .dbf .prj .cpg .qix .sbn .sbx .qml ...), in lower and upper case.
 std::vector<std::filesystem::path> ogrOutputFiles(const std::filesystem::path& output,
                                                   TinFormat format);
 

@@ -23,6 +23,7 @@
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <system_error>
 
 namespace terratin::io {
 
@@ -82,8 +83,7 @@ void checkMesh(std::string_view stage, const TinMesh& mesh, const fs::path& outp
                                     std::to_string(vertexCount) + nothing);
     }
     if (options.edges && mesh.neighbours.size() != mesh.triangles.size())
-        throwInvalid(stage, "the mesh has no neighbour array, needed for the edge layer" +
-                                nothing);
+        throwInvalid(stage, "the mesh has no neighbour array, needed for the edge layer" + nothing);
     if (!options.vertexCells.empty() && options.vertexCells.size() != vertexCount)
         throwInvalid(stage, "vertexCells has " + std::to_string(options.vertexCells.size()) +
                                 " entries for " + std::to_string(vertexCount) + " vertices" +
@@ -108,7 +108,8 @@ TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
                                const TinWriteOptions& options, const detail::MeshFileInfo& info,
                                const ProgressCallback& progress) {
     const std::string_view stage = stageOf(options.format);
-    const detail::AtomicOutput temporaries(stage, output);
+    const detail::AtomicOutput temporaries(stage, output,
+                                           detail::existingTargetFor(options.overwrite));
     const fs::path temporary = temporaries.temporary(output.extension().string());
     const std::uint64_t total = mesh.vertexCount() + mesh.triangleCount();
     const detail::ProgressTicker ticker(stage, progress, output, 0.0, kMeshRecordShare, total);
@@ -137,6 +138,17 @@ TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
     }
     temporaries.commit(temporary, output);
     return {written};
+}
+
+/// Every file a write of `output` puts in place (a Shapefile's components and sidecars, the
+/// style).
+std::vector<fs::path> outputFiles(const fs::path& output, const TinWriteOptions& options) {
+    std::vector<fs::path> outputs = isOgrFormat(options.format)
+                                        ? detail::ogrOutputFiles(output, options.format)
+                                        : std::vector<fs::path>{output};
+    if (options.qgisStyle)
+        outputs.push_back(stylePath(output));
+    return outputs;
 }
 
 } // namespace
@@ -170,8 +182,8 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
     if (options.appendLayer && !geoPackage)
         throwInvalid(kStage, "--append-layer needs a GeoPackage output (.gpkg), not " + format);
     if (!options.spatialIndex && !geoPackage && options.format != TinFormat::FlatGeobuf)
-        throwInvalid(kStage, "--no-spatial-index applies to GeoPackage and FlatGeobuf, not " +
-                                 format);
+        throwInvalid(kStage,
+                     "--no-spatial-index applies to GeoPackage and FlatGeobuf, not " + format);
     if (options.qgisStyle && !isOgrFormat(options.format))
         throwInvalid(kStage, "--qgis-style applies to GeoPackage, Shapefile and FlatGeobuf "
                              "outputs, not " +
@@ -200,8 +212,21 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
                                  "' collides with the node or edge layer");
 }
 
-TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output,
-                        const TinWriteOptions& options, const ProgressCallback& progress) {
+void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {
+    const std::string_view stage = stageOf(options.format);
+    detail::checkOutputLocation(stage, output);
+    std::vector<fs::path> outputs = outputFiles(output, options);
+    // Not even --overwrite replaces a device, a FIFO or a symbolic link (issue 22, D18).
+    detail::refuseIrregularOutputs(stage, outputs);
+    // Appending to an existing GeoPackage is what --append-layer asks for; its layers are
+    // checked when the copy is opened.
+    if (options.appendLayer)
+        outputs.erase(outputs.begin());
+    detail::refuseExistingOutputs(stage, outputs, options.overwrite);
+}
+
+TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output, const TinWriteOptions& options,
+                        const ProgressCallback& progress) {
     initialiseGdal();
     const std::string_view stage = stageOf(options.format);
 
@@ -213,38 +238,45 @@ TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output,
     std::optional<detail::MeshFileInfo> meshInfo;
     if (!isOgrFormat(options.format))
         meshInfo = meshFileInfo(stage, options); // validates the CRS
-    detail::checkOutputLocation(stage, output);
-    std::vector<fs::path> outputs = isOgrFormat(options.format)
-                                        ? detail::ogrOutputFiles(output, options.format)
-                                        : std::vector<fs::path>{output};
-    if (options.qgisStyle)
-        outputs.push_back(stylePath(output));
-    // Appending to an existing GeoPackage is what --append-layer asks for; its layers are
-    // checked when the copy is opened.
-    if (options.appendLayer)
-        outputs.erase(outputs.begin());
-    detail::refuseExistingOutputs(stage, outputs, options.overwrite);
+    checkTinOutput(output, options);
+    // What this run creates rather than replaces: taken back if the style cannot follow.
+    std::vector<fs::path> created;
+    for (const auto& file : outputFiles(output, options))
+        if (detail::existingFiles({file}).empty() && file != stylePath(output))
+            created.push_back(file);
 
     // The style goes to its temporary first and is renamed after the data, so a failure in
     // either leaves both old files in place.
     std::unique_ptr<detail::AtomicOutput> styleTemporaries;
     fs::path styleTemporary;
     if (options.qgisStyle) {
-        const auto [lowest, highest] = std::minmax_element(
-            mesh.vertices.begin(), mesh.vertices.end(),
-            [](const Point3& a, const Point3& b) { return a.z < b.z; });
-        styleTemporaries = std::make_unique<detail::AtomicOutput>(stage, stylePath(output));
+        const auto [lowest, highest] =
+            std::minmax_element(mesh.vertices.begin(), mesh.vertices.end(),
+                                [](const Point3& a, const Point3& b) { return a.z < b.z; });
+        styleTemporaries = std::make_unique<detail::AtomicOutput>(
+            stage, stylePath(output), detail::existingTargetFor(options.overwrite));
         styleTemporary = styleTemporaries->temporary(".qml");
         detail::BufferedFile style(stage, styleTemporary, stylePath(output));
         style.text(detail::qgisTerrainStyle("z_mean", lowest->z, highest->z));
         style.close();
     }
 
-    const TinWriteResult result =
-        isOgrFormat(options.format) ? detail::writeOgrTin(mesh, output, options, progress)
-                                    : writeMeshFormat(mesh, output, options, *meshInfo, progress);
-    if (styleTemporaries)
-        styleTemporaries->commit(styleTemporary, stylePath(output));
+    const TinWriteResult result = isOgrFormat(options.format)
+                                      ? detail::writeOgrTin(mesh, output, options, progress)
+                                      : writeMeshFormat(mesh, output, options, *meshInfo, progress);
+    if (styleTemporaries) {
+        try {
+            styleTemporaries->commit(styleTemporary, stylePath(output));
+        } catch (const Error&) {
+            // A style that appeared during the run is refused (issue 22, D5); the data this
+            // run has just put in place would otherwise stand without it.
+            for (const auto& file : created) {
+                std::error_code ignored;
+                fs::remove(file, ignored);
+            }
+            throw;
+        }
+    }
 
     // The output is complete and in place: there is nothing left to cancel.
     if (progress)

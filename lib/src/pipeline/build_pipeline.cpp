@@ -45,18 +45,6 @@ ProgressCallback phaseProgress(const ProgressCallback& progress, double start, d
     };
 }
 
-void checkOutputPath(const BuildOptions& options) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    if (fs::exists(options.output, error) && !options.overwrite && !options.appendLayer)
-        throw InvalidInputError("Output: '" + options.output.string() +
-                                "' already exists; use --overwrite to replace it");
-    const fs::path directory =
-        options.output.has_parent_path() ? options.output.parent_path() : fs::path(".");
-    if (!fs::is_directory(directory, error))
-        throw IoError("Output: directory '" + directory.string() + "' does not exist");
-}
-
 void describeCrs(const std::string& wkt, BuildReport& report) {
     if (wkt.empty())
         return;
@@ -224,7 +212,7 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
         options.format ? *options.format : io::tinFormatFromPath(options.output);
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
     io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
-    checkOutputPath(options);
+    io::checkTinOutput(options.output, writeOptions); // an output that would be refused, too
 
     BuildReport report;
     {

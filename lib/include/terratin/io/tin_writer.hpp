@@ -85,6 +85,14 @@ struct TinWriteResult {
 /// would corrupt the text formats; vertexCells of the wrong size is checked by writeTin).
 void checkTinWriteOptions(const TinWriteOptions& options);
 
+/// Refuses, before anything is read or computed, the output writeTin would refuse: a location
+/// that cannot take it (IoError), an existing file of the output without options.overwrite
+/// (InvalidInputError; for a Shapefile any component or sidecar of the same base name, .prj
+/// .cpg .qix .qml ... in either case), and one that is not a regular file, whatever
+/// options.overwrite says (IoError: a device, a FIFO, a symbolic link). writeTin checks again,
+/// and its final rename checks atomically once more.
+void checkTinOutput(const std::filesystem::path& output, const TinWriteOptions& options);
+
 /// Writes the mesh in options.format.
 /// Vector formats: one Polygon Z feature per triangle (closed counter-clockwise ring, vertex
 /// z = elevation; a Shapefile stores it clockwise, as its specification demands) with the
@@ -94,7 +102,8 @@ void checkTinWriteOptions(const TinWriteOptions& options);
 /// Atomicity: every file is written under a temporary name in the output's directory and
 /// renamed into place only when complete; on any failure (or Cancelled) the temporaries are
 /// removed and an existing output is left untouched (with appendLayer the existing GeoPackage
-/// is copied, the copy extended, and renamed over the original).
+/// is copied, the copy extended, and renamed over the original). Without `overwrite` the
+/// final rename refuses atomically an output that another program created during the run.
 /// Throws IoError, InvalidInputError (existing output without `overwrite`, empty mesh, a
 /// Shapefile past its 2 GB limits, contradictory options), CrsError (unusable `crsWkt`),
 /// Cancelled. A GeoPackage without CRS is labelled "Undefined Cartesian SRS".

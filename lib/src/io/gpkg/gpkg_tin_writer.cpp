@@ -277,9 +277,13 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     const ProgressTicker ticker(kOgrStage, progress, output, 0.0, kWritingShare, work);
     ticker.report(0, "Creating GeoPackage");
 
-    const AtomicOutput temporaries(kOgrStage, output);
-    const fs::path temporary = temporaries.temporary(".gpkg");
     const bool appending = options.appendLayer && !existingFiles({output}).empty();
+    // The copy extended with new layers replaces the original by design; a new file replaces
+    // only what --overwrite allows, even one that appeared while this run was writing.
+    const AtomicOutput temporaries(kOgrStage, output,
+                                   appending ? ExistingTarget::Replace
+                                             : existingTargetFor(options.overwrite));
+    const fs::path temporary = temporaries.temporary(".gpkg");
     if (appending) {
         std::error_code error;
         fs::copy_file(output, temporary, error);
@@ -290,13 +294,18 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     createLayers(temporary, appending, features, names, options, output);
 
     TinWriteResult result = fillTables(temporary, output, mesh, jobs, options.spatialIndex, ticker);
+    // The last chance to cancel: a signal that came while SQLite committed and closed must
+    // still leave the old output in place.
+    ticker.report(work, "Finishing GeoPackage");
 
     // A journal or WAL left by an earlier SQLite session on the old output would be replayed
-    // into the new file under the same name and corrupt it: remove them before the rename.
-    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
-        std::error_code error;
-        fs::remove(output.string() + suffix, error);
-    }
+    // into the new file under the same name and corrupt it: remove them before the rename,
+    // unless the output appeared during the run (the rename refuses it, and they are its own).
+    if (appending || options.overwrite || existingFiles({output}).empty())
+        for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+            std::error_code error;
+            fs::remove(output.string() + suffix, error);
+        }
     temporaries.commit(temporary, output);
     result.features = features;
     return result;

@@ -1,0 +1,45 @@
+#include "cancel_signals.hpp"
+
+#include <signal.h>
+
+namespace terratin::cli {
+
+namespace {
+
+std::atomic<bool> g_cancelRequested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void requestCancel(int) {
+    g_cancelRequested.store(true);
+}
+
+void ignore(int signal) {
+    struct sigaction action {};
+    action.sa_handler = SIG_IGN;
+    sigemptyset(&action.sa_mask);
+    sigaction(signal, &action, nullptr);
+}
+
+} // namespace
+
+void installCancelSignals() {
+    struct sigaction cancel {};
+    cancel.sa_handler = requestCancel;
+    sigemptyset(&cancel.sa_mask);
+    cancel.sa_flags = SA_RESTART;
+    // SIGHUP (the terminal was closed) like Ctrl-C and kill: no hidden temporary is left
+    // behind (issue 22, D8).
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP})
+        sigaction(signal, &cancel, nullptr);
+    // Past `ulimit -f` the write fails with EFBIG instead of the run dying without a word
+    // (issue 22, D9); a closed stdout or stderr pipe fails its write with EPIPE instead of
+    // killing the run in the middle of writing its output.
+    ignore(SIGXFSZ);
+    ignore(SIGPIPE);
+}
+
+const std::atomic<bool>& cancelledBySignal() {
+    return g_cancelRequested;
+}
+
+} // namespace terratin::cli
