@@ -6,12 +6,17 @@
 
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
+#include "terratin/number_text.hpp"
 #include "wkt.hpp"
 
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <optional>
+#include <system_error>
 #include <vector>
 
 namespace terratin::crs {
@@ -42,15 +47,47 @@ std::string shortName(const OGRSpatialReference& srs) {
     return name != nullptr ? name : "unnamed CRS";
 }
 
+/// When `definition` reads as a file name (a path with '/', or a name ending in a file
+/// extension such as ".prj") and no such file can be looked at: why not ("no such file or
+/// directory", "too many levels of symbolic links"...). nullopt for anything else, which PROJ
+/// judges: "EPSG:32633", WKT, a PROJ string, an OGC URL, an existing file.
+std::optional<std::string> missingFileReason(const std::string& definition) {
+    const bool notAName = definition.empty() || definition.front() == '+' ||
+                          definition.find_first_of(" \t\n[]{}\"") != std::string::npos ||
+                          definition.find("://") != std::string::npos;
+    if (notAName)
+        return std::nullopt;
+    const std::filesystem::path path(definition);
+    const std::string extension = path.extension().string();
+    const bool fileLike = definition.find('/') != std::string::npos ||
+                          (extension.size() >= 2 && extension.size() <= 5 &&
+                           std::all_of(extension.begin() + 1, extension.end(),
+                                       [](unsigned char c) { return std::isalpha(c) != 0; }));
+    if (!fileLike)
+        return std::nullopt;
+    std::error_code error;
+    if (std::filesystem::exists(std::filesystem::status(path, error)))
+        return std::nullopt;
+    return error && error != std::errc::no_such_file_or_directory
+               ? error.message()
+               : std::string("no such file or directory");
+}
+
 } // namespace
 
 std::string crsFromUserInput(const std::string& definition, std::string_view option) {
     io::initialiseGdal();
     OGRSpatialReference srs;
     CPLErrorReset();
-    if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE)
-        throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
-                       "' is not a CRS PROJ knows: " + io::lastGdalErrorMessage());
+    if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE) {
+        const std::string prefix =
+            std::string(kStage) + ": " + std::string(option) + " '" + definition + "'";
+        if (const std::optional<std::string> missing = missingFileReason(definition))
+            throw CrsError(prefix + " names a file that cannot be read: " + *missing);
+        throw CrsError(prefix + " is not a CRS PROJ knows: " +
+                       io::lastGdalErrorMessage("not an authority code (EPSG:32633), WKT, PROJ "
+                                                "string or file of one"));
+    }
     std::string wkt = detail::exportWkt(srs);
     if (wkt.empty())
         throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
@@ -169,7 +206,7 @@ void Reprojector::transform(std::span<Point3> points) const {
         throw CrsError(std::string(kStage) + ": " + std::to_string(failures) + " of " +
                        std::to_string(points.size()) + " points cannot be transformed from '" +
                        m_impl->sourceName + "' to '" + m_impl->targetName + "', the first (" +
-                       std::to_string(p.x) + ", " + std::to_string(p.y) +
+                       numberText(p.x) + ", " + numberText(p.y) +
                        ") (outside the target's area of use?)");
     }
 }

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <system_error>
 #include <utility>
 
 namespace terratin {
@@ -52,8 +53,15 @@ void checkOutputPath(const BuildOptions& options) {
                                 "' already exists; use --overwrite to replace it");
     const fs::path directory =
         options.output.has_parent_path() ? options.output.parent_path() : fs::path(".");
-    if (!fs::is_directory(directory, error))
-        throw IoError("Output: directory '" + directory.string() + "' does not exist");
+    const fs::file_status status = fs::status(directory, error);
+    if (!fs::is_directory(status)) {
+        // Say what is wrong with it: a file, a symbolic link loop, no permission to look.
+        const std::string problem = fs::exists(status) ? "is not a directory"
+                                    : error && error != std::errc::no_such_file_or_directory
+                                        ? "cannot be looked at: " + error.message()
+                                        : "does not exist";
+        throw IoError("Output: directory '" + directory.string() + "' " + problem);
+    }
 }
 
 void describeCrs(const std::string& wkt, BuildReport& report) {
@@ -71,7 +79,9 @@ void describeCrs(const std::string& wkt, BuildReport& report) {
         report.crsCode = std::string(authority) + ":" + code;
 }
 
-std::string formatName(io::TinFormat format) { return std::string(io::tinFormatName(format)); }
+std::string formatName(io::TinFormat format) {
+    return std::string(io::tinFormatName(format));
+}
 
 // The raster cell of every vertex, for the GeoPackage nodes layer: `cellOf(source)` is the
 // row-major cell index of input point `source`.
@@ -199,10 +209,12 @@ io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat f
     return writeOptions;
 }
 
-BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
+namespace {
+
+BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
     const Clock::time_point start = Clock::now();
-    const io::TinFormat format = options.format ? *options.format
-                                                : io::tinFormatFromPath(options.output);
+    const io::TinFormat format =
+        options.format ? *options.format : io::tinFormatFromPath(options.output);
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
     io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
     checkOutputPath(options);
@@ -263,6 +275,22 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
         io::writeTin(triangulation.mesh, options.output, writeOptions,
                      phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
     return finishReport(std::move(report), written, phase, start, progress);
+}
+
+} // namespace
+
+BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
+    try {
+        return runBuildStages(options, progress);
+    } catch (const std::system_error& error) {
+        // std::thread reports a thread it cannot start as a system_error (EAGAIN), not as
+        // bad_alloc, when the address space (ulimit -v) or the process limit runs out.
+        if (error.code() == std::errc::resource_unavailable_try_again ||
+            error.code() == std::errc::not_enough_memory)
+            throw Error("Build: out of memory: cannot start another thread (" +
+                        error.code().message() + ")");
+        throw;
+    }
 }
 
 } // namespace terratin
