@@ -31,8 +31,9 @@ constexpr std::size_t kBlock = std::size_t{1} << 16;
 OGRSpatialReference importOrThrow(const std::string& wkt, std::string_view what) {
     OGRSpatialReference srs;
     if (!detail::importWkt(wkt, srs))
-        throw CrsError(std::string(kStage) + ": the " + std::string(what) +
-                       " CRS cannot be read: " + io::lastGdalErrorMessage());
+        throw CrsError(
+            std::string(kStage) + ": the " + std::string(what) +
+            " CRS cannot be read: " + io::lastGdalErrorMessage("it is not WKT GDAL can parse"));
     return srs;
 }
 
@@ -91,7 +92,8 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
     std::string wkt = detail::exportWkt(srs);
     if (wkt.empty())
         throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
-                       "' cannot be written as WKT: " + io::lastGdalErrorMessage());
+                       "' cannot be written as WKT: " +
+                       io::lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
     return wkt;
 }
 
@@ -141,7 +143,8 @@ std::string geographicBaseCrs(const std::string& wkt) {
                        "' is neither geographic nor projected");
     if (geographic.CopyGeogCSFrom(&srs) != OGRERR_NONE)
         throw CrsError(std::string(kStage) + ": '" + shortName(srs) +
-                       "' has no geographic base CRS: " + io::lastGdalErrorMessage());
+                       "' has no geographic base CRS: " +
+                       io::lastGdalErrorMessage("it is not based on a datum and ellipsoid"));
     return detail::exportWkt(geographic);
 }
 
@@ -169,7 +172,7 @@ Reprojector::Reprojector(const std::string& sourceWkt, const std::string& target
     if (!m_impl->transform)
         throw CrsError(std::string(kStage) + ": PROJ has no transformation from '" +
                        m_impl->sourceName + "' to '" + m_impl->targetName +
-                       "': " + io::lastGdalErrorMessage());
+                       "': " + io::lastGdalErrorMessage("PROJ knows no operation between them"));
 }
 
 Reprojector::~Reprojector() = default;

@@ -221,6 +221,17 @@ TEST(LasReader, ThrowsCrsError_ForMalformedGeoKeys) {
     poke<std::uint16_t>(keys.data, 6, 40); // claims 40 keys, holds 3
     file.vlrs.push_back(keys);
     EXPECT_THROW(readBytes(file.bytes()), CrsError);
+
+    // Issue 22, D20: keys GDAL derives no CRS from ended in "unknown GDAL error".
+    LasTestFile other;
+    other.points = samplePoints();
+    other.vlrs.push_back(test::geoKeysForProjectedEpsg(7)); // no CRS has code 7
+    try {
+        (void)readBytes(other.bytes());
+    } catch (const CrsError& error) {
+        EXPECT_EQ(std::string(error.what()).find("unknown GDAL error"), std::string::npos)
+            << error.what();
+    }
 }
 
 /// The message of the InvalidInputError `bytes` raise, or "" when they raise none.
