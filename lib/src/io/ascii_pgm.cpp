@@ -24,6 +24,15 @@ struct FileCloser {
     void operator()(std::FILE* file) const { std::fclose(file); }
 };
 
+/// A byte for a message: "'x'" when printable, "byte 0x01" otherwise.
+std::string describeByte(int c) {
+    if (c >= 0x20 && c < 0x7F)
+        return std::string("'") + static_cast<char>(c) + "'";
+    constexpr const char* kHex = "0123456789abcdef";
+    const auto byte = static_cast<unsigned>(c) & 0xFFu;
+    return std::string("byte 0x") + kHex[byte >> 4] + kHex[byte & 0xFu];
+}
+
 bool isSpace(int c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
@@ -40,7 +49,7 @@ public:
         if (c == EOF)
             return std::nullopt;
         if (c < '0' || c > '9')
-            fail(std::string("'") + static_cast<char>(c) + "' where a number was expected");
+            fail(describeByte(c) + " where a number was expected");
         std::uint64_t value = 0;
         while (c >= '0' && c <= '9') {
             value = value * 10 + static_cast<std::uint64_t>(c - '0');
@@ -49,7 +58,7 @@ public:
             c = getc_unlocked(m_file);
         }
         if (c != EOF && !isSpace(c) && c != '#')
-            fail(std::string("'") + static_cast<char>(c) + "' inside a number");
+            fail(describeByte(c) + " inside a number");
         if (c == '#')
             ungetc(c, m_file);
         return value;
