@@ -6,13 +6,44 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace terratin {
 
-/// Base of every error terratin throws.
+/// `text` on one line: each run of line breaks and tabs, with the spaces around it, becomes one
+/// space (nothing at either end of the text). GDAL and PROJ messages, and file names, may hold
+/// newlines; a message that stays on one line is what a script reading stderr relies on.
+inline std::string oneLine(std::string_view text) {
+    std::string line;
+    line.reserve(text.size());
+    bool inBreak = false;
+    for (const char c : text) {
+        if (c == '\n' || c == '\r' || c == '\t') {
+            inBreak = true;
+        } else if (inBreak && c == ' ') {
+            continue;
+        } else {
+            if (inBreak) {
+                while (!line.empty() && line.back() == ' ')
+                    line.pop_back();
+                if (!line.empty())
+                    line += ' ';
+                inBreak = false;
+            }
+            line += c;
+        }
+    }
+    if (inBreak)
+        while (!line.empty() && line.back() == ' ')
+            line.pop_back();
+    return line;
+}
+
+/// Base of every error terratin throws. The message is kept on one line (oneLine).
 class Error : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    explicit Error(const std::string& message) : std::runtime_error(oneLine(message)) {}
+    explicit Error(const char* message) : std::runtime_error(oneLine(message)) {}
 };
 
 /// A file could not be opened, read, written or renamed.

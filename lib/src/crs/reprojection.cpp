@@ -6,12 +6,17 @@
 
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
+#include "terratin/number_text.hpp"
 #include "wkt.hpp"
 
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <optional>
+#include <system_error>
 #include <vector>
 
 namespace terratin::crs {
@@ -26,8 +31,9 @@ constexpr std::size_t kBlock = std::size_t{1} << 16;
 OGRSpatialReference importOrThrow(const std::string& wkt, std::string_view what) {
     OGRSpatialReference srs;
     if (!detail::importWkt(wkt, srs))
-        throw CrsError(std::string(kStage) + ": the " + std::string(what) +
-                       " CRS cannot be read: " + io::lastGdalErrorMessage());
+        throw CrsError(
+            std::string(kStage) + ": the " + std::string(what) +
+            " CRS cannot be read: " + io::lastGdalErrorMessage("it is not WKT GDAL can parse"));
     return srs;
 }
 
@@ -42,15 +48,47 @@ std::string shortName(const OGRSpatialReference& srs) {
     return name != nullptr ? name : "unnamed CRS";
 }
 
+/// When `definition` reads as a file name (a path with '/', or a name ending in a file
+/// extension such as ".prj") and no such file can be looked at: why not ("no such file or
+/// directory", "too many levels of symbolic links"...). nullopt for anything else, which PROJ
+/// judges: "EPSG:32633", WKT, a PROJ string, an OGC URL, an existing file.
+std::optional<std::string> missingFileReason(const std::string& definition) {
+    const bool notAName = definition.empty() || definition.front() == '+' ||
+                          definition.find_first_of(" \t\n[]{}\"") != std::string::npos ||
+                          definition.find("://") != std::string::npos;
+    if (notAName)
+        return std::nullopt;
+    const std::filesystem::path path(definition);
+    const std::string extension = path.extension().string();
+    const bool fileLike = definition.find('/') != std::string::npos ||
+                          (extension.size() >= 2 && extension.size() <= 5 &&
+                           std::all_of(extension.begin() + 1, extension.end(),
+                                       [](unsigned char c) { return std::isalpha(c) != 0; }));
+    if (!fileLike)
+        return std::nullopt;
+    std::error_code error;
+    if (std::filesystem::exists(std::filesystem::status(path, error)))
+        return std::nullopt;
+    return error && error != std::errc::no_such_file_or_directory
+               ? error.message()
+               : std::string("no such file or directory");
+}
+
 } // namespace
 
 std::string crsFromUserInput(const std::string& definition, std::string_view option) {
     io::initialiseGdal();
     OGRSpatialReference srs;
     CPLErrorReset();
-    if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE)
-        throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
-                       "' is not a CRS PROJ knows: " + io::lastGdalErrorMessage());
+    if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE) {
+        const std::string prefix =
+            std::string(kStage) + ": " + std::string(option) + " '" + definition + "'";
+        if (const std::optional<std::string> missing = missingFileReason(definition))
+            throw CrsError(prefix + " names a file that cannot be read: " + *missing);
+        throw CrsError(prefix + " is not a CRS PROJ knows: " +
+                       io::lastGdalErrorMessage("not an authority code (EPSG:32633), WKT, PROJ "
+                                                "string or file of one"));
+    }
     // The TIN is triangulated in x, y of this CRS: a vertical-only CRS has no x, y, and a
     // geocentric one's x, y are a slice through the Earth (issue 22, D11: both used to be
     // accepted and label nonsense). A compound CRS brings its horizontal part.
@@ -66,7 +104,8 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
     std::string wkt = detail::exportWkt(srs);
     if (wkt.empty())
         throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
-                       "' cannot be written as WKT: " + io::lastGdalErrorMessage());
+                       "' cannot be written as WKT: " +
+                       io::lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
     return wkt;
 }
 
@@ -116,7 +155,8 @@ std::string geographicBaseCrs(const std::string& wkt) {
                        "' is neither geographic nor projected");
     if (geographic.CopyGeogCSFrom(&srs) != OGRERR_NONE)
         throw CrsError(std::string(kStage) + ": '" + shortName(srs) +
-                       "' has no geographic base CRS: " + io::lastGdalErrorMessage());
+                       "' has no geographic base CRS: " +
+                       io::lastGdalErrorMessage("it is not based on a datum and ellipsoid"));
     return detail::exportWkt(geographic);
 }
 
@@ -144,7 +184,7 @@ Reprojector::Reprojector(const std::string& sourceWkt, const std::string& target
     if (!m_impl->transform)
         throw CrsError(std::string(kStage) + ": PROJ has no transformation from '" +
                        m_impl->sourceName + "' to '" + m_impl->targetName +
-                       "': " + io::lastGdalErrorMessage());
+                       "': " + io::lastGdalErrorMessage("PROJ knows no operation between them"));
 }
 
 Reprojector::~Reprojector() = default;
@@ -181,7 +221,7 @@ void Reprojector::transform(std::span<Point3> points) const {
         throw CrsError(std::string(kStage) + ": " + std::to_string(failures) + " of " +
                        std::to_string(points.size()) + " points cannot be transformed from '" +
                        m_impl->sourceName + "' to '" + m_impl->targetName + "', the first (" +
-                       std::to_string(p.x) + ", " + std::to_string(p.y) +
+                       numberText(p.x) + ", " + numberText(p.y) +
                        ") (outside the target's area of use?)");
     }
 }

@@ -5,6 +5,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
+#include "terratin/number_text.hpp"
 #include "wkt.hpp"
 
 #include <GeographicLib/UTMUPS.hpp>
@@ -33,7 +34,7 @@ UtmZone standardUtmZone(double longitudeDeg, double latitudeDeg) {
     if (!std::isfinite(longitudeDeg) || !std::isfinite(latitudeDeg) || latitudeDeg < -90.0 ||
         latitudeDeg > 90.0)
         throw CrsError(std::string(kStage) + ": no UTM/UPS zone for longitude " +
-                       std::to_string(longitudeDeg) + ", latitude " + std::to_string(latitudeDeg) +
+                       numberText(longitudeDeg) + ", latitude " + numberText(latitudeDeg) +
                        " (latitude outside -90..90 degrees: "
                        "is the input really geographic?)");
     UtmZone result;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <system_error>
 #include <sstream>
 #include <system_error>
 
@@ -40,6 +41,11 @@ void checkOutputLocation(std::string_view stage, const fs::path& output) {
 
     const fs::path directory = outputDirectory(output);
     const auto status = fs::status(directory, error);
+    // Say what is wrong with a directory that cannot be looked at (a symbolic link loop, no
+    // permission) instead of calling it missing.
+    if (!fs::exists(status) && error && error != std::errc::no_such_file_or_directory)
+        throw IoError(prefix + "the output directory " + quoted(directory) +
+                      " cannot be looked at: " + error.message());
     if (!fs::exists(status))
         throw IoError(prefix + "the output directory " + quoted(directory) + " does not exist");
     if (!fs::is_directory(status))

@@ -183,8 +183,8 @@ std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
     }
     VSIUnlink(memName.c_str());
     if (wkt.empty())
-        throw CrsError(where +
-                       "its GeoTIFF keys describe no CRS GDAL can use: " + lastGdalErrorMessage());
+        throw CrsError(where + "its GeoTIFF keys describe no CRS GDAL can use: " +
+                       lastGdalErrorMessage("GDAL derives no CRS from them"));
     return wkt;
 }
 
@@ -193,11 +193,13 @@ std::string normaliseWkt(std::string_view wkt, std::string_view stage, std::stri
     const std::string text(wkt);
     if (srs.importFromWkt(text.c_str()) != OGRERR_NONE)
         throw CrsError(std::string(stage) + ": '" + std::string(name) +
-                       "': its WKT CRS record cannot be read: " + lastGdalErrorMessage());
+                       "': its WKT CRS record cannot be read: " +
+                       lastGdalErrorMessage("it is not WKT GDAL can parse"));
     std::string out = crs::detail::exportWkt(srs);
     if (out.empty())
         throw CrsError(std::string(stage) + ": '" + std::string(name) +
-                       "': its WKT CRS cannot be exported: " + lastGdalErrorMessage());
+                       "': its WKT CRS cannot be exported: " +
+                       lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
     return out;
 }
 

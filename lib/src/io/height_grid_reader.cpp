@@ -31,7 +31,7 @@ HeightGridRaster readHeightGrid(const std::string& path, const RasterReadOptions
     } catch (const std::bad_alloc&) {
         throw InvalidInputError(std::string(kStage) + ": " + reader.quotedPath() + " has " +
                                 std::to_string(grid.width) + " x " + std::to_string(grid.height) +
-                                " cells, too many to hold in memory");
+                                " cells: out of memory holding them (4 bytes a cell)");
     }
 
     // NaN stays NaN (no data) in float32.

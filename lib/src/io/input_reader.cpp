@@ -4,6 +4,8 @@
 
 #include "terratin/io/input_reader.hpp"
 
+#include "ascii_pgm.hpp"
+
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
@@ -48,6 +50,8 @@ std::string head(const std::string& path, std::size_t bytes) {
 bool csvHasGeometryColumn(const std::string& path) {
     std::string line = head(path, 4096);
     line = line.substr(0, line.find('\n'));
+    if (line.rfind("\xEF\xBB\xBF", 0) == 0) // a UTF-8 byte order mark
+        line.erase(0, 3);
     std::transform(line.begin(), line.end(), line.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     for (char& c : line)
@@ -80,14 +84,33 @@ const char* toString(InputKind kind) {
     return "unknown";
 }
 
+/// Whether `path` may be a GDAL connection string or subdataset name ("GPKG:file.gpkg:table",
+/// "NETCDF:\"file.nc\":var", "PG:dbname=...") rather than a file: a prefix of two or more
+/// letters, digits or underscores, then a colon. "C:" (a drive letter) is not one.
+bool looksLikeConnectionString(const std::string& path) {
+    const std::size_t colon = path.find(':');
+    if (colon == std::string::npos || colon < 2)
+        return false;
+    return std::all_of(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(colon),
+                       [](unsigned char c) { return std::isalnum(c) != 0 || c == '_'; });
+}
+
 InputKind detectInputKind(const std::string& path) {
     const bool virtualPath = path.rfind("/vsi", 0) == 0;
     std::error_code error;
-    if (!virtualPath) {
-        if (!fs::exists(path, error))
-            throw IoError(std::string(kStage) + ": cannot open '" + path +
-                          "': no such file or directory");
-        if (fs::is_directory(path, error)) {
+    const fs::file_status status = virtualPath ? fs::file_status() : fs::status(path, error);
+    // Not a file: GDAL may still open it as a connection string or subdataset name.
+    const bool gdalName = !virtualPath && !fs::exists(status) && looksLikeConnectionString(path);
+    if (!virtualPath && !gdalName) {
+        if (!fs::exists(status)) {
+            // ENOENT, or the reason it cannot be looked at: a symbolic link loop, a component
+            // that is not a directory, permission denied.
+            const std::string reason = error && error != std::errc::no_such_file_or_directory
+                                           ? error.message()
+                                           : std::string("no such file or directory");
+            throw IoError(std::string(kStage) + ": cannot open '" + path + "': " + reason);
+        }
+        if (fs::is_directory(status)) {
             // A directory can be a vector dataset (a folder of Shapefiles); GDAL decides below.
         } else {
             const std::string start = head(path, 4);
@@ -98,14 +121,17 @@ InputKind detectInputKind(const std::string& path) {
                 return InputKind::Text;
             if (ext == ".csv")
                 return csvHasGeometryColumn(path) ? InputKind::Vector : InputKind::Text;
+            // An ASCII PGM, which GDAL's PNM driver does not read; the raster reader does.
+            if (detail::isAsciiPgm(start))
+                return InputKind::Raster;
         }
     }
 
     initialiseGdal();
     CPLErrorReset();
-    const std::unique_ptr<void, DatasetCloser> dataset(
-        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
-                   nullptr, nullptr));
+    const std::unique_ptr<void, DatasetCloser> dataset(GDALOpenEx(
+        path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
+        nullptr, nullptr, nullptr));
     if (dataset) {
         if (GDALGetRasterCount(dataset.get()) > 0)
             return InputKind::Raster;
@@ -114,7 +140,11 @@ InputKind detectInputKind(const std::string& path) {
         // A container of subdatasets: the raster reader explains how to pick one.
         return InputKind::Raster;
     }
-    if (!virtualPath && !fs::is_directory(path, error)) {
+    if (gdalName)
+        throw IoError(std::string(kStage) + ": cannot open '" + path +
+                      "': no such file, and GDAL does not open it as a dataset name: " +
+                      lastGdalErrorMessage());
+    if (!virtualPath && !fs::is_directory(status)) {
         // Text unless it starts like JSON or XML (a damaged GeoJSON or GML should get GDAL's
         // message, not a line-number complaint).
         const std::string sample = head(path, kSniffBytes);
@@ -123,9 +153,9 @@ InputKind detectInputKind(const std::string& path) {
             sample.find('\0') == std::string::npos)
             return InputKind::Text;
     }
-    throw IoError(
-        std::string(kStage) + ": '" + path +
-        "' is not a raster, LAS, text or vector file terratin can read: " + lastGdalErrorMessage());
+    throw IoError(std::string(kStage) + ": '" + path +
+                  "' is not a raster, LAS, text or vector file terratin can read: " +
+                  lastGdalErrorMessage("GDAL recognises no format in it"));
 }
 
 PointCloud readInput(const std::string& path, const InputReadOptions& options,

@@ -190,7 +190,9 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     if (std::memcmp(raw.data(), "LASF", 4) != 0)
         invalid(name, "not a LAS file (no LASF signature)");
     // LAZ first, whatever else is wrong: it is the likeliest reason for a failure. LASzip
-    // marks compressed files by setting bit 7 (and 6) of the point format (byte 104).
+    // marks compressed files by setting bit 7 of the point format (byte 104), and bit 6 as well
+    // for the LAS 1.4 formats; what is left is a format of 0..10. Any other byte (99 = bit 6
+    // and 35, say) is an unsupported format, reported below.
     const bool lazExtension = name.size() >= 4 && [&] {
         std::string ext = name.substr(name.size() - 4);
         std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -200,7 +202,9 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     std::array<std::byte, 1> formatProbe{};
     if (fileSize > 104)
         source.read(104, formatProbe);
-    if (lazExtension || (std::to_integer<unsigned>(formatProbe[0]) & 0xC0u) != 0)
+    const unsigned probedFormat = std::to_integer<unsigned>(formatProbe[0]);
+    const bool lazFormat = (probedFormat & 0x80u) != 0 && (probedFormat & 0x3Fu) <= 10;
+    if (lazExtension || lazFormat)
         invalid(name, "LAZ is compressed; not supported (decompress it first, e.g. with "
                       "'pdal translate in.laz out.las' or 'laszip -i in.laz -o out.las')");
     if (fileSize < kHeaderSize12)

@@ -66,8 +66,9 @@ std::string layerCrs(OGRLayer& layer, const std::string& path) {
         return {};
     std::string wkt = crs::detail::exportWkt(*srs);
     if (wkt.empty())
-        throw CrsError(std::string(kStage) + ": '" + path + "': the CRS of layer '" +
-                       layer.GetName() + "' cannot be exported: " + lastGdalErrorMessage());
+        throw CrsError(
+            std::string(kStage) + ": '" + path + "': the CRS of layer '" + layer.GetName() +
+            "' cannot be exported: " + lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
     return wkt;
 }
 
@@ -80,7 +81,8 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
     const std::unique_ptr<GDALDataset> dataset(
         GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR));
     if (!dataset)
-        throwGdalError(kStage, "cannot open vector data", path);
+        throwGdalError(kStage, "cannot open vector data", path,
+                       "GDAL recognises no vector data in it");
     OGRLayer* layer = chooseLayer(*dataset, path, options.layer);
     const std::string where =
         std::string(kStage) + ": '" + path + "' layer '" + layer->GetName() + "': ";

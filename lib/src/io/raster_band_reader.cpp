@@ -1,15 +1,21 @@
 #include "raster_band_reader.hpp"
 
+#include "ascii_pgm.hpp"
+
 #include "terratin/error.hpp"
 #include "terratin/io/gdal_error.hpp"
+#include "terratin/number_text.hpp"
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <new>
 #include <stdexcept>
@@ -23,6 +29,22 @@ namespace {
 /// per block (SRTM .hgt, ESRI ASCII grids, striped GeoTIFFs) would otherwise cost one RasterIO
 /// call and one progress report per row. 2^18 cells is 2 MiB of Float64 plus 256 KiB of mask.
 constexpr std::int64_t kMinStripCells = std::int64_t{1} << 18;
+
+/// Room left beside a strip's blocks for GDAL's own working memory while it decodes them
+/// (decompressor state and buffers: zlib's is under 300 KiB, ZSTD's and LZMA's a few MiB).
+constexpr std::size_t kGdalWorkingBytes = std::size_t{8} << 20;
+
+/// Whether `bytes` can be allocated now. GDAL 3.6 does not check every allocation on its
+/// RasterIO path: when the address space runs out (ulimit -v) it dereferences a null block and
+/// the process dies of SIGSEGV instead of reporting an error. Allocating what the next read
+/// will need, and giving it straight back, turns that into an error we can report.
+bool canAllocate(std::size_t bytes) {
+    // volatile: the compiler may not elide an allocation whose result it must store.
+    void* volatile probe = std::malloc(bytes);
+    const bool ok = probe != nullptr;
+    std::free(probe);
+    return ok;
+}
 
 struct CplFree {
     void operator()(char* text) const { CPLFree(text); }
@@ -46,6 +68,81 @@ std::string crsAsWkt(GDALDatasetH dataset) {
     return owned ? std::string(owned.get()) : std::string();
 }
 
+/// The first bytes of the file at `path`; empty when it is not a readable file (a /vsi path, a
+/// connection string: GDAL opens those).
+std::string fileStart(const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (file == nullptr)
+        return {};
+    char bytes[4] = {};
+    const std::size_t got = std::fread(bytes, 1, sizeof bytes, file);
+    std::fclose(file);
+    return std::string(bytes, got);
+}
+
+/// The subdataset names GDAL lists for a container ("GPKG:file.gpkg:table"...), in its order.
+std::vector<std::string> subdatasetNames(GDALDatasetH dataset) {
+    std::vector<std::string> names;
+    char** metadata = GDALGetMetadata(dataset, "SUBDATASETS");
+    for (int i = 1;; ++i) {
+        const std::string key = "SUBDATASET_" + std::to_string(i) + "_NAME";
+        const char* name = CSLFetchNameValue(metadata, key.c_str());
+        if (name == nullptr)
+            break;
+        names.emplace_back(name);
+    }
+    return names;
+}
+
+/// Why a container of subdatasets cannot be read as it is, with the names that can.
+std::string subdatasetAdvice(const std::vector<std::string>& names) {
+    if (names.empty())
+        return "has no raster bands";
+    constexpr std::size_t kNamesShown = 4;
+    std::string text = "holds " + std::to_string(names.size()) +
+                       " rasters (subdatasets), not one: give one of them as the input by its "
+                       "name, ";
+    for (std::size_t i = 0; i < std::min(names.size(), kNamesShown); ++i)
+        text += (i == 0 ? "'" : ", '") + names[i] + "'";
+    if (names.size() > kNamesShown)
+        text +=
+            " and " + std::to_string(names.size() - kNamesShown) + " more (gdalinfo lists them)";
+    return text;
+}
+
+/// Largest magnitude of a cell-centre coordinate accepted from a geotransform, in CRS units.
+/// No terrestrial CRS comes near it (the largest, in US survey feet, span about 1.3e8), and above
+/// 2^53 ≈ 9e15 a double no longer holds whole units: a geotransform that reaches further is
+/// corrupt, and would leave the triangulator with coincident or overflowing points.
+constexpr double kMaxGeoCoordinate = 1e15;
+
+/// Why the geotransform `c` of a width x height raster is unusable; empty when it is usable:
+/// every coefficient finite, cells of non-zero area, every cell centre within
+/// kMaxGeoCoordinate (the four corner cells bound them all, the transform being affine).
+std::string geoTransformProblem(const std::array<double, 6>& c, std::int64_t width,
+                                std::int64_t height) {
+    if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
+        return "has a coefficient that is not a finite number";
+    const double area = c[1] * c[5] - c[2] * c[4];
+    if (area == 0.0 || !std::isfinite(area))
+        return area == 0.0 ? "gives cells of zero area" : "gives cells of infinite area";
+    for (const double row : {0.5, static_cast<double>(height) - 0.5})
+        for (const double col : {0.5, static_cast<double>(width) - 0.5}) {
+            const double x = c[0] + col * c[1] + row * c[2];
+            const double y = c[3] + col * c[4] + row * c[5];
+            if (!(std::abs(x) <= kMaxGeoCoordinate && std::abs(y) <= kMaxGeoCoordinate))
+                return "puts cell centres beyond 1e15 CRS units from the origin";
+        }
+    return {};
+}
+
+std::string geoTransformText(const std::array<double, 6>& c) {
+    std::string text = "(";
+    for (std::size_t i = 0; i < c.size(); ++i)
+        text += (i == 0 ? "" : ", ") + numberText(c[i]);
+    return text + ")";
+}
+
 } // namespace
 
 struct RasterBandReader::Dataset {
@@ -62,17 +159,19 @@ RasterBandReader::RasterBandReader(const std::string& path, int band, std::strin
     initialiseGdal();
     // Any raster driver; GDAL_OF_VERBOSE_ERROR makes "not recognised" an error message.
     CPLErrorReset();
-    m_dataset->handle = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VERBOSE_ERROR, nullptr,
-                                   nullptr, nullptr);
+    // GDAL's PNM driver reads binary PGMs only; the plain (ASCII) kind is read here.
+    m_dataset->handle = isAsciiPgm(fileStart(path))
+                            ? openAsciiPgm(path, m_stage)
+                            : GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VERBOSE_ERROR,
+                                         nullptr, nullptr, nullptr);
     if (m_dataset->handle == nullptr)
-        throwGdalError(m_stage, "cannot open raster", path);
+        throwGdalError(m_stage, "cannot open raster", path, "GDAL recognises no raster in it");
     GDALDatasetH ds = m_dataset->handle;
 
     const int bandCount = GDALGetRasterCount(ds);
     if (bandCount == 0)
-        throw InvalidInputError(m_stage + ": " + quotedPath() +
-                                " has no raster bands (a container of subdatasets? open one "
-                                "of them by its SUBDATASET name)");
+        throw InvalidInputError(m_stage + ": " + quotedPath() + " " +
+                                subdatasetAdvice(subdatasetNames(ds)));
     if (band < 1 || band > bandCount)
         throw InvalidInputError(m_stage + ": band " + std::to_string(band) + " does not exist in " +
                                 quotedPath() + ", which has " + std::to_string(bandCount) +
@@ -86,6 +185,11 @@ RasterBandReader::RasterBandReader(const std::string& path, int band, std::strin
     // Without a geotransform GDAL reports failure and we keep the default.
     if (GDALGetGeoTransform(ds, m_geoTransform.data()) != CE_None)
         m_geoTransform = {0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+    if (const std::string problem = geoTransformProblem(m_geoTransform, m_width, m_height);
+        !problem.empty())
+        throw InvalidInputError(m_stage + ": the geotransform " + geoTransformText(m_geoTransform) +
+                                " of " + quotedPath() + " " + problem +
+                                "; fix its georeferencing (gdal_edit.py -a_ullr or -unsetgt)");
     CPLErrorReset();
     m_crsWkt = crsAsWkt(ds);
 }
@@ -116,20 +220,35 @@ std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
     GDALGetBlockSize(band, &blockXSize, &blockYSize);
     const std::int64_t rowsAtLeast = std::max<std::int64_t>(m_height, 1);
     const std::int64_t blockRows = std::clamp<std::int64_t>(blockYSize, 1, rowsAtLeast);
-    const std::int64_t blockRowsPerStrip = std::max<std::int64_t>(
-        1, kMinStripCells / std::max<std::int64_t>(m_width * blockRows, 1));
+    const std::int64_t blockRowsPerStrip =
+        std::max<std::int64_t>(1, kMinStripCells / std::max<std::int64_t>(m_width * blockRows, 1));
     const std::int64_t stripRows = std::min(rowsAtLeast, blockRows * blockRowsPerStrip);
 
+    const auto outOfMemory = [&](std::uint64_t bytes) {
+        return IoError(m_stage + ": out of memory reading " + quotedPath() + " (a strip of " +
+                       std::to_string(stripRows) + " rows of " + std::to_string(m_width) +
+                       " cells needs " + std::to_string((bytes >> 20) + 1) + " MiB more)");
+    };
     std::vector<double> values;
     std::vector<std::uint8_t> mask;
+    const std::uint64_t stripCells = static_cast<std::uint64_t>(stripRows * m_width);
     try {
-        values.resize(static_cast<std::size_t>(stripRows * m_width));
+        values.resize(static_cast<std::size_t>(stripCells));
         if (!allValid)
             mask.assign(values.size(), 0);
     } catch (const std::bad_alloc&) {
-        throw InvalidInputError(m_stage + ": " + quotedPath() + " has rows of " +
-                                std::to_string(m_width) + " cells, too long to read");
+        throw outOfMemory(stripCells * (allValid ? 8 : 9));
     }
+    // What GDAL allocates to read one strip: the blocks that cover it, in the band's own type,
+    // and the mask's (one byte a cell), plus its working memory. Blocks may be wider than the
+    // raster; a block row is never more than the strip.
+    const std::int64_t blockColumns =
+        blockXSize > 0 ? (m_width + blockXSize - 1) / blockXSize * blockXSize : m_width;
+    const auto cellBytes =
+        static_cast<std::uint64_t>(GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band))) +
+        (allValid ? 0 : 1);
+    const std::uint64_t gdalStripBytes =
+        static_cast<std::uint64_t>(stripRows * blockColumns) * cellBytes + kGdalWorkingBytes;
 
     constexpr double kInvalid = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t valid = 0;
@@ -141,6 +260,9 @@ std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
         const std::string rowsText = "rows " + std::to_string(row0) + ".." +
                                      std::to_string(row0 + rows - 1) + " of band " +
                                      std::to_string(m_band) + " of";
+        if (gdalStripBytes > std::numeric_limits<std::size_t>::max() ||
+            !canAllocate(static_cast<std::size_t>(gdalStripBytes)))
+            throw outOfMemory(gdalStripBytes);
         if (GDALRasterIO(band, GF_Read, 0, yOff, xSize, ySize, values.data(), xSize, ySize,
                          GDT_Float64, 0, 0) != CE_None)
             throwGdalError(m_stage, "cannot read " + rowsText, m_path);
@@ -159,11 +281,15 @@ std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
                 z = z * zScale + zOffset;
             ++valid;
         }
+        // Each block is read once: keeping it in GDAL's cache (up to 5% of RAM by default)
+        // would only take memory from the points being built.
+        GDALFlushRasterCache(band);
+        if (maskBand != nullptr)
+            GDALFlushRasterCache(maskBand);
         visit(row0, std::span<const double>(values.data(), count));
 
-        if (progress &&
-            !progress(static_cast<double>(row0 + rows) / static_cast<double>(m_height),
-                      "reading raster"))
+        if (progress && !progress(static_cast<double>(row0 + rows) / static_cast<double>(m_height),
+                                  "reading raster"))
             throw Cancelled(m_stage + ": cancelled while reading " + quotedPath());
     }
     return valid;

@@ -54,7 +54,7 @@ RasterPoints readRasterPoints(const std::string& path, const RasterReadOptions& 
         return InvalidInputError(std::string(kStage) + ": " + reader.quotedPath() + " has " +
                                  std::to_string(reader.width()) + " x " +
                                  std::to_string(reader.height()) +
-                                 " cells, too many to hold in memory as points");
+                                 " cells: out of memory holding them as points (32 bytes a cell)");
     };
     try {
         result.points.reserve(cellCount);

@@ -28,6 +28,8 @@ constexpr std::string_view kStage = "TextReader";
 constexpr std::size_t kChunkBytes = std::size_t{4} << 20;
 /// A longer line is not a point record; refusing it bounds the buffer.
 constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+/// The UTF-8 encoding of U+FEFF, skipped at the start of the first line.
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 /// More columns than this in --columns is a mistake, not a file layout.
 constexpr std::size_t kMaxColumnNumber = 10000;
 
@@ -85,6 +87,9 @@ public:
     void line(std::string_view text, std::uint64_t number) {
         if (!text.empty() && text.back() == '\r')
             text.remove_suffix(1);
+        // A UTF-8 byte order mark, which Windows editors put at the start of a file.
+        if (number == 1 && text.substr(0, kUtf8Bom.size()) == kUtf8Bom)
+            text.remove_prefix(kUtf8Bom.size());
         std::size_t start = 0;
         while (start < text.size() && isBlank(text[start]))
             ++start;

@@ -12,8 +12,7 @@ namespace terratin::io::detail {
 void reportProgress(std::string_view stage, const ProgressCallback& progress, double fraction,
                     std::string_view message, const std::filesystem::path& output) {
     if (progress && !progress(fraction, message))
-        throw Cancelled(std::string(stage) + ": cancelled; " + quoted(output) +
-                        " was not written");
+        throw Cancelled(std::string(stage) + ": cancelled; " + quoted(output) + " was not written");
 }
 
 CrsSummary summariseCrs(std::string_view stage, const std::string& wkt) {
@@ -23,8 +22,8 @@ CrsSummary summariseCrs(std::string_view stage, const std::string& wkt) {
     initialiseGdal();
     OGRSpatialReference srs;
     if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE)
-        throw CrsError(std::string(stage) +
-                       ": the output CRS is not valid WKT: " + lastGdalErrorMessage());
+        throw CrsError(std::string(stage) + ": the output CRS is not valid WKT: " +
+                       lastGdalErrorMessage("GDAL cannot parse it"));
     if (const char* name = srs.GetName())
         summary.name = name;
     if (srs.IsProjected() || srs.IsLocal()) {
@@ -52,7 +51,7 @@ CrsSummary summariseCrs(std::string_view stage, const std::string& wkt) {
         if (srs.exportToWkt(&text, wkt2) != OGRERR_NONE || text == nullptr) {
             CPLFree(text);
             throw CrsError(std::string(stage) + ": cannot export the output CRS as WKT: " +
-                           lastGdalErrorMessage());
+                           lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
         }
     }
     summary.wkt = text;

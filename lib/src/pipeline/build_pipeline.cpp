@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 
 namespace terratin {
@@ -205,8 +206,9 @@ void checkBuildOptions(const BuildOptions& options) {
         io::checkTinWriteOptions(tinWriteOptions(options, *options.format));
 }
 
-BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
-    checkBuildOptions(options);
+namespace {
+
+BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
     const Clock::time_point start = Clock::now();
     const io::TinFormat format =
         options.format ? *options.format : io::tinFormatFromPath(options.output);
@@ -270,6 +272,23 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
         io::writeTin(triangulation.mesh, options.output, writeOptions,
                      phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
     return finishReport(std::move(report), written, phase, start, progress);
+}
+
+} // namespace
+
+BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
+    checkBuildOptions(options);
+    try {
+        return runBuildStages(options, progress);
+    } catch (const std::system_error& error) {
+        // std::thread reports a thread it cannot start as a system_error (EAGAIN), not as
+        // bad_alloc, when the address space (ulimit -v) or the process limit runs out.
+        if (error.code() == std::errc::resource_unavailable_try_again ||
+            error.code() == std::errc::not_enough_memory)
+            throw Error("Build: out of memory: cannot start another thread (" +
+                        error.code().message() + ")");
+        throw;
+    }
 }
 
 } // namespace terratin

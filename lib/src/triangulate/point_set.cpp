@@ -2,6 +2,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
+#include "terratin/number_text.hpp"
 
 #include "box.hpp"
 #include "distinct_points.hpp"
@@ -148,7 +149,9 @@ Point2 chooseOrigin(std::span<const Point3> points, std::span<const std::uint32_
 constexpr double kSmallestCoordinate = 1e-60;
 constexpr double kLargestCoordinate = 1e70;
 
-void requirePredicateRange(std::span<const Point2> local, unsigned threads) {
+// `local` are the distinct points less `origin`; the message gives the input's own value, which
+// local + origin restores exactly (chooseOrigin takes an origin only when the subtraction is).
+void requirePredicateRange(std::span<const Point2> local, Point2 origin, unsigned threads) {
     const auto outside = [](double value) {
         const double magnitude = std::abs(value);
         return magnitude != 0.0 &&
@@ -165,9 +168,14 @@ void requirePredicateRange(std::span<const Point2> local, unsigned threads) {
     // The first offender, for the message.
     for (const Point2& p : local)
         if (outside(p.x) || outside(p.y))
-            throw InvalidInputError("Triangulator: coordinate (" + std::to_string(p.x) + ", " +
-                                    std::to_string(p.y) +
-                                    ") is outside the supported magnitude range 1e-60 .. 1e70");
+            throw InvalidInputError("Triangulator: point (" + numberText(p.x + origin.x) + ", " +
+                                    numberText(p.y + origin.y) +
+                                    ") is out of range: each coordinate" +
+                                    (origin.x != 0.0 || origin.y != 0.0
+                                         ? ", less the data's centre (" + numberText(origin.x) +
+                                               ", " + numberText(origin.y) + "),"
+                                         : std::string()) +
+                                    " must be 0 or of magnitude 1e-60 .. 1e70");
 }
 
 void requireTwoDimensions(std::span<const Point2> local) {
@@ -214,7 +222,7 @@ PreparedPoints preparePoints(std::span<const Point3> points, DuplicateZPolicy po
             }
         });
 
-    requirePredicateRange(prepared.local, threads);
+    requirePredicateRange(prepared.local, prepared.origin, threads);
     requireTwoDimensions(prepared.local);
     return prepared;
 }

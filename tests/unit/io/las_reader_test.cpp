@@ -221,6 +221,17 @@ TEST(LasReader, ThrowsCrsError_ForMalformedGeoKeys) {
     poke<std::uint16_t>(keys.data, 6, 40); // claims 40 keys, holds 3
     file.vlrs.push_back(keys);
     EXPECT_THROW(readBytes(file.bytes()), CrsError);
+
+    // Issue 22, D20: keys GDAL derives no CRS from ended in "unknown GDAL error".
+    LasTestFile other;
+    other.points = samplePoints();
+    other.vlrs.push_back(test::geoKeysForProjectedEpsg(7)); // no CRS has code 7
+    try {
+        (void)readBytes(other.bytes());
+    } catch (const CrsError& error) {
+        EXPECT_EQ(std::string(error.what()).find("unknown GDAL error"), std::string::npos)
+            << error.what();
+    }
 }
 
 /// The message of the InvalidInputError `bytes` raise, or "" when they raise none.
@@ -323,6 +334,28 @@ TEST(LasReader, RejectsLaz_ByExtensionAndByLaszipRecord) {
     } catch (const InvalidInputError& error) {
         EXPECT_NE(std::string(error.what()).find("LAZ is compressed; not supported"),
                   std::string::npos);
+    }
+}
+
+// Issue 22, D20: point format 99 (bits 6, 5, 1 and 0) was reported as "LAZ is compressed"
+// because bit 6 was taken alone as the LASzip mark; LASzip always sets bit 7.
+TEST(LasReader, ReportsAnUnknownPointFormat_NotLaz_D20) {
+    LasTestFile file;
+    file.points = samplePoints();
+    std::vector<std::byte> bytes = file.bytes();
+    for (const std::uint8_t format : {std::uint8_t{99}, std::uint8_t{64 | 6}}) {
+        poke<std::uint8_t>(bytes, 104, format);
+        const std::string message = rejection(bytes);
+        EXPECT_NE(message.find("point data record format " + std::to_string(format) +
+                               " is not supported"),
+                  std::string::npos)
+            << message;
+        EXPECT_EQ(message.find("LAZ"), std::string::npos) << message;
+    }
+    // LASzip's own marks stay LAZ: bit 7 (formats 0-5), bits 7 and 6 (formats 6-10).
+    for (const std::uint8_t format : {std::uint8_t{0x80 | 3}, std::uint8_t{0xC0 | 6}}) {
+        poke<std::uint8_t>(bytes, 104, format);
+        EXPECT_NE(rejection(bytes).find("LAZ is compressed"), std::string::npos);
     }
 }
 

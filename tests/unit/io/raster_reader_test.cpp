@@ -488,6 +488,145 @@ TEST(GdalRasterReader, ThrowsIoErrorNamingPath_WhenFileIsNotARaster) {
     }
 }
 
+/// The message of the terratin::Error that reading `path` raises, "" when none.
+std::string readError(const std::string& path) {
+    try {
+        (void)readRasterPoints(path, {});
+    } catch (const terratin::Error& error) {
+        return error.what();
+    }
+    return {};
+}
+
+// Issue 22, D20: a NaN or huge geotransform reached the triangulator, which then reported the
+// points as "collinear".
+TEST(GdalRasterReader, RefusesAnUnusableGeoTransform_WithItsOwnMessage_D20) {
+    TempDir dir;
+    const std::array<std::array<double, 6>, 3> transforms{{
+        {0.0, 1e300, 0.0, 0.0, 0.0, -1e300},   // cells of infinite area
+        {0.0, 1e-300, 0.0, 0.0, 0.0, -1e-300}, // cells of zero area
+        {1e300, 1.0, 0.0, 0.0, 0.0, -1.0},     // centres beyond 1e15
+    }};
+    for (std::size_t i = 0; i < transforms.size(); ++i) {
+        const std::string path = dir.file("gt" + std::to_string(i) + ".tif");
+        TiffSpec spec;
+        spec.width = 4;
+        spec.height = 3;
+        spec.values = {rampValues(4, 3)};
+        spec.geoTransform = transforms[i];
+        writeTiff(path, spec);
+        const std::string message = readError(path);
+        EXPECT_NE(message.find("the geotransform ("), std::string::npos) << message;
+        EXPECT_EQ(message.find("collinear"), std::string::npos) << message;
+    }
+    // NaN, which GDAL's VRT driver takes from the text as it is.
+    const std::string base = dir.file("base.tif");
+    TiffSpec spec;
+    spec.width = 4;
+    spec.height = 3;
+    spec.values = {rampValues(4, 3)};
+    writeTiff(base, spec);
+    const std::string vrt = dir.file("nan.vrt");
+    {
+        std::ofstream file(vrt);
+        file << "<VRTDataset rasterXSize=\"4\" rasterYSize=\"3\">\n"
+             << "  <GeoTransform>nan, 1, 0, 0, 0, -1</GeoTransform>\n"
+             << "  <VRTRasterBand dataType=\"Float64\" band=\"1\"><SimpleSource>"
+             << "<SourceFilename>" << base << "</SourceFilename><SourceBand>1</SourceBand>"
+             << "</SimpleSource></VRTRasterBand>\n</VRTDataset>\n";
+    }
+    const std::string message = readError(vrt);
+    EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
+    EXPECT_NE(message.find("(nan, 1, 0, 0, 0, -1)"), std::string::npos) << message;
+}
+
+// Issue 22, D16: the error for a GeoPackage of two rasters advised "its SUBDATASET name", and
+// that name then failed as "no such file or directory".
+TEST(GdalRasterReader, AdvisesSubdatasetNamesThatOpen_ForATwoRasterGeoPackage_D16) {
+    TempDir dir;
+    const std::string gpkg = dir.file("two.gpkg");
+    for (const char* table : {"a", "b"}) {
+        const std::string tif = dir.file(std::string(table) + ".tif");
+        TiffSpec spec;
+        spec.width = table[0] == 'a' ? 5 : 4;
+        spec.height = 3;
+        spec.type = GDT_Byte;
+        spec.values = {std::vector<double>(static_cast<std::size_t>(spec.width) * 3, 7.0)};
+        spec.geoTransform = std::array<double, 6>{500000.0, 10.0, 0.0, 5000000.0, 0.0, -10.0};
+        spec.epsg = 32633;
+        writeTiff(tif, spec);
+        DatasetPtr source(GDALOpen(tif.c_str(), GA_ReadOnly));
+        ASSERT_NE(source, nullptr);
+        char** options = CSLSetNameValue(nullptr, "RASTER_TABLE", table);
+        if (table[0] == 'b')
+            options = CSLSetNameValue(options, "APPEND_SUBDATASET", "YES");
+        DatasetPtr copy(GDALCreateCopy(GDALGetDriverByName("GPKG"), gpkg.c_str(), source.get(),
+                                       FALSE, options, nullptr, nullptr));
+        CSLDestroy(options);
+        ASSERT_NE(copy, nullptr) << CPLGetLastErrorMsg();
+    }
+    const std::string message = readError(gpkg);
+    const std::string advised = "GPKG:" + gpkg + ":b";
+    EXPECT_NE(message.find("'" + advised + "'"), std::string::npos) << message;
+    const RasterPoints b = readRasterPoints(advised, {});
+    EXPECT_EQ(b.width, 4);
+    EXPECT_EQ(b.points.size(), 12u);
+}
+
+// Issue 22, D20: an ASCII ("plain", P2) PGM, which GDAL 3.6 cannot read, was read as text and
+// reported as the bad number "P2". It is a heightfield without georeferencing.
+TEST(GdalRasterReader, ReadsAPlainPgm_AsAGridWithoutGeoreferencing_D20) {
+    TempDir dir;
+    const std::string path = dir.file("small.pgm");
+    {
+        std::ofstream file(path);
+        file << "P2\n# a comment\n3 2 # width height\n1000\n0 1 2\n3 4\n1000\n";
+    }
+    const RasterPoints result = readRasterPoints(path, {});
+    expectConsistent(result);
+    ASSERT_EQ(result.points.size(), 6u);
+    EXPECT_TRUE(result.crsWkt.empty());
+    const std::array<double, 6> identity{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+    EXPECT_EQ(result.geoTransform.c, identity);
+    EXPECT_EQ(result.points[4].x, 1.5);
+    EXPECT_EQ(result.points[4].y, 1.5);
+    EXPECT_EQ(result.points[4].z, 4.0);
+    EXPECT_EQ(result.points[5].z, 1000.0);
+
+    const std::vector<std::pair<std::string, std::string>> broken{
+        {"P2\n3 2\n10\n0 1 2\n3 4\n", "truncated"},
+        {"P2\n3 2\n10\n0 1 2\n3 4 11\n", "above the maxval"},
+        {"P2\n3 2\n70000\n0 1 2\n3 4 5\n", "maxval 70000"},
+        {"P2\n3 -2\n10\n", "header"},
+        {"P2\n3000000 3000000\n10\n0 1\n", "truncated"},
+        {"P2\n3 2\n10\n0 1 2\n3 4 x\n", "sample 6"},
+    };
+    for (const auto& [text, expected] : broken) {
+        {
+            std::ofstream file(path, std::ios::trunc);
+            file << text;
+        }
+        const std::string message = readError(path);
+        EXPECT_NE(message.find(expected), std::string::npos) << text << ": " << message;
+        EXPECT_NE(message.find("plain PGM"), std::string::npos) << message;
+    }
+}
+
+// Issue 22, D20: a GDAL message with a line break made the CLI's error two lines.
+TEST(GdalError, KeepsMessagesOnOneLine_D20) {
+    terratin::io::initialiseGdal();
+    CPLErrorReset();
+    CPLError(CE_Failure, CPLE_AppDefined, "first line\n  second line\r\nthird");
+    try {
+        terratin::io::throwGdalError("Stage", "cannot read", "a\nb.tif");
+    } catch (const terratin::IoError& error) {
+        EXPECT_STREQ(error.what(), "Stage: cannot read 'a b.tif': first line second line third");
+    }
+    EXPECT_EQ(terratin::oneLine("\n x \n\n y\t\n"), "x y");
+    CPLErrorReset();
+    EXPECT_EQ(terratin::io::lastGdalErrorMessage("the known cause"), "the known cause");
+}
+
 TEST(GdalRasterReader, EdgeBlocksAreRead_WhenTileSizeDoesNotDivideRaster) {
     TempDir dir;
     TiffSpec spec;

@@ -173,6 +173,22 @@ TEST(TextReader, ReadsLinesAcrossBufferBoundaries_FromAFile) {
     }
 }
 
+// Issue 22, D20: a UTF-8 byte order mark at the start of a file was read as part of the first
+// field ("column 1 is not a finite number").
+TEST(TextReader, SkipsAUtf8ByteOrderMark_D20) {
+    const PointCloud cloud = parse("\xEF\xBB\xBF"
+                                   "1 2 3\n4 5 6\n");
+    ASSERT_EQ(cloud.points.size(), 2u);
+    EXPECT_EQ(cloud.points[0].x, 1.0);
+    const PointCloud named = parse("\xEF\xBB\xBF"
+                                   "x,y,z\n1,2,3\n");
+    ASSERT_EQ(named.points.size(), 1u);
+    // Only at the start of the file.
+    EXPECT_NE(rejection("1 2 3\n\xEF\xBB\xBF"
+                        "4 5 6\n"),
+              "");
+}
+
 TEST(TextReader, ThrowsIoError_ForAMissingFile) {
     EXPECT_THROW(readTextPoints("/no/such/points.xyz"), IoError);
 }

@@ -9,12 +9,15 @@
 
 namespace terratin::io {
 
-/// The last GDAL/OGR/CPL error message, or "unknown GDAL error" when GDAL recorded none.
-std::string lastGdalErrorMessage();
+/// The last GDAL/OGR/CPL error message on one line. When GDAL recorded none: the system's
+/// message for errno when errno names a write failure (no space left on device, disk quota
+/// exceeded, file too large, input/output error, read-only file system), else `fallback`, the
+/// cause the caller knows, else "GDAL gave no reason".
+std::string lastGdalErrorMessage(std::string_view fallback = {});
 
-/// Throws IoError("<stage>: <what> '<path>': <last GDAL message>").
+/// Throws IoError("<stage>: <what> '<path>': <lastGdalErrorMessage(fallback)>").
 [[noreturn]] void throwGdalError(std::string_view stage, std::string_view what,
-                                 std::string_view path);
+                                 std::string_view path, std::string_view fallback = {});
 
 /// Registers GDAL drivers once and routes GDAL's own messages away from stderr (terratin
 /// reports errors itself, one line each). Safe to call many times, from any thread.

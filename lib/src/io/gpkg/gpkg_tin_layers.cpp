@@ -118,7 +118,10 @@ void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& ta
         });
     };
     const auto consume = [&](std::size_t k, const TriangleChunk& chunk) {
-        const auto [begin, end] = chunkRange(k, rows);
+        // Named variables, not a structured binding: clang before 16 (the fuzz preset's
+        // clang 14) cannot capture a binding in the lambda below.
+        const std::size_t begin = chunkRange(k, rows).first;
+        const std::size_t end = chunkRange(k, rows).second;
         progress(begin);
         insert.insert(end - begin, [&](SqliteStatement& statement, int p, std::size_t row) {
             statement.bindInteger(p, static_cast<std::int64_t>(begin + row) + 1);
@@ -148,7 +151,10 @@ void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
         });
     };
     const auto consume = [&](std::size_t k, const std::vector<std::uint8_t>& blobs) {
-        const auto [begin, end] = chunkRange(k, rows);
+        // Named variables, not a structured binding: clang before 16 (the fuzz preset's
+        // clang 14) cannot capture a binding in the lambda below.
+        const std::size_t begin = chunkRange(k, rows).first;
+        const std::size_t end = chunkRange(k, rows).second;
         progress(begin);
         insert.insert(end - begin, [&](SqliteStatement& statement, int p, std::size_t row) {
             const std::size_t v = begin + row;

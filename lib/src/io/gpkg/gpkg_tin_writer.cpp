@@ -125,6 +125,11 @@ GDALDatasetUniquePtr createGeoPackage(const fs::path& temporary, int pageBytes,
     try {
         GDALDatasetUniquePtr dataset = createDataset("GPKG", temporary, output);
         CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", nullptr);
+        // GDAL 3.6 returns the dataset even when a table of the GeoPackage's own could not be
+        // created (a full disk, say); the later error, "no such table: gpkg_geometry_columns",
+        // would hide that cause.
+        if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
+            throwGdalError(kOgrStage, "cannot create the GeoPackage tables of", output.string());
         return dataset;
     } catch (...) {
         CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", nullptr);
