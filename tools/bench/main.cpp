@@ -34,9 +34,9 @@
 #include "peers.hpp"
 #include "process_memory.hpp"
 #include "refine_bench.hpp"
-#include "write_bench.hpp"
 #include "results_table.hpp"
 #include "stats.hpp"
+#include "write_bench.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/triangulate/triangulate.hpp"

@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
-#include <system_error>
 #include <sstream>
 #include <system_error>
 

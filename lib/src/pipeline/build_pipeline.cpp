@@ -213,7 +213,7 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     const io::TinFormat format =
         options.format ? *options.format : io::tinFormatFromPath(options.output);
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
-    io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
+    io::checkTinWriteOptions(writeOptions);           // contradictory options fail before reading
     io::checkTinOutput(options.output, writeOptions); // an output that would be refused, too
 
     BuildReport report;

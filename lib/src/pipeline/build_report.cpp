@@ -70,8 +70,8 @@ std::string toJson(const BuildReport& report) {
          << ", \"history_bytes_per_point\": " << report.historyBytesPerPoint << "}"
          << ", \"timings\": {\"read\": " << report.timings.read
          << ", \"triangulate\": " << report.timings.triangulate
-         << ", \"validate\": " << report.timings.validate
-         << ", \"write\": " << report.timings.write << ", \"total\": " << report.timings.total
+         << ", \"validate\": " << report.timings.validate << ", \"write\": " << report.timings.write
+         << ", \"total\": " << report.timings.total
          << ", \"reproject\": " << report.timings.reproject
          << "}, \"validated\": " << (report.validated ? "true" : "false");
     // Inputs and coordinate systems.
@@ -140,8 +140,8 @@ std::string toSummaryLine(const BuildReport& report) {
                   static_cast<unsigned long long>(report.duplicates),
                   static_cast<unsigned long long>(report.skippedCells),
                   static_cast<unsigned long long>(report.triangles), report.timings.read,
-                  report.timings.triangulate, report.timings.write,
-                  report.writeFeaturesPerSecond, report.timings.total);
+                  report.timings.triangulate, report.timings.write, report.writeFeaturesPerSecond,
+                  report.timings.total);
     std::string text = line;
     if (report.filteredOut > 0)
         text += "; " + std::to_string(report.filteredOut) + " records filtered out";
