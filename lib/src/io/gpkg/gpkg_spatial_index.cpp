@@ -2,8 +2,7 @@
 
 #include "batched_insert.hpp"
 
-#include <array>
-#include <span>
+#include <string>
 
 namespace terratin::io::detail {
 
@@ -35,46 +34,46 @@ std::string newBoxValues(const TriggerNames& n) {
            "), ST_MaxY(" + g + "))";
 }
 
-/// The triggers of GeoPackage 1.2 annex F.3 (1.4 replaces update1 and update3, see below).
+/// "(g NOTNULL AND NOT ST_IsEmpty(g))": the row has a box to index.
+std::string hasBox(const std::string& geometry) {
+    return "(" + geometry + " NOTNULL AND NOT ST_IsEmpty(" + geometry + "))";
+}
+
+/// "(g ISNULL OR ST_IsEmpty(g))": the row has no box.
+std::string hasNoBox(const std::string& geometry) {
+    return "(" + geometry + " ISNULL OR ST_IsEmpty(" + geometry + "))";
+}
+
+/// The triggers of GeoPackage 1.2 annex F.3; 1.4 replaces update1 by update6 and update7 (an
+/// UPDATE of the box, or an INSERT when there was none) and renames update3 to update5.
 std::string triggerSql(const TriggerNames& n, bool geoPackage14) {
     const std::string newGeom = "NEW." + n.geom;
     const std::string oldGeom = "OLD." + n.geom;
-    const std::string newHasBox = "(" + newGeom + " NOTNULL AND NOT ST_IsEmpty(" + newGeom + "))";
-    const std::string newHasNoBox = "(" + newGeom + " ISNULL OR ST_IsEmpty(" + newGeom + "))";
     const std::string sameFid = "OLD." + n.fid + " = NEW." + n.fid;
     const std::string otherFid = "OLD." + n.fid + " != NEW." + n.fid;
-    const std::string updateOfGeom = "UPDATE OF " + n.geom + " ON " + n.table;
-    const std::string updateOfAny = "UPDATE ON " + n.table;
+    const std::string updateOfGeom = "UPDATE OF " + n.geom + " ON " + n.table + " WHEN ";
+    const std::string updateOfAny = "UPDATE ON " + n.table + " WHEN ";
     const std::string deleteOld = "DELETE FROM " + n.rtree + " WHERE id = OLD." + n.fid + ";";
     const std::string upsertNew = "INSERT OR REPLACE INTO " + n.rtree + " " + newBoxValues(n) + ";";
 
     std::string sql =
-        trigger(n, "insert", "INSERT ON " + n.table + " WHEN " + newHasBox, upsertNew);
+        trigger(n, "insert", "INSERT ON " + n.table + " WHEN " + hasBox(newGeom), upsertNew);
     if (geoPackage14) {
-        const std::string oldHasBox =
-            "(" + oldGeom + " NOTNULL AND NOT ST_IsEmpty(" + oldGeom + "))";
-        const std::string oldHasNoBox = "(" + oldGeom + " ISNULL OR ST_IsEmpty(" + oldGeom + "))";
-        sql +=
-            trigger(n, "update6",
-                    updateOfGeom + " WHEN " + sameFid + " AND " + newHasBox + " AND " + oldHasBox,
-                    "UPDATE " + n.rtree + " SET minx = ST_MinX(" + newGeom + "), maxx = ST_MaxX(" +
-                        newGeom + "), miny = ST_MinY(" + newGeom + "), maxy = ST_MaxY(" + newGeom +
-                        ") WHERE id = NEW." + n.fid + ";");
-        sql +=
-            trigger(n, "update7",
-                    updateOfGeom + " WHEN " + sameFid + " AND " + newHasBox + " AND " + oldHasNoBox,
-                    "INSERT INTO " + n.rtree + " " + newBoxValues(n) + ";");
+        const std::string sameFidNewBox = sameFid + " AND " + hasBox(newGeom) + " AND ";
+        sql += trigger(n, "update6", updateOfGeom + sameFidNewBox + hasBox(oldGeom),
+                       "UPDATE " + n.rtree + " SET minx = ST_MinX(" + newGeom +
+                           "), maxx = ST_MaxX(" + newGeom + "), miny = ST_MinY(" + newGeom +
+                           "), maxy = ST_MaxY(" + newGeom + ") WHERE id = NEW." + n.fid + ";");
+        sql += trigger(n, "update7", updateOfGeom + sameFidNewBox + hasNoBox(oldGeom),
+                       "INSERT INTO " + n.rtree + " " + newBoxValues(n) + ";");
     } else {
-        sql += trigger(n, "update1", updateOfGeom + " WHEN " + sameFid + " AND " + newHasBox,
-                       upsertNew);
+        sql += trigger(n, "update1", updateOfGeom + sameFid + " AND " + hasBox(newGeom), upsertNew);
     }
-    sql +=
-        trigger(n, "update2", updateOfGeom + " WHEN " + sameFid + " AND " + newHasNoBox, deleteOld);
+    sql += trigger(n, "update2", updateOfGeom + sameFid + " AND " + hasNoBox(newGeom), deleteOld);
     sql += trigger(n, geoPackage14 ? "update5" : "update3",
-                   updateOfAny + " WHEN " + otherFid + " AND " + newHasBox,
-                   deleteOld + " " + upsertNew);
+                   updateOfAny + otherFid + " AND " + hasBox(newGeom), deleteOld + " " + upsertNew);
     sql +=
-        trigger(n, "update4", updateOfAny + " WHEN " + otherFid + " AND " + newHasNoBox,
+        trigger(n, "update4", updateOfAny + otherFid + " AND " + hasNoBox(newGeom),
                 "DELETE FROM " + n.rtree + " WHERE id IN (OLD." + n.fid + ", NEW." + n.fid + ");");
     sql +=
         trigger(n, "delete", "DELETE ON " + n.table + " WHEN " + oldGeom + " NOT NULL", deleteOld);
