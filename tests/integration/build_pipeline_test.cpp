@@ -27,7 +27,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path sharedDem(const std::string& name) { return fs::path(TERRATIN_SHARED_DEMS) / name; }
+fs::path sharedDem(const std::string& name) {
+    return fs::path(TERRATIN_SHARED_DEMS) / name;
+}
 using test::TemporaryDirectory;
 
 // The raster band with its mask, as GDAL itself reports them.

@@ -45,7 +45,8 @@ HeightGrid windowWithNodata(const HeightGrid& grid, int size) {
             std::size_t nodata = 0;
             for (int row = top; row < top + size; ++row)
                 for (int col = left; col < left + size; ++col)
-                    nodata += grid.isValid(static_cast<std::size_t>(row) * grid.width + col) ? 0U : 1U;
+                    nodata +=
+                        grid.isValid(static_cast<std::size_t>(row) * grid.width + col) ? 0U : 1U;
             const double share = static_cast<double>(nodata) / (size * size);
             if (share < 0.02 || share > 0.4)
                 continue;
@@ -54,8 +55,10 @@ HeightGrid windowWithNodata(const HeightGrid& grid, int size) {
             window.height = size;
             const Point2 corner = grid.cellCentre(top, left);
             window.geoTransform = grid.geoTransform;
-            window.geoTransform[0] = corner.x - 0.5 * grid.geoTransform[1] - 0.5 * grid.geoTransform[2];
-            window.geoTransform[3] = corner.y - 0.5 * grid.geoTransform[4] - 0.5 * grid.geoTransform[5];
+            window.geoTransform[0] =
+                corner.x - 0.5 * grid.geoTransform[1] - 0.5 * grid.geoTransform[2];
+            window.geoTransform[3] =
+                corner.y - 0.5 * grid.geoTransform[4] - 0.5 * grid.geoTransform[5];
             window.z.resize(window.cellCount());
             for (int row = 0; row < size; ++row)
                 for (int col = 0; col < size; ++col)
@@ -71,8 +74,8 @@ HeightGrid windowWithNodata(const HeightGrid& grid, int size) {
     GTEST_SKIP() << "shared DEM not present: " << (path)
 
 TEST(RefineDem, GridReaderMatchesPointReader_CellByCell) {
-    for (const char* name : {"gdalraster__storml_elev_orig.tif", "terra__elev.tif",
-                             "pyterra__dgm5.tif"}) {
+    for (const char* name :
+         {"gdalraster__storml_elev_orig.tif", "terra__elev.tif", "pyterra__dgm5.tif"}) {
         const std::string path = sharedDem(name);
         SKIP_WITHOUT(path);
         const io::HeightGridRaster raster = io::readHeightGrid(path, {});
@@ -95,8 +98,8 @@ TEST(RefineDem, GridReaderMatchesPointReader_CellByCell) {
 
 TEST(RefineDem, EveryValidCellWithinMaxError_AndHolesWhereTheNodataIs) {
     // terra__elev.tif has 1 km cells of hilly terrain: 2 m would need almost every cell.
-    for (const auto& [name, maxError] : {std::pair("gdalraster__storml_elev_orig.tif", 2.0),
-                                         std::pair("terra__elev.tif", 20.0)}) {
+    for (const auto& [name, maxError] :
+         {std::pair("gdalraster__storml_elev_orig.tif", 2.0), std::pair("terra__elev.tif", 20.0)}) {
         const std::string path = sharedDem(name);
         SKIP_WITHOUT(path);
         const HeightGrid grid = io::readHeightGrid(path, {}).grid;

@@ -15,7 +15,9 @@
 namespace terratin::test {
 
 namespace {
-Point2 planar(const Point3& p) { return {p.x, p.y}; }
+Point2 planar(const Point3& p) {
+    return {p.x, p.y};
+}
 
 double twiceSignedArea(const Point2& a, const Point2& b, const Point2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);

@@ -35,7 +35,8 @@ std::vector<Point3> cocircularRings(double scale) {
     for (const long radius : {5L, 25L, 65L, 325L, 1105L}) {
         for (long x = -radius; x <= radius; ++x) {
             const long ySquared = radius * radius - x * x;
-            const auto y = static_cast<long>(std::llround(std::sqrt(static_cast<double>(ySquared))));
+            const auto y =
+                static_cast<long>(std::llround(std::sqrt(static_cast<double>(ySquared))));
             if (y * y != ySquared)
                 continue;
             points.push_back({static_cast<double>(x) * scale, static_cast<double>(y) * scale,

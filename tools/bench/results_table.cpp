@@ -33,9 +33,9 @@ void ResultTable::printHeader() {
                      "helped_locations,triangles,runs,seconds,speed_up,history_bytes_per_point,"
                      "mesh_bytes_per_point,peak_bytes_per_point,vs_cgal,vs_gdal,unmeasured\n");
     } else {
-        std::fprintf(m_stream, "%-8s %9s %-12s %-4s %3s %4s %10s %8s %9s %9s %9s %7s %7s\n",
-                     "dist", "N", "method", "loc", "thr", "srch", "time [s]", "speed-up", "hist B/pt", "mesh B/pt",
-                     "peak B/pt", "vs CGAL", "vs GDAL");
+        std::fprintf(m_stream, "%-8s %9s %-12s %-4s %3s %4s %10s %8s %9s %9s %9s %7s %7s\n", "dist",
+                     "N", "method", "loc", "thr", "srch", "time [s]", "speed-up", "hist B/pt",
+                     "mesh B/pt", "peak B/pt", "vs CGAL", "vs GDAL");
     }
     std::fflush(m_stream);
 }
@@ -44,9 +44,9 @@ void ResultTable::printRow(const ResultRow& row) {
     if (m_csv) {
         std::fprintf(m_stream, "%s,%zu,%s,%s,%u,%u,%u,%zu,%zu,%u,%s,%s,%s,%s,%s,%s,%s,%s\n",
                      row.distribution.c_str(), row.points, row.method.c_str(), row.locate.c_str(),
-                     row.threadsRequested,
-                     row.threadsUsed, row.searchers, row.helpedLocations, row.triangles, row.runs,
-                     csvField(row.seconds, "%.6g").c_str(), csvField(row.speedUp, "%.4f").c_str(),
+                     row.threadsRequested, row.threadsUsed, row.searchers, row.helpedLocations,
+                     row.triangles, row.runs, csvField(row.seconds, "%.6g").c_str(),
+                     csvField(row.speedUp, "%.4f").c_str(),
                      csvField(row.historyBytesPerPoint, "%.2f").c_str(),
                      csvField(row.meshBytesPerPoint, "%.2f").c_str(),
                      csvField(row.peakBytesPerPoint, "%.2f").c_str(),

@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
             const double v = 1.0 - (row + 0.5) / height; // v grows northwards
             // Centimetre precision, like a survey-grade DEM, keeps the file small.
             const float value =
-                insideLake(u, v) ? kNodata : static_cast<float>(std::round(elevationM(u, v) * 100.0) / 100.0);
+                insideLake(u, v) ? kNodata
+                                 : static_cast<float>(std::round(elevationM(u, v) * 100.0) / 100.0);
             cells[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
                   static_cast<std::size_t>(col)] = value;
         }

@@ -31,8 +31,7 @@ void releaseHugePages(void* memory, std::size_t bytes) noexcept;
 
 /// An owned array of `count` T on huge pages (allocateOnHugePages), elements uninitialised:
 /// for implicit-lifetime types the caller writes before reading.
-template <class T>
-class HugePageBuffer {
+template <class T> class HugePageBuffer {
 public:
     HugePageBuffer() = default;
     explicit HugePageBuffer(std::size_t count)
@@ -66,13 +65,11 @@ private:
 };
 
 /// A std::allocator that puts allocations of kHugePageThreshold bytes or more on huge pages.
-template <class T>
-struct HugePageAllocator {
+template <class T> struct HugePageAllocator {
     using value_type = T;
 
     HugePageAllocator() = default;
-    template <class U>
-    explicit HugePageAllocator(const HugePageAllocator<U>& /*other*/) noexcept {}
+    template <class U> explicit HugePageAllocator(const HugePageAllocator<U>& /*other*/) noexcept {}
 
     [[nodiscard]] T* allocate(std::size_t n) {
         return static_cast<T*>(allocateOnHugePages(n * sizeof(T)));
@@ -87,8 +84,7 @@ struct HugePageAllocator {
 /// trivial types) where std::allocator value-initialises. The big arrays of a triangulation
 /// are sized and then filled on all threads: zeros written first by resize() would be a pass
 /// over tens of megabytes on one thread.
-template <class T>
-struct HugePageArrayAllocator : HugePageAllocator<T> {
+template <class T> struct HugePageArrayAllocator : HugePageAllocator<T> {
     template <class U> struct rebind { using other = HugePageArrayAllocator<U>; };
     HugePageArrayAllocator() = default;
     template <class U>

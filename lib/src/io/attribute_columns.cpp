@@ -41,8 +41,7 @@ constexpr std::array<AttributeColumn, 14> kAllColumns = {{
 /// The DBF format limits field names to 10 characters; the Shapefile writer relies on it.
 constexpr std::size_t kDbfMaxFieldName = 10;
 
-template <std::size_t N>
-constexpr bool namesFitDbf(const std::array<AttributeColumn, N>& columns) {
+template <std::size_t N> constexpr bool namesFitDbf(const std::array<AttributeColumn, N>& columns) {
     for (const auto& column : columns)
         if (std::string_view(column.name).size() > kDbfMaxFieldName)
             return false;

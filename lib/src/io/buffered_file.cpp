@@ -25,8 +25,8 @@ BufferedFile::BufferedFile(std::string_view stage, const std::filesystem::path& 
     : m_stage(stage), m_display(display), m_buffer(kBufferBytes, '\0') {
     m_fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (m_fd < 0)
-        throw IoError(m_stage + ": cannot create a temporary file for " + quoted(m_display) +
-                      ": " + std::strerror(errno));
+        throw IoError(m_stage + ": cannot create a temporary file for " + quoted(m_display) + ": " +
+                      std::strerror(errno));
 }
 
 BufferedFile::~BufferedFile() {

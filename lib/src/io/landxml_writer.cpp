@@ -78,9 +78,9 @@ std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, Buffer
         area2d += attributes.area2d;
         area3d += attributes.area3d;
     }
-    const auto [lowest, highest] = std::minmax_element(
-        mesh.vertices.begin(), mesh.vertices.end(),
-        [](const Point3& a, const Point3& b) { return a.z < b.z; });
+    const auto [lowest, highest] =
+        std::minmax_element(mesh.vertices.begin(), mesh.vertices.end(),
+                            [](const Point3& a, const Point3& b) { return a.z < b.z; });
 
     const std::time_t now = std::time(nullptr);
     std::tm utc{};

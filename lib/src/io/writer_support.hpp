@@ -25,8 +25,8 @@ void reportProgress(std::string_view stage, const ProgressCallback& progress, do
 /// Progress over `total` items mapped onto [start, start + share] of the writer's range.
 class ProgressTicker {
 public:
-    ProgressTicker(std::string_view stage, ProgressCallback progress,
-                   std::filesystem::path output, double start, double share, std::uint64_t total)
+    ProgressTicker(std::string_view stage, ProgressCallback progress, std::filesystem::path output,
+                   double start, double share, std::uint64_t total)
         : m_stage(stage), m_progress(std::move(progress)), m_output(std::move(output)),
           m_start(start), m_share(share), m_total(total == 0 ? 1 : total) {}
 
@@ -37,8 +37,7 @@ public:
     }
     void report(std::uint64_t done, std::string_view message) const {
         reportProgress(m_stage, m_progress,
-                       m_start + m_share * static_cast<double>(done) /
-                                     static_cast<double>(m_total),
+                       m_start + m_share * static_cast<double>(done) / static_cast<double>(m_total),
                        message, m_output);
     }
 

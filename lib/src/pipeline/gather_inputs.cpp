@@ -75,9 +75,8 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
     const std::string target = crs::utmZoneCrs(zone, geographicWkt);
     report.zone = zone.name();
     const crs::CrsDescription projected = crs::describeCrs(target);
-    const std::string label = projected.code.empty()
-                                  ? projected.name
-                                  : projected.name + " [" + projected.code + "]";
+    const std::string label =
+        projected.code.empty() ? projected.name : projected.name + " [" + projected.code + "]";
     char centreText[96];
     std::snprintf(centreText, sizeof centreText, "%.6f, %.6f", centre.x, centre.y);
     notify(options, report,

@@ -13,9 +13,8 @@ namespace terratin::detail {
 RefinePlacement placeRefinedCells(const BuildOptions& options, const HeightGrid& grid,
                                   const std::string& rasterWkt, BuildReport& report) {
     const auto start = std::chrono::steady_clock::now();
-    const std::string source = options.sourceSrs.empty()
-                                   ? rasterWkt
-                                   : crs::crsFromUserInput(options.sourceSrs, "--s_srs");
+    const std::string source =
+        options.sourceSrs.empty() ? rasterWkt : crs::crsFromUserInput(options.sourceSrs, "--s_srs");
     const std::string requested = options.targetSrs.empty()
                                       ? std::string()
                                       : crs::crsFromUserInput(options.targetSrs, "--t_srs");

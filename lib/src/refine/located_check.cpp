@@ -15,7 +15,9 @@ namespace terratin::detail {
 
 namespace {
 
-Point2 planar(const Point3& p) { return {p.x, p.y}; }
+Point2 planar(const Point3& p) {
+    return {p.x, p.y};
+}
 
 /// Locates cells in a TinMesh by a visibility walk from the last triangle found, and gives
 /// the TIN's elevation there. Consecutive cells mostly lie in the same triangle, whose
@@ -38,8 +40,8 @@ public:
             int exit = -1;
             m_onEdge = 0;
             for (int i = 0; i < 3 && exit < 0; ++i) {
-                const double side = predicates::orient2d(p[static_cast<std::size_t>(i)],
-                                                         p[static_cast<std::size_t>((i + 1) % 3)], q);
+                const double side = predicates::orient2d(
+                    p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>((i + 1) % 3)], q);
                 if (side < 0.0)
                     exit = i;
                 else if (side == 0.0)
@@ -66,8 +68,7 @@ public:
 
     /// Calls visit(s) for the triangle t that the last locate() found and, when the point lies
     /// on one of its edges, for the neighbour across it (closed triangles).
-    template <class Visit>
-    void forEachHolding(std::size_t t, Visit&& visit) const {
+    template <class Visit> void forEachHolding(std::size_t t, Visit&& visit) const {
         visit(t);
         for (std::size_t i = 0; i < 3; ++i) {
             const std::int32_t across = m_current.neighbours[i];
@@ -232,7 +233,9 @@ void forEachCellLocated(const TinMesh& mesh, const GridView& grid,
     });
 }
 
-bool isMeasured(std::uint8_t flags) { return (flags & (kCellNoData | kCellVertex)) == 0; }
+bool isMeasured(std::uint8_t flags) {
+    return (flags & (kCellNoData | kCellVertex)) == 0;
+}
 
 } // namespace
 
@@ -312,8 +315,8 @@ std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& g
                 const double error =
                     std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
                 if (overHole[s] != 0 || error > threshold)
-                    blocks[block].push_back({static_cast<std::uint32_t>(s),
-                                             static_cast<std::uint32_t>(cell), error});
+                    blocks[block].push_back(
+                        {static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(cell), error});
             });
         },
         memo);
@@ -337,11 +340,10 @@ std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& g
     std::sort(result.begin(), result.end(), [](const CellToInsert& a, const CellToInsert& b) {
         return a.cell != b.cell ? a.cell < b.cell : a.triangle < b.triangle;
     });
-    result.erase(std::unique(result.begin(), result.end(),
-                             [](const CellToInsert& a, const CellToInsert& b) {
-                                 return a.cell == b.cell;
-                             }),
-                 result.end());
+    result.erase(
+        std::unique(result.begin(), result.end(),
+                    [](const CellToInsert& a, const CellToInsert& b) { return a.cell == b.cell; }),
+        result.end());
     return result;
 }
 

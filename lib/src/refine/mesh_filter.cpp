@@ -50,9 +50,9 @@ std::size_t dropTriangles(TinMesh& mesh, std::span<const std::uint8_t> drop) {
         for (int i = 0; i < 3; ++i) {
             const std::int32_t across = mesh.neighbours[3 * t + i];
             mesh.triangles[3 * to + i] = newVertex[mesh.triangles[3 * t + i]];
-            mesh.neighbours[3 * to + i] =
-                across == kNoNeighbour ? kNoNeighbour
-                                       : newTriangle[static_cast<std::size_t>(across)];
+            mesh.neighbours[3 * to + i] = across == kNoNeighbour
+                                              ? kNoNeighbour
+                                              : newTriangle[static_cast<std::size_t>(across)];
         }
     }
     mesh.triangles.resize(3 * kept);

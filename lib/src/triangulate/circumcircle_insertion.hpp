@@ -51,8 +51,8 @@ struct CircumcircleStatistics {
 };
 
 /// Inserts `order` into `triangulator` with `workers` threads (the calling thread is one of
-/// them; at most 4094). `roundStarts` splits the order into rounds (BRIO; {0} for one round): each worker
-/// inserts its own contiguous share of every round in turn, so that with a spatially sorted
+/// them; at most 4094). `roundStarts` splits the order into rounds (BRIO; {0} for one round): each
+/// worker inserts its own contiguous share of every round in turn, so that with a spatially sorted
 /// round the workers stay far apart and rarely conflict. With `walk`, each worker locates a
 /// point by a visibility walk from the triangles of its previous one (DagTriangulator::walk)
 /// instead of descending the DAG from the root. Calls `progress` from the calling

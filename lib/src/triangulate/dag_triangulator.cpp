@@ -13,8 +13,12 @@
 namespace terratin::detail {
 
 namespace {
-constexpr int next(int i) { return nextCorner(i); }
-constexpr int prev(int i) { return previousCorner(i); }
+constexpr int next(int i) {
+    return nextCorner(i);
+}
+constexpr int prev(int i) {
+    return previousCorner(i);
+}
 
 // Progress is reported every this many insertions: often enough for a smooth bar, rarely
 // enough that the callback costs nothing measurable.
@@ -267,8 +271,8 @@ bool DagTriangulator::isIllegal(NodeId t, int pos, NodeId u) const {
     int m = 0;
     while (uNode.link[m] != t)
         ++m;
-    return m_predicates.incircle(tNode.v[next(pos)], tNode.v[prev(pos)], tNode.v[pos],
-                                 uNode.v[m]) > 0;
+    return m_predicates.incircle(tNode.v[next(pos)], tNode.v[prev(pos)], tNode.v[pos], uNode.v[m]) >
+           0;
 }
 
 std::size_t DagTriangulator::repairEdgesFrom(NodeId first, unsigned threads) {

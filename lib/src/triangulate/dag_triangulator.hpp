@@ -34,8 +34,12 @@ namespace terratin::detail {
 /// checked by Lawson's test.
 using PendingEdges = std::vector<std::pair<NodeId, int>>;
 
-constexpr int nextCorner(int i) { return i == 2 ? 0 : i + 1; }
-constexpr int previousCorner(int i) { return i == 0 ? 2 : i - 1; }
+constexpr int nextCorner(int i) {
+    return i == 2 ? 0 : i + 1;
+}
+constexpr int previousCorner(int i) {
+    return i == 0 ? 2 : i - 1;
+}
 
 /// DAG triangulator over the finite points given at construction. Aligned to a cache line:
 /// the parallel methods' threads read it constantly, and it lives on a thread's stack.

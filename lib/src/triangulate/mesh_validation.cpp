@@ -11,7 +11,9 @@ namespace {
 
 constexpr std::size_t kMaxProblemsListed = 8;
 
-Point2 planar(const Point3& p) { return {p.x, p.y}; }
+Point2 planar(const Point3& p) {
+    return {p.x, p.y};
+}
 
 void report(MeshValidation& result, std::size_t& counter, const std::string& problem) {
     ++counter;
@@ -110,9 +112,9 @@ MeshValidation validateDelaunay(const TinMesh& mesh) {
             for (int j = 0; j < 3; ++j)
                 if (other[j] == to && other[(j + 1) % 3] == from)
                     twin = j;
-            if (twin < 0 || mesh.neighbours[3 * static_cast<std::size_t>(n) +
-                                            static_cast<std::size_t>(twin)] !=
-                                static_cast<std::int32_t>(t)) {
+            if (twin < 0 ||
+                mesh.neighbours[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(twin)] !=
+                    static_cast<std::int32_t>(t)) {
                 report(result, result.asymmetricNeighbours,
                        "triangles " + std::to_string(t) + " and " + std::to_string(n) +
                            " are not mutual neighbours");

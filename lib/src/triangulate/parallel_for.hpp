@@ -21,7 +21,8 @@ inline constexpr std::size_t kParallelForMinimum = std::size_t{1} << 16;
 inline unsigned parallelForThreads(std::size_t count, unsigned threads) {
     if (count < kParallelForMinimum)
         return 1;
-    return static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, count / (kParallelForMinimum / 2)));
+    return static_cast<unsigned>(
+        std::clamp<std::size_t>(threads, 1, count / (kParallelForMinimum / 2)));
 }
 
 /// Calls body(index) for every index of [0, count), each on a thread of its own (index 0 on
@@ -52,8 +53,7 @@ template <class Body> void runOnThreads(unsigned count, Body&& body) {
 /// Calls body(block, begin, end) for the blocks of [0, count) split into
 /// parallelForThreads(count, threads) contiguous ranges, block 0 on the calling thread.
 /// Rethrows the first exception after every thread has finished.
-template <class Body>
-void parallelFor(std::size_t count, unsigned threads, Body&& body) {
+template <class Body> void parallelFor(std::size_t count, unsigned threads, Body&& body) {
     const unsigned blocks = parallelForThreads(count, threads);
     const auto begin = [&](unsigned block) { return count * block / blocks; };
     if (blocks == 1) {

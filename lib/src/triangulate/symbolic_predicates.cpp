@@ -33,8 +33,7 @@ int SymbolicPredicates::orientSymbolic(VertexId a, VertexId b, VertexId c) const
     return s == farRight() ? -height : height;
 }
 
-bool SymbolicPredicates::shouldFlipSymbolic(VertexId i, VertexId j, VertexId k,
-                                            VertexId l) const {
+bool SymbolicPredicates::shouldFlipSymbolic(VertexId i, VertexId j, VertexId k, VertexId l) const {
     // k is finite (just inserted). Write incircle(i, j, k, l) for "l strictly inside the
     // circle through i, j, k". The determinant is alternating in its four arguments, and a
     // symbolic point s is outside every circle through less symbolic points:

@@ -71,8 +71,9 @@ public:
 
     /// Sign of the in-circle determinant of any four vertices (finite or symbolic): for a
     /// counter-clockwise (a, b, c), +1 when d lies strictly inside their circumcircle, -1
-    /// outside, 0 cocircular or when a vertex repeats. Slower than shouldFlip; for the circum-circle method's
-    /// conflict test and for repairs, where the fourth point is not always the new one.
+    /// outside, 0 cocircular or when a vertex repeats. Slower than shouldFlip; for the
+    /// circum-circle method's conflict test and for repairs, where the fourth point is not always
+    /// the new one.
     [[nodiscard]] int incircle(VertexId a, VertexId b, VertexId c, VertexId d) const;
 
     /// For a counter-clockwise (a, b, c): true only when d lies strictly inside their

@@ -26,7 +26,9 @@
 namespace terratin::io {
 namespace {
 
-const xmlChar* xmlText(const char* text) { return reinterpret_cast<const xmlChar*>(text); }
+const xmlChar* xmlText(const char* text) {
+    return reinterpret_cast<const xmlChar*>(text);
+}
 
 using test::TemporaryDirectory;
 
@@ -74,7 +76,8 @@ public:
     }
     [[nodiscard]] std::string text(const std::string& xpath) const {
         const auto values = texts(xpath);
-        return values.size() == 1 ? values.front() : std::string("<" + std::to_string(values.size()) + " nodes>");
+        return values.size() == 1 ? values.front()
+                                  : std::string("<" + std::to_string(values.size()) + " nodes>");
     }
 
 private:

@@ -32,14 +32,15 @@
 namespace terratin::io {
 namespace {
 
-const xmlChar* xmlText(const char* text) { return reinterpret_cast<const xmlChar*>(text); }
+const xmlChar* xmlText(const char* text) {
+    return reinterpret_cast<const xmlChar*>(text);
+}
 
 using test::TemporaryDirectory;
 
-const std::vector<std::string> kAllNames = {"z1",        "z2",        "z3",         "z_min",
-                                            "z_max",     "z_mean",    "slope_deg",  "slope_pct",
-                                            "aspect_deg", "area_2d",  "area_3d",    "nx",
-                                            "ny",        "nz"};
+const std::vector<std::string> kAllNames = {
+    "z1",        "z2",         "z3",      "z_min",   "z_max", "z_mean", "slope_deg",
+    "slope_pct", "aspect_deg", "area_2d", "area_3d", "nx",    "ny",     "nz"};
 const std::vector<std::string> kBasicNames = {"z_min",     "z_max",      "z_mean",
                                               "slope_deg", "aspect_deg", "area_2d"};
 
@@ -144,13 +145,13 @@ TEST(OgrTinWriterFormats, ReadsBackTrianglesAndAllAttributes_WhenFlatGeobuf) {
 TEST(OgrTinWriterFormats, WritesTheChosenColumns_WhenAttributeSetIsNoneBasicOrAll) {
     for (const TinFormat format :
          {TinFormat::GeoPackage, TinFormat::Shapefile, TinFormat::FlatGeobuf}) {
-        for (const auto& [set, names] :
-             {std::pair{AttributeSet::None, std::vector<std::string>{}},
-              std::pair{AttributeSet::Basic, kBasicNames}, std::pair{AttributeSet::All, kAllNames}}) {
+        for (const auto& [set, names] : {std::pair{AttributeSet::None, std::vector<std::string>{}},
+                                         std::pair{AttributeSet::Basic, kBasicNames},
+                                         std::pair{AttributeSet::All, kAllNames}}) {
             TemporaryDirectory directory;
             TinWriteOptions options = optionsFor(format);
             options.attributes = set;
-            const std::string name = format == TinFormat::GeoPackage   ? "tin.gpkg"
+            const std::string name = format == TinFormat::GeoPackage  ? "tin.gpkg"
                                      : format == TinFormat::Shapefile ? "tin.shp"
                                                                       : "tin.fgb";
             writeTin(test::gridTin(3), directory / name, options);
@@ -181,10 +182,9 @@ TEST(OgrTinWriterFormats, StoresExactAttributes_WhenGeoPackageWithAll) {
         const TriangleAttributes e = computeTriangleAttributes(
             mesh.vertices[mesh.triangles[3 * t]], mesh.vertices[mesh.triangles[3 * t + 1]],
             mesh.vertices[mesh.triangles[3 * t + 2]]);
-        const std::vector<double> expected = {e.z1,       e.z2,      e.z3,     e.zMin,
-                                              e.zMax,     e.zMean,   e.slopeDeg, e.slopePct,
-                                              e.aspectDeg, e.area2d, e.area3d, e.nx,
-                                              e.ny,       e.nz};
+        const std::vector<double> expected = {
+            e.z1,       e.z2,        e.z3,     e.zMin,   e.zMax, e.zMean, e.slopeDeg,
+            e.slopePct, e.aspectDeg, e.area2d, e.area3d, e.nx,   e.ny,    e.nz};
         for (std::size_t i = 0; i < kAllNames.size(); ++i)
             EXPECT_EQ(feature->GetFieldAsDouble(kAllNames[i].c_str()), expected[i])
                 << kAllNames[i] << " of triangle " << t;
@@ -197,8 +197,8 @@ TEST(OgrTinWriterLayers, WritesNodesWithRowAndCol_WhenVertexCellsAreGiven) {
     TinWriteOptions options = optionsFor(TinFormat::GeoPackage);
     options.nodes = true;
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
-        options.vertexCells.push_back({static_cast<std::int64_t>(3 - v / 4),
-                                       static_cast<std::int64_t>(v % 4)});
+        options.vertexCells.push_back(
+            {static_cast<std::int64_t>(3 - v / 4), static_cast<std::int64_t>(v % 4)});
     const TinWriteResult result = writeTin(mesh, directory / "tin.gpkg", options);
     EXPECT_EQ(result.features, mesh.triangleCount() + mesh.vertexCount());
 
@@ -248,7 +248,7 @@ TEST(OgrTinWriterLayers, WritesEachEdgeOnceWithItsTwoTriangles_WhenEdgesAreAsked
     ASSERT_NE(edges, nullptr);
     EXPECT_EQ(edges->GetGeomType(), wkbLineString25D);
     EXPECT_EQ(fieldNames(*edges), (std::vector<std::string>{"node_from", "node_to", "tri_left",
-                                                             "tri_right", "length"}));
+                                                            "tri_right", "length"}));
     ASSERT_EQ(edges->GetFeatureCount(), 33);
 
     // The directed edge (a, b) of triangle t in CCW order, for every triangle.
@@ -280,7 +280,8 @@ TEST(OgrTinWriterLayers, WritesEachEdgeOnceWithItsTwoTriangles_WhenEdgesAreAsked
         EXPECT_EQ(line->getZ(0), a.z);
         EXPECT_EQ(line->getX(1), b.x);
         const double dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z;
-        EXPECT_DOUBLE_EQ(feature->GetFieldAsDouble("length"), std::sqrt(dx * dx + dy * dy + dz * dz));
+        EXPECT_DOUBLE_EQ(feature->GetFieldAsDouble("length"),
+                         std::sqrt(dx * dx + dy * dy + dz * dz));
     }
     EXPECT_EQ(hull, 12);
 }

@@ -10,8 +10,8 @@
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
-#include "ogr_test_support.hpp"
 #include "mesh_readers.hpp"
+#include "ogr_test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -46,7 +46,9 @@ double terrainZ(double dx, double dy) {
 }
 
 /// An n x n grid of vertices at (kOriginX, kOriginY) + kSpacingM steps on the saddle terrainZ.
-TinMesh gridMesh(int n) { return test::gridTin(n, terrainZ(0.0, 0.0)); }
+TinMesh gridMesh(int n) {
+    return test::gridTin(n, terrainZ(0.0, 0.0));
+}
 
 using test::utm10nWkt;
 

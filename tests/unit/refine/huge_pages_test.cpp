@@ -16,7 +16,8 @@ namespace terratin {
 namespace {
 
 TEST(HugePages, BuffersHoldWhatIsWritten_SmallAndLarge) {
-    for (const std::size_t count : {std::size_t{10}, std::size_t{3} << 20U, (std::size_t{5} << 20U) + 7}) {
+    for (const std::size_t count :
+         {std::size_t{10}, std::size_t{3} << 20U, (std::size_t{5} << 20U) + 7}) {
         HugePageBuffer<std::uint32_t> buffer(count);
         ASSERT_NE(buffer.data(), nullptr);
         for (std::size_t i = 0; i < count; ++i)

@@ -18,8 +18,7 @@ namespace {
 HeightGrid terrainWithHoles() {
     HeightGrid grid = test::roughTerrain(60, 50, 9);
     const auto setNoData = [&grid](int row, int col) {
-        grid.z[static_cast<std::size_t>(row) * 60U + static_cast<std::size_t>(col)] =
-            std::nanf("");
+        grid.z[static_cast<std::size_t>(row) * 60U + static_cast<std::size_t>(col)] = std::nanf("");
     };
     for (int row = 20; row < 23; ++row)
         for (int col = 30; col < 34; ++col)

@@ -52,7 +52,9 @@ HeightGrid roughTerrain(int width, int height, std::uint32_t seed) {
 
 namespace {
 
-Point2 planar(const Point3& p) { return {p.x, p.y}; }
+Point2 planar(const Point3& p) {
+    return {p.x, p.y};
+}
 
 double twice(const Point2& u, const Point2& v, const Point2& w) {
     return (v.x - u.x) * (w.y - u.y) - (v.y - u.y) * (w.x - u.x);
@@ -139,8 +141,8 @@ CoverageCheck checkCoverage(const TinMesh& mesh, const HeightGrid& grid, std::si
             covered[cell] = 1;
             if (std::isnan(grid.z[cell]))
                 continue;
-            const double z = collinearInGrid(mesh, grid, t) ? alongSegment(mesh, t, p)
-                                                            : barycentric(a, b, c, p);
+            const double z =
+                collinearInGrid(mesh, grid, t) ? alongSegment(mesh, t, p) : barycentric(a, b, c, p);
             check.maxError = std::max(check.maxError, std::fabs(z - grid.z[cell]));
         }
     }

@@ -85,8 +85,7 @@ TEST(DagRepair, ReachesExactDelaunay_ForCocircularAndCollinearInputs) {
          {test::cocircularRings(1.0), test::collinearPlusOne(200)}) {
         std::size_t flips = 0;
         std::size_t illegalBefore = 0;
-        test::expectExactDelaunayOf(triangulateByRepairOnly(points, flips, illegalBefore),
-                                    points);
+        test::expectExactDelaunayOf(triangulateByRepairOnly(points, flips, illegalBefore), points);
     }
 }
 

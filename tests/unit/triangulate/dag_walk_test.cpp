@@ -44,8 +44,8 @@ TEST_P(DagWalk, EndsAtALeafContainingThePoint_FromLeavesInnerNodesAndTheRoot) {
     for (VertexId q = count / 2; q < count; ++q) {
         if (q == triangulator.highestVertex())
             continue;
-        for (const NodeId start : {NodeId{0}, static_cast<NodeId>(q * 7919U % nodes),
-                                   triangulator.newestNode()}) {
+        for (const NodeId start :
+             {NodeId{0}, static_cast<NodeId>(q * 7919U % nodes), triangulator.newestNode()}) {
             if (triangulator.node(start).v[0] == detail::kNoNode)
                 continue; // an id reserved but never used: not a triangle
             innerStarts += triangulator.node(start).isLeaf() ? 0 : 1;

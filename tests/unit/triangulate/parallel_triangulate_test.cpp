@@ -4,8 +4,8 @@
 #include "terratin/triangulate/triangulate.hpp"
 
 #include "mesh_invariants.hpp"
-#include "terratin/error.hpp"
 #include "point_distributions.hpp"
+#include "terratin/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -30,7 +30,9 @@ TriangulationOptions parallelOptions(TriangulationMethod method, unsigned thread
     return options;
 }
 
-const char* toString(PointLocation locate) { return locate == PointLocation::Dag ? "dag" : "walk"; }
+const char* toString(PointLocation locate) {
+    return locate == PointLocation::Dag ? "dag" : "walk";
+}
 
 void expectSameVertices(const TinMesh& parallel, const TinMesh& sequential) {
     auto sortedSources = [](const TinMesh& mesh) {
@@ -41,9 +43,9 @@ void expectSameVertices(const TinMesh& parallel, const TinMesh& sequential) {
     EXPECT_EQ(sortedSources(parallel), sortedSources(sequential));
 }
 
-class ParallelMethod
-    : public ::testing::TestWithParam<
-          std::tuple<TriangulationMethod, PointLocation, unsigned, Distribution>> {};
+class ParallelMethod : public ::testing::TestWithParam<
+                           std::tuple<TriangulationMethod, PointLocation, unsigned, Distribution>> {
+};
 
 TEST_P(ParallelMethod, IsExactlyDelaunayWithSequentialVertices_ForPaperDistributions) {
     const auto [method, locate, threads, distribution] = GetParam();
@@ -59,13 +61,12 @@ TEST_P(ParallelMethod, IsExactlyDelaunayWithSequentialVertices_ForPaperDistribut
 
 INSTANTIATE_TEST_SUITE_P(
     MethodsThreadsDistributions, ParallelMethod,
-    ::testing::Combine(::testing::Values(TriangulationMethod::Batch,
-                                         TriangulationMethod::Circumcircle),
-                       ::testing::Values(PointLocation::Dag, PointLocation::Walk),
-                       ::testing::Values(1U, 2U, 3U, 4U, 8U),
-                       ::testing::Values(Distribution::Uniform, Distribution::Gauss,
-                                         Distribution::Cluster, Distribution::Grid,
-                                         Distribution::Arc)),
+    ::testing::Combine(
+        ::testing::Values(TriangulationMethod::Batch, TriangulationMethod::Circumcircle),
+        ::testing::Values(PointLocation::Dag, PointLocation::Walk),
+        ::testing::Values(1U, 2U, 3U, 4U, 8U),
+        ::testing::Values(Distribution::Uniform, Distribution::Gauss, Distribution::Cluster,
+                          Distribution::Grid, Distribution::Arc)),
     [](const auto& paramInfo) {
         return std::string(toString(std::get<0>(paramInfo.param))) + "_" +
                toString(std::get<1>(paramInfo.param)) + "_" +
@@ -106,28 +107,24 @@ TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForDuplicates) {
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForCollinearPlusOne) {
     const std::vector<Point3> points = test::collinearPlusOne(2000);
-    test::expectExactDelaunayOf(triangulate(points, options()).mesh,
-                                points);
+    test::expectExactDelaunayOf(triangulate(points, options()).mesh, points);
 }
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForCocircularRings) {
     const std::vector<Point3> points = test::cocircularRings(1.0);
-    test::expectExactDelaunayOf(triangulate(points, options()).mesh,
-                                points);
+    test::expectExactDelaunayOf(triangulate(points, options()).mesh, points);
 }
 
 TEST_P(ParallelDegenerate, IsExactlyDelaunay_ForLargeOffsets) {
     const std::vector<Point3> points =
         test::offset(test::generatePoints(Distribution::Grid, kPoints, 3), 6.0e5, 5.2e6);
-    test::expectExactDelaunayOf(triangulate(points, options()).mesh,
-                                points);
+    test::expectExactDelaunayOf(triangulate(points, options()).mesh, points);
 }
 
 TEST_P(ParallelDegenerate, Terminates_WhenFewPointsMeetManyThreads) {
     for (std::size_t count : {3U, 4U, 5U, 10U, 40U}) {
         const std::vector<Point3> points = test::generatePoints(Distribution::Arc, count, count);
-        test::expectExactDelaunayOf(triangulate(points, options()).mesh,
-                                    points);
+        test::expectExactDelaunayOf(triangulate(points, options()).mesh, points);
     }
 }
 

@@ -1,8 +1,8 @@
 #include "terratin/triangulate/triangulate.hpp"
 
-#include "terratin/error.hpp"
 #include "mesh_invariants.hpp"
 #include "point_distributions.hpp"
+#include "terratin/error.hpp"
 
 #include <gtest/gtest.h>
 

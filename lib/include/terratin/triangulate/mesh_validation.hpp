@@ -14,19 +14,18 @@ namespace terratin {
 /// What validateDelaunay found. Counters count every violation; `problems` describes the
 /// first few in words.
 struct MeshValidation {
-    std::size_t badIndices = 0;         ///< vertex or neighbour index out of range
-    std::size_t notCounterClockwise = 0; ///< triangles with orientation <= 0 (exact)
+    std::size_t badIndices = 0;           ///< vertex or neighbour index out of range
+    std::size_t notCounterClockwise = 0;  ///< triangles with orientation <= 0 (exact)
     std::size_t asymmetricNeighbours = 0; ///< neighbour links that are not mutual twins
-    std::size_t nonDelaunayEdges = 0;   ///< opposite vertex strictly inside a circumcircle
-    std::size_t unusedVertices = 0;     ///< vertices in no triangle
-    std::size_t boundaryProblems = 0;   ///< boundary not one convex counter-clockwise cycle
-    bool eulerHolds = false;            ///< V - E + F == 1 (a triangulated disk)
+    std::size_t nonDelaunayEdges = 0;     ///< opposite vertex strictly inside a circumcircle
+    std::size_t unusedVertices = 0;       ///< vertices in no triangle
+    std::size_t boundaryProblems = 0;     ///< boundary not one convex counter-clockwise cycle
+    bool eulerHolds = false;              ///< V - E + F == 1 (a triangulated disk)
     std::vector<std::string> problems;
 
     [[nodiscard]] bool ok() const {
         return badIndices == 0 && notCounterClockwise == 0 && asymmetricNeighbours == 0 &&
-               nonDelaunayEdges == 0 && unusedVertices == 0 && boundaryProblems == 0 &&
-               eulerHolds;
+               nonDelaunayEdges == 0 && unusedVertices == 0 && boundaryProblems == 0 && eulerHolds;
     }
 };
 
