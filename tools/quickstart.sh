@@ -16,6 +16,7 @@ readonly packages=(
   libxml2-dev libxml2-utils
   sqlite3 python3-gdal  # tests: rtreecheck and GDAL's validate_gpkg.py on written GeoPackages
   python3-qgis  # tests/qgis: the outputs opened in QGIS, headless
+  clang-format  # the test command checks the C++ files against .clang-format
 )
 
 # Only for 'fuzz': clang and its libFuzzer runtime.
@@ -36,6 +37,20 @@ install_missing_packages() {
   fi
 }
 
+# Every tracked C++ file as .clang-format (Debian's clang-format) writes it; the list of those
+# that differ, and a failure, otherwise.
+check_formatting() {
+  local unformatted=()
+  while IFS= read -r file; do
+    clang-format --dry-run --Werror "$file" >/dev/null 2>&1 || unformatted+=("$file")
+  done < <(git ls-files '*.cpp' '*.hpp' '*.h')
+  if ((${#unformatted[@]})); then
+    echo "Not formatted as .clang-format says (run clang-format -i on them):" >&2
+    printf '  %s\n' "${unformatted[@]}" >&2
+    return 1
+  fi
+}
+
 build_preset() {
   cmake --preset "$1" >/dev/null
   cmake --build --preset "$1" -j "$(nproc)"
@@ -50,6 +65,7 @@ case "${1:-}" in
     ;;
   test)
     install_missing_packages
+    check_formatting
     build_preset release
     ctest --preset release
     # The same suite under AddressSanitizer and UndefinedBehaviorSanitizer.
