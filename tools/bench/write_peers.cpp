@@ -5,7 +5,7 @@
 #include "packed_rtree.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/triangle_attributes.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <gdal_priv.h>
 #include <ogr_feature.h>
@@ -31,11 +31,11 @@ namespace fs = std::filesystem;
 namespace {
 
 [[noreturn]] void fail(const std::string& what) {
-    throw Error("terratin-bench: " + what + ": " + io::lastGdalErrorMessage());
+    throw Error("terratin-bench: " + what + ": " + lastGdalErrorMessage());
 }
 
 GDALDatasetUniquePtr createGeoPackage(const fs::path& output) {
-    io::initialiseGdal();
+    initialiseGdal();
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
     GDALDatasetUniquePtr dataset(driver->Create(output.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
     if (!dataset)
@@ -69,7 +69,7 @@ std::size_t runGdalCgalOgrScript(const std::string& dem, const fs::path& output)
         CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<Vertex>>;
 
     // GDAL: the valid cells' centres.
-    io::initialiseGdal();
+    initialiseGdal();
     GDALDatasetUniquePtr raster(GDALDataset::Open(dem.c_str(), GDAL_OF_RASTER));
     if (!raster)
         fail("cannot open " + dem);
@@ -170,7 +170,7 @@ void writeWithOgrLoop(const std::vector<std::array<Point3, 3>>& triangles,
 }
 
 std::vector<std::array<Point3, 3>> readTriangles(const fs::path& gpkg, std::string* crsWkt) {
-    io::initialiseGdal();
+    initialiseGdal();
     GDALDatasetUniquePtr dataset(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR));
     if (!dataset)
         fail("cannot open " + gpkg.string());

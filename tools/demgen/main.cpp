@@ -7,7 +7,7 @@
 // a round lake left as nodata (a real hole for the TIN) and a bowl. 10 m cells in
 // WGS 84 / UTM zone 33N, Float32, nodata -9999.
 
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <cpl_string.h>
 #include <gdal_priv.h>
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "terratin-demgen: WIDTH and HEIGHT must be at least 2\n");
         return 2;
     }
-    terratin::io::initialiseGdal();
+    terratin::initialiseGdal();
 
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
     CPLStringList creationOptions;
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         driver->Create(output.c_str(), width, height, 1, GDT_Float32, creationOptions.List());
     if (dataset == nullptr) {
         std::fprintf(stderr, "terratin-demgen: cannot create '%s': %s\n", output.c_str(),
-                     terratin::io::lastGdalErrorMessage().c_str());
+                     terratin::lastGdalErrorMessage().c_str());
         return 1;
     }
     double geoTransform[6] = {kOriginEastingM, kCellSizeM, 0.0, kOriginNorthingM, 0.0, -kCellSizeM};
@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
     GDALClose(dataset);
     if (written != CE_None) {
         std::fprintf(stderr, "terratin-demgen: cannot write '%s': %s\n", output.c_str(),
-                     terratin::io::lastGdalErrorMessage().c_str());
+                     terratin::lastGdalErrorMessage().c_str());
         return 1;
     }
     std::printf("wrote %s (%d x %d cells)\n", output.c_str(), width, height);

@@ -5,7 +5,7 @@
 #include "terratin/crs/reprojection.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/number_text.hpp"
 #include "wkt.hpp"
 
@@ -33,7 +33,7 @@ OGRSpatialReference importOrThrow(const std::string& wkt, std::string_view what)
     if (!detail::importWkt(wkt, srs))
         throw CrsError(
             std::string(kStage) + ": the " + std::string(what) +
-            " CRS cannot be read: " + io::lastGdalErrorMessage("it is not WKT GDAL can parse"));
+            " CRS cannot be read: " + lastGdalErrorMessage("it is not WKT GDAL can parse"));
     return srs;
 }
 
@@ -77,7 +77,7 @@ std::optional<std::string> missingFileReason(const std::string& definition) {
 } // namespace
 
 std::string crsFromUserInput(const std::string& definition, std::string_view option) {
-    io::initialiseGdal();
+    initialiseGdal();
     OGRSpatialReference srs;
     CPLErrorReset();
     if (definition.empty() || srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE) {
@@ -86,7 +86,7 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
         if (const std::optional<std::string> missing = missingFileReason(definition))
             throw CrsError(prefix + " names a file that cannot be read: " + *missing);
         throw CrsError(prefix + " is not a CRS PROJ knows: " +
-                       io::lastGdalErrorMessage("not an authority code (EPSG:32633), WKT, PROJ "
+                       lastGdalErrorMessage("not an authority code (EPSG:32633), WKT, PROJ "
                                                 "string or file of one"));
     }
     // The TIN is triangulated in x, y of this CRS: a vertical-only CRS has no x, y, and a
@@ -105,7 +105,7 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
     if (wkt.empty())
         throw CrsError(std::string(kStage) + ": " + std::string(option) + " '" + definition +
                        "' cannot be written as WKT: " +
-                       io::lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
+                       lastGdalErrorMessage("PROJ has no WKT1 or WKT2 form of it"));
     return wkt;
 }
 
@@ -156,7 +156,7 @@ std::string geographicBaseCrs(const std::string& wkt) {
     if (geographic.CopyGeogCSFrom(&srs) != OGRERR_NONE)
         throw CrsError(std::string(kStage) + ": '" + shortName(srs) +
                        "' has no geographic base CRS: " +
-                       io::lastGdalErrorMessage("it is not based on a datum and ellipsoid"));
+                       lastGdalErrorMessage("it is not based on a datum and ellipsoid"));
     return detail::exportWkt(geographic);
 }
 
@@ -172,7 +172,7 @@ Reprojector::Reprojector(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {
 
 Reprojector::Reprojector(const std::string& sourceWkt, const std::string& targetWkt)
     : m_impl(std::make_unique<Impl>()) {
-    io::initialiseGdal();
+    initialiseGdal();
     const OGRSpatialReference source = importOrThrow(sourceWkt, "source");
     const OGRSpatialReference target = importOrThrow(targetWkt, "target");
     m_impl->sourceWkt = sourceWkt;
@@ -184,7 +184,7 @@ Reprojector::Reprojector(const std::string& sourceWkt, const std::string& target
     if (!m_impl->transform)
         throw CrsError(std::string(kStage) + ": PROJ has no transformation from '" +
                        m_impl->sourceName + "' to '" + m_impl->targetName +
-                       "': " + io::lastGdalErrorMessage("PROJ knows no operation between them"));
+                       "': " + lastGdalErrorMessage("PROJ knows no operation between them"));
 }
 
 Reprojector::~Reprojector() = default;

@@ -4,7 +4,7 @@
 #include "terratin/crs/utm_zone.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/number_text.hpp"
 #include "wkt.hpp"
 
@@ -48,15 +48,15 @@ UtmZone standardUtmZone(double longitudeDeg, double latitudeDeg) {
 }
 
 std::string utmZoneCrs(const UtmZone& zone, const std::string& geographicWkt) {
-    io::initialiseGdal();
+    initialiseGdal();
     OGRSpatialReference base;
     if (!detail::importWkt(geographicWkt, base))
         throw CrsError(std::string(kStage) + ": the CRS to choose a zone for cannot be read: " +
-                       io::lastGdalErrorMessage());
+                       lastGdalErrorMessage());
     OGRSpatialReference geographic;
     if (geographic.CopyGeogCSFrom(&base) != OGRERR_NONE)
         throw CrsError(std::string(kStage) + ": no geographic base CRS to put " + zone.name() +
-                       " on: " + io::lastGdalErrorMessage());
+                       " on: " + lastGdalErrorMessage());
 
     OGRSpatialReference wgs84;
     wgs84.importFromEPSG(4326);
@@ -69,7 +69,7 @@ std::string utmZoneCrs(const UtmZone& zone, const std::string& geographicWkt) {
                                         : (zone.north ? 32600 : 32700) + zone.zone;
         if (projected.importFromEPSG(code) != OGRERR_NONE)
             throw CrsError(std::string(kStage) + ": EPSG:" + std::to_string(code) +
-                           " is missing from PROJ's database: " + io::lastGdalErrorMessage());
+                           " is missing from PROJ's database: " + lastGdalErrorMessage());
     } else {
         projected.CopyGeogCSFrom(&geographic);
         const std::string name =
@@ -86,7 +86,7 @@ std::string utmZoneCrs(const UtmZone& zone, const std::string& geographicWkt) {
     std::string wkt = detail::exportWkt(projected);
     if (wkt.empty())
         throw CrsError(std::string(kStage) + ": cannot write " + zone.name() +
-                       " as WKT: " + io::lastGdalErrorMessage());
+                       " as WKT: " + lastGdalErrorMessage());
     return wkt;
 }
 

@@ -1,7 +1,7 @@
 #include "ascii_pgm.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <cerrno>
 #include <cstdint>

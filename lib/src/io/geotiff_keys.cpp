@@ -10,7 +10,7 @@
 
 #include "../crs/wkt.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <cpl_conv.h>
 #include <cpl_vsi.h>

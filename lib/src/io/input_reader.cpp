@@ -8,7 +8,7 @@
 
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <gdal.h>
 

@@ -5,7 +5,7 @@
 
 #include "../crs/wkt.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>

@@ -41,7 +41,7 @@
 #include "ogr_dataset_support.hpp"
 #include "packed_rtree_order.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "writer_support.hpp"
 
 #include <cpl_conv.h>

@@ -3,7 +3,7 @@
 #include "ascii_pgm.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/number_text.hpp"
 
 #include <cpl_conv.h>

@@ -13,7 +13,7 @@
 #include "ply_writer.hpp"
 #include "qgis_style.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "two_dm_writer.hpp"
 #include "writer_support.hpp"
 

@@ -2,7 +2,7 @@
 
 #include "atomic_output.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>

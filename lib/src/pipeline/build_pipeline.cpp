@@ -3,7 +3,7 @@
 #include "gather_inputs.hpp"
 #include "refine_placement.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/refine/mesh_filter.hpp"

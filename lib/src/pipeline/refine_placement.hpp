@@ -11,7 +11,7 @@
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 /// The refiner's per-cell flags (grid_scan.hpp's CellFlag): nodata, and which nodata cells
 /// form holes that must stay open.
 
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <cstddef>
 #include <cstdint>

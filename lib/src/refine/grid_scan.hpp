@@ -15,7 +15,7 @@
 /// Cost: for a small triangle, a few vector operations per row (forEachRowByMasks); for a
 /// larger one, one integer division per edge, then a carried remainder per edge per row.
 
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <algorithm>
 #include <array>

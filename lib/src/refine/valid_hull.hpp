@@ -3,7 +3,7 @@
 /// The convex hull of a grid's valid cell centres, the refiner's starting TIN.
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <cstdint>
 #include <span>

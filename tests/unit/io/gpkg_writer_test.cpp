@@ -12,7 +12,7 @@
 #include "ogr_test_support.hpp"
 #include "temporary_directory.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <gdal_priv.h>

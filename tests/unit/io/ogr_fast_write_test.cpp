@@ -9,7 +9,7 @@
 #include "temporary_directory.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/triangle_attributes.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <cpl_conv.h>

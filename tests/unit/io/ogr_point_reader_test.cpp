@@ -3,7 +3,7 @@
 
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/io/input_reader.hpp"
 #include "terratin/io/ogr_point_reader.hpp"
 

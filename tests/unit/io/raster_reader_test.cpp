@@ -2,7 +2,7 @@
 // the real DEMs of TERRATIN_SHARED_DEMS checked against an independent whole-raster read.
 
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "terratin/io/raster_reader.hpp"
 
 #include <cpl_conv.h>
@@ -63,7 +63,7 @@ struct TiffSpec {
 
 /// Writes `spec` as a GeoTIFF at `path`.
 void writeTiff(const std::string& path, const TiffSpec& spec) {
-    terratin::io::initialiseGdal();
+    terratin::initialiseGdal();
     GDALDriverH driver = GDALGetDriverByName("GTiff");
     ASSERT_NE(driver, nullptr);
     char** createOptions = nullptr;
@@ -334,7 +334,7 @@ TEST(GdalRasterReader, MaskedCellsAreSkipped_WhenDatasetHasMaskBand) {
 TEST(GdalRasterReader, TransparentCellsAreSkipped_WhenDatasetHasAlphaBand) {
     TempDir dir;
     const std::string path = dir.file("alpha.tif");
-    terratin::io::initialiseGdal();
+    terratin::initialiseGdal();
     {
         char** createOptions = CSLSetNameValue(nullptr, "ALPHA", "YES");
         DatasetPtr dataset(GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 3, 2, 2, GDT_Byte,
@@ -614,17 +614,17 @@ TEST(GdalRasterReader, ReadsAPlainPgm_AsAGridWithoutGeoreferencing_D20) {
 
 // Issue 22, D20: a GDAL message with a line break made the CLI's error two lines.
 TEST(GdalError, KeepsMessagesOnOneLine_D20) {
-    terratin::io::initialiseGdal();
+    terratin::initialiseGdal();
     CPLErrorReset();
     CPLError(CE_Failure, CPLE_AppDefined, "first line\n  second line\r\nthird");
     try {
-        terratin::io::throwGdalError("Stage", "cannot read", "a\nb.tif");
+        terratin::throwGdalError("Stage", "cannot read", "a\nb.tif");
     } catch (const terratin::IoError& error) {
         EXPECT_STREQ(error.what(), "Stage: cannot read 'a b.tif': first line second line third");
     }
     EXPECT_EQ(terratin::oneLine("\n x \n\n y\t\n"), "x y");
     CPLErrorReset();
-    EXPECT_EQ(terratin::io::lastGdalErrorMessage("the known cause"), "the known cause");
+    EXPECT_EQ(terratin::lastGdalErrorMessage("the known cause"), "the known cause");
 }
 
 TEST(GdalRasterReader, EdgeBlocksAreRead_WhenTileSizeDoesNotDivideRaster) {
@@ -752,7 +752,7 @@ std::string sharedDem(const std::string& name) {
 }
 
 IndependentRead readWhole(const std::string& path) {
-    terratin::io::initialiseGdal();
+    terratin::initialiseGdal();
     IndependentRead read;
     DatasetPtr dataset(GDALOpen(path.c_str(), GA_ReadOnly));
     if (!dataset)

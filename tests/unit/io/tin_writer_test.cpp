@@ -2,7 +2,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/triangle_attributes.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <gdal_priv.h>
 #include <ogr_feature.h>

@@ -2,7 +2,7 @@
 // Grids for the refinement tests and a check of a TIN against a grid that shares no code with
 // the refiner (CRS coordinates, exact point-in-triangle tests, barycentric interpolation).
 
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 #include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 

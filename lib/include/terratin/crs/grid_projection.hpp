@@ -4,7 +4,7 @@
 /// when a DEM is simplified in a CRS other than its own (a geographic DEM in its UTM zone).
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <string>
 #include <vector>

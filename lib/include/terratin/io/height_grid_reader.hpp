@@ -6,7 +6,7 @@
 
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/progress.hpp"
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <cstdint>
 #include <string>

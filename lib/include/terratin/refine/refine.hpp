@@ -13,7 +13,7 @@
 /// coordinates (a recomputation from CRS coordinates differs only by rounding, ~1e-12 of z).
 
 #include "terratin/progress.hpp"
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 

@@ -8,7 +8,7 @@
 #include "gpkg_tin_layers.hpp"
 #include "sqlite_connection.hpp"
 #include "terratin/error.hpp"
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <cpl_conv.h>
 #include <cpl_error.h>

@@ -1,4 +1,4 @@
-#include "terratin/refine/height_grid.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 namespace terratin {
 

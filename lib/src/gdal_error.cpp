@@ -1,4 +1,4 @@
-#include "terratin/io/gdal_error.hpp"
+#include "terratin/gdal_error.hpp"
 
 #include <cpl_error.h>
 #include <gdal.h>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <mutex>
 
-namespace terratin::io {
+namespace terratin {
 
 namespace {
 // GDAL prints warnings and errors to stderr by default. The CLI promises one clear error line,
@@ -45,4 +45,4 @@ void initialiseGdal() {
     });
 }
 
-} // namespace terratin::io
+} // namespace terratin

@@ -1,13 +1,15 @@
 #pragma once
 /// @file
-/// Turning GDAL's error state into terratin exceptions at the place of the call.
+/// Turning GDAL's error state into terratin exceptions at the place of the call. Part of
+/// terratin::io, but beside error.hpp rather than in io/: crs calls GDAL too, and io uses crs,
+/// so the piece both need sits below both.
 
 #include "terratin/error.hpp"
 
 #include <string>
 #include <string_view>
 
-namespace terratin::io {
+namespace terratin {
 
 /// The last GDAL/OGR/CPL error message on one line. When GDAL recorded none: the system's
 /// message for errno when errno names a write failure (no space left on device, disk quota
@@ -23,4 +25,4 @@ std::string lastGdalErrorMessage(std::string_view fallback = {});
 /// reports errors itself, one line each). Safe to call many times, from any thread.
 void initialiseGdal();
 
-} // namespace terratin::io
+} // namespace terratin
