@@ -11,8 +11,10 @@
 #   FORMAT: an output extension (gpkg, shp, fgb, ply...)
 # The run must stop with exit 1 and one error line (cancelled / appeared) after its progress
 # line, leave the old output (or the other program's file) byte-identical, and leave nothing
-# else in the output directory or TMPDIR. Every wait is bounded, so the test never hangs; no
-# wall-clock duration is asserted. Skips (exit 77) without Mt Hood.
+# else in the output directory or TMPDIR. No wall-clock duration is asserted: on a loaded
+# machine the rest of a Shapefile can take minutes to write after the output appears (the
+# 120 s bound this script once had failed there). A run that never stops is caught by the
+# test's ctest TIMEOUT. Skips (exit 77) without Mt Hood.
 set -uo pipefail
 
 event=$1
@@ -23,10 +25,6 @@ shared=${5:-}
 hood=gdalraster__lf_elev_220_mt_hood_utm.tif
 [ -n "$shared" ] && [ -e "$shared/$hood" ] || { echo "skip: no $hood"; exit 77; }
 hood=$(realpath -- "$shared/$hood")
-
-# Generous bounds on every wait (seconds): a loaded 2-core machine is slow, never stuck.
-readonly kPhaseTimeout=300
-readonly kStopTimeout=120
 
 work=$(mktemp -d)
 out=$work/out
@@ -80,10 +78,8 @@ TMPDIR=$work/tmp "$binary" "${arguments[@]}" >"$work/stdout" 2>"$work/stderr" &
 pid=$!
 
 # Wait for the phase: the progress line reaching its mark.
-deadline=$((SECONDS + kPhaseTimeout))
 until grep -Eq -- "$mark" "$work/stderr"; do
   kill -0 "$pid" 2>/dev/null || fail "the run ended before reaching the $phase phase"
-  [ "$SECONDS" -lt "$deadline" ] || fail "no $phase phase within ${kPhaseTimeout}s"
   sleep 0.02
 done
 
@@ -95,11 +91,6 @@ else
 fi
 
 # Wait for the run to stop.
-deadline=$((SECONDS + kStopTimeout))
-while kill -0 "$pid" 2>/dev/null; do
-  [ "$SECONDS" -lt "$deadline" ] || fail "the run did not stop within ${kStopTimeout}s of SIG$event"
-  sleep 0.05
-done
 wait "$pid"
 status=$?
 pid=""

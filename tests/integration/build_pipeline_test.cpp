@@ -191,6 +191,21 @@ TEST(BuildPipeline, RefusesExistingOutput_BeforeReading) {
     EXPECT_EQ(content, "keep me");
 }
 
+// The simplification's report once gave the refiner's mesh bytes as history bytes, a history
+// the refiner does not keep.
+TEST(BuildPipeline, SimplificationReportsMeshBytes_NotHistoryBytes) {
+    TemporaryDirectory directory;
+    BuildOptions options;
+    options.inputs = {(fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif").string()};
+    options.output = directory.path() / "tin.ply";
+    options.refine = RefineOptions{};
+    options.refine->maxError = 1.0;
+    const BuildReport report = runBuild(options);
+    EXPECT_EQ(report.historyBytesPerPoint, 0.0);
+    EXPECT_GT(report.meshBytesPerPoint, 0.0);
+    EXPECT_NE(toJson(report).find("\"mesh_bytes_per_point\": "), std::string::npos);
+}
+
 TEST(BuildPipeline, ReportsJsonWithCountsAndTimings) {
     BuildReport report;
     report.points = 12;

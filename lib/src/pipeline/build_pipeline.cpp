@@ -1,5 +1,6 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
+#include "../stopwatch.hpp"
 #include "gather_inputs.hpp"
 #include "refine_placement.hpp"
 #include "terratin/error.hpp"
@@ -14,7 +15,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -31,20 +31,7 @@ constexpr double kReadShare = 0.1;
 constexpr double kTriangulateShare = 0.4;
 constexpr double kWriteShare = 0.5;
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Maps a phase's own 0..1 progress onto [start, start + share] of the whole run.
-ProgressCallback phaseProgress(const ProgressCallback& progress, double start, double share) {
-    if (!progress)
-        return {};
-    return [progress, start, share](double fraction, std::string_view message) {
-        return progress(start + share * fraction, message);
-    };
-}
+using detail::Stopwatch;
 
 void describeCrs(const std::string& wkt, BuildReport& report) {
     if (wkt.empty())
@@ -90,16 +77,16 @@ std::vector<io::RasterCell> vertexCells(const TinMesh& mesh,
 
 // The write phase's figures and the total; the last progress call.
 BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
-                         Clock::time_point writeStart, Clock::time_point start,
+                         const Stopwatch& writeTime, const Stopwatch& totalTime,
                          const ProgressCallback& progress) {
-    report.timings.write = secondsSince(writeStart);
+    report.timings.write = writeTime.seconds();
     report.writeFeatures = written.features;
     report.writeRowSeconds = written.rowSeconds;
     report.writeIndexSeconds = written.indexSeconds;
     report.writeFeaturesPerSecond =
         report.timings.write > 0.0 ? static_cast<double>(written.features) / report.timings.write
                                    : 0.0;
-    report.timings.total = secondsSince(start);
+    report.timings.total = totalTime.seconds();
     if (progress)
         progress(1.0, "done");
     return report;
@@ -108,7 +95,7 @@ BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
 BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
                            const ProgressCallback& progress, BuildReport report,
-                           Clock::time_point start) {
+                           const Stopwatch& totalTime) {
     // The refiner works on one raster's grid; scaling z would change what E means.
     const std::vector<std::string> paths = options.inputPaths();
     if (paths.size() != 1)
@@ -116,20 +103,20 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     if (options.zFactor != 1.0)
         throw InvalidInputError("Simplification (--max-error...) does not combine with "
                                 "--z-factor; scale the DEM first (gdal_calc)");
-    Clock::time_point phase = Clock::now();
+    const Stopwatch readTime;
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
     io::HeightGridRaster raster =
         io::readHeightGrid(paths.front(), readOptions, phaseProgress(progress, 0.0, kReadShare));
     report.rasterCells = raster.grid.cellCount();
     report.skippedCells = raster.skippedCells;
-    report.timings.read = secondsSince(phase);
+    report.timings.read = readTime.seconds();
     // A geographic raster is refined in its UTM zone, at its cells' projected positions.
     const detail::RefinePlacement placement =
         detail::placeRefinedCells(options, raster.grid, raster.crsWkt, report);
     describeCrs(placement.targetWkt, report);
 
-    phase = Clock::now();
+    const Stopwatch refineTime;
     RefineOptions refineOptions = *options.refine;
     if (refineOptions.threads == 0)
         refineOptions.threads = options.triangulation.threads;
@@ -154,16 +141,15 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     report.threads = result.threads;
     report.points = result.mesh.vertexCount();
     report.vertices = result.mesh.vertexCount();
-    // The refiner keeps no history: its triangulation's bytes take the place.
-    report.historyBytesPerPoint =
+    report.meshBytesPerPoint =
         static_cast<double>(result.meshBytes) /
         static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
     if (options.maxEdge)
         report.longEdgeTriangles = dropLongEdgeTriangles(result.mesh, *options.maxEdge);
     report.triangles = result.mesh.triangleCount();
-    report.timings.triangulate = secondsSince(phase);
+    report.timings.triangulate = refineTime.seconds();
 
-    phase = Clock::now();
+    const Stopwatch writeTime;
     writeOptions.crsWkt = placement.targetWkt;
     if (options.nodes) // the refiner's sourceIndex is the cell index
         writeOptions.vertexCells =
@@ -172,7 +158,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     const io::TinWriteResult written =
         io::writeTin(result.mesh, options.output, writeOptions,
                      phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
-    return finishReport(std::move(report), written, phase, start, progress);
+    return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
 
 } // namespace
@@ -209,7 +195,7 @@ void checkBuildOptions(const BuildOptions& options) {
 namespace {
 
 BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
-    const Clock::time_point start = Clock::now();
+    const Stopwatch totalTime;
     const io::TinFormat format =
         options.format ? *options.format : io::tinFormatFromPath(options.output);
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
@@ -225,15 +211,15 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.output = options.output.string();
     report.format = formatName(format);
     if (options.refine)
-        return runRefineBuild(options, writeOptions, progress, std::move(report), start);
+        return runRefineBuild(options, writeOptions, progress, std::move(report), totalTime);
 
-    Clock::time_point phase = Clock::now();
+    const Stopwatch readTime;
     detail::GatheredInputs gathered =
         detail::gatherInputs(options, report, phaseProgress(progress, 0.0, kReadShare));
     describeCrs(gathered.crsWkt, report);
-    report.timings.read = secondsSince(phase);
+    report.timings.read = readTime.seconds();
 
-    phase = Clock::now();
+    const Stopwatch triangulateTime;
     TriangulationResult triangulation =
         triangulate(gathered.points, options.triangulation,
                     phaseProgress(progress, kReadShare, kTriangulateShare));
@@ -246,17 +232,17 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.threads = triangulation.threads;
     report.historyBytesPerPoint = static_cast<double>(triangulation.historyBytes) /
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
-    report.timings.triangulate = secondsSince(phase);
+    report.timings.triangulate = triangulateTime.seconds();
 
     if (options.validate) {
-        phase = Clock::now();
+        const Stopwatch validateTime;
         const MeshValidation validation = validateDelaunay(triangulation.mesh);
         if (!validation.ok())
             throw Error("Validation: the mesh is not an exact Delaunay triangulation: " +
                         (validation.problems.empty() ? std::string("unknown problem")
                                                      : validation.problems.front()));
         report.validated = true;
-        report.timings.validate = secondsSince(phase);
+        report.timings.validate = validateTime.seconds();
     }
 
     if (options.maxEdge) {
@@ -264,14 +250,14 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
         report.triangles = triangulation.mesh.triangleCount();
     }
 
-    phase = Clock::now();
+    const Stopwatch writeTime;
     writeOptions.crsWkt = gathered.crsWkt;
     if (options.nodes)
         writeOptions.vertexCells = vertexCells(triangulation.mesh, gathered);
     const io::TinWriteResult written =
         io::writeTin(triangulation.mesh, options.output, writeOptions,
                      phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
-    return finishReport(std::move(report), written, phase, start, progress);
+    return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
 
 } // namespace

@@ -67,7 +67,8 @@ std::string toJson(const BuildReport& report) {
          << ", \"triangles\": " << report.triangles << "}"
          << ", \"triangulation\": {\"method\": " << jsonString(report.method)
          << ", \"threads\": " << report.threads
-         << ", \"history_bytes_per_point\": " << report.historyBytesPerPoint << "}"
+         << ", \"history_bytes_per_point\": " << report.historyBytesPerPoint
+         << ", \"mesh_bytes_per_point\": " << report.meshBytesPerPoint << "}"
          << ", \"timings\": {\"read\": " << report.timings.read
          << ", \"triangulate\": " << report.timings.triangulate
          << ", \"validate\": " << report.timings.validate << ", \"write\": " << report.timings.write

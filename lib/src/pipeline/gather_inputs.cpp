@@ -13,13 +13,14 @@
 
 #include "gather_inputs.hpp"
 
+#include "../stopwatch.hpp"
+
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/crs/utm_zone.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/input_reader.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -28,20 +29,136 @@ namespace terratin::detail {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+/// Of this stage's progress, the part that reading the files reports, shared equally among
+/// them; reprojecting and merging, which report nothing themselves, take the rest.
+constexpr double kReadFilesShare = 0.9;
 
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
+/// One input as read, with the CRS it is in now: its own, or --s_srs; the target CRS once
+/// reprojected.
+struct ReadInput {
+    io::PointCloud cloud;
+    std::string crsWkt;
+};
+
+/// The CRSs the user named, as WKT; empty when not given.
+struct UserCrs {
+    std::string source;
+    std::string target;
+};
+
+void checkInputOptions(const BuildOptions& options, const std::vector<std::string>& paths) {
+    if (paths.empty() || std::any_of(paths.begin(), paths.end(),
+                                     [](const std::string& path) { return path.empty(); }))
+        throw InvalidInputError("Input: no input file given");
+    if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
+        throw InvalidInputError("Input: --z-factor must be a finite number other than 0");
+}
+
+/// The user's CRSs, parsed before any reading: a typo should fail before minutes of reading.
+UserCrs parseUserCrs(const BuildOptions& options) {
+    UserCrs user;
+    if (!options.sourceSrs.empty())
+        user.source = crs::crsFromUserInput(options.sourceSrs, "--s_srs");
+    if (!options.targetSrs.empty())
+        user.target = crs::crsFromUserInput(options.targetSrs, "--t_srs");
+    return user;
+}
+
+io::InputReadOptions readOptionsOf(const BuildOptions& options) {
+    io::InputReadOptions read;
+    read.raster.band = options.band;
+    read.las.classes = options.lasClasses;
+    read.las.returns = options.lasReturns;
+    read.text.columns = options.textColumns;
+    read.vector.zField = options.zField;
+    read.vector.layer = options.inputLayer;
+    return read;
+}
+
+/// The report's entry for one input as read (duplicates and reprojection come later).
+InputReport describeInput(const std::string& path, const ReadInput& input) {
+    const crs::CrsDescription description = crs::describeCrs(input.crsWkt);
+    InputReport entry;
+    entry.path = path;
+    entry.kind = io::toString(input.cloud.kind);
+    entry.crsName = description.name;
+    entry.crsCode = description.code;
+    entry.records = input.cloud.recordsRead;
+    entry.filteredOut = input.cloud.filteredOut;
+    entry.skippedCells = input.cloud.skippedCells;
+    entry.points = input.cloud.points.size();
+    return entry;
+}
+
+void addToTotals(const io::PointCloud& cloud, BuildReport& report) {
+    if (cloud.kind == io::InputKind::Raster)
+        report.rasterCells += cloud.recordsRead;
+    report.skippedCells += cloud.skippedCells;
+    report.filteredOut += cloud.filteredOut;
+    report.points += cloud.points.size();
+}
+
+/// Reads every input in order, each reporting its equal share of `progress`.
+std::vector<ReadInput> readInputs(const std::vector<std::string>& paths,
+                                  const BuildOptions& options, const std::string& sourceOverride,
+                                  BuildReport& report, const ProgressCallback& progress) {
+    const io::InputReadOptions readOptions = readOptionsOf(options);
+    const double share = kReadFilesShare / static_cast<double>(paths.size());
+    std::vector<ReadInput> inputs;
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        const ProgressCallback inputProgress =
+            phaseProgress(progress, static_cast<double>(i) * share, share);
+        ReadInput input{io::readInput(paths[i], readOptions, inputProgress), {}};
+        input.crsWkt = sourceOverride.empty() ? input.cloud.crsWkt : sourceOverride;
+        report.inputs.push_back(describeInput(paths[i], input));
+        addToTotals(input.cloud, report);
+        inputs.push_back(std::move(input));
+    }
+    return inputs;
+}
+
+/// Inputs without a CRS are merged as they are only when none has one and no target is asked
+/// for: otherwise they could not be brought into one CRS.
+void requireCrsWhereNeeded(const std::vector<ReadInput>& inputs,
+                           const std::vector<std::string>& paths,
+                           const std::string& requestedTarget) {
+    const auto missing = std::find_if(inputs.begin(), inputs.end(),
+                                      [](const ReadInput& input) { return input.crsWkt.empty(); });
+    if (missing == inputs.end())
+        return;
+    const bool otherHasCrs = std::any_of(
+        inputs.begin(), inputs.end(), [](const ReadInput& input) { return !input.crsWkt.empty(); });
+    if (!otherHasCrs && requestedTarget.empty())
+        return;
+    throw CrsError("CRS: '" + paths[static_cast<std::size_t>(missing - inputs.begin())] +
+                   "' has no CRS and " +
+                   (requestedTarget.empty() ? std::string("other inputs have one")
+                                            : std::string("--t_srs asks to reproject it")) +
+                   "; give its CRS with --s_srs");
+}
+
+/// The report's source CRS: the one every input shares, or "several".
+void reportSourceCrs(const std::vector<ReadInput>& inputs, BuildReport& report) {
+    const bool allSame =
+        std::all_of(inputs.begin(), inputs.end(), [&inputs](const ReadInput& input) {
+            return crs::sameCrs(input.crsWkt, inputs.front().crsWkt);
+        });
+    if (allSame) {
+        report.sourceCrsName = report.inputs.front().crsName;
+        report.sourceCrsCode = report.inputs.front().crsCode;
+    } else {
+        report.sourceCrsName = "several";
+    }
 }
 
 /// Centre of the bounding box of every point, in the (common geographic) CRS of the points.
-Point2 boundingBoxCentre(const std::vector<io::PointCloud>& clouds) {
+Point2 boundingBoxCentre(const std::vector<ReadInput>& inputs) {
     double minX = std::numeric_limits<double>::infinity();
     double minY = minX;
     double maxX = -minX;
     double maxY = -minX;
-    for (const io::PointCloud& cloud : clouds)
-        for (const Point3& p : cloud.points) {
+    for (const ReadInput& input : inputs)
+        for (const Point3& p : input.cloud.points) {
             minX = std::min(minX, p.x);
             maxX = std::max(maxX, p.x);
             minY = std::min(minY, p.y);
@@ -50,14 +167,82 @@ Point2 boundingBoxCentre(const std::vector<io::PointCloud>& clouds) {
     return {0.5 * (minX + maxX), 0.5 * (minY + maxY)};
 }
 
-void reprojectInto(io::PointCloud& cloud, std::string& cloudCrs, const std::string& targetWkt,
-                   InputReport& input) {
-    if (crs::sameCrs(cloudCrs, targetWkt))
+/// Transforms x, y of `input` into `targetWkt` unless it is there already.
+void reprojectInto(ReadInput& input, const std::string& targetWkt, InputReport& entry) {
+    if (crs::sameCrs(input.crsWkt, targetWkt))
         return;
-    const crs::Reprojector reprojector(cloudCrs, targetWkt);
-    reprojector.transform(cloud.points);
-    cloudCrs = targetWkt;
-    input.reprojected = true;
+    const crs::Reprojector reprojector(input.crsWkt, targetWkt);
+    reprojector.transform(input.cloud.points);
+    input.crsWkt = targetWkt;
+    entry.reprojected = true;
+}
+
+/// The target CRS: --t_srs, else the first input's CRS, except that a geographic one the user
+/// did not ask to keep becomes the UTM/UPS zone of the data's centre. To find that centre,
+/// every input is first brought into the geographic CRS.
+std::string chooseTargetCrs(const BuildOptions& options, const std::string& requestedTarget,
+                            std::vector<ReadInput>& inputs, BuildReport& report) {
+    if (!requestedTarget.empty())
+        return requestedTarget;
+    const std::string first = inputs.front().crsWkt;
+    if (first.empty() || options.keepGeographic || !crs::describeCrs(first).geographic)
+        return first;
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+        reprojectInto(inputs[i], first, report.inputs[i]);
+    return zoneOfCentre(options, report, first, boundingBoxCentre(inputs));
+}
+
+/// z is never converted: says so when an input's x, y change units and --z-factor is 1.
+void noticeUnitChange(const BuildOptions& options, BuildReport& report, const std::string& path,
+                      const crs::CrsDescription& source, const crs::CrsDescription& target) {
+    if (options.zFactor != 1.0 || !source.projected || !target.projected ||
+        source.metresPerUnit == target.metresPerUnit)
+        return;
+    char factor[64];
+    std::snprintf(factor, sizeof factor, "%.10g", source.metresPerUnit / target.metresPerUnit);
+    notify(options, report,
+           "'" + path + "' has x, y in " + source.linearUnit + " and the output in " +
+               target.linearUnit + ": elevations stay in the input's units (use --z-factor " +
+               factor + " if they share the horizontal unit)");
+}
+
+void reprojectAll(const BuildOptions& options, const std::string& targetWkt,
+                  std::vector<ReadInput>& inputs, BuildReport& report) {
+    const crs::CrsDescription target = crs::describeCrs(targetWkt);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        InputReport& entry = report.inputs[i];
+        const crs::CrsDescription source = crs::describeCrs(inputs[i].crsWkt);
+        reprojectInto(inputs[i], targetWkt, entry);
+        if (entry.reprojected)
+            noticeUnitChange(options, report, entry.path, source, target);
+        report.reprojected = report.reprojected || entry.reprojected;
+    }
+}
+
+/// Every input's points in input order, z scaled by `zFactor`; each cloud is released once
+/// copied. A single raster keeps its cell indices for the nodes layer.
+GatheredInputs mergeInputs(std::vector<ReadInput>& inputs, double zFactor) {
+    GatheredInputs gathered;
+    gathered.offsets.push_back(0);
+    for (const ReadInput& input : inputs)
+        gathered.offsets.push_back(gathered.offsets.back() + input.cloud.points.size());
+    if (inputs.size() == 1) {
+        io::PointCloud& cloud = inputs.front().cloud;
+        gathered.points = std::move(cloud.points);
+        gathered.rasterWidth = cloud.rasterWidth;
+        gathered.cellIndex = std::move(cloud.cellIndex);
+    } else {
+        gathered.points.reserve(gathered.offsets.back());
+        for (ReadInput& input : inputs) {
+            std::vector<Point3>& points = input.cloud.points;
+            gathered.points.insert(gathered.points.end(), points.begin(), points.end());
+            points = {};
+        }
+    }
+    if (zFactor != 1.0)
+        for (Point3& p : gathered.points)
+            p.z *= zFactor;
+    return gathered;
 }
 
 } // namespace
@@ -90,141 +275,23 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
 GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
                             const ProgressCallback& progress) {
     const std::vector<std::string> paths = options.inputPaths();
-    if (paths.empty() || std::any_of(paths.begin(), paths.end(),
-                                     [](const std::string& path) { return path.empty(); }))
-        throw InvalidInputError("Input: no input file given");
-    if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
-        throw InvalidInputError("Input: --z-factor must be a finite number other than 0");
+    checkInputOptions(options, paths);
     report.zFactor = options.zFactor;
+    const UserCrs user = parseUserCrs(options);
 
-    // The user's CRSs first: a typo should fail before minutes of reading.
-    const std::string sourceOverride = options.sourceSrs.empty()
-                                           ? std::string()
-                                           : crs::crsFromUserInput(options.sourceSrs, "--s_srs");
-    const std::string requestedTarget = options.targetSrs.empty()
-                                            ? std::string()
-                                            : crs::crsFromUserInput(options.targetSrs, "--t_srs");
+    std::vector<ReadInput> inputs = readInputs(paths, options, user.source, report, progress);
 
-    io::InputReadOptions readOptions;
-    readOptions.raster.band = options.band;
-    readOptions.las.classes = options.lasClasses;
-    readOptions.las.returns = options.lasReturns;
-    readOptions.text.columns = options.textColumns;
-    readOptions.vector.zField = options.zField;
-    readOptions.vector.layer = options.inputLayer;
-
-    // Read every input; each gets an equal share of this stage's progress.
-    std::vector<io::PointCloud> clouds;
-    std::vector<std::string> cloudCrs;
-    const double share = 0.9 / static_cast<double>(paths.size());
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        ProgressCallback inputProgress;
-        if (progress)
-            inputProgress = [&progress, i, share](double fraction, std::string_view message) {
-                return progress(static_cast<double>(i) * share + fraction * share, message);
-            };
-        clouds.push_back(io::readInput(paths[i], readOptions, inputProgress));
-        const io::PointCloud& cloud = clouds.back();
-        cloudCrs.push_back(sourceOverride.empty() ? cloud.crsWkt : sourceOverride);
-        const crs::CrsDescription description = crs::describeCrs(cloudCrs.back());
-        InputReport input;
-        input.path = paths[i];
-        input.kind = io::toString(cloud.kind);
-        input.crsName = description.name;
-        input.crsCode = description.code;
-        input.records = cloud.recordsRead;
-        input.filteredOut = cloud.filteredOut;
-        input.skippedCells = cloud.skippedCells;
-        input.points = cloud.points.size();
-        report.inputs.push_back(input);
-        if (cloud.kind == io::InputKind::Raster)
-            report.rasterCells += cloud.recordsRead;
-        report.skippedCells += cloud.skippedCells;
-        report.filteredOut += cloud.filteredOut;
-        report.points += cloud.points.size();
-    }
-
-    const Clock::time_point reprojectStart = Clock::now();
-    // An input without a CRS, when another has one or a target is asked for.
-    const auto withCrs = std::count_if(cloudCrs.begin(), cloudCrs.end(),
-                                       [](const std::string& wkt) { return !wkt.empty(); });
-    if (withCrs < static_cast<std::ptrdiff_t>(clouds.size()) &&
-        (withCrs > 0 || !requestedTarget.empty())) {
-        const auto missing = static_cast<std::size_t>(
-            std::find(cloudCrs.begin(), cloudCrs.end(), std::string()) - cloudCrs.begin());
-        throw CrsError("CRS: '" + paths[missing] + "' has no CRS and " +
-                       (requestedTarget.empty() ? std::string("other inputs have one")
-                                                : std::string("--t_srs asks to reproject it")) +
-                       "; give its CRS with --s_srs");
-    }
-
-    // The source CRS of the report: the one all inputs share, or "several".
-    bool allSame = true;
-    for (std::size_t i = 1; i < cloudCrs.size() && allSame; ++i)
-        allSame = crs::sameCrs(cloudCrs[i], cloudCrs[0]);
-    if (allSame) {
-        report.sourceCrsName = report.inputs.front().crsName;
-        report.sourceCrsCode = report.inputs.front().crsCode;
-    } else {
-        report.sourceCrsName = "several";
-    }
-
-    std::string target = requestedTarget.empty() ? cloudCrs.front() : requestedTarget;
-    if (!target.empty() && requestedTarget.empty() && !options.keepGeographic &&
-        crs::describeCrs(target).geographic) {
-        // Degrees are not a plane: bring everything into the geographic CRS, find the centre,
-        // and project to its zone on the same datum.
-        for (std::size_t i = 0; i < clouds.size(); ++i)
-            reprojectInto(clouds[i], cloudCrs[i], target, report.inputs[i]);
-        target = zoneOfCentre(options, report, target, boundingBoxCentre(clouds));
-    }
-
-    // Units: z is never converted; say so when x, y change units and z is left alone.
-    const crs::CrsDescription targetDescription = crs::describeCrs(target);
-    for (std::size_t i = 0; i < clouds.size(); ++i) {
-        const crs::CrsDescription source = crs::describeCrs(cloudCrs[i]);
-        reprojectInto(clouds[i], cloudCrs[i], target, report.inputs[i]);
-        if (report.inputs[i].reprojected && options.zFactor == 1.0 && source.projected &&
-            targetDescription.projected &&
-            source.metresPerUnit != targetDescription.metresPerUnit) {
-            char factor[64];
-            std::snprintf(factor, sizeof factor, "%.10g",
-                          source.metresPerUnit / targetDescription.metresPerUnit);
-            notify(options, report,
-                   "'" + paths[i] + "' has x, y in " + source.linearUnit + " and the output in " +
-                       targetDescription.linearUnit +
-                       ": elevations stay in the input's units (use --z-factor " + factor +
-                       " if they share the horizontal unit)");
-        }
-        report.reprojected = report.reprojected || report.inputs[i].reprojected;
-    }
-    if (!requestedTarget.empty() && targetDescription.geographic)
+    const Stopwatch reprojectTime;
+    requireCrsWhereNeeded(inputs, paths, user.target);
+    reportSourceCrs(inputs, report);
+    const std::string target = chooseTargetCrs(options, user.target, inputs, report);
+    reprojectAll(options, target, inputs, report);
+    if (!user.target.empty() && crs::describeCrs(target).geographic)
         notify(options, report, "--t_srs is geographic: the TIN is triangulated in degrees");
-    report.timings.reproject = secondsSince(reprojectStart);
+    report.timings.reproject = reprojectTime.seconds();
 
-    // Merge in input order, applying the z factor; each cloud is released once copied.
-    GatheredInputs gathered;
+    GatheredInputs gathered = mergeInputs(inputs, options.zFactor);
     gathered.crsWkt = target;
-    gathered.offsets.push_back(0);
-    if (clouds.size() == 1) {
-        gathered.points = std::move(clouds.front().points);
-        gathered.rasterWidth = clouds.front().rasterWidth;
-        gathered.cellIndex = std::move(clouds.front().cellIndex);
-    } else {
-        std::size_t total = 0;
-        for (const io::PointCloud& cloud : clouds)
-            total += cloud.points.size();
-        gathered.points.reserve(total);
-        for (io::PointCloud& cloud : clouds) {
-            gathered.points.insert(gathered.points.end(), cloud.points.begin(), cloud.points.end());
-            cloud.points = {};
-        }
-    }
-    for (const InputReport& input : report.inputs)
-        gathered.offsets.push_back(gathered.offsets.back() + input.points);
-    if (options.zFactor != 1.0)
-        for (Point3& p : gathered.points)
-            p.z *= options.zFactor;
     if (progress)
         progress(1.0, "read");
     return gathered;

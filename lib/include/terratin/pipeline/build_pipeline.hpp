@@ -146,8 +146,12 @@ struct BuildReport {
     /// The triangulation method that ran and its threads in all.
     std::string method;
     unsigned threads = 1;
-    /// Bytes of point-location history per input point.
+    /// Bytes of point-location history per input point (0 when the method keeps none, and
+    /// after a simplification).
     double historyBytesPerPoint = 0.0;
+    /// After a simplification: bytes of the refiner's mesh per vertex, its working memory
+    /// beside the grid. 0 otherwise.
+    double meshBytesPerPoint = 0.0;
     bool validated = false;
     /// Set when BuildOptions::refine was: what the refinement achieved, measured over every
     /// valid cell after the build (z units).

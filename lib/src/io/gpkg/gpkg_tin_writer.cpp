@@ -1,5 +1,6 @@
 #include "gpkg_tin_writer.hpp"
 
+#include "../../stopwatch.hpp"
 #include "../atomic_output.hpp"
 #include "../attribute_columns.hpp"
 #include "../ogr_dataset_support.hpp"
@@ -15,7 +16,6 @@
 #include <cpl_string.h>
 #include <ogrsf_frmts.h>
 
-#include <chrono>
 #include <future>
 #include <optional>
 #include <system_error>
@@ -23,6 +23,7 @@
 namespace terratin::io::detail {
 
 namespace fs = std::filesystem;
+using terratin::detail::Stopwatch;
 
 namespace {
 
@@ -33,12 +34,6 @@ constexpr double kWritingShare = 0.98;
 /// SQLite page cache while writing, in KiB (a negative cache_size is KiB): enough for the
 /// B-tree's right edge and the index tables; the rows themselves are written once.
 constexpr int kPageCacheKiB = 16 * 1024;
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// Without a CRS, GDAL 3.6 files a GeoPackage layer under srs_id 0, "Undefined geographic
 /// SRS", which tells readers the easting/northing are degrees. The GeoPackage spec's srs_id
@@ -242,7 +237,7 @@ TinWriteResult fillTables(const fs::path& temporary, const fs::path& output, con
                                [&] { return PackedRtree(jobs.front().boxes(), capacity); });
 
     const Extent2d extent = meshExtent(mesh);
-    const auto rowsStart = Clock::now();
+    const Stopwatch rowsTime;
     std::uint64_t done = 0;
     for (const auto& job : jobs) {
         GpkgFeatureTable table(db, job.name);
@@ -251,9 +246,9 @@ TinWriteResult fillTables(const fs::path& temporary, const fs::path& output, con
         table.finish(job.features, extent);
         done += job.features;
     }
-    result.rowSeconds = secondsSince(rowsStart);
+    result.rowSeconds = rowsTime.seconds();
 
-    const auto indexStart = Clock::now();
+    const Stopwatch indexTime;
     for (std::size_t i = 0; spatialIndex && i < jobs.size(); ++i) {
         const PackedRtree tree = i == 0 ? firstTree.get() : PackedRtree(jobs[i].boxes(), capacity);
         writeGpkgSpatialIndex(db, {jobs[i].name, "geom", "fid"}, tree, [&](std::uint64_t entries) {
@@ -261,7 +256,7 @@ TinWriteResult fillTables(const fs::path& temporary, const fs::path& output, con
         });
         done += jobs[i].features;
     }
-    result.indexSeconds = secondsSince(indexStart);
+    result.indexSeconds = indexTime.seconds();
     db.execute("COMMIT");
     db.close();
     return result;
