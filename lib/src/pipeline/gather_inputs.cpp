@@ -257,7 +257,7 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
                          const std::string& geographicWkt, Point2 centre) {
     const crs::UtmZone zone = crs::standardUtmZone(centre.x, centre.y);
     const std::string geographicName = crs::describeCrs(geographicWkt).name;
-    const std::string target = crs::utmZoneCrs(zone, geographicWkt);
+    std::string target = crs::utmZoneCrs(zone, geographicWkt);
     report.zone = zone.name();
     const crs::CrsDescription projected = crs::describeCrs(target);
     const std::string label =
