@@ -4,8 +4,8 @@
 #include "gpkg_geometry.hpp"
 #include "packed_rtree.hpp"
 #include "terratin/error.hpp"
-#include "terratin/geometry/triangle_attributes.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/geometry/triangle_attributes.hpp"
 
 #include <gdal_priv.h>
 #include <ogr_feature.h>

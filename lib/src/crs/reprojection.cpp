@@ -87,7 +87,7 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
             throw CrsError(prefix + " names a file that cannot be read: " + *missing);
         throw CrsError(prefix + " is not a CRS PROJ knows: " +
                        lastGdalErrorMessage("not an authority code (EPSG:32633), WKT, PROJ "
-                                                "string or file of one"));
+                                            "string or file of one"));
     }
     // The TIN is triangulated in x, y of this CRS: a vertical-only CRS has no x, y, and a
     // geocentric one's x, y are a slice through the Earth (issue 22, D11: both used to be

@@ -51,8 +51,8 @@ std::string utmZoneCrs(const UtmZone& zone, const std::string& geographicWkt) {
     initialiseGdal();
     OGRSpatialReference base;
     if (!detail::importWkt(geographicWkt, base))
-        throw CrsError(std::string(kStage) + ": the CRS to choose a zone for cannot be read: " +
-                       lastGdalErrorMessage());
+        throw CrsError(std::string(kStage) +
+                       ": the CRS to choose a zone for cannot be read: " + lastGdalErrorMessage());
     OGRSpatialReference geographic;
     if (geographic.CopyGeogCSFrom(&base) != OGRERR_NONE)
         throw CrsError(std::string(kStage) + ": no geographic base CRS to put " + zone.name() +

@@ -9,9 +9,9 @@
 /// target differs from the source, every cell centre is reprojected and the refiner works
 /// with those positions (refine(grid, positions, ...)).
 
+#include "terratin/geometry/height_grid.hpp"
 #include "terratin/geometry/point.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
-#include "terratin/geometry/height_grid.hpp"
 
 #include <string>
 #include <vector>

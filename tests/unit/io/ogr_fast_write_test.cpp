@@ -8,8 +8,8 @@
 #include "packed_rtree_order.hpp"
 #include "temporary_directory.hpp"
 #include "terratin/error.hpp"
-#include "terratin/geometry/triangle_attributes.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/geometry/triangle_attributes.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <cpl_conv.h>

@@ -7,8 +7,8 @@
 #include "mesh_readers.hpp"
 #include "temporary_directory.hpp"
 #include "terratin/error.hpp"
-#include "terratin/geometry/triangle_attributes.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/geometry/triangle_attributes.hpp"
 
 #include <cpl_conv.h>
 #include <gdal_priv.h>

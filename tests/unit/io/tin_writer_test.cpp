@@ -1,8 +1,8 @@
 #include "terratin/io/tin_writer.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/geometry/triangle_attributes.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/geometry/triangle_attributes.hpp"
 
 #include <gdal_priv.h>
 #include <ogr_feature.h>

@@ -3,8 +3,8 @@
 /// A raster's cell centres in another CRS: the positions refine(grid, positions, ...) takes
 /// when a DEM is simplified in a CRS other than its own (a geographic DEM in its UTM zone).
 
-#include "terratin/geometry/point.hpp"
 #include "terratin/geometry/height_grid.hpp"
+#include "terratin/geometry/point.hpp"
 
 #include <string>
 #include <vector>

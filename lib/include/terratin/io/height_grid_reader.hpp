@@ -4,9 +4,9 @@
 /// the compact form terrain refinement works on: 4 bytes per cell instead of the 32 of
 /// readRasterPoints.
 
+#include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/progress.hpp"
-#include "terratin/geometry/height_grid.hpp"
 
 #include <cstdint>
 #include <string>

@@ -12,8 +12,8 @@
 /// integers; since the geotransform is affine, this is the same linear function as in CRS
 /// coordinates (a recomputation from CRS coordinates differs only by rounding, ~1e-12 of z).
 
-#include "terratin/progress.hpp"
 #include "terratin/geometry/height_grid.hpp"
+#include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
