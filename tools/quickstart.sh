@@ -17,6 +17,7 @@ readonly packages=(
   sqlite3 python3-gdal  # tests: rtreecheck and GDAL's validate_gpkg.py on written GeoPackages
   python3-qgis  # tests/qgis: the outputs opened in QGIS, headless
   clang-format  # the test command checks the C++ files against .clang-format
+  pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
 )
 
 # Only for 'fuzz': clang and its libFuzzer runtime.

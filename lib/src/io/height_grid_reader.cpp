@@ -34,12 +34,9 @@ HeightGridRaster readHeightGrid(const std::string& path, const RasterReadOptions
                                 " cells: out of memory holding them (4 bytes a cell)");
     }
 
-    // NaN stays NaN (no data) in float32.
     const std::uint64_t valid = reader.readStrips(
         [&](std::int64_t firstRow, std::span<const double> z) {
-            float* out = grid.z.data() + firstRow * reader.width();
-            for (std::size_t i = 0; i < z.size(); ++i)
-                out[i] = static_cast<float>(z[i]);
+            grid.storeElevations(static_cast<std::size_t>(firstRow * reader.width()), z);
         },
         progress);
     const std::uint64_t cellCount = reader.cellCount();

@@ -4,7 +4,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "terratin/number_text.hpp"
+#include "terratin/geometry/height_grid.hpp"
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -108,39 +108,6 @@ std::string subdatasetAdvice(const std::vector<std::string>& names) {
         text +=
             " and " + std::to_string(names.size() - kNamesShown) + " more (gdalinfo lists them)";
     return text;
-}
-
-/// Largest magnitude of a cell-centre coordinate accepted from a geotransform, in CRS units.
-/// No terrestrial CRS comes near it (the largest, in US survey feet, span about 1.3e8), and above
-/// 2^53 ≈ 9e15 a double no longer holds whole units: a geotransform that reaches further is
-/// corrupt, and would leave the triangulator with coincident or overflowing points.
-constexpr double kMaxGeoCoordinate = 1e15;
-
-/// Why the geotransform `c` of a width x height raster is unusable; empty when it is usable:
-/// every coefficient finite, cells of non-zero area, every cell centre within
-/// kMaxGeoCoordinate (the four corner cells bound them all, the transform being affine).
-std::string geoTransformProblem(const std::array<double, 6>& c, std::int64_t width,
-                                std::int64_t height) {
-    if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v); }))
-        return "has a coefficient that is not a finite number";
-    const double area = c[1] * c[5] - c[2] * c[4];
-    if (area == 0.0 || !std::isfinite(area))
-        return area == 0.0 ? "gives cells of zero area" : "gives cells of infinite area";
-    for (const double row : {0.5, static_cast<double>(height) - 0.5})
-        for (const double col : {0.5, static_cast<double>(width) - 0.5}) {
-            const double x = c[0] + col * c[1] + row * c[2];
-            const double y = c[3] + col * c[4] + row * c[5];
-            if (!(std::abs(x) <= kMaxGeoCoordinate && std::abs(y) <= kMaxGeoCoordinate))
-                return "puts cell centres beyond 1e15 CRS units from the origin";
-        }
-    return {};
-}
-
-std::string geoTransformText(const std::array<double, 6>& c) {
-    std::string text = "(";
-    for (std::size_t i = 0; i < c.size(); ++i)
-        text += (i == 0 ? "" : ", ") + numberText(c[i]);
-    return text + ")";
 }
 
 } // namespace

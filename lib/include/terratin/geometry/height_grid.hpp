@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace terratin {
@@ -58,6 +60,26 @@ struct HeightGrid {
     [[nodiscard]] bool isValid(std::size_t cell) const { return !std::isnan(z[cell]); }
     /// Cells with data. O(width * height).
     [[nodiscard]] std::size_t validCount() const;
+    /// Stores `elevations` (z units, NaN = no data) into the cells from `firstCell` on, each
+    /// rounded to the nearest float32: the one rounding a DEM's values go through on their way
+    /// into a grid, whoever reads them (the raster reader, the Python module).
+    /// Precondition: firstCell + elevations.size() <= cellCount().
+    void storeElevations(std::size_t firstCell, std::span<const double> elevations);
 };
+
+/// Largest magnitude of a cell-centre coordinate accepted from a geotransform, in CRS units.
+/// No terrestrial CRS comes near it (the largest, in US survey feet, span about 1.3e8), and above
+/// 2^53 ≈ 9e15 a double no longer holds whole units: a geotransform that reaches further is
+/// corrupt, and would leave the triangulator with coincident or overflowing points.
+inline constexpr double kMaxGeoCoordinate = 1e15;
+
+/// Why the geotransform `c` of a width x height raster is unusable; empty when it is usable:
+/// every coefficient finite, cells of non-zero area, every cell centre within
+/// kMaxGeoCoordinate (the four corner cells bound them all, the transform being affine).
+std::string geoTransformProblem(const std::array<double, 6>& c, std::int64_t width,
+                                std::int64_t height);
+
+/// "(c0, c1, c2, c3, c4, c5)", each coefficient in its shortest exact form, for messages.
+std::string geoTransformText(const std::array<double, 6>& c);
 
 } // namespace terratin

@@ -1,0 +1,38 @@
+#include "options.hpp"
+
+#include "terratin/error.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+namespace terratin::python {
+
+std::size_t countOption(const std::string& function, const char* option, std::int64_t value) {
+    if (value < 0)
+        throw InvalidInputError(function + ": " + option + " must be 0 or more (got " +
+                                std::to_string(value) + ")");
+    return static_cast<std::size_t>(value);
+}
+
+unsigned threadsOption(const std::string& function, std::int64_t value) {
+    const std::size_t count = countOption(function, "threads", value);
+    // Above kMaxThreads the library refuses it with its range; the clamp only keeps the value
+    // from wrapping on its way there.
+    return static_cast<unsigned>(
+        std::min<std::size_t>(count, std::numeric_limits<unsigned>::max()));
+}
+
+TriangulationMethod methodOption(const std::string& function, const std::string& name) {
+    for (const TriangulationMethod method :
+         {TriangulationMethod::Auto, TriangulationMethod::Strips, TriangulationMethod::Sequential,
+          TriangulationMethod::Batch, TriangulationMethod::Circumcircle})
+        if (name == toString(method))
+            return method;
+    throw InvalidInputError(function +
+                            ": method must be 'auto', 'strips', 'sequential', 'batch' or "
+                            "'circumcircle' (got '" +
+                            name + "')");
+}
+
+} // namespace terratin::python
