@@ -2,8 +2,8 @@
 /// @file
 /// The convex hull of a grid's valid cell centres, the refiner's starting TIN.
 
-#include "terratin/geometry/point.hpp"
 #include "terratin/geometry/height_grid.hpp"
+#include "terratin/geometry/point.hpp"
 
 #include <cstdint>
 #include <span>
