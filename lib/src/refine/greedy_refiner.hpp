@@ -113,10 +113,10 @@ private:
     void startFromHull();
     /// Where `cell` lies in the TIN.
     [[nodiscard]] Point2 position(std::uint32_t cell) const {
-        return m_positions.empty() ? m_grid.cellCentre(cell) : m_positions[cell];
+        return m_positions.empty() ? m_grid->cellCentre(cell) : m_positions[cell];
     }
     [[nodiscard]] std::uint8_t stripOfCell(std::uint32_t cell) const {
-        return m_columnStrip[cell % static_cast<std::uint32_t>(m_grid.width)];
+        return m_columnStrip[cell % static_cast<std::uint32_t>(m_grid->width)];
     }
     /// Levels until no candidate is above the target or a limit is reached.
     void runLevels(const ProgressCallback& progress);
@@ -157,8 +157,6 @@ private:
     void setVertex(VertexId vertex, std::uint32_t cell);
     /// The highest priority queued anywhere, -inf when nothing is.
     [[nodiscard]] double highestPriority();
-    /// The level below `top`: a fraction kLevelRatio of it, not below the target.
-    [[nodiscard]] double levelBelow(double top) const;
     /// Points that may still be inserted under the limits (SIZE_MAX without one).
     [[nodiscard]] std::size_t budget() const;
     [[nodiscard]] std::size_t pointCount() const;
@@ -166,11 +164,11 @@ private:
     [[nodiscard]] bool isLive(const Candidate& candidate) const;
     /// isLive for CandidateQueue::top, which requests the memory it reads ahead.
     struct LiveTest {
-        const GreedyRefiner& refiner;
-        bool operator()(const Candidate& candidate) const { return refiner.isLive(candidate); }
+        const GreedyRefiner* refiner;
+        bool operator()(const Candidate& candidate) const { return refiner->isLive(candidate); }
         void request(const Candidate& candidate) const {
-            __builtin_prefetch(&refiner.m_mesh->triangle(candidate.triangle));
-            __builtin_prefetch(&refiner.m_flags[candidate.cell]);
+            __builtin_prefetch(&refiner->m_mesh->triangle(candidate.triangle));
+            __builtin_prefetch(&refiner->m_flags[candidate.cell]);
         }
     };
     /// With positions, the levels' pixel-space scans only approximate the TIN's triangles
@@ -204,12 +202,13 @@ private:
     /// Calls `progress` (from the calling thread only); throws Cancelled when it says stop.
     void report(const ProgressCallback& progress, double topPriority);
 
-    const HeightGrid& m_grid;
+    /// The caller's: grid, positions, flags and workers outlive the refiner (never null).
+    const HeightGrid* m_grid;
     std::span<const Point2> m_positions;
-    CellFlags& m_flags;
+    std::span<std::uint8_t> m_flags;
     GridView m_view;
     RefineOptions m_options;
-    RoundWorkers& m_workers;
+    RoundWorkers* m_workers;
     /// Candidates at or below this are not inserted: maxError, or -1 to use every cell.
     double m_threshold = -1.0;
     /// Strip of each column; the strips.
