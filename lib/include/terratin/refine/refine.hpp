@@ -2,9 +2,8 @@
 /// @file
 /// Terrain simplification: an error-bounded, exactly Delaunay TIN from a HeightGrid, by greedy
 /// insertion in the manner of M. Garland & P. S. Heckbert, "Fast Polygonal Approximation of
-/// Terrains and Height Fields" (CMU-CS-95-181, 1995), made parallel by inserting several
-/// far-apart points at once (the selective parallel insertion of Puppo, Davis, DeMenthon &
-/// Teng, cited in Kohout & Kolingerova's section 2).
+/// Terrains and Height Fields" (CMU-CS-95-181, 1995), made parallel by refining vertical strips
+/// of the raster at once (docs/algorithms.md, "The refiner", tells how).
 ///
 /// Notation: a cell's error is |z(cell) - T(cell)|, the vertical distance between its
 /// elevation and the TIN's linear interpolation T at its centre, in the grid's z units.
@@ -12,8 +11,8 @@
 /// integers; since the geotransform is affine, this is the same linear function as in CRS
 /// coordinates (a recomputation from CRS coordinates differs only by rounding, ~1e-12 of z).
 
-#include "terratin/progress.hpp"
 #include "terratin/geometry/height_grid.hpp"
+#include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
