@@ -149,8 +149,9 @@ TEST(LevelPlan, PairsRunAfterTheirStrips_AndOddPairsAfterThePairsBeside) {
             EXPECT_LT(stripDone[k + 1].load(), pairStarted[k].load()) << "pair " << k;
             if (k % 2 == 1) {
                 EXPECT_LT(pairDone[k - 1].load(), pairStarted[k].load()) << "pair " << k;
-                if (k + 2 < strips)
+                if (k + 2 < strips) {
                     EXPECT_LT(pairDone[k + 1].load(), pairStarted[k].load()) << "pair " << k;
+                }
             }
         }
     }
