@@ -1,8 +1,10 @@
 #include "greedy_refiner.hpp"
 
 #include "cell_order.hpp"
+#include "check_history.hpp"
+#include "level_schedule.hpp"
+#include "level_tasks.hpp"
 #include "located_check.hpp"
-#include "task_graph.hpp"
 #include "valid_hull.hpp"
 
 #include "terratin/error.hpp"
@@ -12,14 +14,11 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <string>
 
 namespace terratin::detail {
 
 namespace {
-
-constexpr double kHolePriority = std::numeric_limits<double>::infinity();
 
 /// Triangles around a new vertex scanned in one batch.
 constexpr std::size_t kMaxFan = 16;
@@ -29,20 +28,11 @@ constexpr std::size_t kMaxFan = 16;
 constexpr std::int64_t kParallelScanCells = std::int64_t{1} << 15;
 constexpr std::int64_t kBandRows = 32;
 
-/// Each level goes down to this fraction of the highest error left. Closer to 1 follows the
-/// greedy order more closely across strips, at the cost of more levels (each ends with a
-/// sequential step and a barrier).
-constexpr double kLevelRatio = 0.5;
-
 /// Strips: about this many columns each, at most kMaxStrips. Strips are the unit of parallel
 /// work: more of them balance uneven terrain and feed more threads, fewer leave less work to
 /// the pairs and to the sequential step (the triangles spanning strips).
 constexpr std::int64_t kStripColumns = 128;
 constexpr std::size_t kMaxStrips = 32;
-
-/// Under limits, strips get a share of what is left per level until it is less than this
-/// many points per strip; then one thread finishes exactly.
-constexpr std::size_t kMinStripQuota = 64;
 
 /// Insertions between two looks at the cancellation flag (and, on the calling thread, two
 /// progress reports).
@@ -52,7 +42,8 @@ constexpr std::size_t kCheckEvery = 4096;
 
 GreedyRefiner::GreedyRefiner(const HeightGrid& grid, std::span<const Point2> positions,
                              CellFlags& flags, const RefineOptions& options, RoundWorkers& workers)
-    : m_grid(grid), m_positions(positions), m_flags(flags), m_options(options), m_workers(workers) {
+    : m_grid(&grid), m_positions(positions), m_flags(flags), m_options(options),
+      m_workers(&workers) {
     m_view = {grid.width, grid.height, grid.z.data(), flags.data()};
     m_threshold = options.maxError ? *options.maxError : -1.0;
 }
@@ -115,7 +106,7 @@ void GreedyRefiner::scanOnWorkers(std::span<const TriId> triangles, Found&& foun
     }
     std::vector<ScanResult> results(bands.size());
     std::atomic<std::size_t> next{0};
-    m_workers.run([&](unsigned) {
+    m_workers->run([&](unsigned) {
         for (std::size_t b = next++; b < bands.size(); b = next++)
             results[b] =
                 measureRows(pixels[bands[b].triangle], m_view, bands[b].rowFrom, bands[b].rowTo);
@@ -138,7 +129,7 @@ void GreedyRefiner::scanFan(std::span<const TriId> triangles, Found&& found) {
         doubleArea +=
             PixelTriangle(corner(node.v[0]), corner(node.v[1]), corner(node.v[2])).doubleArea();
     }
-    if (m_workers.size() > 1 && doubleArea > 2 * kParallelScanCells)
+    if (m_workers->size() > 1 && doubleArea > 2 * kParallelScanCells)
         scanOnWorkers(triangles, found);
     else
         scanAll(triangles, found);
@@ -151,7 +142,7 @@ bool GreedyRefiner::isLive(const Candidate& candidate) const {
 
 void GreedyRefiner::planStrips() {
     // Strips of about equal valid cells.
-    const auto width = static_cast<std::size_t>(m_grid.width);
+    const auto width = static_cast<std::size_t>(m_grid->width);
     std::vector<std::size_t> validInColumn(width, 0);
     std::size_t valid = 0;
     // Row by row: a division per cell (cell % width) took longer than the rest of the setup.
@@ -162,7 +153,7 @@ void GreedyRefiner::planStrips() {
         valid += count;
     std::size_t count = m_options.strips;
     if (count == 0)
-        count = static_cast<std::size_t>(std::max<std::int64_t>(m_grid.width / kStripColumns, 1));
+        count = static_cast<std::size_t>(std::max<std::int64_t>(m_grid->width / kStripColumns, 1));
     count = std::clamp<std::size_t>(count, 1, std::min(kMaxStrips, width));
     m_columnStrip.assign(width, 0);
     std::size_t strip = 0;
@@ -201,14 +192,14 @@ void GreedyRefiner::planStrips() {
 
 void GreedyRefiner::setVertex(VertexId vertex, std::uint32_t cell) {
     // RefineVertex is an implicit-lifetime aggregate: writing into the raw storage is valid.
-    const auto width = static_cast<std::uint32_t>(m_grid.width);
+    const auto width = static_cast<std::uint32_t>(m_grid->width);
     m_vertices[vertex] = {position(cell), static_cast<std::int32_t>(cell % width),
-                          static_cast<std::int32_t>(cell / width), m_grid.z[cell],
+                          static_cast<std::int32_t>(cell / width), m_grid->z[cell],
                           stripOfCell(cell)};
 }
 
 void GreedyRefiner::startFromHull() {
-    const std::vector<std::uint32_t> hull = validHullCells(m_grid, m_positions);
+    const std::vector<std::uint32_t> hull = validHullCells(*m_grid, m_positions);
     m_hullPoints = hull.size();
     // Every valid cell stays covered, so the hull's corners are the fewest points and
     // (corners - 2) the fewest triangles: a smaller limit could not hold (issue 22, D13).
@@ -235,9 +226,9 @@ void GreedyRefiner::startFromHull() {
 
     // Candidates of the first triangles, scanned in parallel: they cover every valid cell.
     const std::vector<TriId> leaves = m_mesh->slotsInUse();
-    std::vector<std::vector<Candidate>> found(m_workers.size());
+    std::vector<std::vector<Candidate>> found(m_workers->size());
     std::atomic<std::size_t> next{0};
-    m_workers.run([&](unsigned worker) {
+    m_workers->run([&](unsigned worker) {
         for (std::size_t i = next++; i < leaves.size(); i = next++)
             scanAll(std::span<const TriId>(&leaves[i], 1),
                     [&](const Candidate& candidate) { found[worker].push_back(candidate); });
@@ -281,7 +272,7 @@ void GreedyRefiner::drain(CandidateQueue& queue, StripRange allowed, double leve
     task.inserted = 0;
     task.triangles = 0;
     task.deferred = 0;
-    const LiveTest live{*this};
+    const LiveTest live{this};
     for (const Candidate* top = queue.top(live);
          top != nullptr && top->priority > level && task.inserted < quota; top = queue.top(live)) {
         const Candidate candidate = queue.pop();
@@ -333,46 +324,21 @@ void GreedyRefiner::queueRefusedInShared() {
 
 void GreedyRefiner::runStripsAndPairs(double level, std::size_t quota,
                                       const ProgressCallback& progress) {
-    // Tasks: strips 0..n-1, then pairs n..2n-2 (pair k of strips k and k + 1). Ready tasks
-    // start in the order added: the strips with the most candidates first, so that the last
-    // ones taken are short, then the pairs starting at an even strip, then the odd ones.
-    const std::size_t n = m_strips.size();
-    std::vector<std::uint8_t> order(n);
-    std::iota(order.begin(), order.end(), std::uint8_t{0});
-    std::stable_sort(order.begin(), order.end(), [&](std::uint8_t a, std::uint8_t b) {
-        return m_strips[a].queue.size() > m_strips[b].queue.size();
-    });
-    TaskGraph graph;
-    std::vector<std::size_t> stripTask(n);
-    std::vector<std::uint8_t> subject; // the strip, or the pair's first strip, of each task
-    for (const std::uint8_t k : order) {
-        stripTask[k] = graph.add();
-        subject.push_back(k);
-    }
-    std::vector<std::size_t> pairTask(n > 0 ? n - 1 : 0);
-    for (const std::uint8_t parity : {std::uint8_t{0}, std::uint8_t{1}})
-        for (std::uint8_t k = parity; k + 1U < n; k += 2) {
-            pairTask[k] = graph.add();
-            subject.push_back(k);
-            graph.after(pairTask[k], stripTask[k]);
-            graph.after(pairTask[k], stripTask[k + 1]);
-            if (parity == 1) {
-                graph.after(pairTask[k], pairTask[k - 1]);
-                if (k + 2U < n)
-                    graph.after(pairTask[k], pairTask[k + 1]);
-            }
-        }
+    std::vector<std::size_t> stripCandidates;
+    for (const Strip& own : m_strips)
+        stripCandidates.push_back(own.queue.size());
+    LevelPlan plan = planLevel(stripCandidates);
     // Only the calling thread reports, with the progress at the start (the counts change
     // while the tasks run).
     const double fraction = progressFraction(level);
-    graph.run(m_workers, m_cancelled, [&](std::size_t task, unsigned worker) {
-        const std::uint8_t k = subject[task];
-        if (task < n) {
-            drain(m_strips[k].queue, {k, k}, level, quota, m_strips[k].task);
+    plan.graph.run(*m_workers, m_cancelled, [&](std::size_t graphTask, unsigned worker) {
+        const LevelTask task = plan.tasks[graphTask];
+        Strip& first = m_strips[task.first()];
+        if (task.isPair()) {
+            takeRefusedByStrips(task.first());
+            drain(first.pairQueue, task.strips(), level, quota, m_pairTasks[task.first()]);
         } else {
-            takeRefusedByStrips(k);
-            drain(m_strips[k].pairQueue, {k, static_cast<std::uint8_t>(k + 1)}, level, quota,
-                  m_pairTasks[k]);
+            drain(first.queue, task.strips(), level, quota, first.task);
         }
         if (worker == 0 && progress && !progress(fraction, "refining"))
             m_cancelled.store(true, std::memory_order_relaxed);
@@ -397,7 +363,7 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
         return true;
     }
     std::size_t done = 0;
-    const LiveTest live{*this};
+    const LiveTest live{this};
     for (const Candidate* top = m_shared.top(live); top != nullptr && top->priority > level;
          top = m_shared.top(live)) {
         if (m_options.maxPoints && pointCount() >= *m_options.maxPoints) {
@@ -431,7 +397,7 @@ bool GreedyRefiner::runShared(double level, bool exactLimits, const ProgressCall
 void GreedyRefiner::runSharedInBatches(double level, const ProgressCallback& progress) {
     std::vector<Candidate> batch;
     std::vector<TriId> made;
-    const LiveTest live{*this};
+    const LiveTest live{this};
     const auto aboveLevel = [&] {
         const Candidate* top = m_shared.top(live);
         return top != nullptr && top->priority > level;
@@ -469,7 +435,7 @@ void GreedyRefiner::gatherIntoShared() {
 
 double GreedyRefiner::highestPriority() {
     double top = -std::numeric_limits<double>::infinity();
-    const LiveTest live{*this};
+    const LiveTest live{this};
     const auto consider = [&](CandidateQueue& queue) {
         if (const Candidate* first = queue.top(live))
             top = std::max(top, first->priority);
@@ -482,16 +448,6 @@ double GreedyRefiner::highestPriority() {
     return top;
 }
 
-double GreedyRefiner::levelBelow(double top) const {
-    if (m_strips.size() == 1)
-        return m_threshold; // one strip: plain greedy insertion, no levels needed
-    if (top == kHolePriority)
-        return std::numeric_limits<double>::max(); // the holes' candidates first, alone
-    const double level = top * kLevelRatio;
-    // Errors vanishingly small against the first (a flat grid used whole): finish in one go.
-    return level > m_threshold && level > m_firstPriority * 1e-9 ? level : m_threshold;
-}
-
 std::size_t GreedyRefiner::pointCount() const {
     std::size_t points = m_hullPoints;
     for (const Strip& own : m_strips)
@@ -500,7 +456,7 @@ std::size_t GreedyRefiner::pointCount() const {
 }
 
 std::size_t GreedyRefiner::budget() const {
-    std::size_t left = std::numeric_limits<std::size_t>::max();
+    std::size_t left = kNoQuota;
     if (m_options.maxPoints)
         left = *m_options.maxPoints - std::min(*m_options.maxPoints, pointCount());
     if (m_options.maxTriangles)
@@ -546,18 +502,15 @@ void GreedyRefiner::runLevels(const ProgressCallback& progress) {
         if (top <= m_threshold)
             return;
         const std::size_t left = budget();
-        if (left < kMinStripQuota * m_strips.size()) {
+        if (finishesExactly(left, m_strips.size())) {
             // Close to a limit: one thread, global greedy order, exact stop.
             gatherIntoShared();
             runShared(m_threshold, true, progress);
             return;
         }
-        const double level = levelBelow(top);
-        // Under limits each task (a strip or a pair) may take 1 / (2 strips) of what is left;
-        // the shared step stops exactly if it would go past.
-        const std::size_t quota =
-            left == std::numeric_limits<std::size_t>::max() ? left : left / (2 * m_strips.size());
-        runStripsAndPairs(level, quota, progress);
+        const double level = levelBelow(top, m_threshold, m_firstPriority, m_strips.size());
+        // The shared step stops exactly if the tasks' quotas would let it go past a limit.
+        runStripsAndPairs(level, taskQuota(left, m_strips.size()), progress);
         ++m_levels;
         if (!runShared(level, m_options.maxPoints || m_options.maxTriangles, progress))
             return;
@@ -566,46 +519,15 @@ void GreedyRefiner::runLevels(const ProgressCallback& progress) {
 }
 
 void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
-    // Per cell, the slot and version of the triangle that held it at the last check
-    // (kNoTriangle: check it again), so that each check after the first looks only at the
-    // cells whose triangle the levels changed (CheckMemo).
-    const std::size_t cellCount = m_grid.cellCount();
-    std::vector<TriId> cellSlot(cellCount, kNoTriangle);
-    std::vector<std::uint32_t> cellVersion(cellCount, 0);
-    std::vector<std::uint8_t> unchanged;
-    std::vector<std::int32_t> near;
-    std::vector<std::int32_t> located(cellCount, -1);
+    // Each check after the first looks only at the cells whose triangle the levels changed.
+    CheckHistory history(m_grid->cellCount());
     while (m_stop == RefineStop::ErrorReached) {
         std::vector<TriId> slots; // the slot of each triangle of `mesh`
         const TinMesh mesh = extractInCellOrder(&slots);
-        std::vector<std::int32_t> indexOfSlot(m_mesh->slotEnd(), -1);
-        for (std::size_t k = 0; k < slots.size(); ++k)
-            indexOfSlot[slots[k]] = static_cast<std::int32_t>(k);
-        if (m_completionPasses > 0) {
-            unchanged.resize(cellCount);
-            near.resize(cellCount);
-            for (std::size_t cell = 0; cell < cellCount; ++cell) {
-                const TriId slot = cellSlot[cell];
-                unchanged[cell] = slot != kNoTriangle && slot < indexOfSlot.size() &&
-                                          m_mesh->version(slot) == cellVersion[cell]
-                                      ? 1
-                                      : 0;
-                near[cell] =
-                    slot != kNoTriangle && slot < indexOfSlot.size() ? indexOfSlot[slot] : -1;
-            }
-        }
-        std::fill(located.begin(), located.end(), -1);
-        const CheckMemo memo{unchanged, near, located};
+        const CheckMemo memo = history.prepare(*m_mesh, slots);
         const std::vector<CellToInsert> cells =
-            cellsToInsertAt(mesh, m_view, m_positions, m_threshold, m_workers.size(), &memo);
-        for (std::size_t cell = 0; cell < cellCount; ++cell) {
-            if (!unchanged.empty() && unchanged[cell] != 0)
-                continue;
-            cellSlot[cell] =
-                located[cell] >= 0 ? slots[static_cast<std::size_t>(located[cell])] : kNoTriangle;
-            if (cellSlot[cell] != kNoTriangle)
-                cellVersion[cell] = m_mesh->version(cellSlot[cell]);
-        }
+            cellsToInsertAt(mesh, m_view, m_positions, m_threshold, m_workers->size(), &memo);
+        history.record(*m_mesh, slots);
         if (cells.empty())
             return;
         // They become candidates like the scans' ones: the levels insert them, rescan what
@@ -625,7 +547,7 @@ TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle) co
         ranges.push_back({own.firstVertex, own.nextVertex});
     return detail::extractInCellOrder(
         *m_mesh, std::span<const RefineVertex>(m_vertices.data(), m_vertices.size()), ranges,
-        m_grid.width, m_workers.size(), slotOfTriangle);
+        m_grid->width, m_workers->size(), slotOfTriangle);
 }
 
 } // namespace terratin::detail

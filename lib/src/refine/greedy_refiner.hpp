@@ -1,29 +1,19 @@
 #pragma once
 /// @file
 /// The greedy insertion loop (Garland & Heckbert's "greedy insertion" with a priority queue of
-/// per-triangle candidates), run in vertical strips of the raster at once.
+/// per-triangle candidates), run in vertical strips of the raster at once. The whole story
+/// (strips, pairs of strips, the shared step, levels of error) is in docs/algorithms.md, "The
+/// refiner"; level_schedule.hpp and level_tasks.hpp hold the levels and a level's tasks.
 ///
-/// The raster's columns are cut into strips of about equal valid cells (how many depends on
-/// the raster, never on the thread count). A triangle spans the strips of its corners
-/// (refine_mesh.hpp). Candidates are queued by where their triangle lies: within one strip
-/// (that strip's queue), across two neighbouring strips (the pair's queue), or wider (a
-/// shared queue). Refinement goes down by levels of error; in a level:
-///  1. the workers take the strips one by one and insert each strip's candidates above the
-///     level in its own priority order, touching only the strip's triangles, with no lock;
-///  2. the pairs of strips do the same with theirs, first those starting at an even strip,
-///     which never share one, then the odd ones; a candidate refused by a strip because its
-///     cavity reached the neighbour goes to the pair;
-///  3. one thread inserts the shared candidates and those the pairs refused, unrestricted.
-/// The next level starts below the highest error left. A task's insertions depend only on its
-/// own triangles, so the TIN is the same for any number of threads; greedy order holds within
-/// a task, and across tasks within a level (a factor kLevelRatio of error), which costs a
-/// fraction of a percent of points.
+/// What a caller relies on: the TIN is the same for any number of threads (a task's
+/// insertions depend only on its own triangles); greedy order holds within a task, and across
+/// tasks within a level, which costs a fraction of a percent of points.
 ///
 /// Candidates are lazy: one is stale when its triangle's slot changed since (RefineMesh
 /// versions) or its cell became a vertex.
 ///
 /// Priorities: a triangle covering an open hole's cell and a valid non-vertex cell is
-/// refined before any error (priority +inf), so the triangles finally dropped over holes hold
+/// refined before any error (kHolePriority), so the triangles finally dropped over holes hold
 /// no valid cell that another triangle would not cover; otherwise the priority is the largest
 /// error, and only errors above the target become candidates. Ties: the lowest cell index.
 ///
@@ -113,18 +103,17 @@ private:
     void startFromHull();
     /// Where `cell` lies in the TIN.
     [[nodiscard]] Point2 position(std::uint32_t cell) const {
-        return m_positions.empty() ? m_grid.cellCentre(cell) : m_positions[cell];
+        return m_positions.empty() ? m_grid->cellCentre(cell) : m_positions[cell];
     }
     [[nodiscard]] std::uint8_t stripOfCell(std::uint32_t cell) const {
-        return m_columnStrip[cell % static_cast<std::uint32_t>(m_grid.width)];
+        return m_columnStrip[cell % static_cast<std::uint32_t>(m_grid->width)];
     }
     /// Levels until no candidate is above the target or a limit is reached.
     void runLevels(const ProgressCallback& progress);
     /// The parallel steps of a level: every strip, and every pair of neighbouring strips,
-    /// on the workers (task_graph.hpp). Each task inserts its queue's candidates above
-    /// `level`, at most `quota`, restricted to its strips. A pair starts once its two strips
-    /// are done, with the candidates they refused for needing both; a pair starting at an
-    /// odd strip starts after the pairs beside it, which share its strips.
+    /// on the workers, as planLevel orders them (level_tasks.hpp). Each task inserts its
+    /// queue's candidates above `level`, at most `quota`, restricted to its strips; a pair
+    /// also takes the candidates its strips refused for needing both.
     void runStripsAndPairs(double level, std::size_t quota, const ProgressCallback& progress);
     /// Moves the candidates strips k and k + 1 refused for needing both to their pair's queue.
     void takeRefusedByStrips(std::uint8_t k);
@@ -140,12 +129,9 @@ private:
     /// With `exactLimits`, stops exactly at a limit (and returns false); candidates then go
     /// to the shared queue only, so this is plain greedy insertion.
     bool runShared(double level, bool exactLimits, const ProgressCallback& progress);
-    /// runShared without limits. The shared candidates are few, but early on they are huge
-    /// triangles, and every insertion's cavity covers much of the raster: one at a time,
-    /// each would rescan it. So every candidate above `level` whose triangle is still there is
-    /// inserted, the highest first (Puppo et al.'s selective parallel insertion: far-apart
-    /// points, one per triangle), and then every triangle made is scanned once; until no
-    /// candidate is above `level`.
+    /// runShared without limits, in batches (docs/algorithms.md): every candidate above
+    /// `level` whose triangle is still there is inserted, the highest first, and then every
+    /// triangle made is scanned once; until no candidate is above `level`.
     void runSharedInBatches(double level, const ProgressCallback& progress);
     /// Moves every strip's candidates to the shared queue (for the exact finish).
     void gatherIntoShared();
@@ -157,8 +143,6 @@ private:
     void setVertex(VertexId vertex, std::uint32_t cell);
     /// The highest priority queued anywhere, -inf when nothing is.
     [[nodiscard]] double highestPriority();
-    /// The level below `top`: a fraction kLevelRatio of it, not below the target.
-    [[nodiscard]] double levelBelow(double top) const;
     /// Points that may still be inserted under the limits (SIZE_MAX without one).
     [[nodiscard]] std::size_t budget() const;
     [[nodiscard]] std::size_t pointCount() const;
@@ -166,11 +150,11 @@ private:
     [[nodiscard]] bool isLive(const Candidate& candidate) const;
     /// isLive for CandidateQueue::top, which requests the memory it reads ahead.
     struct LiveTest {
-        const GreedyRefiner& refiner;
-        bool operator()(const Candidate& candidate) const { return refiner.isLive(candidate); }
+        const GreedyRefiner* refiner;
+        bool operator()(const Candidate& candidate) const { return refiner->isLive(candidate); }
         void request(const Candidate& candidate) const {
-            __builtin_prefetch(&refiner.m_mesh->triangle(candidate.triangle));
-            __builtin_prefetch(&refiner.m_flags[candidate.cell]);
+            __builtin_prefetch(&refiner->m_mesh->triangle(candidate.triangle));
+            __builtin_prefetch(&refiner->m_flags[candidate.cell]);
         }
     };
     /// With positions, the levels' pixel-space scans only approximate the TIN's triangles
@@ -204,12 +188,13 @@ private:
     /// Calls `progress` (from the calling thread only); throws Cancelled when it says stop.
     void report(const ProgressCallback& progress, double topPriority);
 
-    const HeightGrid& m_grid;
+    /// The caller's: grid, positions, flags and workers outlive the refiner (never null).
+    const HeightGrid* m_grid;
     std::span<const Point2> m_positions;
-    CellFlags& m_flags;
+    std::span<std::uint8_t> m_flags;
     GridView m_view;
     RefineOptions m_options;
-    RoundWorkers& m_workers;
+    RoundWorkers* m_workers;
     /// Candidates at or below this are not inserted: maxError, or -1 to use every cell.
     double m_threshold = -1.0;
     /// Strip of each column; the strips.

@@ -25,14 +25,14 @@ Point2 planar(const Point3& p) {
 class CellWalker {
 public:
     CellWalker(const TinMesh& mesh, const GridView& grid, std::span<const Point2> positions)
-        : m_mesh(mesh), m_width(grid.width), m_positions(positions) {
+        : m_mesh(&mesh), m_width(grid.width), m_positions(positions) {
         m_current = load(0);
     }
 
     /// The triangle whose closed triangle holds q, or -1 when q is outside the hull (the
     /// walk then stays at the hull, where the next cell most likely is).
     std::int64_t locate(const Point2& q) {
-        const std::size_t triangles = m_mesh.triangleCount();
+        const std::size_t triangles = m_mesh->triangleCount();
         // A visibility walk on a Delaunay triangulation visits no triangle twice; more steps
         // than triangles means the mesh broke its precondition.
         for (std::size_t steps = 0; steps <= triangles; ++steps) {
@@ -113,11 +113,11 @@ private:
         triangle.id = t;
         std::array<Point3, 3> v;
         for (std::size_t i = 0; i < 3; ++i) {
-            const std::uint32_t vertex = m_mesh.triangles[3 * t + i];
-            v[i] = m_mesh.vertices[vertex];
+            const std::uint32_t vertex = m_mesh->triangles[3 * t + i];
+            v[i] = m_mesh->vertices[vertex];
             triangle.corners[i] = planar(v[i]);
-            triangle.neighbours[i] = m_mesh.neighbours[3 * t + i];
-            const auto cell = static_cast<std::int64_t>(m_mesh.sourceIndex[vertex]);
+            triangle.neighbours[i] = m_mesh->neighbours[3 * t + i];
+            const auto cell = static_cast<std::int64_t>(m_mesh->sourceIndex[vertex]);
             triangle.pixels[i] = {cell % m_width, cell / m_width, v[i].z};
         }
         const std::array<Pixel, 3>& px = triangle.pixels;
@@ -177,7 +177,8 @@ private:
         return before->z + fraction * (after->z - before->z);
     }
 
-    const TinMesh& m_mesh;
+    /// The caller's, outliving the walker (never null).
+    const TinMesh* m_mesh;
     std::int64_t m_width;
     std::span<const Point2> m_positions;
     Triangle m_current;

@@ -26,6 +26,16 @@
 /// change while they are outside every cavity): insertions restricted to disjoint ranges may
 /// run at once. New slots come from regions (the refiner has one per strip), each used by
 /// one thread at a time.
+///
+/// Why not the triangulator's CavityMesh (cavity_mesh.hpp), also a restricted Bowyer-Watson
+/// core: the two differ where each is fast. The refiner starts from the hull, so it needs no
+/// ghost triangles; it needs what the triangulator would pay for and never use: a version per
+/// slot for its lazy candidates, a range of strips per triangle (its tasks are strips and
+/// pairs of strips, and a refusal says which range it needed), vertices that carry their
+/// pixel for the scans, and a cap on the triangles an insertion adds (the triangle limit).
+/// CavityMesh covers the plane with ghosts (points come in any order), labels a triangle with
+/// one owner strip and merges strips by levels, and keeps 24-byte triangles whose links name
+/// the corner across. One core would make one of them carry the other's fields per triangle.
 
 #include "../triangulate/node_arena.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Tasks with dependencies, run on a RoundWorkers team: the strips and pairs of strips of one
-/// refinement level.
+/// refinement level (planLevel in level_tasks.hpp says which waits for which).
 ///
 /// A barrier after every step (all strips, then the pairs of one parity, then the other)
 /// leaves threads idle while the last task of a step runs, and a thread the hypervisor

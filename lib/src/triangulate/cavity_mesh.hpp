@@ -28,6 +28,13 @@
 /// restricted to group g may touch the triangles whose finite corners all lie in g, shared
 /// ones included. The argument above holds for groups as for strips, so insertions in
 /// different groups of one level never race either. Triangles keep their strip labels.
+///
+/// Why the refiner has its own core (RefineMesh, lib/src/refine/refine_mesh.hpp) though both
+/// are restricted Bowyer-Watson insertions: its triangles carry a version per slot (its lazy
+/// candidates), a range of strips (its tasks are strips and pairs of strips) and an
+/// insertion cap, and its vertices their pixel; it starts from a convex hull, without ghosts.
+/// Here the points come in any order and a triangle has one owner; each field of the other
+/// would cost memory per triangle that this method never reads.
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/huge_pages.hpp"

@@ -1,6 +1,8 @@
 // Parallel refinement: strips refined at once give the same TIN for any thread count, and
-// barely change the point count against strict greedy insertion.
+// barely change the point count against strict greedy insertion. The levels of error they go
+// down by stop at the target, or at errors negligible against the first.
 
+#include "level_schedule.hpp"
 #include "refine_test_grids.hpp"
 
 #include "terratin/refine/refine.hpp"
@@ -10,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace terratin {
@@ -100,6 +103,42 @@ TEST(RefineParallel, LimitsGiveTheSameTinForAnyThreadCount) {
     EXPECT_LE(triangles.mesh.triangleCount(), 1001U);
     EXPECT_GE(triangles.mesh.triangleCount(), 999U);
     EXPECT_EQ(sortedCells(triangles.mesh), sortedCells(trianglesOne.mesh));
+}
+
+TEST(RefineLevels, EachLevelHalvesTheHighestErrorLeft) {
+    EXPECT_EQ(detail::levelBelow(80.0, 5.0, 100.0, 4), 40.0);
+    EXPECT_EQ(detail::levelBelow(8.0, 5.0, 100.0, 4), 5.0); // not below the target
+}
+
+TEST(RefineLevels, HolesMakeALevelOfTheirOwn_AndOneStripGoesStraightToTheTarget) {
+    EXPECT_EQ(detail::levelBelow(detail::kHolePriority, 5.0, 100.0, 4),
+              std::numeric_limits<double>::max());
+    EXPECT_EQ(detail::levelBelow(80.0, 5.0, 100.0, 1), 5.0);
+}
+
+TEST(RefineLevels, ErrorsNegligibleAgainstTheFirst_GoStraightToTheTarget_WhenEveryCellIsUsed) {
+    // No target (-1: every cell goes in): halving stops at 1e-9 of the first error.
+    const double first = 100.0;
+    EXPECT_EQ(detail::levelBelow(4e-7, -1.0, first, 4), 2e-7);
+    EXPECT_EQ(detail::levelBelow(1.5e-7, -1.0, first, 4), -1.0);
+    // A flat grid used whole: every error is 0, one level.
+    EXPECT_EQ(detail::levelBelow(0.0, -1.0, 0.0, 4), -1.0);
+}
+
+TEST(RefineLevels, PlaneUsedWhole_SkipsTheLevelsOfRoundingNoise) {
+    // Slopes of 0.1 and 0.3 are not exact in binary: the plane's interpolated elevations are
+    // off by rounding (~1e-14 m), and those errors would each take levels of their own down to
+    // zero (23 levels here without kNegligibleErrorFraction). The bump makes the first error
+    // large, so they fall below the floor.
+    const HeightGrid grid = test::makeGrid(96, 64, [](int row, int col) {
+        return 0.1 * col + 0.3 * row + (row == 31 && col == 47 ? 1000.0 : 0.0);
+    });
+    RefineOptions options;
+    options.strips = 3;
+    options.threads = 2;
+    const RefineResult result = refine(grid, options);
+    EXPECT_EQ(result.mesh.vertexCount(), grid.cellCount());
+    EXPECT_LE(result.levels, 8U);
 }
 
 } // namespace

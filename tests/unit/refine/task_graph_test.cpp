@@ -1,7 +1,8 @@
 // The scheduler of a refinement level's strips and pairs: every task runs once, never before
 // the tasks it depends on, on any number of threads; a failing task or a stop ends the run
-// without a hang.
+// without a hang. The plan of a level: its strips and pairs, and what each pair waits for.
 
+#include "level_tasks.hpp"
 #include "round_workers.hpp"
 #include "task_graph.hpp"
 
@@ -105,6 +106,62 @@ TEST(TaskGraph, StopLetsNoFurtherTaskStart) {
         });
         EXPECT_EQ(ran.load(), 5);
     }
+}
+
+TEST(LevelPlan, StripsWithMostCandidatesFirst_ThenEvenPairs_ThenOddPairs) {
+    const std::vector<std::size_t> candidates{5, 9, 1, 9, 3};
+    LevelPlan plan = planLevel(candidates);
+    ASSERT_EQ(plan.tasks.size(), 9U);
+    RoundWorkers workers(1);
+    const std::atomic<bool> stop{false};
+    std::vector<LevelTask> started;
+    plan.graph.run(workers, stop,
+                   [&](std::size_t task, unsigned) { started.push_back(plan.tasks[task]); });
+    const std::vector<LevelTask> expected{
+        LevelTask::strip(1), LevelTask::strip(3), LevelTask::strip(0),
+        LevelTask::strip(4), LevelTask::strip(2), LevelTask::pair(0),
+        LevelTask::pair(2),  LevelTask::pair(1),  LevelTask::pair(3)};
+    EXPECT_EQ(started, expected);
+}
+
+TEST(LevelPlan, PairsRunAfterTheirStrips_AndOddPairsAfterThePairsBeside) {
+    for (const std::size_t strips : {1U, 2U, 3U, 6U, 7U}) {
+        const std::vector<std::size_t> candidates(strips, 1);
+        LevelPlan plan = planLevel(candidates);
+        ASSERT_EQ(plan.tasks.size(), 2 * strips - 1);
+        RoundWorkers workers(4);
+        const std::atomic<bool> stop{false};
+        std::atomic<int> clock{0};
+        std::vector<std::atomic<int>> stripDone(strips);
+        std::vector<std::atomic<int>> pairStarted(strips);
+        std::vector<std::atomic<int>> pairDone(strips);
+        plan.graph.run(workers, stop, [&](std::size_t task, unsigned) {
+            const LevelTask level = plan.tasks[task];
+            if (level.isPair()) {
+                pairStarted[level.first()] = ++clock;
+                pairDone[level.first()] = ++clock;
+            } else {
+                stripDone[level.first()] = ++clock;
+            }
+        });
+        for (std::size_t k = 0; k + 1 < strips; ++k) {
+            EXPECT_LT(stripDone[k].load(), pairStarted[k].load()) << "pair " << k;
+            EXPECT_LT(stripDone[k + 1].load(), pairStarted[k].load()) << "pair " << k;
+            if (k % 2 == 1) {
+                EXPECT_LT(pairDone[k - 1].load(), pairStarted[k].load()) << "pair " << k;
+                if (k + 2 < strips) {
+                    EXPECT_LT(pairDone[k + 1].load(), pairStarted[k].load()) << "pair " << k;
+                }
+            }
+        }
+    }
+}
+
+TEST(LevelTask, StripTouchesItsStrip_PairTouchesBoth) {
+    EXPECT_FALSE(LevelTask::strip(3).isPair());
+    EXPECT_EQ(LevelTask::strip(3).strips(), (StripRange{3, 3}));
+    EXPECT_TRUE(LevelTask::pair(3).isPair());
+    EXPECT_EQ(LevelTask::pair(3).strips(), (StripRange{3, 4}));
 }
 
 } // namespace

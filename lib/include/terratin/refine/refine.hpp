@@ -2,9 +2,8 @@
 /// @file
 /// Terrain simplification: an error-bounded, exactly Delaunay TIN from a HeightGrid, by greedy
 /// insertion in the manner of M. Garland & P. S. Heckbert, "Fast Polygonal Approximation of
-/// Terrains and Height Fields" (CMU-CS-95-181, 1995), made parallel by inserting several
-/// far-apart points at once (the selective parallel insertion of Puppo, Davis, DeMenthon &
-/// Teng, cited in Kohout & Kolingerova's section 2).
+/// Terrains and Height Fields" (CMU-CS-95-181, 1995), made parallel by refining vertical strips
+/// of the raster at once (docs/algorithms.md, "The refiner", tells how).
 ///
 /// Notation: a cell's error is |z(cell) - T(cell)|, the vertical distance between its
 /// elevation and the TIN's linear interpolation T at its centre, in the grid's z units.
