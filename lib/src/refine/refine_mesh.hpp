@@ -27,7 +27,7 @@
 /// run at once. New slots come from regions (the refiner has one per strip), each used by
 /// one thread at a time.
 
-#include "../triangulate/node_arena.hpp"
+#include "../mesh/node_arena.hpp"
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/huge_pages.hpp"
