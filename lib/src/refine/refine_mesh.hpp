@@ -37,7 +37,7 @@
 /// one owner strip and merges strips by levels, and keeps 24-byte triangles whose links name
 /// the corner across. One core would make one of them carry the other's fields per triangle.
 
-#include "../triangulate/node_arena.hpp"
+#include "../mesh/node_arena.hpp"
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/huge_pages.hpp"

@@ -68,13 +68,7 @@ void DagTriangulator::replaceNeighbour(NodeId node, NodeId from, NodeId to) {
     if (node == kNoNode)
         return;
     DagNode& neighbour = m_nodes[node];
-    for (int i = 0; i < 3; ++i) {
-        if (neighbour.link[static_cast<std::size_t>(i)] == from) {
-            neighbour.storeLink(i, to);
-            return;
-        }
-    }
-    assert(false && "neighbour links are not symmetric");
+    neighbour.storeLink(neighbour.linkIndexOf(from), to);
 }
 
 NodeId DagTriangulator::locate(VertexId q, NodeId start) const {
@@ -187,9 +181,7 @@ void DagTriangulator::splitEdge(NodeId t, int edge, VertexId p, PendingEdges& pe
     const NodeId u = tNode.link[edge];
     assert(u != kNoNode);
     const DagNode& uNode = m_nodes[u];
-    int m = 0;
-    while (uNode.link[m] != t)
-        ++m;
+    const int m = uNode.linkIndexOf(t);
     const VertexId d = uNode.v[m];
     const NodeId outerAB = tNode.link[prev(edge)];
     const NodeId outerCA = tNode.link[next(edge)];
@@ -227,9 +219,7 @@ void DagTriangulator::legalize(VertexId p, PendingEdges& pending) {
         if (u == kNoNode)
             continue; // an edge of the auxiliary triangle
         const DagNode& uNode = m_nodes[u];
-        int m = 0;
-        while (uNode.link[m] != t)
-            ++m;
+        const int m = uNode.linkIndexOf(t);
         if (m_predicates.shouldFlip(tNode.v[next(pos)], tNode.v[prev(pos)], p, uNode.v[m]))
             flip(t, pos, u, m, pending);
     }
@@ -268,9 +258,7 @@ void DagTriangulator::flip(NodeId t, int pos, NodeId u, int m, PendingEdges& pen
 bool DagTriangulator::isIllegal(NodeId t, int pos, NodeId u) const {
     const DagNode& tNode = m_nodes[t];
     const DagNode& uNode = m_nodes[u];
-    int m = 0;
-    while (uNode.link[m] != t)
-        ++m;
+    const int m = uNode.linkIndexOf(t);
     return m_predicates.incircle(tNode.v[next(pos)], tNode.v[prev(pos)], tNode.v[pos], uNode.v[m]) >
            0;
 }
@@ -314,9 +302,7 @@ std::size_t DagTriangulator::repairEdgesFrom(NodeId first, unsigned threads) {
         if (!isIllegal(t, pos, u))
             continue;
         const DagNode& uNode = m_nodes[u];
-        int m = 0;
-        while (uNode.link[m] != t)
-            ++m;
+        const int m = uNode.linkIndexOf(t);
         flip(t, pos, u, m, created);
         ++flips;
         // The new triangles are (k, i, l) and (k, l, j), k = the old tNode.v[pos]: their four

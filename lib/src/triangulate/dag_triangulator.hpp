@@ -16,7 +16,7 @@
 /// nodes they create, so that the parallel methods can run them from several threads, each
 /// on triangles it holds (see batch_insertion.hpp and circumcircle_insertion.hpp).
 
-#include "node_arena.hpp"
+#include "../mesh/node_arena.hpp"
 #include "symbolic_predicates.hpp"
 
 #include "terratin/progress.hpp"

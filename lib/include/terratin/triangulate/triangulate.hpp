@@ -41,7 +41,8 @@ enum class TriangulationMethod {
     /// Searching threads locate, one specialised thread subdivides and legalises (section 3.3).
     Batch,
     /// Every thread inserts, after testing the points other threads insert against the
-    /// circumcircle of each triangle it touches (section 3.4).
+    /// circumcircle of each triangle it touches (section 3.4). docs/algorithms.md ("The
+    /// circum-circle method") describes it.
     Circumcircle,
     /// One vertical strip of the plane per thread, no history, always walks; the fastest
     /// method. docs/algorithms.md ("The strip method") describes it.

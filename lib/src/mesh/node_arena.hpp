@@ -1,12 +1,15 @@
 #pragma once
 /// @file
-/// Stable-address storage for the DAG: fixed-size chunks that never move, so threads may
-/// follow node ids while other threads append nodes (a std::vector would reallocate under
-/// them). Chunks are large, 2 MiB aligned and advised to use transparent huge pages, because
-/// point location is a chain of dependent loads across the whole DAG and TLB misses dominate.
+/// The triangle node of the DAG history and its stable-address storage, with the vertex and
+/// node ids that the triangulators and the refiner share. Fixed-size chunks never move, so
+/// threads may follow node ids while other threads append nodes (a std::vector would
+/// reallocate under them). Chunks are large, 2 MiB aligned and advised to use transparent huge
+/// pages, because point location is a chain of dependent loads across the whole DAG and TLB
+/// misses dominate.
 
 #include <array>
 #include <atomic>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -21,7 +24,10 @@ inline constexpr NodeId kNoNode = 0xFFFFFFFFU;
 /// children are not published yet. Never a node id (the arena stops below it).
 inline constexpr NodeId kBusyNode = 0xFFFFFFFEU;
 
-/// One triangle of the history, 32 bytes.
+/// How DagNode::linkIndexOf reads the links.
+enum class LinkRead { Plain, Published };
+
+/// One triangle of the history.
 ///
 /// Concurrency contract: `v` is written once, before the node is published (by the release
 /// store of its parent's firstChild or of a neighbour's link, or before threads start for the
@@ -42,9 +48,10 @@ struct DagNode {
     std::array<NodeId, 3> link;
     /// kNoNode for a leaf, else the first of the consecutive children.
     std::atomic<NodeId> firstChild;
-    /// Circum-circle method only: 0 when free, else 1 + the index of the worker that holds
-    /// the triangle exclusively (see circumcircle_insertion.hpp). Once the insertions are
-    /// over, DagTriangulator::extract numbers the leaves here.
+    /// Circum-circle method only: 0 when free, else the owner tag of the worker's attempt that
+    /// holds the triangle exclusively (OwnerTag in triangulate/owner_tag.hpp: the attempt
+    /// number above the worker's index + 1). Once the insertions are over,
+    /// DagTriangulator::extract numbers the leaves here.
     std::atomic<std::uint32_t> owner;
 
     [[nodiscard]] bool isLeaf() const {
@@ -60,7 +67,31 @@ struct DagNode {
         std::atomic_ref<NodeId>(link[static_cast<std::size_t>(i)])
             .store(neighbour, std::memory_order_release);
     }
+
+    /// The position i with link[i] == neighbour, which must be one of this leaf's links.
+    /// LinkRead::Plain reads the links of a leaf no other thread edits meanwhile;
+    /// LinkRead::Published loads them (loadLink) for a leaf whose other links another thread
+    /// may be rewriting.
+    template <LinkRead kRead = LinkRead::Plain>
+    [[nodiscard]] int linkIndexOf(NodeId neighbour) const {
+        int i = 0;
+        while (readLink<kRead>(i) != neighbour) {
+            ++i;
+            assert(i < 3 && "neighbour links are not symmetric");
+        }
+        return i;
+    }
+
+private:
+    template <LinkRead kRead> [[nodiscard]] NodeId readLink(int i) const {
+        if constexpr (kRead == LinkRead::Published)
+            return loadLink(i);
+        else
+            return link[static_cast<std::size_t>(i)];
+    }
 };
+// Two nodes to a cache line, neither straddling two (docs/algorithms.md quotes the size).
+static_assert(sizeof(DagNode) == 32);
 
 /// Appendable, never-moving array of DagNode with 32-bit ids.
 class NodeArena {
