@@ -153,9 +153,7 @@ TriId RefineMesh::flipIfIllegal(TriId t, int e) {
     if (u == kNoTriangle)
         return kNoTriangle;
     const MeshTriangle& beyond = m_triangles[u];
-    int f = 0;
-    while (beyond.n[static_cast<std::size_t>(f)] != t)
-        ++f;
+    const int f = beyond.edgeTowards(t);
     // t = (p, x, y) from corner e, u = (d, y, x) from corner f.
     const VertexId p = triangle.v[static_cast<std::size_t>(e)];
     const VertexId x = triangle.v[static_cast<std::size_t>(next(e))];

@@ -93,6 +93,14 @@ struct MeshTriangle {
     std::uint32_t version;
     /// The strips of its corners, lowest to highest.
     StripRange strips;
+
+    /// The edge (0..2) across which `neighbour` lies; it must be one of n.
+    [[nodiscard]] int edgeTowards(TriId neighbour) const {
+        int e = 0;
+        while (n[static_cast<std::size_t>(e)] != neighbour)
+            ++e;
+        return e;
+    }
 };
 
 class RefineMesh {
