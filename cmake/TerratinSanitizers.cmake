@@ -8,5 +8,12 @@ function(terratin_apply_sanitizers target)
   endif()
   list(JOIN TERRATIN_SANITIZE "," _sanitizers)
   target_compile_options(${target} PRIVATE -fsanitize=${_sanitizers} -fno-omit-frame-pointer -g)
-  target_link_options(${target} PRIVATE -fsanitize=${_sanitizers})
+  get_target_property(_type ${target} TYPE)
+  if(_type STREQUAL "STATIC_LIBRARY")
+    # Instrumented objects need the sanitizer runtimes wherever the archive is linked: in
+    # this build, and in a consumer of the installed package (the link option is exported).
+    target_link_options(${target} INTERFACE -fsanitize=${_sanitizers})
+  else()
+    target_link_options(${target} PRIVATE -fsanitize=${_sanitizers})
+  endif()
 endfunction()

@@ -91,6 +91,11 @@ case "$case_name" in
     grep -q 'Usage: terratin build INPUT\.\.\. -o OUTPUT' out.txt || fail "no usage line"
     grep -q -- '--overwrite' out.txt || fail "options not listed"
     ;;
+  version_matches_project)
+    run 0 --version
+    expected="terratin ${TERRATIN_EXPECTED_VERSION:?set by tests/cli/CMakeLists.txt}"
+    [ "$(cat out.txt)" = "$expected" ] || fail "--version is not '$expected'"
+    ;;
   no_arguments)
     run 2
     expect_one_error_line

@@ -6,6 +6,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
+#include "terratin/version.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
         std::printf("%s", command.helpText.c_str());
         return kExitOk;
     case terratin::cli::Command::Kind::Version:
-        std::printf("terratin %s\n", TERRATIN_VERSION);
+        std::printf("terratin %s\n", terratin::version());
         return kExitOk;
     case terratin::cli::Command::Kind::Build:
         return runBuildCommand(command);

@@ -5,6 +5,7 @@
 #include "terratin/io/tin_format.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
+#include "terratin/version.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -64,8 +65,9 @@ struct TinWriteOptions {
     /// For a DEM input: vertexCells[v] is the raster cell of vertex v (size = vertex count);
     /// empty otherwise.
     std::vector<RasterCell> vertexCells;
-    /// Software version written into LandXML's Application element.
-    std::string softwareVersion = "0.1.0";
+    /// Software version written into LandXML's Application element (and the PLY / OBJ
+    /// headers): this library's by default.
+    std::string softwareVersion = kVersionString;
 };
 
 /// What was written.
