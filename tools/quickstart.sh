@@ -3,6 +3,8 @@
 #   tools/quickstart.sh demo   install what is missing, build, turn a sample DEM into a GeoPackage TIN
 #   tools/quickstart.sh test   install what is missing, build, run the whole test suite
 #                              (release, then ASan+UBSan, then ThreadSanitizer on the core)
+#   tools/quickstart.sh tidy   also install clang-tidy, run the repository's .clang-tidy over lib/src
+#                              (not part of 'test' or CI: docs/testing.md says why)
 #   tools/quickstart.sh fuzz   also install clang and libFuzzer, run each reader fuzzer for a
 #                              minute on its seed corpus (not part of 'test' or CI)
 set -euo pipefail
@@ -76,6 +78,11 @@ case "${1:-}" in
     build_preset tsan
     ctest --preset tsan
     ;;
+  tidy)
+    install_missing_packages clang-tidy
+    cmake --preset release >/dev/null # compile_commands.json
+    run-clang-tidy -quiet -p build/release -j "$(nproc)" '/lib/src/'
+    ;;
   fuzz)
     install_missing_packages "${fuzz_packages[@]}"
     cmake --preset fuzz >/dev/null
@@ -89,7 +96,7 @@ case "${1:-}" in
     done
     ;;
   *)
-    echo "usage: tools/quickstart.sh demo|test|fuzz" >&2
+    echo "usage: tools/quickstart.sh demo|test|tidy|fuzz" >&2
     exit 2
     ;;
 esac
