@@ -303,7 +303,6 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
         throw UsageError("missing -o OUTPUT");
 
     BuildOptions& build = command.build;
-    build.input = inputs.front();
     build.inputs = inputs;
     parsePointCloudOptions(values, build);
     build.output = values["output"].as<std::string>();

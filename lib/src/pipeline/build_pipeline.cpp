@@ -110,7 +110,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
                            const ProgressCallback& progress, BuildReport report,
                            Clock::time_point start) {
     // The refiner works on one raster's grid; scaling z would change what E means.
-    const std::vector<std::string> paths = options.inputPaths();
+    const std::vector<std::string>& paths = options.inputs;
     if (paths.size() != 1)
         throw InvalidInputError("Simplification (--max-error...) takes exactly one raster input");
     if (options.zFactor != 1.0)
@@ -218,7 +218,7 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
 
     BuildReport report;
     {
-        const std::vector<std::string> paths = options.inputPaths();
+        const std::vector<std::string>& paths = options.inputs;
         for (std::size_t i = 0; i < paths.size(); ++i)
             report.input += (i > 0 ? ", " : "") + paths[i];
     }
