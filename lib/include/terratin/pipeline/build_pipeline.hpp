@@ -5,6 +5,7 @@
 
 #include "terratin/io/las_reader.hpp"
 #include "terratin/io/tin_writer.hpp"
+#include "terratin/pipeline/option_spelling.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/triangulate.hpp"
@@ -65,6 +66,9 @@ struct BuildOptions {
     /// Receives notices as they happen (the UTM zone chosen, units left unconverted); they are
     /// also kept in BuildReport::notices. The CLI prints them on stderr.
     std::function<void(std::string_view)> notice;
+    /// How messages name options (`--z-factor` or `z_factor`, see optionName); parseBuildOptions
+    /// sets it to the spelling of its caller.
+    OptionSpelling optionSpelling = OptionSpelling::Keyword;
 
     /// The inputs to read: `inputs` (kept while gather_inputs.cpp calls it).
     [[nodiscard]] const std::vector<std::string>& inputPaths() const { return inputs; }
