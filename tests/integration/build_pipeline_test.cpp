@@ -128,7 +128,7 @@ void expectTinOfValidCells(const fs::path& dem, const std::string& expectedCrsFr
         GTEST_SKIP() << dem << " not available";
     TemporaryDirectory directory;
     BuildOptions options;
-    options.input = dem.string();
+    options.inputs = {dem.string()};
     options.output = directory.path() / "tin.gpkg";
     options.validate = true;
     const BuildReport report = runBuild(options);
@@ -181,7 +181,7 @@ TEST(BuildPipeline, WritesExactTin_ForBundledSample) {
 TEST(BuildPipeline, RefusesExistingOutput_BeforeReading) {
     TemporaryDirectory directory;
     BuildOptions options;
-    options.input = (fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif").string();
+    options.inputs = {(fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif").string()};
     options.output = directory.path() / "tin.gpkg";
     std::ofstream(options.output) << "keep me";
     EXPECT_THROW(runBuild(options), InvalidInputError);

@@ -1,5 +1,7 @@
 #include "bench_options.hpp"
 
+#include "terratin/text.hpp"
+
 #include <boost/program_options.hpp>
 
 #include <algorithm>
@@ -33,13 +35,6 @@ std::vector<NamedMethod> methodTable() {
             {"batch", Method::Batch},
             {"circumcircle", Method::Circumcircle},
             {"strips", Method::Strips}};
-}
-
-std::string lowercase(std::string_view text) {
-    std::string lower(text);
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return lower;
 }
 
 std::vector<std::string> splitList(const std::string& list, const char* option) {

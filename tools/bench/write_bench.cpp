@@ -211,7 +211,7 @@ void mtHoodTable(const BenchOptions& options, const ScratchDirectory& scratch) {
     });
     for (const std::string& extension : options.writeFormats) {
         BuildOptions build;
-        build.input = dem.string();
+        build.inputs = {dem.string()};
         build.output = scratch / ("hood." + extension);
         addTerratinRow(rows, "terratin -> ." + extension, build);
     }
@@ -251,7 +251,7 @@ void n44w072Table(const BenchOptions& options, const ScratchDirectory& scratch) 
         return;
     }
     BuildOptions build;
-    build.input = dem.string();
+    build.inputs = {dem.string()};
     build.output = scratch / "n44.gpkg";
     build.overwrite = true;
     build.refine = RefineOptions{};

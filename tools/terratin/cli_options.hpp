@@ -1,5 +1,6 @@
 #pragma once
-// Command-line parsing for `terratin`: Boost.Program_options onto terratin::BuildOptions.
+// Command-line parsing for `terratin`: Boost.Program_options, described from the library's
+// option table, onto terratin::parseBuildOptions (terratin/pipeline/build_option_table.hpp).
 
 #include "terratin/pipeline/build_pipeline.hpp"
 

@@ -9,6 +9,7 @@
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/text.hpp"
 
 #include <gdal.h>
 
@@ -32,10 +33,7 @@ constexpr std::size_t kSniffBytes = 65536;
 namespace fs = std::filesystem;
 
 std::string lowercaseExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
+    return lowercase(fs::path(path).extension().string());
 }
 
 std::string head(const std::string& path, std::size_t bytes) {
@@ -52,8 +50,7 @@ bool csvHasGeometryColumn(const std::string& path) {
     line = line.substr(0, line.find('\n'));
     if (line.rfind("\xEF\xBB\xBF", 0) == 0) // a UTF-8 byte order mark
         line.erase(0, 3);
-    std::transform(line.begin(), line.end(), line.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    line = lowercase(line);
     for (char& c : line)
         if (c == '"' || c == '\r' || c == ' ' || c == ';' || c == '\t')
             c = ',';

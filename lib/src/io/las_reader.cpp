@@ -15,6 +15,7 @@
 
 #include "geotiff_keys.hpp"
 #include "terratin/error.hpp"
+#include "terratin/text.hpp"
 
 #include <algorithm>
 #include <bitset>
@@ -193,12 +194,7 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
     // marks compressed files by setting bit 7 of the point format (byte 104), and bit 6 as well
     // for the LAS 1.4 formats; what is left is a format of 0..10. Any other byte (99 = bit 6
     // and 35, say) is an unsupported format, reported below.
-    const bool lazExtension = name.size() >= 4 && [&] {
-        std::string ext = name.substr(name.size() - 4);
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        return ext == ".laz";
-    }();
+    const bool lazExtension = name.size() >= 4 && lowercase(name.substr(name.size() - 4)) == ".laz";
     std::array<std::byte, 1> formatProbe{};
     if (fileSize > 104)
         source.read(104, formatProbe);
@@ -462,9 +458,7 @@ PointCloud readPoints(ByteSource& source, const std::string& name, const LasRead
 } // namespace
 
 LasReturns parseLasReturns(const std::string& name) {
-    std::string key = name;
-    std::transform(key.begin(), key.end(), key.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string key = lowercase(name);
     if (key == "all")
         return LasReturns::All;
     if (key == "first")

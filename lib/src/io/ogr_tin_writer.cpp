@@ -42,6 +42,7 @@
 #include "packed_rtree_order.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/text.hpp"
 #include "writer_support.hpp"
 
 #include <cpl_conv.h>
@@ -118,13 +119,6 @@ constexpr std::array<std::string_view, 12> kShapefileSidecars = {".prj", ".cpg",
                                                                  ".sbx", ".fix", ".qpj", ".shp.xml",
                                                                  ".aih", ".ain", ".atx", ".qml"};
 
-std::string toLower(std::string_view text) {
-    std::string lower(text);
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    return lower;
-}
-
 [[noreturn]] void throwIo(const std::string& message) {
     throw IoError(std::string(kStage) + ": " + message);
 }
@@ -160,8 +154,8 @@ fs::path shapefileComponent(const fs::path& shp, std::string_view extension) {
 /// The component `extension` of `shp` in both cases: readers find "X.PRJ" next to "x.shp"
 /// too, so either one belongs to the Shapefile.
 std::vector<fs::path> shapefileComponentsAnyCase(const fs::path& shp, std::string_view extension) {
-    std::vector<fs::path> paths{withExtension(shp, toLower(extension))};
-    if (toUpper(extension) != toLower(extension))
+    std::vector<fs::path> paths{withExtension(shp, lowercase(extension))};
+    if (toUpper(extension) != lowercase(extension))
         paths.push_back(withExtension(shp, toUpper(extension)));
     return paths;
 }
@@ -423,11 +417,11 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
                 error.message());
     // The .shp goes last: readers find a Shapefile through it.
     std::stable_partition(written.begin(), written.end(),
-                          [](const std::string& ext) { return toLower(ext) != ".shp"; });
+                          [](const std::string& ext) { return lowercase(ext) != ".shp"; });
     std::vector<std::pair<fs::path, fs::path>> moves;
     for (const auto& ext : written)
         moves.emplace_back(temporaryDirectory / (stem + ext),
-                           shapefileComponent(output, toLower(ext)));
+                           shapefileComponent(output, lowercase(ext)));
     // Without --overwrite a component that appeared meanwhile refuses the whole set.
     temporaries.commitAll(moves);
 
@@ -489,7 +483,7 @@ std::vector<fs::path> ogrOutputFiles(const fs::path& output, TinFormat format) {
 TinWriteResult writeOgrTin(const TinMesh& mesh, const fs::path& output,
                            const TinWriteOptions& options, const ProgressCallback& progress) {
     initialiseGdal();
-    if (options.format == TinFormat::Shapefile && toLower(output.extension().string()) != ".shp")
+    if (options.format == TinFormat::Shapefile && lowercase(output.extension().string()) != ".shp")
         throwInvalid("a Shapefile output must end in .shp, not " + quoted(output));
     std::optional<OGRSpatialReference> srs = parseOutputCrs(options.crsWkt);
     switch (options.format) {

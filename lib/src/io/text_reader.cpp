@@ -9,6 +9,7 @@
 #include "terratin/io/text_reader.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -45,13 +46,6 @@ std::string_view trim(std::string_view text) {
     if (text.size() >= 2 && text.front() == '"' && text.back() == '"')
         text = text.substr(1, text.size() - 2);
     return text;
-}
-
-std::string lowercase(std::string_view text) {
-    std::string out(text);
-    std::transform(out.begin(), out.end(), out.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return out;
 }
 
 /// Parses a whole field as a finite double; false when it is not one.

@@ -1,6 +1,7 @@
 #include "terratin/io/tin_format.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,13 +13,6 @@ namespace terratin::io {
 namespace {
 
 constexpr std::string_view kStage = "TinFormat";
-
-std::string toLower(std::string_view text) {
-    std::string lower(text);
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    return lower;
-}
 
 constexpr std::array<std::pair<std::string_view, TinFormat>, 12> kNames = {{
     {"gpkg", TinFormat::GeoPackage},
@@ -49,7 +43,7 @@ constexpr std::array<std::pair<std::string_view, TinFormat>, 8> kExtensions = {{
 } // namespace
 
 TinFormat parseTinFormat(const std::string& name) {
-    const std::string lower = toLower(name);
+    const std::string lower = lowercase(name);
     for (const auto& [known, format] : kNames)
         if (lower == known)
             return format;
@@ -58,7 +52,7 @@ TinFormat parseTinFormat(const std::string& name) {
 }
 
 TinFormat tinFormatFromPath(const std::filesystem::path& path) {
-    const std::string extension = toLower(path.extension().string());
+    const std::string extension = lowercase(path.extension().string());
     for (const auto& [known, format] : kExtensions)
         if (extension == known)
             return format;

@@ -14,6 +14,7 @@
 #include "qgis_style.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
+#include "terratin/text.hpp"
 #include "two_dm_writer.hpp"
 #include "writer_support.hpp"
 
@@ -36,13 +37,6 @@ constexpr std::string_view kStage = "TinWriter";
 /// Share of the progress range for the mesh writers' records; the rest is flushing and the
 /// rename.
 constexpr double kMeshRecordShare = 0.98;
-
-std::string toLower(std::string_view text) {
-    std::string lower(text);
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    return lower;
-}
 
 [[noreturn]] void throwInvalid(std::string_view stage, const std::string& message) {
     throw InvalidInputError(std::string(stage) + ": " + message);
@@ -154,7 +148,7 @@ std::vector<fs::path> outputFiles(const fs::path& output, const TinWriteOptions&
 } // namespace
 
 AttributeSet parseAttributeSet(const std::string& name) {
-    const std::string key = toLower(name);
+    const std::string key = lowercase(name);
     if (key == "none")
         return AttributeSet::None;
     if (key == "basic")

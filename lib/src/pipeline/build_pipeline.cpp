@@ -7,6 +7,7 @@
 #include "terratin/gdal_error.hpp"
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/raster_reader.hpp"
+#include "terratin/pipeline/build_option_table.hpp"
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
@@ -97,12 +98,15 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
                            const ProgressCallback& progress, BuildReport report,
                            const Stopwatch& totalTime) {
     // The refiner works on one raster's grid; scaling z would change what E means.
-    const std::vector<std::string> paths = options.inputPaths();
+    const OptionSpelling spelling = options.optionSpelling;
+    const std::vector<std::string>& paths = options.inputs;
     if (paths.size() != 1)
-        throw InvalidInputError("Simplification (--max-error...) takes exactly one raster input");
+        throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
+                                "...) takes exactly one raster input");
     if (options.zFactor != 1.0)
-        throw InvalidInputError("Simplification (--max-error...) does not combine with "
-                                "--z-factor; scale the DEM first (gdal_calc)");
+        throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
+                                "...) does not combine with " + optionName("z_factor", spelling) +
+                                "; scale the DEM first (gdal_calc)");
     const Stopwatch readTime;
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
@@ -204,7 +208,7 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
 
     BuildReport report;
     {
-        const std::vector<std::string> paths = options.inputPaths();
+        const std::vector<std::string>& paths = options.inputs;
         for (std::size_t i = 0; i < paths.size(); ++i)
             report.input += (i > 0 ? ", " : "") + paths[i];
     }

@@ -19,6 +19,7 @@
 #include "terratin/crs/utm_zone.hpp"
 #include "terratin/error.hpp"
 #include "terratin/io/input_reader.hpp"
+#include "terratin/pipeline/build_option_table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -51,16 +52,19 @@ void checkInputOptions(const BuildOptions& options, const std::vector<std::strin
                                      [](const std::string& path) { return path.empty(); }))
         throw InvalidInputError("Input: no input file given");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
-        throw InvalidInputError("Input: --z-factor must be a finite number other than 0");
+        throw InvalidInputError("Input: " + optionName("z_factor", options.optionSpelling) +
+                                " must be a finite number other than 0");
 }
 
 /// The user's CRSs, parsed before any reading: a typo should fail before minutes of reading.
 UserCrs parseUserCrs(const BuildOptions& options) {
     UserCrs user;
     if (!options.sourceSrs.empty())
-        user.source = crs::crsFromUserInput(options.sourceSrs, "--s_srs");
+        user.source =
+            crs::crsFromUserInput(options.sourceSrs, optionName("s_srs", options.optionSpelling));
     if (!options.targetSrs.empty())
-        user.target = crs::crsFromUserInput(options.targetSrs, "--t_srs");
+        user.target =
+            crs::crsFromUserInput(options.targetSrs, optionName("t_srs", options.optionSpelling));
     return user;
 }
 
@@ -119,8 +123,7 @@ std::vector<ReadInput> readInputs(const std::vector<std::string>& paths,
 
 /// Inputs without a CRS are merged as they are only when none has one and no target is asked
 /// for: otherwise they could not be brought into one CRS.
-void requireCrsWhereNeeded(const std::vector<ReadInput>& inputs,
-                           const std::vector<std::string>& paths,
+void requireCrsWhereNeeded(const std::vector<ReadInput>& inputs, const BuildOptions& options,
                            const std::string& requestedTarget) {
     const auto missing = std::find_if(inputs.begin(), inputs.end(),
                                       [](const ReadInput& input) { return input.crsWkt.empty(); });
@@ -130,11 +133,13 @@ void requireCrsWhereNeeded(const std::vector<ReadInput>& inputs,
         inputs.begin(), inputs.end(), [](const ReadInput& input) { return !input.crsWkt.empty(); });
     if (!otherHasCrs && requestedTarget.empty())
         return;
-    throw CrsError("CRS: '" + paths[static_cast<std::size_t>(missing - inputs.begin())] +
+    const OptionSpelling spelling = options.optionSpelling;
+    throw CrsError("CRS: '" + options.inputs[static_cast<std::size_t>(missing - inputs.begin())] +
                    "' has no CRS and " +
-                   (requestedTarget.empty() ? std::string("other inputs have one")
-                                            : std::string("--t_srs asks to reproject it")) +
-                   "; give its CRS with --s_srs");
+                   (requestedTarget.empty()
+                        ? std::string("other inputs have one")
+                        : optionName("t_srs", spelling) + " asks to reproject it") +
+                   "; give its CRS with " + optionName("s_srs", spelling));
 }
 
 /// The report's source CRS: the one every input shares, or "several".
@@ -202,8 +207,9 @@ void noticeUnitChange(const BuildOptions& options, BuildReport& report, const st
     std::snprintf(factor, sizeof factor, "%.10g", source.metresPerUnit / target.metresPerUnit);
     notify(options, report,
            "'" + path + "' has x, y in " + source.linearUnit + " and the output in " +
-               target.linearUnit + ": elevations stay in the input's units (use --z-factor " +
-               factor + " if they share the horizontal unit)");
+               target.linearUnit + ": elevations stay in the input's units (use " +
+               optionName("z_factor", options.optionSpelling) + " " + factor +
+               " if they share the horizontal unit)");
 }
 
 void reprojectAll(const BuildOptions& options, const std::string& targetWkt,
@@ -266,15 +272,16 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
     std::snprintf(centreText, sizeof centreText, "%.6f, %.6f", centre.x, centre.y);
     notify(options, report,
            "the input is geographic (" + geographicName + "); projecting it to " + zone.name() +
-               " (" + label + "), the zone of its centre (" + centreText +
-               "); use --t_srs to choose another CRS or --keep-geographic "
-               "to triangulate in degrees");
+               " (" + label + "), the zone of its centre (" + centreText + "); use " +
+               optionName("t_srs", options.optionSpelling) + " to choose another CRS or " +
+               optionName("keep_geographic", options.optionSpelling) +
+               " to triangulate in degrees");
     return target;
 }
 
 GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
                             const ProgressCallback& progress) {
-    const std::vector<std::string> paths = options.inputPaths();
+    const std::vector<std::string>& paths = options.inputs;
     checkInputOptions(options, paths);
     report.zFactor = options.zFactor;
     const UserCrs user = parseUserCrs(options);
@@ -282,12 +289,14 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
     std::vector<ReadInput> inputs = readInputs(paths, options, user.source, report, progress);
 
     const Stopwatch reprojectTime;
-    requireCrsWhereNeeded(inputs, paths, user.target);
+    requireCrsWhereNeeded(inputs, options, user.target);
     reportSourceCrs(inputs, report);
     const std::string target = chooseTargetCrs(options, user.target, inputs, report);
     reprojectAll(options, target, inputs, report);
     if (!user.target.empty() && crs::describeCrs(target).geographic)
-        notify(options, report, "--t_srs is geographic: the TIN is triangulated in degrees");
+        notify(options, report,
+               optionName("t_srs", options.optionSpelling) +
+                   " is geographic: the TIN is triangulated in degrees");
     report.timings.reproject = reprojectTime.seconds();
 
     GatheredInputs gathered = mergeInputs(inputs, options.zFactor);

@@ -28,7 +28,7 @@ struct GatheredInputs {
     std::vector<std::uint64_t> cellIndex;
 };
 
-/// Reads, reprojects and merges options.inputPaths(); fills report.inputs (all but
+/// Reads, reprojects and merges options.inputs; fills report.inputs (all but
 /// duplicates), the CRS fields, rasterCells, skippedCells, filteredOut, points, notices and
 /// timings.reproject. `progress` gets the 0..1 fraction of this stage.
 GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,

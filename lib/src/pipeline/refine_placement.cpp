@@ -5,6 +5,7 @@
 #include "terratin/crs/grid_projection.hpp"
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
+#include "terratin/pipeline/build_option_table.hpp"
 
 #include <chrono>
 
@@ -13,14 +14,17 @@ namespace terratin::detail {
 RefinePlacement placeRefinedCells(const BuildOptions& options, const HeightGrid& grid,
                                   const std::string& rasterWkt, BuildReport& report) {
     const auto start = std::chrono::steady_clock::now();
-    const std::string source =
-        options.sourceSrs.empty() ? rasterWkt : crs::crsFromUserInput(options.sourceSrs, "--s_srs");
+    const std::string sourceOption = optionName("s_srs", options.optionSpelling);
+    const std::string targetOption = optionName("t_srs", options.optionSpelling);
+    const std::string source = options.sourceSrs.empty()
+                                   ? rasterWkt
+                                   : crs::crsFromUserInput(options.sourceSrs, sourceOption);
     const std::string requested = options.targetSrs.empty()
                                       ? std::string()
-                                      : crs::crsFromUserInput(options.targetSrs, "--t_srs");
+                                      : crs::crsFromUserInput(options.targetSrs, targetOption);
     if (source.empty() && !requested.empty())
-        throw CrsError("CRS: '" + report.input +
-                       "' has no CRS and --t_srs asks to reproject it; give its CRS with --s_srs");
+        throw CrsError("CRS: '" + report.input + "' has no CRS and " + targetOption +
+                       " asks to reproject it; give its CRS with " + sourceOption);
     const crs::CrsDescription sourceDescription = crs::describeCrs(source);
     report.sourceCrsName = sourceDescription.name;
     report.sourceCrsCode = sourceDescription.code;
@@ -30,7 +34,8 @@ RefinePlacement placeRefinedCells(const BuildOptions& options, const HeightGrid&
     if (requested.empty() && !options.keepGeographic && sourceDescription.geographic)
         placement.targetWkt = zoneOfCentre(options, report, source, grid.extentCentre());
     if (!requested.empty() && crs::describeCrs(requested).geographic)
-        notify(options, report, "--t_srs is geographic: the TIN is triangulated in degrees");
+        notify(options, report,
+               targetOption + " is geographic: the TIN is triangulated in degrees");
     if (!crs::sameCrs(source, placement.targetWkt)) {
         placement.positions = crs::projectCellCentres(grid, source, placement.targetWkt);
         report.reprojected = true;

@@ -5,6 +5,7 @@
 
 #include "terratin/io/las_reader.hpp"
 #include "terratin/io/tin_writer.hpp"
+#include "terratin/pipeline/option_spelling.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/triangulate.hpp"
@@ -21,10 +22,8 @@ namespace terratin {
 
 /// Everything `terratin build` can be asked.
 struct BuildOptions {
-    /// The one input, when `inputs` is empty (the convenience of the single-raster build).
-    std::string input;
-    /// Inputs to merge: rasters (anything GDAL opens), LAS, delimited text, OGR point layers;
-    /// see io::detectInputKind. When set, `input` is ignored.
+    /// Inputs to merge, at least one: rasters (anything GDAL opens), LAS, delimited text, OGR
+    /// point layers; see io::detectInputKind.
     std::vector<std::string> inputs;
     std::filesystem::path output;
     /// Output format; when unset it follows the output's extension (.gpkg .shp .fgb .2dm .ply
@@ -67,11 +66,10 @@ struct BuildOptions {
     /// Receives notices as they happen (the UTM zone chosen, units left unconverted); they are
     /// also kept in BuildReport::notices. The CLI prints them on stderr.
     std::function<void(std::string_view)> notice;
+    /// How messages name options (`--z-factor` or `z_factor`, see optionName); parseBuildOptions
+    /// sets it to the spelling of its caller.
+    OptionSpelling optionSpelling = OptionSpelling::Keyword;
 
-    /// The inputs to read: `inputs`, or `input` alone when `inputs` is empty.
-    [[nodiscard]] std::vector<std::string> inputPaths() const {
-        return inputs.empty() ? std::vector<std::string>{input} : inputs;
-    }
     /// Terrain simplification (--max-error, --max-points, --max-triangles, --max-hole,
     /// --fill-holes): when set, the raster is read as a HeightGrid and refined instead of
     /// triangulating every valid cell; `refine->threads` 0 follows triangulation.threads and
