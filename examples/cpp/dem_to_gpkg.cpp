@@ -14,8 +14,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     terratin::BuildOptions options;
-    options.input = argv[1];  // anything GDAL opens as a raster
-    options.output = argv[2]; // the format follows the extension
+    options.inputs = {argv[1]}; // anything GDAL opens as a raster
+    options.output = argv[2];   // the format follows the extension
     options.overwrite = true;
     // Keep only the vertices needed for every cell to be within 1 z unit of the TIN.
     options.refine = terratin::RefineOptions{};

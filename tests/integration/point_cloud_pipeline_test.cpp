@@ -274,21 +274,29 @@ TEST(PointCloudPipeline, DemandsSourceSrs_WhenAnInputHasNoCrs) {
     BuildReport report = runBuild(optionsFor({text.string()}, dir.file("alone.gpkg")));
     EXPECT_TRUE(report.crsName.empty());
 
-    // Beside a raster with a CRS, or with --t_srs: an error naming the file and --s_srs.
+    // Beside a raster with a CRS, or with --t_srs: an error naming the file and the source CRS
+    // option, spelled as the caller spells options.
     for (const bool withTarget : {false, true}) {
-        BuildOptions options =
-            withTarget ? optionsFor({text.string()}, dir.file("t.gpkg"))
-                       : optionsFor({sample.string(), text.string()}, dir.file("m.gpkg"));
-        if (withTarget)
-            options.targetSrs = "EPSG:3857";
-        try {
-            runBuild(options);
-            FAIL() << "an input without CRS was accepted";
-        } catch (const CrsError& error) {
-            EXPECT_NE(std::string(error.what()).find("spots.xyz"), std::string::npos);
-            EXPECT_NE(std::string(error.what()).find("--s_srs"), std::string::npos);
+        for (const OptionSpelling spelling :
+             {OptionSpelling::Keyword, OptionSpelling::CommandLine}) {
+            BuildOptions options =
+                withTarget ? optionsFor({text.string()}, dir.file("t.gpkg"))
+                           : optionsFor({sample.string(), text.string()}, dir.file("m.gpkg"));
+            if (withTarget)
+                options.targetSrs = "EPSG:3857";
+            options.optionSpelling = spelling;
+            const std::string sourceOption =
+                spelling == OptionSpelling::CommandLine ? "with --s_srs" : "with s_srs";
+            try {
+                runBuild(options);
+                FAIL() << "an input without CRS was accepted";
+            } catch (const CrsError& error) {
+                EXPECT_NE(std::string(error.what()).find("spots.xyz"), std::string::npos);
+                EXPECT_NE(std::string(error.what()).find(sourceOption), std::string::npos)
+                    << error.what();
+            }
+            EXPECT_FALSE(fs::exists(options.output));
         }
-        EXPECT_FALSE(fs::exists(options.output));
     }
 
     // --s_srs supplies it.
