@@ -457,17 +457,6 @@ PointCloud readPoints(ByteSource& source, const std::string& name, const LasRead
 
 } // namespace
 
-LasReturns parseLasReturns(const std::string& name) {
-    const std::string key = lowercase(name);
-    if (key == "all")
-        return LasReturns::All;
-    if (key == "first")
-        return LasReturns::First;
-    if (key == "last")
-        return LasReturns::Last;
-    throw InvalidInputError("--returns must be first, last or all (got '" + name + "')");
-}
-
 PointCloud readLasPoints(const std::string& path, const LasReadOptions& options,
                          const ProgressCallback& progress) {
     FileSource source(path);

@@ -14,7 +14,6 @@
 #include "qgis_style.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "terratin/text.hpp"
 #include "two_dm_writer.hpp"
 #include "writer_support.hpp"
 
@@ -146,17 +145,6 @@ std::vector<fs::path> outputFiles(const fs::path& output, const TinWriteOptions&
 }
 
 } // namespace
-
-AttributeSet parseAttributeSet(const std::string& name) {
-    const std::string key = lowercase(name);
-    if (key == "none")
-        return AttributeSet::None;
-    if (key == "basic")
-        return AttributeSet::Basic;
-    if (key == "all")
-        return AttributeSet::All;
-    throwInvalid(kStage, "--attributes must be none, basic or all (got '" + name + "')");
-}
 
 std::string nodeLayerName(const std::string& layerName) {
     return layerName == "tin" ? std::string("nodes") : layerName + "_nodes";

@@ -371,13 +371,6 @@ TEST(LasReader, RejectsClassesOutsideAByte) {
     EXPECT_THROW(readBytes(file.bytes(), options), InvalidInputError);
 }
 
-TEST(LasReader, ParsesReturnsOption) {
-    EXPECT_EQ(parseLasReturns("FIRST"), LasReturns::First);
-    EXPECT_EQ(parseLasReturns("last"), LasReturns::Last);
-    EXPECT_EQ(parseLasReturns("all"), LasReturns::All);
-    EXPECT_THROW(parseLasReturns("second"), InvalidInputError);
-}
-
 // The shared LAS files: every point record read, the points inside the header's bounds and
 // reaching them (the bounds are the extremes of the stored points), the CRS as documented.
 struct SharedLas {

@@ -36,13 +36,6 @@ TEST(TinFormatNames, NamesEveryFormat_WhenReporting) {
     EXPECT_FALSE(isOgrFormat(TinFormat::Ply));
 }
 
-TEST(AttributeSetNames, ParsesNoneBasicAll_WhenCaseDiffers) {
-    EXPECT_EQ(parseAttributeSet("none"), AttributeSet::None);
-    EXPECT_EQ(parseAttributeSet("Basic"), AttributeSet::Basic);
-    EXPECT_EQ(parseAttributeSet("ALL"), AttributeSet::All);
-    EXPECT_THROW(parseAttributeSet("some"), InvalidInputError);
-}
-
 TEST(TinWriteOptionsCheck, RefusesGeoPackageOnlyOptions_WhenFormatIsAnother) {
     TinWriteOptions options;
     options.format = TinFormat::FlatGeobuf;

@@ -139,6 +139,34 @@ TEST(BuildOptionTable, OptionNames_FollowTheSpelling) {
     EXPECT_EQ(findBuildOption("max-error", OptionSpelling::Keyword), nullptr);
 }
 
+// The LAS returns and the attribute sets were parsed by io::parseLasReturns and
+// io::parseAttributeSet too, until the option table became their one parser.
+io::LasReturns returnsFrom(const std::string& text) {
+    BuildOptions options;
+    applyBuildOption(options, {"returns", text}, OptionSpelling::Keyword);
+    return options.lasReturns;
+}
+
+io::AttributeSet attributesFrom(const std::string& text) {
+    BuildOptions options;
+    applyBuildOption(options, {"attributes", text}, OptionSpelling::Keyword);
+    return options.attributes;
+}
+
+TEST(ParseBuildOptions, ParsesReturns_WhenCaseDiffers) {
+    EXPECT_EQ(returnsFrom("FIRST"), io::LasReturns::First);
+    EXPECT_EQ(returnsFrom("last"), io::LasReturns::Last);
+    EXPECT_EQ(returnsFrom("all"), io::LasReturns::All);
+    EXPECT_THROW(returnsFrom("second"), InvalidInputError);
+}
+
+TEST(ParseBuildOptions, ParsesNoneBasicAll_WhenCaseDiffers) {
+    EXPECT_EQ(attributesFrom("none"), io::AttributeSet::None);
+    EXPECT_EQ(attributesFrom("Basic"), io::AttributeSet::Basic);
+    EXPECT_EQ(attributesFrom("ALL"), io::AttributeSet::All);
+    EXPECT_THROW(attributesFrom("some"), InvalidInputError);
+}
+
 TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
     const BuildOptions options =
         parseBuildOptions({{"inputs", "a.las"},     {"inputs", "b.xyz"},

@@ -27,9 +27,6 @@ enum class LasReturns {
     Last,  ///< return number == number of returns (or greater, which is invalid but seen)
 };
 
-/// Parses "all", "first", "last" (case-insensitive); throws InvalidInputError otherwise.
-LasReturns parseLasReturns(const std::string& name);
-
 /// What to keep of a LAS file.
 struct LasReadOptions {
     /// Classification codes to keep (ASPRS: 2 = ground); empty keeps every class.

@@ -24,9 +24,6 @@ enum class AttributeSet {
     All,
 };
 
-/// Parses none | basic | all (case-insensitive); throws InvalidInputError otherwise.
-AttributeSet parseAttributeSet(const std::string& name);
-
 /// The raster cell a vertex came from (for the GeoPackage nodes layer), 0-based.
 struct RasterCell {
     std::int64_t row = 0;
