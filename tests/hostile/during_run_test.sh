@@ -49,7 +49,7 @@ if [ "$phase" = reading ]; then
   input=$work/big.vrt
 fi
 case "$phase" in
-  reading) mark='^0\.' ;;
+  reading) mark=$'(^|\n)0\\.' ;;
   triangulating) mark='\.\.\.20' ;;
   rows) mark='\.\.\.60' ;;
   # A GeoPackage's index holds 74.5..99; FlatGeobuf reports 75 before it builds its own.
@@ -74,14 +74,26 @@ fi
 before=$(cd "$out" && find . -type f -exec sha256sum {} + | sort)
 
 cd "$out" || exit 1
+: >"$work/stderr"
 TMPDIR=$work/tmp "$binary" "${arguments[@]}" >"$work/stdout" 2>"$work/stderr" &
 pid=$!
 
-# Wait for the phase: the progress line reaching its mark.
-until grep -Eq -- "$mark" "$work/stderr"; do
-  kill -0 "$pid" 2>/dev/null || fail "the run ended before reaching the $phase phase"
-  sleep 0.02
+# Catch the run inside its phase. Polling alone once missed a PLY's rows (the whole of 60..100
+# took less than one poll), so the run goes in slices of a millisecond and is stopped (SIGSTOP)
+# while its progress is read: when the mark is there and 90 is not, the run is still before the
+# writer's last cancellation point (98 % of its share), and the event lands there on SIGCONT.
+exec {idle}<> <(:)
+progress=
+while :; do
+  kill -STOP "$pid" 2>/dev/null || fail "cannot stop the run"
+  read -r _ _ state _ <"/proc/$pid/stat"
+  [ "$state" != Z ] || fail "the run ended before reaching the $phase phase"
+  IFS= read -r -d '' progress <"$work/stderr"
+  [[ $progress =~ $mark ]] && break
+  kill -CONT "$pid"
+  read -r -t 0.001 -u "$idle"
 done
+[[ $progress =~ \.\.\.90|done|failed ]] && fail "the run was past the $phase phase when caught"
 
 if [ "$event" = appear ]; then
   printf 'written by another program' >"$out/$output"
@@ -89,6 +101,7 @@ if [ "$event" = appear ]; then
 else
   kill -s "$event" "$pid" || fail "cannot signal the run"
 fi
+kill -CONT "$pid"
 
 # Wait for the run to stop.
 wait "$pid"
