@@ -22,7 +22,10 @@ struct ThreadBlock {
     std::size_t next = 0;
     std::size_t end = 0;
 };
-thread_local ThreadBlock threadBlock;
+// initial-exec: the executables' own TLS model, also in the Python module (a shared object),
+// where the default for position-independent code would call __tls_get_addr on every
+// allocation. The block is small enough for glibc's static TLS reserve for dlopen.
+[[gnu::tls_model("initial-exec")]] thread_local ThreadBlock threadBlock;
 } // namespace
 
 NodeArena::NodeArena()
