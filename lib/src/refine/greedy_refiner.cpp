@@ -330,7 +330,7 @@ void GreedyRefiner::runStripsAndPairs(double level, std::size_t quota,
     LevelPlan plan = planLevel(stripCandidates);
     // Only the calling thread reports, with the progress at the start (the counts change
     // while the tasks run).
-    const double fraction = progressFraction(level);
+    const double fraction = nextProgressFraction(level);
     plan.graph.run(*m_workers, m_cancelled, [&](std::size_t graphTask, unsigned worker) {
         const LevelTask task = plan.tasks[graphTask];
         Strip& first = m_strips[task.first()];
@@ -482,8 +482,13 @@ double GreedyRefiner::progressFraction(double topPriority) const {
     return std::clamp(fraction, 0.0, 1.0);
 }
 
+double GreedyRefiner::nextProgressFraction(double topPriority) {
+    m_reportedFraction = std::max(m_reportedFraction, progressFraction(topPriority));
+    return m_reportedFraction;
+}
+
 void GreedyRefiner::report(const ProgressCallback& progress, double topPriority) {
-    if (progress && !progress(progressFraction(topPriority), "refining")) {
+    if (progress && !progress(nextProgressFraction(topPriority), "refining")) {
         m_cancelled.store(true, std::memory_order_relaxed);
         throw Cancelled("Refiner: cancelled");
     }
@@ -501,6 +506,10 @@ void GreedyRefiner::runLevels(const ProgressCallback& progress) {
         const double top = highestPriority();
         if (top <= m_threshold)
             return;
+        // Past the holes' level (kHolePriority), the errors' scale starts at the highest
+        // error: the levels below it and the progress fraction are measured from there.
+        if (std::isinf(m_firstPriority) && std::isfinite(top))
+            m_firstPriority = top;
         const std::size_t left = budget();
         if (finishesExactly(left, m_strips.size())) {
             // Close to a limit: one thread, global greedy order, exact stop.

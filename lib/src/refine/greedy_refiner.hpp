@@ -185,6 +185,9 @@ private:
     /// when it covers many cells.
     template <class Found> void scanFan(std::span<const TriId> nodes, Found&& found);
     [[nodiscard]] double progressFraction(double topPriority) const;
+    /// progressFraction, never below what was reported before: a level reports its target's
+    /// fraction, and the shared step after it the (higher) priorities it inserts.
+    [[nodiscard]] double nextProgressFraction(double topPriority);
     /// Calls `progress` (from the calling thread only); throws Cancelled when it says stop.
     void report(const ProgressCallback& progress, double topPriority);
 
@@ -216,6 +219,7 @@ private:
     std::size_t m_sharedInsertions = 0;
     std::size_t m_completionPasses = 0;
     double m_firstPriority = 0.0;
+    double m_reportedFraction = 0.0;
     /// Set by the calling thread when progress asks to stop; the workers then stop early.
     std::atomic<bool> m_cancelled{false};
     RefineStop m_stop = RefineStop::ErrorReached;

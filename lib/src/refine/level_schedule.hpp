@@ -36,10 +36,9 @@ inline constexpr std::size_t kNoQuota = std::numeric_limits<std::size_t>::max();
 
 /// The level below `top`, the highest priority queued: a fraction kLevelRatio of it, or
 /// `threshold` (the target, -1 to use every cell) when that is not above both the target and
-/// kNegligibleErrorFraction of `firstPriority`, the highest priority once the hull was scanned
-/// (>= 0; kHolePriority when a first triangle lies over a hole, and then every level after
-/// the holes' goes straight to the target). The holes' candidates (top == kHolePriority) make
-/// a level of their own. One strip (`strips` == 1) is plain greedy insertion: a single level
+/// kNegligibleErrorFraction of `firstPriority`, the highest error once the hull was scanned
+/// and the holes' candidates inserted (>= 0). The holes' candidates (top == kHolePriority)
+/// make a level of their own. One strip (`strips` == 1) is plain greedy insertion: a single level
 /// down to the target.
 [[nodiscard]] double levelBelow(double top, double threshold, double firstPriority,
                                 std::size_t strips);

@@ -15,6 +15,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 namespace terratin {
 namespace {
@@ -362,6 +363,31 @@ TEST(Refine, CancelledByProgress) {
     const HeightGrid grid = test::roughTerrain(128, 128, 2);
     RefineOptions options = withError(0.0);
     EXPECT_THROW(refine(grid, options, [](double, std::string_view) { return false; }), Cancelled);
+}
+
+TEST(Refine, ProgressRisesAndLevelsStep_WhenAHoleIsLeftOpen) {
+    // Regression: an open hole's candidates have kHolePriority (infinity), and when they were
+    // the first priority the progress fraction stayed 0 to the end and every level after the
+    // holes' went straight to the target (two levels in all).
+    const HeightGrid rough = test::roughTerrain(160, 128, 4);
+    const HeightGrid grid = makeGrid(160, 128, [&](int row, int col) {
+        const bool inHole = row >= 40 && row < 60 && col >= 50 && col < 80;
+        return inHole ? std::numeric_limits<double>::quiet_NaN()
+                      : static_cast<double>(rough.z[static_cast<std::size_t>(row) * 160 + col]);
+    });
+    RefineOptions options = withError(0.5, 2);
+    options.strips = 4;
+    std::vector<double> fractions;
+    const RefineResult result = refine(grid, options, [&](double fraction, std::string_view) {
+        fractions.push_back(fraction);
+        return true;
+    });
+    ASSERT_GT(result.openHoleCells, 0U);
+    EXPECT_GT(result.levels, 4U);
+    EXPECT_TRUE(std::any_of(fractions.begin(), fractions.end(),
+                            [](double fraction) { return fraction > 0.2 && fraction < 1.0; }));
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    test::expectWithinError(result.mesh, grid, 0.5);
 }
 
 TEST(Refine, CancelledPartwayWhileStripsRunOnTwoThreads) {
