@@ -16,4 +16,7 @@ void bindTriangulate(pybind11::module_& module);
 /// _terratin.simplify(z, geotransform, nodata, max_error, ..., progress).
 void bindSimplify(pybind11::module_& module);
 
+/// _terratin.build(inputs, output, progress, **options): the command line's build.
+void bindBuild(pybind11::module_& module);
+
 } // namespace terratin::python

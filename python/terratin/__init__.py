@@ -1,10 +1,11 @@
-"""terratin for Python: exact Delaunay TINs from NumPy arrays.
+"""terratin for Python: exact Delaunay TINs from NumPy arrays and from files.
 
-The C++ library (terratin::core) does the work, with the GIL released; arrays come in and go
-out without copies where the memory layout allows. docs/python.md in the source tree has the
-whole story: installing, the array rules, errors, progress and cancellation.
+The C++ library (terratin::core, terratin::io) does the work, with the GIL released; arrays
+come in and go out without copies where the memory layout allows. docs/python.md in the source
+tree has the whole story: installing, the array rules, errors, progress and cancellation.
 
 Functions:
+    build(inputs, output, **options) -> dict           the command line's `terratin build`
     triangulate(points, method="auto", threads=0) -> (vertices, triangles)
     simplify(z, geotransform, nodata=None, max_error=None, max_points=None, ...)
         -> (vertices, triangles)
@@ -12,6 +13,9 @@ Functions:
 Errors: every failure raises terratin.Error or one of its subclasses InvalidInputError,
 IoError, CrsError and Cancelled (a RuntimeError; the message names the stage that failed).
 """
+
+import json
+import logging
 
 import numpy
 
@@ -31,9 +35,40 @@ __all__ = [
     "Error",
     "InvalidInputError",
     "IoError",
+    "build",
     "simplify",
     "triangulate",
 ]
+
+
+_logger = logging.getLogger("terratin")
+
+
+def build(inputs, output, *, progress=None, **options):
+    """The command line's `terratin build INPUT... -o OUTPUT [options]`, as a function.
+
+    inputs: a path (str, bytes or os.PathLike) or a list of them: DEM rasters, LAS/LAZ, text
+        or OGR point files, as the command line takes them.
+    output: the TIN file; its extension chooses the format unless format= is given.
+    options: the command line's build options by keyword, the long name with "_" for "-":
+        max_error=2.0, max_points=100000, method="strips", threads=0, t_srs="EPSG:32633",
+        attributes="basic", qgis_style=True, overwrite=True, classes=[2, 9], columns=[1, 2, 3]
+        ... (docs/cli.md lists them all). A flag takes True or False; a repeatable option
+        (classes) a list; None means "not given". The checks and messages are the command
+        line's, naming options by keyword ("max_error must be ...").
+    progress: callable(fraction, message) -> bool, as for triangulate(); False cancels and
+        leaves no output (an existing one stays as it was).
+
+    Returns the command line's --json report as a dict (docs/cli.md); its "notices" are what
+    the command line prints as notices, each also logged as INFO by the logger "terratin".
+
+    Raises InvalidInputError (a bad option or input), IoError, CrsError, Cancelled,
+    KeyboardInterrupt (Ctrl-C while the library works).
+    """
+    report = json.loads(_terratin.build(inputs, output, progress=progress, **options))
+    for notice in report["notices"]:
+        _logger.info("%s", notice)
+    return report
 
 
 def _as_array(value, function, name):

@@ -119,3 +119,22 @@ def shared_dems():
     if not path.is_dir():
         pytest.skip(f"no shared DEMs at {path}")
     return path
+
+
+def canonical_corners(corners):
+    """Triangles given by their corners' coordinates (T, 3, 3), each rotated to start at its
+    lexicographically smallest corner (x, then y, then z), sorted: equal for two meshes with
+    the same triangles, whatever their vertex numbering and each triangle's first corner."""
+    corners = numpy.asarray(corners, dtype=numpy.float64)
+
+    def before(a, b):
+        x, y, z = (a[:, k] - b[:, k] for k in range(3))
+        return (x < 0) | ((x == 0) & ((y < 0) | ((y == 0) & (z < 0))))
+
+    c0, c1, c2 = corners[:, 0], corners[:, 1], corners[:, 2]
+    first = numpy.where(
+        before(c0, c1) & before(c0, c2), 0, numpy.where(before(c1, c2), 1, 2)
+    )
+    rotation = (first[:, None] + numpy.arange(3)) % 3
+    rotated = numpy.take_along_axis(corners, rotation[:, :, None], axis=1).reshape(-1, 9)
+    return rotated[numpy.lexsort(rotated.T[::-1])]
