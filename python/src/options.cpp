@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/pipeline/build_option_table.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -24,15 +25,14 @@ unsigned threadsOption(const std::string& function, std::int64_t value) {
 }
 
 TriangulationMethod methodOption(const std::string& function, const std::string& name) {
-    for (const TriangulationMethod method :
-         {TriangulationMethod::Auto, TriangulationMethod::Strips, TriangulationMethod::Sequential,
-          TriangulationMethod::Batch, TriangulationMethod::Circumcircle})
-        if (name == toString(method))
-            return method;
-    throw InvalidInputError(function +
-                            ": method must be 'auto', 'strips', 'sequential', 'batch' or "
-                            "'circumcircle' (got '" +
-                            name + "')");
+    // The option table's parser, so that the names and the message are the CLI's.
+    BuildOptions parsed;
+    try {
+        applyBuildOption(parsed, {"method", name}, OptionSpelling::Keyword);
+    } catch (const InvalidInputError& error) {
+        throw InvalidInputError(function + ": " + error.what());
+    }
+    return parsed.triangulation.method;
 }
 
 } // namespace terratin::python

@@ -19,8 +19,8 @@ std::size_t countOption(const std::string& function, const char* option, std::in
 /// the library takes.
 unsigned threadsOption(const std::string& function, std::int64_t value);
 
-/// The method named by toString(TriangulationMethod) ("auto", "strips"...); InvalidInputError
-/// listing the names otherwise.
+/// The method named by toString(TriangulationMethod) ("auto", "strips"...), parsed by the build
+/// option table; InvalidInputError listing the names otherwise.
 TriangulationMethod methodOption(const std::string& function, const std::string& name);
 
 } // namespace terratin::python
