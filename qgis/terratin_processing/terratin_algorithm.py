@@ -1,0 +1,163 @@
+"""What terratin's Processing algorithms share: the triangulation and output parameters, and
+the run of terratin.build with progress and cancellation wired to QgsProcessingFeedback."""
+
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingAlgorithm,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterCrs,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterVectorDestination,
+)
+
+# The choices as terratin names them; the first is the default.
+METHODS = ["auto", "strips", "sequential", "batch", "circumcircle"]
+ATTRIBUTE_SETS = ["all", "basic", "none"]
+
+
+class TerratinAlgorithm(QgsProcessingAlgorithm):
+    """A Processing algorithm that runs terratin.build on files and writes a TIN layer."""
+
+    METHOD = "METHOD"
+    THREADS = "THREADS"
+    ATTRIBUTES = "ATTRIBUTES"
+    TERRAIN_STYLE = "TERRAIN_STYLE"
+    TARGET_CRS = "TARGET_CRS"
+    OUTPUT = "OUTPUT"
+    VERTICES = "VERTICES"
+    TRIANGLES = "TRIANGLES"
+
+    def group(self):
+        return "TIN"
+
+    def groupId(self):  # noqa: N802 (QGIS's name)
+        return "tin"
+
+    def flags(self):
+        # terratin releases the GIL and runs on its own threads: the task may run in the
+        # background; cancelling is seen at the next progress report.
+        return super().flags() | QgsProcessingAlgorithm.FlagCanCancel
+
+    def addTinParameters(self):  # noqa: N802 (the QGIS API's case)
+        """The parameters after the inputs: how to triangulate, and the output."""
+        self.addParameter(
+            QgsProcessingParameterCrs(
+                self.TARGET_CRS, "Output CRS (default: the input's; geographic: its UTM zone)",
+                optional=True,
+            )
+        )
+        method = QgsProcessingParameterEnum(
+            self.METHOD, "Triangulation method", options=METHODS, defaultValue=0
+        )
+        method.setFlags(method.flags() | method.FlagAdvanced)
+        self.addParameter(method)
+        self.addParameter(
+            QgsProcessingParameterNumber(
+                self.THREADS, "Threads (0: all)", QgsProcessingParameterNumber.Integer,
+                defaultValue=0, minValue=0,
+            )
+        )
+        self.addParameter(
+            QgsProcessingParameterEnum(
+                self.ATTRIBUTES, "Triangle attributes (basic: z, slope, aspect, area)",
+                options=ATTRIBUTE_SETS, defaultValue=0,
+            )
+        )
+        self.addParameter(
+            QgsProcessingParameterBoolean(
+                self.TERRAIN_STYLE, "Style the triangles by elevation (terrain colours)",
+                defaultValue=True,
+            )
+        )
+        self.addParameter(
+            QgsProcessingParameterVectorDestination(
+                self.OUTPUT, "TIN", type=QgsProcessing.TypeVectorPolygon
+            )
+        )
+        self.addOutput(QgsProcessingOutputNumber(self.VERTICES, "Vertices"))
+        self.addOutput(QgsProcessingOutputNumber(self.TRIANGLES, "Triangles"))
+
+    def inputOptions(self, parameters, context, feedback):  # noqa: N802
+        """(inputs, options) of terratin.build for this algorithm's input parameters."""
+        raise NotImplementedError
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802 (QGIS's name)
+        terratin = import_terratin()
+        inputs, options = self.inputOptions(parameters, context, feedback)
+        options.update(self.tinOptions(parameters, context, feedback))
+        output = self.parameterAsOutputLayer(parameters, self.OUTPUT, context)
+        try:
+            report = terratin.build(
+                inputs, output, progress=progress_of(feedback), overwrite=True, **options
+            )
+        except terratin.Cancelled:
+            raise QgsProcessingException("terratin: cancelled") from None
+        except terratin.Error as error:
+            raise QgsProcessingException(f"terratin: {error}") from None
+        for notice in report["notices"]:
+            feedback.pushInfo(f"terratin: {notice}")
+        counts = report["counts"]
+        feedback.pushInfo(
+            f"{counts['vertices']} vertices, {counts['triangles']} triangles "
+            f"in {report['timings']['total']:.2f} s ({report['crs']['name']})"
+        )
+        return {
+            self.OUTPUT: output,
+            self.VERTICES: counts["vertices"],
+            self.TRIANGLES: counts["triangles"],
+        }
+
+    def tinOptions(self, parameters, context, feedback):  # noqa: N802
+        """terratin.build's options of the shared parameters."""
+        attributes = ATTRIBUTE_SETS[self.parameterAsEnum(parameters, self.ATTRIBUTES, context)]
+        style = self.parameterAsBoolean(parameters, self.TERRAIN_STYLE, context)
+        if style and attributes == "none":
+            # The style colours by z_mean, one of the attributes.
+            feedback.pushWarning("No terrain style: it needs the triangle attributes")
+            style = False
+        options = {
+            "method": METHODS[self.parameterAsEnum(parameters, self.METHOD, context)],
+            "threads": self.parameterAsInt(parameters, self.THREADS, context),
+            "attributes": attributes,
+            "qgis_style": style,
+        }
+        target = self.parameterAsCrs(parameters, self.TARGET_CRS, context)
+        if target.isValid():
+            options["t_srs"] = crs_text(target)
+        return options
+
+
+def import_terratin():
+    """The terratin Python module, or a message that says how to install it."""
+    try:
+        import terratin
+    except ImportError as error:
+        raise QgsProcessingException(
+            f"terratin's Python module cannot be imported ({error}): install it with "
+            "terratin's build (cmake --install ... --component python) or put its folder on "
+            "PYTHONPATH; docs/qgis.md says how"
+        ) from None
+    return terratin
+
+
+def progress_of(feedback):
+    """terratin's progress callable for `feedback`: the bar, and False once cancelled."""
+
+    def progress(fraction, message):
+        feedback.setProgress(100.0 * fraction)
+        return not feedback.isCanceled()
+
+    return progress
+
+
+def given(parameters, name):
+    """Whether an optional parameter has a value (a dialog's empty field gives None or "")."""
+    return parameters.get(name) not in (None, "")
+
+
+def crs_text(crs):
+    """A QgsCoordinateReferenceSystem as terratin's --s_srs / --t_srs take it."""
+    return crs.authid() if crs.authid() else crs.toWkt()
