@@ -111,7 +111,7 @@ case "$case_name" in
     ;;
   unknown_extension)
     run 2 build "$sample" -o out.kml
-    expect_one_error_line "extension"
+    expect_one_error_line "extension.*(or --format)"
     ;;
   build_gpkg_json)
     run 0 build "$sample" -o tin.gpkg --json --quiet --validate
@@ -206,7 +206,7 @@ case "$case_name" in
   existing_output_refused)
     printf 'precious' >tin.gpkg
     run 1 build "$sample" -o tin.gpkg --quiet
-    expect_one_error_line "overwrite"
+    expect_one_error_line "exists; use --overwrite"
     [ "$(cat tin.gpkg)" = "precious" ] || fail "existing output was modified"
     expect_no_leftovers
     ;;
@@ -327,6 +327,15 @@ case "$case_name" in
     run 2 build "$sample" -o out.gpkg --keep-geographic --t_srs EPSG:3857
     expect_one_error_line "--keep-geographic"
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
+    # The readers' own refusals name the options as the command line does (issue 23).
+    printf '456003 5104000 100\n456100 5104100 101\n456200 5104000 99\n' >spots.xyz
+    run 1 build spots.xyz -o out.gpkg --columns x,y,z
+    expect_one_error_line "the columns named in --columns"
+    printf '%s\n' '{"type": "FeatureCollection", "features": [{"type": "Feature",' \
+      '"properties": {"h": 1}, "geometry": {"type": "Point", "coordinates": [1, 2]}}]}' >flat.geojson
+    run 1 build flat.geojson -o out.gpkg
+    expect_one_error_line "name the elevation attribute with --z-field"
+    [ ! -e out.gpkg ] || fail "output written despite refused inputs"
     ;;
   refine_max_error)
     run 0 build "$sample" -o tin.gpkg --max-error 2 --json --quiet --validate --threads 2
@@ -460,9 +469,9 @@ case "$case_name" in
     [ "$(ogrinfo -ro -q tin.gpkg | grep -c 'Polygon')" = 2 ] || fail "not two layers"
     [ "$(ogrinfo -ro -al -q tin.gpkg first | md5sum)" = "$before" ] || fail "first layer changed"
     run 1 build "$sample" -o tin.gpkg --layer second --append-layer --quiet
-    expect_one_error_line "second"
+    expect_one_error_line "layer 'second'; choose another --layer or use --overwrite"
     run 2 build "$sample" -o tin.fgb --append-layer --quiet
-    expect_one_error_line "GeoPackage"
+    expect_one_error_line "--append-layer needs a GeoPackage"
     expect_no_leftovers
     ;;
   gpkg_validates)
@@ -484,7 +493,9 @@ case "$case_name" in
     xmllint --noout tin.qml || fail "tin.qml is not well-formed"
     grep -q 'attr="z_mean"' tin.qml || fail "style does not colour by z_mean"
     run 2 build "$sample" -o tin.ply --qgis-style --quiet
-    expect_one_error_line "qgis-style"
+    expect_one_error_line "--qgis-style applies to GeoPackage"
+    run 2 build "$sample" -o tin2.gpkg --qgis-style --attributes none --quiet
+    expect_one_error_line "--qgis-style colours by z_mean: it needs --attributes basic or all"
     ;;
   attributes_basic)
     run 0 build "$sample" -o tin.gpkg --attributes basic --no-spatial-index --quiet
@@ -495,10 +506,13 @@ case "$case_name" in
     ;;
   geopackage_only_options_refused)
     run 2 build "$sample" -o tin.shp --nodes
-    expect_one_error_line "GeoPackage"
+    expect_one_error_line "--nodes needs a GeoPackage"
     run 2 build "$sample" -o tin.2dm --edges
-    expect_one_error_line "GeoPackage"
-    [ ! -e tin.shp ] && [ ! -e tin.2dm ] || fail "output written despite the usage error"
+    expect_one_error_line "--edges needs a GeoPackage"
+    run 2 build "$sample" -o tin.ply --no-spatial-index
+    expect_one_error_line "--no-spatial-index applies to GeoPackage and FlatGeobuf"
+    [ ! -e tin.shp ] && [ ! -e tin.2dm ] && [ ! -e tin.ply ] ||
+      fail "output written despite the usage error"
     ;;
   # Issue 22: every count option bounded, refused with status 2 and one line before reading.
   d2_queue_length_bounded)

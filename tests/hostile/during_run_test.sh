@@ -60,7 +60,8 @@ esac
 output=hood.$format
 arguments=(build "$input" -o "$output")
 if [ "$event" = appear ]; then
-  expected='appeared while this run was writing'
+  # The command line's spelling of the option (issue 23).
+  expected='appeared while this run was writing; it was left as it is \(use --overwrite to replace it\)'
 else
   # The old output: every file of it must come through intact.
   if [ "$format" = shp ]; then

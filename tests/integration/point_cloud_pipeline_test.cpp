@@ -25,6 +25,8 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <string>
+#include <vector>
 
 namespace terratin {
 namespace {
@@ -305,6 +307,54 @@ TEST(PointCloudPipeline, DemandsSourceSrs_WhenAnInputHasNoCrs) {
     report = runBuild(options);
     EXPECT_EQ(report.crsCode, "EPSG:32633");
     EXPECT_EQ(report.points, report.inputs[0].points + 3U);
+}
+
+// Issue 23: the readers' and the writer's messages, reached through runBuild, name options the
+// way its caller does: "--columns" for the command line, "columns" for a keyword caller.
+TEST(PointCloudPipeline, ReaderAndWriterMessagesNameOptionsAsTheCallerDoes) {
+    TempDir dir;
+    const fs::path text = dir.file("spots.xyz");
+    std::ofstream(text) << "456003 5104000 100\n456100 5104100 101\n456200 5104000 99\n";
+    const fs::path flat = dir.file("flat.geojson");
+    std::ofstream(flat) << R"({"type": "FeatureCollection", "features": [
+      {"type": "Feature", "properties": {"h": 1}, "geometry": {"type": "Point", "coordinates": [1, 2]}}
+    ]})";
+    const fs::path appendTo = dir.file("layers.gpkg");
+    runBuild(optionsFor({text.string()}, appendTo));
+
+    struct Case {
+        BuildOptions options;
+        std::string commandLine;
+        std::string keyword;
+    };
+    std::vector<Case> cases;
+    cases.push_back({optionsFor({text.string()}, dir.file("columns.gpkg")),
+                     "no header line to find the columns named in --columns (the first line",
+                     "no header line to find the columns named in columns (the first line"});
+    cases.back().options.textColumns = {"x", "y", "z"};
+    cases.push_back({optionsFor({flat.string()}, dir.file("flat.gpkg")),
+                     "its points have no z; name the elevation attribute with --z-field",
+                     "its points have no z; name the elevation attribute with z_field"});
+    cases.push_back({optionsFor({text.string()}, appendTo),
+                     "already has a layer 'tin'; choose another --layer or use --overwrite",
+                     "already has a layer 'tin'; choose another layer or use overwrite"});
+    cases.back().options.appendLayer = true;
+
+    for (Case& c : cases) {
+        for (const OptionSpelling spelling :
+             {OptionSpelling::CommandLine, OptionSpelling::Keyword}) {
+            c.options.optionSpelling = spelling;
+            const std::string& expected =
+                spelling == OptionSpelling::CommandLine ? c.commandLine : c.keyword;
+            try {
+                runBuild(c.options);
+                ADD_FAILURE() << "no error for " << expected;
+            } catch (const InvalidInputError& error) {
+                EXPECT_NE(std::string(error.what()).find(expected), std::string::npos)
+                    << error.what();
+            }
+        }
+    }
 }
 
 TEST(PointCloudPipeline, ScalesElevationsByZFactor_AndKeepsGeographicWhenAsked) {

@@ -101,12 +101,12 @@ void refuseIrregularOutputs(std::string_view stage, const std::vector<fs::path>&
 }
 
 void refuseExistingOutputs(std::string_view stage, const std::vector<fs::path>& candidates,
-                           bool overwrite) {
+                           bool overwrite, const OptionNamer& optionName) {
     refuseIrregularOutputs(stage, candidates);
     const auto existing = existingFiles(candidates);
     if (!existing.empty() && !overwrite)
         throw InvalidInputError(std::string(stage) + ": the output " + quoted(existing.front()) +
-                                " exists; use --overwrite");
+                                " exists; use " + optionName("overwrite"));
 }
 
 namespace {
@@ -154,8 +154,10 @@ int renameNoReplace(const fs::path& from, const fs::path& to) {
 
 } // namespace
 
-AtomicOutput::AtomicOutput(std::string_view stage, const fs::path& output, ExistingTarget existing)
-    : m_stage(stage), m_directory(outputDirectory(output)), m_existing(existing) {
+AtomicOutput::AtomicOutput(std::string_view stage, const fs::path& output, ExistingTarget existing,
+                           const OptionNamer& optionName)
+    : m_stage(stage), m_directory(outputDirectory(output)), m_existing(existing),
+      m_overwriteName(optionName("overwrite")) {
     std::random_device device;
     const std::uint64_t random =
         (static_cast<std::uint64_t>(device()) << 32U) ^ static_cast<std::uint64_t>(device());
@@ -193,7 +195,8 @@ void AtomicOutput::commit(const fs::path& temporary, const fs::path& target) con
     if (error == EEXIST || error == ENOTEMPTY)
         throw InvalidInputError(m_stage + ": the output " + quoted(target) +
                                 " appeared while this run was writing; it was left as it is "
-                                "(use --overwrite to replace it)");
+                                "(use " +
+                                m_overwriteName + " to replace it)");
     if (error != 0)
         throw IoError(m_stage + ": cannot move the finished file to " + quoted(target) + ": " +
                       std::strerror(error));

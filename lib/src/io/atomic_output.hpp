@@ -11,6 +11,8 @@
 /// (refuseExistingOutputs), and again, atomically, by the final rename: one that another
 /// program created while the run was writing is left as it is (issue 22, D5).
 
+#include "terratin/option_namer.hpp"
+
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -40,16 +42,18 @@ void refuseIrregularOutputs(std::string_view stage,
                             const std::vector<std::filesystem::path>& candidates);
 
 /// refuseIrregularOutputs, then InvalidInputError "<stage>: the output '<first>' exists; use
-/// --overwrite" when any of `candidates` exists and `overwrite` is false.
+/// overwrite" (the option as `optionName` names it) when any of `candidates` exists and
+/// `overwrite` is false.
 void refuseExistingOutputs(std::string_view stage,
-                           const std::vector<std::filesystem::path>& candidates, bool overwrite);
+                           const std::vector<std::filesystem::path>& candidates, bool overwrite,
+                           const OptionNamer& optionName);
 
 /// What the final rename does with a target that exists by then.
 enum class ExistingTarget {
-    /// Leave it as it is and throw InvalidInputError: without --overwrite, a target that exists
+    /// Leave it as it is and throw InvalidInputError: without overwrite, a target that exists
     /// at the end was created by someone else while the run was writing.
     Refuse,
-    /// Replace it atomically (--overwrite, or a GeoPackage copied to add layers to it).
+    /// Replace it atomically (overwrite, or a GeoPackage copied to add layers to it).
     Replace,
 };
 
@@ -63,8 +67,9 @@ class AtomicOutput {
 public:
     /// Prefix ".<stem>.tmp-<pid>-<64 random bits>" in the directory of `output`; the stem is
     /// cut short when the temporary names would pass the file system's 255-byte name limit.
+    /// A refused target's message points to the overwrite option as `optionName` names it.
     AtomicOutput(std::string_view stage, const std::filesystem::path& output,
-                 ExistingTarget existing);
+                 ExistingTarget existing, const OptionNamer& optionName);
     AtomicOutput(const AtomicOutput&) = delete;
     AtomicOutput& operator=(const AtomicOutput&) = delete;
     ~AtomicOutput();
@@ -91,6 +96,8 @@ private:
     std::filesystem::path m_directory;
     std::string m_prefix;
     ExistingTarget m_existing;
+    /// "overwrite" or "--overwrite", for the message of a refused target.
+    std::string m_overwriteName;
 };
 
 } // namespace terratin::io::detail

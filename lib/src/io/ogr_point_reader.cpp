@@ -138,8 +138,10 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
             return false;
         if (!z) {
             if (!point.Is3D())
-                throw InvalidInputError(where + "its points have no z; name the elevation "
-                                                "attribute with --z-field NAME");
+                throw InvalidInputError(where +
+                                        "its points have no z; name the elevation attribute "
+                                        "with " +
+                                        options.optionName("z_field"));
             z = point.getZ();
         }
         cloud.points.push_back({point.getX(), point.getY(), *z});

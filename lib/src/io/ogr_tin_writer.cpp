@@ -318,7 +318,8 @@ TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                                const ProgressCallback& progress) {
     const double insertShare = options.spatialIndex ? 0.5 : kInsertShareWithoutIndex;
     const ProgressTicker ticker(kStage, progress, output, 0.0, insertShare, mesh.triangleCount());
-    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite));
+    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite),
+                                   options.optionName);
     const fs::path temporary = temporaries.temporary(".fgb");
 
     // With an index: the triangles in the order GDAL will store them, and GDAL's temporary
@@ -377,7 +378,8 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
                               const ProgressCallback& progress) {
     const ProgressTicker ticker(kStage, progress, output, 0.0, kInsertShareWithoutIndex,
                                 mesh.triangleCount());
-    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite));
+    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite),
+                                   options.optionName);
     const fs::path temporaryDirectory = temporaries.temporary("");
     std::error_code error;
     if (!fs::create_directory(temporaryDirectory, error) || error)

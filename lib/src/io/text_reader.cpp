@@ -72,9 +72,8 @@ public:
             m_delimiter = d == '\t' ? ' ' : d;
         }
         if (!options.columns.empty() && options.columns.size() != 3)
-            throw InvalidInputError(std::string(kStage) +
-                                    ": --columns takes three columns "
-                                    "(x,y,z), got " +
+            throw InvalidInputError(std::string(kStage) + ": " + options.optionName("columns") +
+                                    " takes three columns (x,y,z), got " +
                                     std::to_string(options.columns.size()));
     }
 
@@ -133,6 +132,8 @@ private:
         return count;
     }
 
+    std::string columnsName() const { return m_options.optionName("columns"); }
+
     std::string where(std::uint64_t number) const {
         return std::string(kStage) + ": '" + m_name + "' line " + std::to_string(number) + ": ";
     }
@@ -162,7 +163,7 @@ private:
         for (std::size_t i = 0; i < m_options.columns.size(); ++i) {
             const std::string_view entry = trim(m_options.columns[i]);
             if (entry.empty())
-                throw InvalidInputError(std::string(kStage) + ": empty entry in --columns");
+                throw InvalidInputError(std::string(kStage) + ": empty entry in " + columnsName());
             if (std::all_of(entry.begin(), entry.end(),
                             [](char c) { return c >= '0' && c <= '9'; })) {
                 std::size_t value = 0;
@@ -170,8 +171,8 @@ private:
                     std::from_chars(entry.data(), entry.data() + entry.size(), value);
                 if (error != std::errc() || value == 0 || value > kMaxColumnNumber)
                     throw InvalidInputError(std::string(kStage) + ": column '" +
-                                            std::string(entry) +
-                                            "' in --columns: columns are numbered from 1 to " +
+                                            std::string(entry) + "' in " + columnsName() +
+                                            ": columns are numbered from 1 to " +
                                             std::to_string(kMaxColumnNumber));
                 byNumber[i] = value - 1;
             } else {
@@ -199,8 +200,8 @@ private:
         if (namesGiven) {
             if (std::all_of(all.begin(), all.end(), looksNumeric))
                 throw InvalidInputError(where(number) +
-                                        "no header line to find the named "
-                                        "columns of --columns in (the first line is numbers)");
+                                        "no header line to find the columns named in " +
+                                        columnsName() + " (the first line is numbers)");
             header = true;
         }
 
@@ -227,7 +228,7 @@ private:
                 const std::string_view entry = trim(m_options.columns[i]);
                 if (!header)
                     throw InvalidInputError(where(number) + "no header line to find column '" +
-                                            std::string(entry) + "' of --columns in");
+                                            std::string(entry) + "' of " + columnsName() + " in");
                 const auto found = findName(entry);
                 if (!found)
                     throw InvalidInputError(where(number) + "the header has no column '" +

@@ -51,15 +51,15 @@ TinFormat parseTinFormat(const std::string& name) {
                             "'; use gpkg, shp, fgb, 2dm, ply, obj or landxml");
 }
 
-TinFormat tinFormatFromPath(const std::filesystem::path& path) {
+TinFormat tinFormatFromPath(const std::filesystem::path& path, const OptionNamer& optionName) {
     const std::string extension = lowercase(path.extension().string());
     for (const auto& [known, format] : kExtensions)
         if (extension == known)
             return format;
     throw InvalidInputError(std::string(kStage) + ": cannot tell the output format of '" +
                             path.string() +
-                            "' from its extension; use .gpkg .shp .fgb .2dm .ply .obj .xml "
-                            "(or --format)");
+                            "' from its extension; use .gpkg .shp .fgb .2dm .ply .obj .xml (or " +
+                            optionName("format") + ")");
 }
 
 std::string_view tinFormatName(TinFormat format) {

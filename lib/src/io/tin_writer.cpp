@@ -101,8 +101,8 @@ TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
                                const TinWriteOptions& options, const detail::MeshFileInfo& info,
                                const ProgressCallback& progress) {
     const std::string_view stage = stageOf(options.format);
-    const detail::AtomicOutput temporaries(stage, output,
-                                           detail::existingTargetFor(options.overwrite));
+    const detail::AtomicOutput temporaries(
+        stage, output, detail::existingTargetFor(options.overwrite), options.optionName);
     const fs::path temporary = temporaries.temporary(output.extension().string());
     const std::uint64_t total = mesh.vertexCount() + mesh.triangleCount();
     const detail::ProgressTicker ticker(stage, progress, output, 0.0, kMeshRecordShare, total);
@@ -157,21 +157,24 @@ std::string edgeLayerName(const std::string& layerName) {
 void checkTinWriteOptions(const TinWriteOptions& options) {
     const bool geoPackage = options.format == TinFormat::GeoPackage;
     const std::string format(tinFormatName(options.format));
+    const OptionNamer& name = options.optionName;
+    const std::string needsGeoPackage = " needs a GeoPackage output (.gpkg), not " + format;
     if (options.nodes && !geoPackage)
-        throwInvalid(kStage, "--nodes needs a GeoPackage output (.gpkg), not " + format);
+        throwInvalid(kStage, name("nodes") + needsGeoPackage);
     if (options.edges && !geoPackage)
-        throwInvalid(kStage, "--edges needs a GeoPackage output (.gpkg), not " + format);
+        throwInvalid(kStage, name("edges") + needsGeoPackage);
     if (options.appendLayer && !geoPackage)
-        throwInvalid(kStage, "--append-layer needs a GeoPackage output (.gpkg), not " + format);
+        throwInvalid(kStage, name("append_layer") + needsGeoPackage);
     if (!options.spatialIndex && !geoPackage && options.format != TinFormat::FlatGeobuf)
-        throwInvalid(kStage,
-                     "--no-spatial-index applies to GeoPackage and FlatGeobuf, not " + format);
+        throwInvalid(kStage, name("no_spatial_index") +
+                                 " applies to GeoPackage and FlatGeobuf, not " + format);
     if (options.qgisStyle && !isOgrFormat(options.format))
-        throwInvalid(kStage, "--qgis-style applies to GeoPackage, Shapefile and FlatGeobuf "
-                             "outputs, not " +
+        throwInvalid(kStage, name("qgis_style") +
+                                 " applies to GeoPackage, Shapefile and FlatGeobuf outputs, not " +
                                  format);
     if (options.qgisStyle && options.attributes == AttributeSet::None)
-        throwInvalid(kStage, "--qgis-style colours by z_mean: it needs --attributes basic or all");
+        throwInvalid(kStage, name("qgis_style") + " colours by z_mean: it needs " +
+                                 name("attributes") + " basic or all");
     if (geoPackage && options.layerName.empty())
         throwInvalid(kStage, "the layer name is empty");
     // The mesh formats write the name raw into a line of text (2DM MESHNAME, OBJ "o"): a
@@ -204,7 +207,7 @@ void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {
     // checked when the copy is opened.
     if (options.appendLayer)
         outputs.erase(outputs.begin());
-    detail::refuseExistingOutputs(stage, outputs, options.overwrite);
+    detail::refuseExistingOutputs(stage, outputs, options.overwrite, options.optionName);
 }
 
 TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output, const TinWriteOptions& options,
@@ -236,7 +239,8 @@ TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output, const TinWr
             std::minmax_element(mesh.vertices.begin(), mesh.vertices.end(),
                                 [](const Point3& a, const Point3& b) { return a.z < b.z; });
         styleTemporaries = std::make_unique<detail::AtomicOutput>(
-            stage, stylePath(output), detail::existingTargetFor(options.overwrite));
+            stage, stylePath(output), detail::existingTargetFor(options.overwrite),
+            options.optionName);
         styleTemporary = styleTemporaries->temporary(".qml");
         detail::BufferedFile style(stage, styleTemporary, stylePath(output));
         style.text(detail::qgisTerrainStyle("z_mean", lowest->z, highest->z));

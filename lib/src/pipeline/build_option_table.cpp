@@ -455,6 +455,11 @@ std::string optionName(std::string_view keyword, OptionSpelling spelling) {
     return optionName(*option, spelling);
 }
 
+OptionNamer optionNamer(OptionSpelling spelling) {
+    return OptionNamer(
+        [spelling](std::string_view keyword) { return optionName(keyword, spelling); });
+}
+
 void applyBuildOption(BuildOptions& options, const OptionValue& value, OptionSpelling spelling) {
     const BuildOptionSpec* option = findBuildOption(value.name, spelling);
     if (option == nullptr)
@@ -479,7 +484,7 @@ BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpe
     if (options.keepGeographic && !options.targetSrs.empty())
         refuse(name("keep_geographic") + " and " + name("t_srs") + " contradict each other");
     if (!options.format)
-        options.format = io::tinFormatFromPath(options.output);
+        options.format = io::tinFormatFromPath(options.output, optionNamer(spelling));
     checkBuildOptions(options);
     return options;
 }

@@ -178,6 +178,7 @@ io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat f
     writeOptions.appendLayer = options.appendLayer;
     writeOptions.spatialIndex = options.spatialIndex;
     writeOptions.qgisStyle = options.qgisStyle;
+    writeOptions.optionName = optionNamer(options.optionSpelling);
     return writeOptions;
 }
 
@@ -201,7 +202,8 @@ namespace {
 BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
     const Stopwatch totalTime;
     const io::TinFormat format =
-        options.format ? *options.format : io::tinFormatFromPath(options.output);
+        options.format ? *options.format
+                       : io::tinFormatFromPath(options.output, optionNamer(options.optionSpelling));
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
     io::checkTinWriteOptions(writeOptions);           // contradictory options fail before reading
     io::checkTinOutput(options.output, writeOptions); // an output that would be refused, too

@@ -76,6 +76,8 @@ io::InputReadOptions readOptionsOf(const BuildOptions& options) {
     read.text.columns = options.textColumns;
     read.vector.zField = options.zField;
     read.vector.layer = options.inputLayer;
+    read.text.optionName = optionNamer(options.optionSpelling);
+    read.vector.optionName = optionNamer(options.optionSpelling);
     return read;
 }
 

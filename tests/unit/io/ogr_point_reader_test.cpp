@@ -18,6 +18,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace terratin::io {
 namespace {
@@ -114,12 +115,26 @@ TEST(OgrPointReader, ReadsGeoJsonPoints_WithZFromAField) {
     EXPECT_EQ(cloud.filteredOut, 2U); // null z, line
     EXPECT_TRUE(crs::describeCrs(cloud.crsWkt).geographic);
 
-    // 2D points without --z-field: a clear error.
+    // 2D points without a z field: a clear error, naming the option by its keyword for a
+    // library caller (issue 23) and as the caller names it otherwise (the pipeline: --z-field
+    // for the command line).
     try {
         readOgrPoints(path);
         FAIL() << "2D points without a z field were accepted";
     } catch (const InvalidInputError& error) {
-        EXPECT_NE(std::string(error.what()).find("--z-field"), std::string::npos);
+        EXPECT_NE(std::string(error.what()).find("with z_field"), std::string::npos)
+            << error.what();
+        EXPECT_EQ(std::string(error.what()).find("--"), std::string::npos) << error.what();
+    }
+    OgrPointReadOptions named;
+    named.optionName =
+        OptionNamer([](std::string_view keyword) { return "<" + std::string(keyword) + ">"; });
+    try {
+        readOgrPoints(path, named);
+        FAIL() << "2D points without a z field were accepted";
+    } catch (const InvalidInputError& error) {
+        EXPECT_NE(std::string(error.what()).find("with <z_field>"), std::string::npos)
+            << error.what();
     }
 }
 

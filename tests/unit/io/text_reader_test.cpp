@@ -6,11 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace terratin::io {
 namespace {
@@ -19,6 +23,12 @@ namespace fs = std::filesystem;
 
 PointCloud parse(const std::string& text, const TextReadOptions& options = {}) {
     return readTextPointsFromMemory(text, "points.xyz", options);
+}
+
+TextReadOptions withColumns(std::vector<std::string> columns) {
+    TextReadOptions options;
+    options.columns = std::move(columns);
+    return options;
 }
 
 /// The message of the InvalidInputError that `text` raises, "" when none.
@@ -108,13 +118,48 @@ TEST(TextReader, RejectsFilesWithoutPoints_AndBinaryContent) {
 }
 
 TEST(TextReader, RejectsBadColumnsOption) {
-    EXPECT_NE(rejection("1 2 3\n", {{"0", "1", "2"}, {}}).find("numbered from 1"),
+    EXPECT_NE(rejection("1 2 3\n", withColumns({"0", "1", "2"})).find("numbered from 1"),
               std::string::npos);
-    EXPECT_NE(rejection("1 2 3\n", {{"1", "2"}, {}}).find("three columns"), std::string::npos);
-    EXPECT_NE(rejection("1 2 3\n", {{"x", "y", "z"}, {}}).find("no header line"),
+    EXPECT_NE(rejection("1 2 3\n", withColumns({"1", "2"})).find("three columns"),
               std::string::npos);
-    EXPECT_NE(rejection("a b c\n1 2 3\n", {{"a", "b", "elev"}, {}}).find("no column 'elev'"),
+    EXPECT_NE(rejection("1 2 3\n", withColumns({"x", "y", "z"})).find("no header line"),
               std::string::npos);
+    EXPECT_NE(rejection("a b c\n1 2 3\n", withColumns({"a", "b", "elev"})).find("no column 'elev'"),
+              std::string::npos);
+}
+
+/// `pattern` with each "{}" replaced by `name`.
+std::string spelled(std::string pattern, const std::string& name) {
+    for (std::size_t at = pattern.find("{}"); at != std::string::npos; at = pattern.find("{}"))
+        pattern.replace(at, 2, name);
+    return pattern;
+}
+
+// Issue 23: a library caller gave `columns`, not the command line's --columns; the pipeline
+// names it the command line's way through options.optionName.
+TEST(TextReader, NamesTheColumnsOptionByKeyword_UnlessTheCallerNamesItOtherwise) {
+    struct Case {
+        std::vector<std::string> columns;
+        std::string message;
+    };
+    const std::vector<Case> cases = {
+        {{"1", "2"}, "{} takes three columns (x,y,z), got 2"},
+        {{"1", "", "3"}, "empty entry in {}"},
+        {{"1", "2", "0"}, "column '0' in {}: columns are numbered from 1"},
+        {{"x", "y", "z"}, "no header line to find the columns named in {} (the first line"},
+    };
+    TextReadOptions named;
+    named.optionName =
+        OptionNamer([](std::string_view keyword) { return "<" + std::string(keyword) + ">"; });
+    for (const auto& [columns, message] : cases) {
+        const std::string byKeyword = rejection("1 2 3\n", withColumns(columns));
+        EXPECT_NE(byKeyword.find(spelled(message, "columns")), std::string::npos) << byKeyword;
+        EXPECT_EQ(byKeyword.find("--"), std::string::npos) << byKeyword;
+
+        named.columns = columns;
+        const std::string byCaller = rejection("1 2 3\n", named);
+        EXPECT_NE(byCaller.find(spelled(message, "<columns>")), std::string::npos) << byCaller;
+    }
 }
 
 TEST(TextReader, HonoursAnExplicitDelimiter) {

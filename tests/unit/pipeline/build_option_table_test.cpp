@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -395,6 +396,51 @@ TEST(ParseBuildOptions, RunBuildMessagesFollowTheSpelling) {
     EXPECT_EQ(messageOf([&] { runBuild(parseBuildOptions(values, OptionSpelling::Keyword)); }),
               "Simplification (max_error...) does not combine with z_factor; scale the DEM "
               "first (gdal_calc)");
+}
+
+// Issue 23: the writer's messages (io, below the pipeline) name options the way
+// parseBuildOptions was called, through BuildOptions::optionSpelling.
+TEST(ParseBuildOptions, WriterMessagesFollowTheSpelling) {
+    test::TemporaryDirectory directory;
+    const std::string existing = (directory.path() / "tin.gpkg").string();
+    std::ofstream(existing) << "someone's";
+    struct Case {
+        std::vector<OptionValue> values;
+        std::string commandLine;
+        std::string keyword;
+    };
+    const std::vector<Case> cases = {
+        {{{"inputs", "dem.tif"}, {"output", "tin.shp"}, {"nodes", "true"}},
+         "TinWriter: --nodes needs a GeoPackage output (.gpkg), not ESRI Shapefile",
+         "TinWriter: nodes needs a GeoPackage output (.gpkg), not ESRI Shapefile"},
+        {{{"inputs", "dem.tif"}, {"output", "tin.ply"}, {"no_spatial_index", "true"}},
+         "TinWriter: --no-spatial-index applies to GeoPackage and FlatGeobuf, not PLY",
+         "TinWriter: no_spatial_index applies to GeoPackage and FlatGeobuf, not PLY"},
+        {{{"inputs", "dem.tif"},
+          {"output", "tin.gpkg"},
+          {"qgis_style", "true"},
+          {"attributes", "none"}},
+         "TinWriter: --qgis-style colours by z_mean: it needs --attributes basic or all",
+         "TinWriter: qgis_style colours by z_mean: it needs attributes basic or all"},
+        {{{"inputs", "dem.tif"}, {"output", "tin.stl"}},
+         "TinFormat: cannot tell the output format of 'tin.stl' from its extension; use .gpkg "
+         ".shp .fgb .2dm .ply .obj .xml (or --format)",
+         "TinFormat: cannot tell the output format of 'tin.stl' from its extension; use .gpkg "
+         ".shp .fgb .2dm .ply .obj .xml (or format)"},
+        {{{"inputs", "dem.tif"}, {"output", existing}},
+         "OgrTinWriter: the output '" + existing + "' exists; use --overwrite",
+         "OgrTinWriter: the output '" + existing + "' exists; use overwrite"},
+    };
+    for (const Case& c : cases) {
+        EXPECT_EQ(messageOf([&] {
+                      runBuild(parseBuildOptions(spelled(c.values, OptionSpelling::CommandLine),
+                                                 OptionSpelling::CommandLine));
+                  }),
+                  c.commandLine);
+        EXPECT_EQ(
+            messageOf([&] { runBuild(parseBuildOptions(c.values, OptionSpelling::Keyword)); }),
+            c.keyword);
+    }
 }
 
 TEST(ParseBuildOptions, CommandLineGivesWhatTheLibraryGives) {

@@ -2,6 +2,8 @@
 /// @file
 /// The output formats of a TIN, by name and by file extension.
 
+#include "terratin/option_namer.hpp"
+
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -26,8 +28,9 @@ enum class TinFormat {
 TinFormat parseTinFormat(const std::string& name);
 
 /// The format implied by the file extension (.gpkg .shp .fgb .2dm .ply .obj .xml .landxml,
-/// case-insensitive); throws InvalidInputError when the extension is none of them.
-TinFormat tinFormatFromPath(const std::filesystem::path& path);
+/// case-insensitive); throws InvalidInputError when the extension is none of them, pointing to
+/// the format option as `optionName` names it ("format" by default).
+TinFormat tinFormatFromPath(const std::filesystem::path& path, const OptionNamer& optionName = {});
 
 /// A short display name: "GPKG", "ESRI Shapefile", "FlatGeobuf", "2DM", "PLY", "OBJ",
 /// "LandXML" (the GDAL driver name for the OGR formats).

@@ -3,6 +3,7 @@
 /// writeTin: the one entry point that writes a TinMesh in any output format.
 
 #include "terratin/io/tin_format.hpp"
+#include "terratin/option_namer.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 #include "terratin/version.hpp"
@@ -65,6 +66,10 @@ struct TinWriteOptions {
     /// Software version written into LandXML's Application element (and the PLY / OBJ
     /// headers): this library's by default.
     std::string softwareVersion = kVersionString;
+    /// How messages name the options above: by keyword ("overwrite", "append_layer") unless the
+    /// caller names them otherwise (runBuild: its caller's way, "--overwrite" on the command
+    /// line).
+    OptionNamer optionName;
 };
 
 /// What was written.
@@ -81,7 +86,8 @@ struct TinWriteResult {
 /// Throws InvalidInputError when the options contradict each other or the format (nodes,
 /// edges, appendLayer or spatialIndex=false outside GeoPackage; qgisStyle with a mesh format
 /// or without attributes; a layer name holding a control character, such as a newline, which
-/// would corrupt the text formats; vertexCells of the wrong size is checked by writeTin).
+/// would corrupt the text formats; vertexCells of the wrong size is checked by writeTin). The
+/// message names the options as options.optionName does: "nodes needs a GeoPackage output".
 void checkTinWriteOptions(const TinWriteOptions& options);
 
 /// Refuses, before anything is read or computed, the output writeTin would refuse: a location

@@ -12,6 +12,7 @@
 /// options (`inputs`, `classes`) and into one comma-joined text for the List option
 /// (`columns`); anything else into its text.
 
+#include "terratin/option_namer.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 #include "terratin/pipeline/option_spelling.hpp"
 
@@ -85,6 +86,10 @@ std::string optionName(const BuildOptionSpec& option, OptionSpelling spelling);
 
 /// optionName of the option whose keyword is `keyword` (which must exist).
 std::string optionName(std::string_view keyword, OptionSpelling spelling);
+
+/// optionName(keyword, spelling) for the io module's messages, which name options through an
+/// OptionNamer (io is below this table).
+OptionNamer optionNamer(OptionSpelling spelling);
 
 /// Parses `value` into `options`, as if it came after the ones parsed before: a Repeatable option
 /// adds to what is there, any other replaces it; the simplification options (max_error,

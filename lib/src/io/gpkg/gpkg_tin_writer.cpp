@@ -72,17 +72,19 @@ GDALDatasetUniquePtr openGeoPackageForUpdate(const fs::path& path, const fs::pat
     return dataset;
 }
 
-/// Removes layer `name` when it exists and `overwrite` allows; refuses otherwise.
-void makeRoomForLayer(GDALDataset& dataset, const std::string& name, bool overwrite,
+/// Removes layer `name` when it exists and options.overwrite allows; refuses otherwise, naming
+/// the options as options.optionName does.
+void makeRoomForLayer(GDALDataset& dataset, const std::string& name, const TinWriteOptions& options,
                       const fs::path& output) {
     for (int i = 0; i < dataset.GetLayerCount(); ++i) {
         OGRLayer* layer = dataset.GetLayer(i);
         if (layer == nullptr || !EQUAL(layer->GetName(), name.c_str()))
             continue;
-        if (!overwrite)
+        if (!options.overwrite)
             throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
-                                    " already has a layer '" + name +
-                                    "'; choose another --layer or use --overwrite to replace it");
+                                    " already has a layer '" + name + "'; choose another " +
+                                    options.optionName("layer") + " or use " +
+                                    options.optionName("overwrite") + " to replace it");
         if (dataset.DeleteLayer(i) != OGRERR_NONE)
             throwGdalError(kOgrStage, "cannot replace the layer '" + name + "' of",
                            output.string());
@@ -153,7 +155,7 @@ void createLayers(const fs::path& temporary, bool appending, std::uint64_t featu
     if (appending)
         for (const std::string* name : {&names.triangles, &names.nodes, &names.edges})
             if (!name->empty())
-                makeRoomForLayer(*dataset, *name, options.overwrite, output);
+                makeRoomForLayer(*dataset, *name, options, output);
 
     std::vector<std::pair<const char*, OGRFieldType>> triangleFields;
     for (const auto& column : attributeColumns(options.attributes))
@@ -282,7 +284,8 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     // only what --overwrite allows, even one that appeared while this run was writing.
     const AtomicOutput temporaries(kOgrStage, output,
                                    appending ? ExistingTarget::Replace
-                                             : existingTargetFor(options.overwrite));
+                                             : existingTargetFor(options.overwrite),
+                                   options.optionName);
     const fs::path temporary = temporaries.temporary(".gpkg");
     if (appending) {
         std::error_code error;

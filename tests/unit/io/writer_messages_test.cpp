@@ -1,0 +1,178 @@
+// Issue 23: the writer's messages name options the caller's way. A C++ caller who never set
+// TinWriteOptions::optionName reads keywords ("overwrite"), never a command-line flag; a caller
+// with its own OptionNamer (runBuild: "--overwrite" for the command line) reads its names.
+
+#include "terratin/error.hpp"
+#include "terratin/io/tin_format.hpp"
+#include "terratin/io/tin_writer.hpp"
+#include "terratin/option_namer.hpp"
+
+#include "mesh_readers.hpp"
+#include "ogr_test_support.hpp"
+#include "temporary_directory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace terratin::io {
+namespace {
+
+using test::TemporaryDirectory;
+
+/// How the tests' own caller names options: "<overwrite>". Appended piecewise: GCC 12 reports a
+/// spurious -Wrestrict for "<" + string + ">".
+std::string bracketed(std::string_view keyword) {
+    std::string name = "<";
+    name += keyword;
+    name += '>';
+    return name;
+}
+
+/// A namer, and how it names the keyword `{keyword}` in a message pattern.
+struct Naming {
+    std::string label;
+    OptionNamer namer;
+    std::function<std::string(const std::string&)> name;
+};
+
+std::vector<Naming> namings() {
+    return {{"keywords", OptionNamer(), [](const std::string& keyword) { return keyword; }},
+            {"the caller's names", OptionNamer(bracketed),
+             [](const std::string& keyword) { return bracketed(keyword); }}};
+}
+
+/// `pattern` with each "{keyword}" replaced by naming.name(keyword).
+std::string spelled(const std::string& pattern, const Naming& naming) {
+    std::string text;
+    std::size_t from = 0;
+    for (std::size_t open = pattern.find('{'); open != std::string::npos;
+         open = pattern.find('{', from)) {
+        const std::size_t close = pattern.find('}', open);
+        text += pattern.substr(from, open - from) +
+                naming.name(pattern.substr(open + 1, close - open - 1));
+        from = close + 1;
+    }
+    return text + pattern.substr(from);
+}
+
+/// The message of the InvalidInputError `call` throws, "" when it throws none.
+std::string refusal(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const InvalidInputError& error) {
+        return error.what();
+    }
+    return {};
+}
+
+/// Checks that `message` holds `pattern` spelled the `naming` way, and no command-line flag
+/// unless the caller named options so.
+void expectSpelled(const std::string& message, const std::string& pattern, const Naming& naming) {
+    EXPECT_NE(message.find(spelled(pattern, naming)), std::string::npos)
+        << naming.label << ": " << message;
+    EXPECT_EQ(message.find("--"), std::string::npos) << naming.label << ": " << message;
+}
+
+TinWriteOptions optionsFor(TinFormat format, const Naming& naming) {
+    TinWriteOptions options;
+    options.format = format;
+    options.crsWkt = test::utm10nWkt();
+    options.optionName = naming.namer;
+    return options;
+}
+
+TEST(WriterMessages, NameContradictoryOptionsTheCallersWay) {
+    struct Case {
+        TinFormat format;
+        std::function<void(TinWriteOptions&)> ask;
+        std::string message;
+    };
+    const std::vector<Case> cases = {
+        {TinFormat::Shapefile, [](TinWriteOptions& o) { o.nodes = true; },
+         "{nodes} needs a GeoPackage output (.gpkg), not ESRI Shapefile"},
+        {TinFormat::TwoDm, [](TinWriteOptions& o) { o.edges = true; },
+         "{edges} needs a GeoPackage output (.gpkg), not 2DM"},
+        {TinFormat::FlatGeobuf, [](TinWriteOptions& o) { o.appendLayer = true; },
+         "{append_layer} needs a GeoPackage output (.gpkg), not FlatGeobuf"},
+        {TinFormat::Ply, [](TinWriteOptions& o) { o.spatialIndex = false; },
+         "{no_spatial_index} applies to GeoPackage and FlatGeobuf, not PLY"},
+        {TinFormat::Obj, [](TinWriteOptions& o) { o.qgisStyle = true; },
+         "{qgis_style} applies to GeoPackage, Shapefile and FlatGeobuf outputs, not OBJ"},
+        {TinFormat::GeoPackage,
+         [](TinWriteOptions& o) {
+             o.qgisStyle = true;
+             o.attributes = AttributeSet::None;
+         },
+         "{qgis_style} colours by z_mean: it needs {attributes} basic or all"},
+    };
+    for (const Naming& naming : namings()) {
+        for (const Case& c : cases) {
+            TinWriteOptions options = optionsFor(c.format, naming);
+            c.ask(options);
+            expectSpelled(refusal([&] { checkTinWriteOptions(options); }), c.message, naming);
+        }
+    }
+}
+
+TEST(WriterMessages, NameTheFormatOptionTheCallersWay_WhenTheExtensionIsUnknown) {
+    for (const Naming& naming : namings())
+        expectSpelled(refusal([&] { tinFormatFromPath("hood.stl", naming.namer); }),
+                      "use .gpkg .shp .fgb .2dm .ply .obj .xml (or {format})", naming);
+    // Without a namer: the keyword.
+    EXPECT_NE(refusal([] { tinFormatFromPath("hood.stl"); }).find("(or format)"),
+              std::string::npos);
+}
+
+TEST(WriterMessages, NameTheOverwriteOptionTheCallersWay_WhenTheOutputExists) {
+    for (const Naming& naming : namings()) {
+        const TemporaryDirectory directory;
+        std::ofstream(directory / "tin.ply") << "someone's";
+        expectSpelled(refusal([&] {
+                          writeTin(test::gridTin(3), directory / "tin.ply",
+                                   optionsFor(TinFormat::Ply, naming));
+                      }),
+                      "tin.ply' exists; use {overwrite}", naming);
+    }
+}
+
+TEST(WriterMessages, NameTheOverwriteOptionTheCallersWay_WhenTheOutputAppearsDuringTheRun) {
+    for (const Naming& naming : namings()) {
+        const TemporaryDirectory directory;
+        const auto output = directory / "tin.obj";
+        const auto createTheOutput = [&](double, std::string_view) {
+            if (!std::filesystem::exists(output))
+                std::ofstream(output) << "someone's";
+            return true;
+        };
+        expectSpelled(refusal([&] {
+                          writeTin(test::gridTin(5), output, optionsFor(TinFormat::Obj, naming),
+                                   createTheOutput);
+                      }),
+                      "appeared while this run was writing; it was left as it is (use "
+                      "{overwrite} to replace it)",
+                      naming);
+    }
+}
+
+TEST(WriterMessages, NameTheLayerAndOverwriteOptionsTheCallersWay_WhenAnAppendedLayerExists) {
+    for (const Naming& naming : namings()) {
+        const TemporaryDirectory directory;
+        const auto output = directory / "tin.gpkg";
+        TinWriteOptions options = optionsFor(TinFormat::GeoPackage, naming);
+        writeTin(test::gridTin(3), output, options);
+        options.appendLayer = true;
+        expectSpelled(refusal([&] { writeTin(test::gridTin(3), output, options); }),
+                      "already has a layer 'tin'; choose another {layer} or use {overwrite} to "
+                      "replace it",
+                      naming);
+    }
+}
+
+} // namespace
+} // namespace terratin::io
