@@ -1,0 +1,166 @@
+#include "constraint_inserter.hpp"
+
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace terratin::detail {
+
+std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p) {
+    const MeshLocation where = m_mesh.locate({p.x, p.y}, m_hintTriangle);
+    if (where.kind == MeshLocation::Kind::OutsideHull)
+        return std::nullopt;
+    if (where.kind == MeshLocation::Kind::OnVertex)
+        return where.vertex;
+    ++m_addedPoints;
+    return insertVertex(p, kConstraintPointSource, where);
+}
+
+std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t source,
+                                               const MeshLocation& where) {
+    const std::uint32_t v = m_mesh.insertPoint(
+        p, source, where, [this](std::uint32_t a, std::uint32_t b, std::uint32_t middle) {
+            const ConstraintOwners::Owners owners = m_owners.take(a, b);
+            m_owners.add(a, middle, owners);
+            m_owners.add(middle, b, owners);
+        });
+    m_hintTriangle = m_mesh.halfEdgeLeaving(v) / 3;
+    return v;
+}
+
+void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner) {
+    m_pieces.push_back({a, b, {owner}});
+    while (!m_pieces.empty()) {
+        const Piece piece = std::move(m_pieces.back());
+        m_pieces.pop_back();
+        insertPiece(piece);
+    }
+}
+
+void ConstraintInserter::insertPiece(const Piece& piece) {
+    std::uint32_t u = piece.from;
+    const std::uint32_t v = piece.to;
+    while (u != v) {
+        const SegmentStart start = findSegmentStart(m_mesh, u, v);
+        if (start.kind == SegmentStart::Kind::AlongEdge) {
+            markConstrained(start.halfEdge, piece.owners);
+            u = start.vertex;
+            continue;
+        }
+        const std::size_t blocking = walkCrossedEdges(m_mesh, u, v, start, m_crossed);
+        if (blocking != kNoHalfEdge) {
+            splitAtCrossing(u, v, piece.owners, blocking);
+            return;
+        }
+        markConstrained(flipSegmentIn(m_mesh, u, m_crossed), piece.owners);
+        u = m_crossed.end;
+    }
+}
+
+void ConstraintInserter::markConstrained(std::size_t h, const ConstraintOwners::Owners& owners) {
+    m_mesh.setConstrained(h, true);
+    m_owners.add(m_mesh.from(h), m_mesh.to(h), owners);
+}
+
+// u -> v crosses the constrained edge c -> d: both segments are bent through a vertex at the
+// crossing, computed along c -> d (the segment inserted first). Rounding may put that vertex an
+// ulp off either segment, so it is found again by location, c -> d is unmarked and both are
+// re-inserted in two pieces. When c or d lies within rounding distance of u -> v, u -> v goes
+// through it instead: a later segment through an earlier crossing then uses its vertex rather
+// than making another one a rounding away from it.
+void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
+                                         const ConstraintOwners::Owners& owners,
+                                         std::size_t crossed) {
+    const std::uint32_t c = m_mesh.from(crossed);
+    const std::uint32_t d = m_mesh.to(crossed);
+    const Point2 pu = m_mesh.xy(u);
+    const Point2 pv = m_mesh.xy(v);
+    // Distances of c and d from the line uv, times |uv|; their signs differ exactly.
+    const double sideC = predicates::orient2d(pu, pv, m_mesh.xy(c));
+    const double sideD = predicates::orient2d(pu, pv, m_mesh.xy(d));
+    const std::optional<std::uint32_t> near = nearEndpoint(u, v, c, d, sideC, sideD);
+    if (near) {
+        m_pieces.push_back({*near, v, owners});
+        m_pieces.push_back({u, *near, owners});
+        return;
+    }
+    const double t = std::clamp(sideC / (sideC - sideD), 0.0, 1.0);
+    const Point3& pc = m_mesh.vertex(c);
+    const Point3& pd = m_mesh.vertex(d);
+    const Point3 crossing{pc.x + t * (pd.x - pc.x), pc.y + t * (pd.y - pc.y),
+                          pc.z + t * (pd.z - pc.z)};
+
+    const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
+    m_mesh.setConstrained(crossed, false);
+    const MeshLocation where = m_mesh.locate({crossing.x, crossing.y}, crossed / 3);
+    std::uint32_t w = where.vertex;
+    if (where.kind == MeshLocation::Kind::OutsideHull)
+        throw std::logic_error("insertConstraints: a crossing lies outside the convex hull");
+    if (where.kind != MeshLocation::Kind::OnVertex) {
+        w = insertVertex(crossing, kIntersectionSource, where);
+        ++m_intersections;
+    }
+    m_pieces.push_back({c, w, crossedOwners});
+    m_pieces.push_back({w, d, crossedOwners});
+    m_pieces.push_back({w, v, owners});
+    m_pieces.push_back({u, w, owners});
+}
+
+// The crossing vertices computed above lie within about an ulp of both segments (the
+// rounding of t, of the product and of the sum), so a vertex closer than kSnapUlps ulps of
+// the coordinates to the segment is taken as lying on it.
+std::optional<std::uint32_t> ConstraintInserter::nearEndpoint(std::uint32_t u, std::uint32_t v,
+                                                              std::uint32_t c, std::uint32_t d,
+                                                              double sideC, double sideD) const {
+    constexpr double kSnapUlps = 4.0;
+    const Point2 pu = m_mesh.xy(u);
+    const Point2 pv = m_mesh.xy(v);
+    const Point2 pc = m_mesh.xy(c);
+    const Point2 pd = m_mesh.xy(d);
+    const double magnitude =
+        std::max({std::fabs(pu.x), std::fabs(pu.y), std::fabs(pv.x), std::fabs(pv.y),
+                  std::fabs(pc.x), std::fabs(pc.y), std::fabs(pd.x), std::fabs(pd.y)});
+    const double tolerance = kSnapUlps * std::numeric_limits<double>::epsilon() * magnitude *
+                             std::hypot(pv.x - pu.x, pv.y - pu.y);
+    if (std::fabs(sideC) <= tolerance && std::fabs(sideC) <= std::fabs(sideD))
+        return c;
+    if (std::fabs(sideD) <= tolerance)
+        return d;
+    return std::nullopt;
+}
+
+std::vector<std::uint32_t> ConstraintInserter::chainOf(std::uint32_t a, std::uint32_t b,
+                                                       std::uint32_t owner) const {
+    std::vector<std::uint32_t> chain{a};
+    std::uint32_t previous = a;
+    std::uint32_t current = a;
+    while (current != b) {
+        std::optional<std::uint32_t> next;
+        m_mesh.forEachHalfEdgeAround(current, [&](std::size_t h) {
+            const std::uint32_t other = m_mesh.from(h) == current ? m_mesh.to(h) : m_mesh.from(h);
+            if (other == previous || !m_mesh.isConstrained(h) ||
+                !m_owners.owns(current, other, owner))
+                return false;
+            next = other;
+            return true;
+        });
+        if (!next || chain.size() > m_mesh.vertexCount())
+            throw std::logic_error("insertConstraints: a constraint's edges do not form a chain");
+        chain.push_back(*next);
+        previous = current;
+        current = *next;
+    }
+    return chain;
+}
+
+void ConstraintInserter::finish(ConstrainedTin& tin) {
+    tin.mesh = m_mesh.takeMesh();
+    tin.constrained = m_mesh.takeFlags();
+    tin.addedPoints = m_addedPoints;
+    tin.intersections = m_intersections;
+}
+
+} // namespace terratin::detail

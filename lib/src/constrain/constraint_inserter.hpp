@@ -1,0 +1,62 @@
+#pragma once
+// The state of one insertConstraints call: the mutable mesh, the owners of constrained edges,
+// and the pieces of segments still to insert.
+
+#include "cdt_mesh.hpp"
+#include "constraint_owners.hpp"
+#include "segment_flips.hpp"
+#include "terratin/constrain/constrained_tin.hpp"
+#include "terratin/geometry/point.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace terratin::detail {
+
+class ConstraintInserter {
+public:
+    explicit ConstraintInserter(TinMesh mesh) : m_mesh(std::move(mesh)) {}
+
+    /// The vertex at `p`'s x and y: an existing one, or a new one (sourceIndex
+    /// kConstraintPointSource); nothing when `p` lies outside the convex hull.
+    std::optional<std::uint32_t> insertPoint(const Point3& p);
+
+    /// Makes the segment a -> b of input segment `owner` a chain of constrained edges,
+    /// splitting it (and what it crosses) where needed.
+    void insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner);
+
+    /// The vertices of segment `owner`'s chain from a to b (call after every insertion).
+    [[nodiscard]] std::vector<std::uint32_t> chainOf(std::uint32_t a, std::uint32_t b,
+                                                     std::uint32_t owner) const;
+
+    /// Moves the mesh and the flags into `tin`, with the counts of added vertices.
+    void finish(ConstrainedTin& tin);
+
+private:
+    struct Piece {
+        std::uint32_t from;
+        std::uint32_t to;
+        ConstraintOwners::Owners owners;
+    };
+
+    void insertPiece(const Piece& piece);
+    void markConstrained(std::size_t h, const ConstraintOwners::Owners& owners);
+    void splitAtCrossing(std::uint32_t u, std::uint32_t v, const ConstraintOwners::Owners& owners,
+                         std::size_t crossed);
+    [[nodiscard]] std::optional<std::uint32_t> nearEndpoint(std::uint32_t u, std::uint32_t v,
+                                                            std::uint32_t c, std::uint32_t d,
+                                                            double sideC, double sideD) const;
+    std::uint32_t insertVertex(const Point3& p, std::uint32_t source, const MeshLocation& where);
+
+    CdtMesh m_mesh;
+    ConstraintOwners m_owners;
+    std::vector<Piece> m_pieces;
+    CrossedEdges m_crossed;
+    std::size_t m_hintTriangle = 0;
+    std::size_t m_addedPoints = 0;
+    std::size_t m_intersections = 0;
+};
+
+} // namespace terratin::detail
