@@ -238,6 +238,29 @@ void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
     }
 }
 
+void CdtMesh::flipAndRecord(std::size_t h, std::vector<Edge>& touched) {
+    const std::uint32_t a = from(h);
+    const std::uint32_t b = to(h);
+    const std::uint32_t c = from(previousHalfEdge(h));
+    const std::uint32_t d = from(previousHalfEdge(twin(h)));
+    flip(h);
+    touched.insert(touched.end(), {Edge{c, d}, Edge{a, d}, Edge{d, b}, Edge{b, c}, Edge{c, a}});
+}
+
+void CdtMesh::restoreDelaunay(std::vector<Edge>& stack) {
+    while (!stack.empty()) {
+        const Edge edge = stack.back();
+        stack.pop_back();
+        const std::size_t h = findEdge(edge[0], edge[1]);
+        if (h == kNoHalfEdge || isConstrained(h) || twin(h) == kNoHalfEdge)
+            continue;
+        const std::uint32_t opposite = from(previousHalfEdge(twin(h)));
+        if (predicates::incircle(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
+                                 xy(opposite)) > 0.0)
+            flipAndRecord(h, stack);
+    }
+}
+
 void CdtMesh::flip(std::size_t h) {
     const std::size_t g = twin(h);
     const std::size_t t = h / 3;

@@ -9,6 +9,7 @@
 #include "terratin/geometry/point.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -92,6 +93,15 @@ public:
     /// Afterwards triangle h/3 is (a, d, c) and the twin's triangle (d, b, c), where h ran
     /// a -> b in triangle (a, b, c) and d was opposite across it.
     void flip(std::size_t h);
+
+    /// An edge as its two vertices, in either order.
+    using Edge = std::array<std::uint32_t, 2>;
+    /// flip(h), adding the five edges of the two new triangles to `touched`.
+    void flipAndRecord(std::size_t h, std::vector<Edge>& touched);
+    /// Lawson's flips from the edges in `stack` (those no longer edges are skipped), spreading
+    /// to the neighbours of every flip, never across a constrained edge: afterwards every edge
+    /// reached is locally constrained Delaunay. Empties `stack`.
+    void restoreDelaunay(std::vector<Edge>& stack);
 
 private:
     std::size_t addTriangle();

@@ -103,6 +103,10 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
         w = insertVertex(crossing, kIntersectionSource, where);
         ++m_intersections;
     }
+    // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
+    // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
+    std::vector<CdtMesh::Edge> unmarked{{c, d}};
+    m_mesh.restoreDelaunay(unmarked);
     m_pieces.push_back({c, w, crossedOwners});
     m_pieces.push_back({w, d, crossedOwners});
     m_pieces.push_back({w, v, owners});

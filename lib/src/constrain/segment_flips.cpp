@@ -9,7 +9,7 @@ namespace terratin::detail {
 
 namespace {
 
-using Edge = std::array<std::uint32_t, 2>;
+using Edge = CdtMesh::Edge;
 
 // For w exactly on the line through u and v (w != u): whether w lies on the ray from u
 // through v. Decided by comparisons alone, so exactly.
@@ -24,16 +24,6 @@ bool strictlySeparates(const Point2& p, const Point2& q, const Point2& a, const 
     const double sideA = predicates::orient2d(p, q, a);
     const double sideB = predicates::orient2d(p, q, b);
     return (sideA < 0.0 && sideB > 0.0) || (sideA > 0.0 && sideB < 0.0);
-}
-
-// The flip of h's edge, with the five edges of the two new triangles added to `touched`.
-void flipAndRecord(CdtMesh& mesh, std::size_t h, std::vector<Edge>& touched) {
-    const std::uint32_t a = mesh.from(h);
-    const std::uint32_t b = mesh.to(h);
-    const std::uint32_t c = mesh.from(previousHalfEdge(h));
-    const std::uint32_t d = mesh.from(previousHalfEdge(mesh.twin(h)));
-    mesh.flip(h);
-    touched.insert(touched.end(), {Edge{c, d}, Edge{a, d}, Edge{d, b}, Edge{b, c}, Edge{c, a}});
 }
 
 // Sloan's loop: flip a crossing edge when its quadrilateral is strictly convex, else retry it
@@ -55,26 +45,9 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw,
             queue.push_back(edge);
             continue;
         }
-        flipAndRecord(mesh, h, touched);
+        mesh.flipAndRecord(h, touched);
         if (strictlySeparates(pu, pw, pc, pd))
             queue.push_back({c, d});
-    }
-}
-
-// Lawson's flips from the touched edges, spreading to the neighbours of every flip, never
-// across a constrained edge: they end with every edge locally constrained Delaunay.
-void restoreDelaunay(CdtMesh& mesh, std::vector<Edge>& stack) {
-    while (!stack.empty()) {
-        const Edge edge = stack.back();
-        stack.pop_back();
-        const std::size_t h = mesh.findEdge(edge[0], edge[1]);
-        if (h == kNoHalfEdge || mesh.isConstrained(h) || mesh.twin(h) == kNoHalfEdge)
-            continue;
-        const std::size_t g = mesh.twin(h);
-        if (predicates::incircle(mesh.xy(mesh.from(h)), mesh.xy(mesh.to(h)),
-                                 mesh.xy(mesh.from(previousHalfEdge(h))),
-                                 mesh.xy(mesh.from(previousHalfEdge(g)))) > 0.0)
-            flipAndRecord(mesh, h, stack);
     }
 }
 
@@ -144,7 +117,7 @@ std::size_t flipSegmentIn(CdtMesh& mesh, std::uint32_t u, const CrossedEdges& cr
     if (segment == kNoHalfEdge)
         throw std::logic_error("insertConstraints: flips did not make the segment an edge");
     mesh.setConstrained(segment, true);
-    restoreDelaunay(mesh, touched);
+    mesh.restoreDelaunay(touched);
     return mesh.findEdge(u, crossed.end);
 }
 

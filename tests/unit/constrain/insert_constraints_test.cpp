@@ -286,7 +286,7 @@ TEST(InsertConstraints, DuplicateInputPoints) {
 TEST(InsertConstraints, Throws_WhenAPolylinePointIsOutsideTheHull) {
     const TinMesh mesh = delaunayOf(grid(4));
     ConstraintSet constraints;
-    constraints.polylines = {{{1, 1, 0}, {2, 2, 0}}, {{1, 1, 0}, {3.5, 3.25, 0}, {4, 1, 0}}};
+    constraints.polylines = {{{1, 1, 0}, {2, 2, 0}}, {{1, 1, 0}, {2.5, 2.5, 0}, {3.25, 1, 0}}};
     try {
         (void)insertConstraints(mesh, constraints);
         FAIL() << "no exception";
