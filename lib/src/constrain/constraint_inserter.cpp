@@ -114,8 +114,8 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
 }
 
 // The crossing vertices computed above lie within about an ulp of both segments (the
-// rounding of t, of the product and of the sum), so a vertex closer than kSnapUlps ulps of
-// the coordinates to the segment is taken as lying on it.
+// rounding of t, of the product and of the sum), so a vertex closer to the segment than
+// kSnapUlps times 2^-52 times the largest coordinate involved (4 to 8 ulps) is taken as on it.
 std::optional<std::uint32_t> ConstraintInserter::nearEndpoint(std::uint32_t u, std::uint32_t v,
                                                               std::uint32_t c, std::uint32_t d,
                                                               double sideC, double sideD) const {

@@ -261,6 +261,50 @@ TEST(InsertConstraints, ThreeSegmentsThroughOnePoint) {
     EXPECT_GE(tin.intersections, 1U);
 }
 
+// Regression: the segment y = 0.1 crosses all four triangles around (0, 0), which puts that
+// vertex inside the crossed region; the first version retriangulated that region as two
+// pseudo-polygons, which assume no vertex inside, and broke the neighbour links.
+TEST(InsertConstraints, RegressionSegmentCrossingEveryTriangleAroundAVertex) {
+    const std::vector<Point3> points = {{0, 0, 0},   {0, -1, 0},   {1, 0.5, 0},
+                                        {0, 1, 0},   {-1, 0.5, 0}, {-2, 0.1, 0},
+                                        {2, 0.1, 0}, {0, -3, 0},   {0, 3, 0}};
+    const TinMesh mesh = delaunayOf(points);
+    const std::uint32_t centre = vertexAt(mesh, 0, 0);
+    std::size_t around = 0;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        bool hasCentre = false;
+        bool above = false;
+        for (std::size_t i = 0; i < 3; ++i) {
+            hasCentre = hasCentre || mesh.triangles[3 * t + i] == centre;
+            above = above || mesh.vertices[mesh.triangles[3 * t + i]].y > 0.1;
+        }
+        if (hasCentre) {
+            ++around;
+            EXPECT_TRUE(above) << "triangle " << t << " around (0, 0) is not crossed";
+        }
+    }
+    EXPECT_EQ(around, 4U);
+    ConstraintSet constraints;
+    constraints.segments = {{vertexAt(mesh, -2, 0.1), vertexAt(mesh, 2, 0.1)}};
+    const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
+    EXPECT_EQ(tin.chains[0].size(), 2U);
+}
+
+// Lines through one point: the first crossing makes a vertex, the others pass within
+// rounding of it and go through it rather than making vertices a rounding away.
+TEST(InsertConstraints, LinesThroughOnePointShareOneCrossingVertex) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 2000, 21));
+    ConstraintSet constraints;
+    for (int k = 0; k < 30; ++k) {
+        const double angle = 3.141592653589793 * k / 30 + 0.1;
+        const double dx = 0.3 * std::cos(angle);
+        const double dy = 0.3 * std::sin(angle);
+        constraints.polylines.push_back({{0.5 + dx, 0.5 + dy, 0}, {0.5 - dx, 0.5 - dy, 0}});
+    }
+    const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
+    EXPECT_EQ(tin.intersections, 1U);
+}
+
 TEST(InsertConstraints, SegmentAlongTheHull) {
     const TinMesh mesh = delaunayOf(grid(5));
     ConstraintSet constraints;

@@ -37,13 +37,18 @@ struct ConstraintSet {
 ///   z interpolated linearly along that segment. Rounding may leave the vertex off either segment
 ///   by about one unit in the last place of the coordinates: both segments then bend through it
 ///   and their halves are constrained as they are.
+/// - Where a segment crosses a constrained edge and passes within 2^-50 times the largest
+///   coordinate involved (about 4 ulps) of one of that edge's vertices, it goes through that
+///   vertex instead (so segments through an earlier crossing reuse its vertex); such a chain
+///   vertex may lie that far off the segment.
 /// - Zero-length segments are ignored.
 /// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
 /// non-finite coordinate, or a polyline point outside the convex hull of the mesh (clipping to
 /// the hull is not supported); `mesh` is consumed either way.
-/// Complexity: O(triangles) once for the vertex-to-triangle map, then per segment O(triangles it
-/// crosses) expected (O(k^2) worst case for k crossed triangles, as in Anglada's algorithm) plus
-/// the degree of its first vertex; per polyline point the walk from the previous point.
+/// Complexity: O(triangles) once for the vertex-to-triangle map, then per segment the degree of
+/// its first vertex plus O(k) flips for the k edges it crosses (O(k^2) at worst), per crossing a
+/// point insertion, per polyline point the walk from the previous point. docs/algorithms.md
+/// ("Constrained Delaunay") describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 
 } // namespace terratin
