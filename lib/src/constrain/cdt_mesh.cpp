@@ -3,6 +3,8 @@
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace terratin::detail {
@@ -63,6 +65,16 @@ std::size_t CdtMesh::findEdge(std::uint32_t a, std::uint32_t b) const {
         return true;
     });
     return found;
+}
+
+std::size_t CdtMesh::find(const Edge& edge) const {
+    if (edge.hint != kNoHalfEdge) {
+        const std::uint32_t a = from(edge.hint);
+        const std::uint32_t b = to(edge.hint);
+        if ((a == edge.a && b == edge.b) || (a == edge.b && b == edge.a))
+            return edge.hint;
+    }
+    return findEdge(edge.a, edge.b);
 }
 
 MeshLocation CdtMesh::locate(const Point2& p, std::size_t startTriangle) {
@@ -243,15 +255,19 @@ void CdtMesh::flipAndRecord(std::size_t h, std::vector<Edge>& touched) {
     const std::uint32_t b = to(h);
     const std::uint32_t c = from(previousHalfEdge(h));
     const std::uint32_t d = from(previousHalfEdge(twin(h)));
+    const std::size_t t = h / 3;
+    const std::size_t u = twin(h) / 3;
     flip(h);
-    touched.insert(touched.end(), {Edge{c, d}, Edge{a, d}, Edge{d, b}, Edge{b, c}, Edge{c, a}});
+    // Triangle t is now (a, d, c), triangle u (d, b, c).
+    touched.insert(touched.end(), {Edge{d, c, 3 * t + 1}, Edge{a, d, 3 * t}, Edge{d, b, 3 * u},
+                                   Edge{b, c, 3 * u + 1}, Edge{c, a, 3 * t + 2}});
 }
 
 void CdtMesh::restoreDelaunay(std::vector<Edge>& stack) {
     while (!stack.empty()) {
         const Edge edge = stack.back();
         stack.pop_back();
-        const std::size_t h = findEdge(edge[0], edge[1]);
+        const std::size_t h = find(edge);
         if (h == kNoHalfEdge || isConstrained(h) || twin(h) == kNoHalfEdge)
             continue;
         const std::uint32_t opposite = from(previousHalfEdge(twin(h)));

@@ -94,8 +94,15 @@ public:
     /// a -> b in triangle (a, b, c) and d was opposite across it.
     void flip(std::size_t h);
 
-    /// An edge as its two vertices, in either order.
-    using Edge = std::array<std::uint32_t, 2>;
+    /// An edge as its two vertices (either order), with a half-edge that held it when it was
+    /// recorded: flips renumber half-edges, so the hint is checked before it is used.
+    struct Edge {
+        std::uint32_t a;
+        std::uint32_t b;
+        std::size_t hint = kNoHalfEdge;
+    };
+    /// The half-edge of `edge` now (its hint when still valid, else findEdge), or kNoHalfEdge.
+    [[nodiscard]] std::size_t find(const Edge& edge) const;
     /// flip(h), adding the five edges of the two new triangles to `touched`.
     void flipAndRecord(std::size_t h, std::vector<Edge>& touched);
     /// Lawson's flips from the edges in `stack` (those no longer edges are skipped), spreading

@@ -9,10 +9,16 @@
 
 namespace terratin::detail {
 
-std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p) {
+std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p, bool jump) {
+    if (jump) {
+        if (!m_buckets)
+            m_buckets.emplace(m_mesh.mesh().vertices);
+        m_hintTriangle = m_mesh.halfEdgeLeaving(m_buckets->vertexNear({p.x, p.y})) / 3;
+    }
     const MeshLocation where = m_mesh.locate({p.x, p.y}, m_hintTriangle);
     if (where.kind == MeshLocation::Kind::OutsideHull)
         return std::nullopt;
+    m_hintTriangle = where.halfEdge / 3;
     if (where.kind == MeshLocation::Kind::OnVertex)
         return where.vertex;
     ++m_addedPoints;
@@ -105,7 +111,7 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     }
     // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
     // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
-    std::vector<CdtMesh::Edge> unmarked{{c, d}};
+    std::vector<CdtMesh::Edge> unmarked{{c, d, kNoHalfEdge}};
     m_mesh.restoreDelaunay(unmarked);
     m_pieces.push_back({c, w, crossedOwners});
     m_pieces.push_back({w, d, crossedOwners});

@@ -7,6 +7,7 @@
 #include "segment_flips.hpp"
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/geometry/point.hpp"
+#include "vertex_buckets.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -20,8 +21,9 @@ public:
     explicit ConstraintInserter(TinMesh mesh) : m_mesh(std::move(mesh)) {}
 
     /// The vertex at `p`'s x and y: an existing one, or a new one (sourceIndex
-    /// kConstraintPointSource); nothing when `p` lies outside the convex hull.
-    std::optional<std::uint32_t> insertPoint(const Point3& p);
+    /// kConstraintPointSource); nothing when `p` lies outside the convex hull. The search
+    /// starts near the previous point, or anywhere when `jump` (the first point of a polyline).
+    std::optional<std::uint32_t> insertPoint(const Point3& p, bool jump);
 
     /// Makes the segment a -> b of input segment `owner` a chain of constrained edges,
     /// splitting it (and what it crosses) where needed.
@@ -54,6 +56,7 @@ private:
     ConstraintOwners m_owners;
     std::vector<Piece> m_pieces;
     CrossedEdges m_crossed;
+    std::optional<VertexBuckets> m_buckets; // built for the first polyline
     std::size_t m_hintTriangle = 0;
     std::size_t m_addedPoints = 0;
     std::size_t m_intersections = 0;

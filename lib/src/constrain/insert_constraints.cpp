@@ -40,7 +40,7 @@ std::vector<std::uint32_t> polylineVertices(detail::ConstraintInserter& inserter
     std::vector<std::uint32_t> vertices;
     vertices.reserve(polyline.size());
     for (std::size_t j = 0; j < polyline.size(); ++j) {
-        const std::optional<std::uint32_t> v = inserter.insertPoint(polyline[j]);
+        const std::optional<std::uint32_t> v = inserter.insertPoint(polyline[j], j == 0);
         if (!v)
             throw InvalidInputError(
                 "insertConstraints: polyline " + std::to_string(k) + ", point " +
@@ -57,19 +57,23 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
     checkConstraints(mesh, constraints);
     detail::ConstraintInserter inserter(std::move(mesh));
 
-    // Points first (Lawson insertion keeps the mesh Delaunay), then every segment, each
-    // segment of the input numbered as the owner of the edges it becomes.
-    std::vector<std::vector<std::uint32_t>> polylines;
-    polylines.reserve(constraints.polylines.size());
-    for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
-        polylines.push_back(polylineVertices(inserter, constraints.polylines[k], k));
-
+    // The index segments, then each polyline: its points (a point on a constrained edge splits
+    // it), then its segments, while the mesh around them is still in cache. Every input segment
+    // is numbered as the owner of the edges it becomes.
     std::vector<std::array<std::uint32_t, 2>> segments = constraints.segments;
-    for (const std::vector<std::uint32_t>& polyline : polylines)
-        for (std::size_t j = 1; j < polyline.size(); ++j)
-            segments.push_back({polyline[j - 1], polyline[j]});
     for (std::size_t s = 0; s < segments.size(); ++s)
         inserter.insertSegment(segments[s][0], segments[s][1], static_cast<std::uint32_t>(s));
+    std::vector<std::vector<std::uint32_t>> polylines;
+    polylines.reserve(constraints.polylines.size());
+    for (std::size_t k = 0; k < constraints.polylines.size(); ++k) {
+        polylines.push_back(polylineVertices(inserter, constraints.polylines[k], k));
+        const std::vector<std::uint32_t>& polyline = polylines.back();
+        for (std::size_t j = 1; j < polyline.size(); ++j) {
+            inserter.insertSegment(polyline[j - 1], polyline[j],
+                                   static_cast<std::uint32_t>(segments.size()));
+            segments.push_back({polyline[j - 1], polyline[j]});
+        }
+    }
 
     ConstrainedTin tin;
     for (std::size_t s = 0; s < constraints.segments.size(); ++s)

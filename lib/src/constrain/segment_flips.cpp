@@ -34,20 +34,20 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw,
     while (!queue.empty()) {
         const Edge edge = queue.front();
         queue.pop_front();
-        const std::size_t h = mesh.findEdge(edge[0], edge[1]);
+        const std::size_t h = mesh.find(edge);
         if (h == kNoHalfEdge || mesh.twin(h) == kNoHalfEdge)
             throw std::logic_error("insertConstraints: a crossed edge vanished");
         const std::uint32_t c = mesh.from(previousHalfEdge(h));
         const std::uint32_t d = mesh.from(previousHalfEdge(mesh.twin(h)));
         const Point2 pc = mesh.xy(c);
         const Point2 pd = mesh.xy(d);
-        if (!strictlySeparates(pc, pd, mesh.xy(edge[0]), mesh.xy(edge[1]))) {
+        if (!strictlySeparates(pc, pd, mesh.xy(edge.a), mesh.xy(edge.b))) {
             queue.push_back(edge);
             continue;
         }
         mesh.flipAndRecord(h, touched);
         if (strictlySeparates(pu, pw, pc, pd))
-            queue.push_back({c, d});
+            queue.push_back(touched[touched.size() - 5]); // the new diagonal
     }
 }
 
@@ -95,7 +95,7 @@ std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t
     for (;;) {
         if (mesh.isConstrained(exit))
             return exit;
-        crossed.edges.push_back({mesh.from(exit), mesh.to(exit)});
+        crossed.edges.push_back({mesh.from(exit), mesh.to(exit), exit});
         const std::size_t entry = mesh.twin(exit);
         if (entry == kNoHalfEdge)
             throw std::logic_error("insertConstraints: segment walk left the convex hull");

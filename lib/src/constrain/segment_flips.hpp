@@ -36,7 +36,7 @@ SegmentStart findSegmentStart(const CdtMesh& mesh, std::uint32_t u, std::uint32_
 /// The edges a segment crosses, each as (vertex right of it, vertex left of it), in order from
 /// u, and the vertex where the walk ended.
 struct CrossedEdges {
-    std::vector<std::array<std::uint32_t, 2>> edges;
+    std::vector<CdtMesh::Edge> edges;
     std::uint32_t end = 0;
 };
 
