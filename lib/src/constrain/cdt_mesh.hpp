@@ -9,7 +9,6 @@
 #include "terratin/geometry/point.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>

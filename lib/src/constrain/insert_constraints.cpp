@@ -4,6 +4,7 @@
 #include "terratin/error.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace terratin {
@@ -29,6 +30,12 @@ void checkConstraints(const TinMesh& mesh, const ConstraintSet& constraints) {
                 throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) +
                                         ", point " + std::to_string(j) + " is not finite");
         }
+    std::size_t segments = constraints.segments.size();
+    for (const std::vector<Point3>& polyline : constraints.polylines)
+        segments += polyline.empty() ? 0 : polyline.size() - 1;
+    if (segments >= std::numeric_limits<std::uint32_t>::max() - 1)
+        throw InvalidInputError("insertConstraints: too many segments (" +
+                                std::to_string(segments) + ")");
     const bool any = !constraints.segments.empty() || !constraints.polylines.empty();
     if (any && mesh.triangleCount() == 0)
         throw InvalidInputError("insertConstraints: the mesh has no triangles");

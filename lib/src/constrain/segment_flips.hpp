@@ -12,7 +12,6 @@
 
 #include "cdt_mesh.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>

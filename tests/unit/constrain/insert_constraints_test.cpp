@@ -327,6 +327,33 @@ TEST(InsertConstraints, DuplicateInputPoints) {
     constrainAndCheck(mesh, constraints);
 }
 
+TEST(InsertConstraints, PolylinePointOnAHullEdgeSplitsIt) {
+    const TinMesh mesh = delaunayOf(grid(4));
+    ConstraintSet constraints;
+    constraints.polylines = {{{1.5, 0, 7}, {1.5, 2, 7}}};
+    const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
+    EXPECT_EQ(tin.addedPoints, 2U);
+    EXPECT_EQ(tin.chains[0].size(), 2U); // no grid vertex lies on x = 1.5
+    std::size_t hullEdges = 0;
+    for (const std::int32_t neighbour : tin.mesh.neighbours)
+        hullEdges += neighbour == kNoNeighbour ? 1U : 0U;
+    EXPECT_EQ(hullEdges, 13U); // the grid's 12 and one more for the split
+}
+
+// The second polyline's first point lies exactly on an edge the first made constrained: the
+// edge is split and the first chain passes through the new vertex.
+TEST(InsertConstraints, PolylinePointOnAConstrainedEdgeSplitsIt) {
+    const TinMesh mesh = delaunayOf(grid(4));
+    ConstraintSet constraints;
+    constraints.polylines = {{{0.5, 0.5, 0}, {2.5, 2.5, 0}}, {{1.5, 1.5, 0}, {2.5, 0.5, 0}}};
+    const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
+    const std::vector<std::uint32_t>& first = tin.chains[0];
+    const std::uint32_t split = tin.chains[1].front();
+    EXPECT_EQ(tin.mesh.vertices[split], (Point3{1.5, 1.5, 0}));
+    EXPECT_NE(std::find(first.begin(), first.end(), split), first.end());
+    EXPECT_EQ(first.size(), 5U); // (0.5, 0.5), (1, 1), (1.5, 1.5), (2, 2), (2.5, 2.5)
+}
+
 TEST(InsertConstraints, Throws_WhenAPolylinePointIsOutsideTheHull) {
     const TinMesh mesh = delaunayOf(grid(4));
     ConstraintSet constraints;

@@ -44,11 +44,13 @@ struct ConstraintSet {
 /// - Zero-length segments are ignored.
 /// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
 /// non-finite coordinate, or a polyline point outside the convex hull of the mesh (clipping to
-/// the hull is not supported); `mesh` is consumed either way.
-/// Complexity: O(triangles) once for the vertex-to-triangle map, then per segment the degree of
-/// its first vertex plus O(k) flips for the k edges it crosses (O(k^2) at worst), per crossing a
-/// point insertion, per polyline point the walk from the previous point. docs/algorithms.md
-/// ("Constrained Delaunay") describes the method.
+/// the hull is not supported), and for more than 2^32 - 2 segments in all; `mesh` is consumed
+/// either way.
+/// Complexity: O(n) once for the vertex-to-triangle map (and a bucket grid when there are
+/// polylines), then per segment the degree of its first vertex plus O(k) flips for the k edges
+/// it crosses (O(k^2) at worst), per crossing a point insertion, per polyline point a walk from
+/// the previous point (the first from its bucket). Sequential. docs/algorithms.md ("Constrained
+/// Delaunay") describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 
 } // namespace terratin
