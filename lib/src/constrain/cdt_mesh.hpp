@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace terratin::detail {
@@ -45,7 +46,6 @@ public:
     [[nodiscard]] std::vector<std::uint8_t> takeFlags() { return std::move(m_constrained); }
 
     [[nodiscard]] std::size_t vertexCount() const { return m_mesh.vertices.size(); }
-    [[nodiscard]] std::size_t halfEdgeCount() const { return m_mesh.triangles.size(); }
     [[nodiscard]] Point2 xy(std::uint32_t v) const {
         return {m_mesh.vertices[v].x, m_mesh.vertices[v].y};
     }
@@ -78,13 +78,6 @@ public:
     std::uint32_t insertPoint(const Point3& p, std::uint32_t source, const MeshLocation& where,
                               OnSplit&& onSplit);
 
-    /// Writes triangle `t` as (a, b, c) with no neighbours and no flags, and points the three
-    /// vertices at it.
-    void writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c);
-    /// Makes `h` and `other` twins (`other` may be kNoHalfEdge: `h` is then a hull edge).
-    void link(std::size_t h, std::size_t other);
-    /// Sets the flag of `h` alone (the twin is set by the caller).
-    void setFlag(std::size_t h, bool constrained) { m_constrained[h] = constrained ? 1 : 0; }
     /// The half-edge a -> b, or b -> a on the hull, or kNoHalfEdge when a-b is no edge.
     /// O(degree of a).
     [[nodiscard]] std::size_t findEdge(std::uint32_t a, std::uint32_t b) const;
@@ -110,6 +103,13 @@ public:
     void restoreDelaunay(std::vector<Edge>& stack);
 
 private:
+    /// Writes triangle `t` as (a, b, c) with no neighbours and no flags, and points the three
+    /// vertices at it.
+    void writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c);
+    /// Makes `h` and `other` twins (`other` may be kNoHalfEdge: `h` is then a hull edge).
+    void link(std::size_t h, std::size_t other);
+    /// Sets the flag of `h` alone (the twin is set by the caller).
+    void setFlag(std::size_t h, bool constrained) { m_constrained[h] = constrained ? 1 : 0; }
     std::size_t addTriangle();
     std::uint32_t addVertex(const Point3& p, std::uint32_t source);
     void splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck);

@@ -9,6 +9,16 @@
 
 namespace terratin::detail {
 
+namespace {
+
+// How close, in units of 2^-52 times the largest coordinate involved (4 to 8 ulps), a vertex
+// must be to a segment or a crossing to be taken as on it. The crossing vertices computed
+// below lie within about an ulp of both segments (the rounding of t, of the product and of the
+// sum); twice that each way, and a margin, is 4.
+constexpr double kSnapUlps = 4.0;
+
+} // namespace
+
 std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p, bool jump) {
     if (jump) {
         if (!m_buckets)
@@ -32,12 +42,14 @@ std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t so
             const ConstraintOwners::Owners owners = m_owners.take(a, b);
             m_owners.add(a, middle, owners);
             m_owners.add(middle, b, owners);
+            m_chains.insertBetween(owners, a, b, middle);
         });
     m_hintTriangle = m_mesh.halfEdgeLeaving(v) / 3;
     return v;
 }
 
 void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner) {
+    m_chains.start(owner, a, b);
     m_pieces.push_back({a, b, {owner}});
     while (!m_pieces.empty()) {
         const Piece piece = std::move(m_pieces.back());
@@ -53,6 +65,7 @@ void ConstraintInserter::insertPiece(const Piece& piece) {
         const SegmentStart start = findSegmentStart(m_mesh, u, v);
         if (start.kind == SegmentStart::Kind::AlongEdge) {
             markConstrained(start.halfEdge, piece.owners);
+            m_chains.insertBetween(piece.owners, u, v, start.vertex);
             u = start.vertex;
             continue;
         }
@@ -62,6 +75,7 @@ void ConstraintInserter::insertPiece(const Piece& piece) {
             return;
         }
         markConstrained(flipSegmentIn(m_mesh, u, m_crossed), piece.owners);
+        m_chains.insertBetween(piece.owners, u, v, m_crossed.end);
         u = m_crossed.end;
     }
 }
@@ -89,6 +103,7 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     const double sideD = predicates::orient2d(pu, pv, m_mesh.xy(d));
     const std::optional<std::uint32_t> near = nearEndpoint(u, v, c, d, sideC, sideD);
     if (near) {
+        m_chains.insertBetween(owners, u, v, *near);
         m_pieces.push_back({*near, v, owners});
         m_pieces.push_back({u, *near, owners});
         return;
@@ -102,30 +117,34 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
     m_mesh.setConstrained(crossed, false);
     const MeshLocation where = m_mesh.locate({crossing.x, crossing.y}, crossed / 3);
-    std::uint32_t w = where.vertex;
     if (where.kind == MeshLocation::Kind::OutsideHull)
         throw std::logic_error("insertConstraints: a crossing lies outside the convex hull");
-    if (where.kind != MeshLocation::Kind::OnVertex) {
+    std::optional<std::uint32_t> w;
+    if (where.kind == MeshLocation::Kind::OnVertex)
+        w = where.vertex;
+    else
+        w = vertexWithinRounding(crossing, where.halfEdge / 3);
+    if (!w) {
         w = insertVertex(crossing, kIntersectionSource, where);
         ++m_intersections;
     }
+    m_chains.insertBetween(crossedOwners, c, d, *w);
+    m_chains.insertBetween(owners, u, v, *w);
     // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
     // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
     std::vector<CdtMesh::Edge> unmarked{{c, d, kNoHalfEdge}};
     m_mesh.restoreDelaunay(unmarked);
-    m_pieces.push_back({c, w, crossedOwners});
-    m_pieces.push_back({w, d, crossedOwners});
-    m_pieces.push_back({w, v, owners});
-    m_pieces.push_back({u, w, owners});
+    // A stack: c -> d is restored first, then u -> v goes on through w.
+    m_pieces.push_back({*w, v, owners});
+    m_pieces.push_back({u, *w, owners});
+    m_pieces.push_back({*w, d, crossedOwners});
+    m_pieces.push_back({c, *w, crossedOwners});
 }
 
-// The crossing vertices computed above lie within about an ulp of both segments (the
-// rounding of t, of the product and of the sum), so a vertex closer to the segment than
-// kSnapUlps times 2^-52 times the largest coordinate involved (4 to 8 ulps) is taken as on it.
+// c or d when it lies within rounding (kSnapUlps) of the line through u and v.
 std::optional<std::uint32_t> ConstraintInserter::nearEndpoint(std::uint32_t u, std::uint32_t v,
                                                               std::uint32_t c, std::uint32_t d,
                                                               double sideC, double sideD) const {
-    constexpr double kSnapUlps = 4.0;
     const Point2 pu = m_mesh.xy(u);
     const Point2 pv = m_mesh.xy(v);
     const Point2 pc = m_mesh.xy(c);
@@ -142,28 +161,20 @@ std::optional<std::uint32_t> ConstraintInserter::nearEndpoint(std::uint32_t u, s
     return std::nullopt;
 }
 
-std::vector<std::uint32_t> ConstraintInserter::chainOf(std::uint32_t a, std::uint32_t b,
-                                                       std::uint32_t owner) const {
-    std::vector<std::uint32_t> chain{a};
-    std::uint32_t previous = a;
-    std::uint32_t current = a;
-    while (current != b) {
-        std::optional<std::uint32_t> next;
-        m_mesh.forEachHalfEdgeAround(current, [&](std::size_t h) {
-            const std::uint32_t other = m_mesh.from(h) == current ? m_mesh.to(h) : m_mesh.from(h);
-            if (other == previous || !m_mesh.isConstrained(h) ||
-                !m_owners.owns(current, other, owner))
-                return false;
-            next = other;
-            return true;
-        });
-        if (!next || chain.size() > m_mesh.vertexCount())
-            throw std::logic_error("insertConstraints: a constraint's edges do not form a chain");
-        chain.push_back(*next);
-        previous = current;
-        current = *next;
+// A crossing within rounding of a vertex of the triangle it falls in (an earlier crossing, most
+// often, where several segments pass through one point) is that vertex.
+std::optional<std::uint32_t> ConstraintInserter::vertexWithinRounding(const Point3& p,
+                                                                      std::size_t triangle) const {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const std::uint32_t corner = m_mesh.from(3 * triangle + i);
+        const Point2 q = m_mesh.xy(corner);
+        const double magnitude =
+            std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(q.x), std::fabs(q.y)});
+        const double tolerance = kSnapUlps * std::numeric_limits<double>::epsilon() * magnitude;
+        if (std::fabs(q.x - p.x) <= tolerance && std::fabs(q.y - p.y) <= tolerance)
+            return corner;
     }
-    return chain;
+    return std::nullopt;
 }
 
 void ConstraintInserter::finish(ConstrainedTin& tin) {

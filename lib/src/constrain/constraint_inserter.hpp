@@ -3,6 +3,7 @@
 // and the pieces of segments still to insert.
 
 #include "cdt_mesh.hpp"
+#include "constraint_chains.hpp"
 #include "constraint_owners.hpp"
 #include "segment_flips.hpp"
 #include "terratin/constrain/constrained_tin.hpp"
@@ -29,9 +30,11 @@ public:
     /// splitting it (and what it crosses) where needed.
     void insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner);
 
-    /// The vertices of segment `owner`'s chain from a to b (call after every insertion).
-    [[nodiscard]] std::vector<std::uint32_t> chainOf(std::uint32_t a, std::uint32_t b,
-                                                     std::uint32_t owner) const;
+    /// The vertices of segment `owner`'s chain, from its first vertex to its last (final once
+    /// every segment is inserted).
+    [[nodiscard]] const std::vector<std::uint32_t>& chainOf(std::uint32_t owner) const {
+        return m_chains.chain(owner);
+    }
 
     /// Moves the mesh and the flags into `tin`, with the counts of added vertices.
     void finish(ConstrainedTin& tin);
@@ -47,6 +50,8 @@ private:
     void markConstrained(std::size_t h, const ConstraintOwners::Owners& owners);
     void splitAtCrossing(std::uint32_t u, std::uint32_t v, const ConstraintOwners::Owners& owners,
                          std::size_t crossed);
+    [[nodiscard]] std::optional<std::uint32_t> vertexWithinRounding(const Point3& p,
+                                                                    std::size_t triangle) const;
     [[nodiscard]] std::optional<std::uint32_t> nearEndpoint(std::uint32_t u, std::uint32_t v,
                                                             std::uint32_t c, std::uint32_t d,
                                                             double sideC, double sideD) const;
@@ -54,6 +59,7 @@ private:
 
     CdtMesh m_mesh;
     ConstraintOwners m_owners;
+    ConstraintChains m_chains;
     std::vector<Piece> m_pieces;
     CrossedEdges m_crossed;
     std::optional<VertexBuckets> m_buckets; // built for the first polyline

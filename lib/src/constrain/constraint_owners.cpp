@@ -20,10 +20,4 @@ ConstraintOwners::Owners ConstraintOwners::take(std::uint32_t a, std::uint32_t b
     return owners;
 }
 
-bool ConstraintOwners::owns(std::uint32_t a, std::uint32_t b, std::uint32_t owner) const {
-    const auto found = m_owners.find(key(a, b));
-    return found != m_owners.end() &&
-           std::find(found->second.begin(), found->second.end(), owner) != found->second.end();
-}
-
 } // namespace terratin::detail

@@ -1,7 +1,6 @@
 #pragma once
-// Which input segments each constrained edge belongs to. The chains of insertConstraints are
-// read from it at the end (a segment's edges form a path from its first vertex to its last),
-// so that splitting an edge at a crossing needs no bookkeeping in the chains themselves.
+// Which input segments each constrained edge belongs to: the segments whose chains must take
+// the vertex that splits the edge (at a crossing, or a polyline point on it).
 
 #include <cstdint>
 #include <unordered_map>
@@ -17,8 +16,6 @@ public:
     void add(std::uint32_t a, std::uint32_t b, const Owners& owners);
     /// Removes the edge {a, b} and returns its owners (empty when it had none).
     Owners take(std::uint32_t a, std::uint32_t b);
-    /// Whether segment `owner` owns the edge {a, b}.
-    [[nodiscard]] bool owns(std::uint32_t a, std::uint32_t b, std::uint32_t owner) const;
     [[nodiscard]] std::size_t edgeCount() const { return m_owners.size(); }
 
 private:

@@ -84,16 +84,15 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
 
     ConstrainedTin tin;
     for (std::size_t s = 0; s < constraints.segments.size(); ++s)
-        tin.chains.push_back(
-            inserter.chainOf(segments[s][0], segments[s][1], static_cast<std::uint32_t>(s)));
+        tin.chains.push_back(inserter.chainOf(static_cast<std::uint32_t>(s)));
     std::size_t owner = constraints.segments.size();
     for (const std::vector<std::uint32_t>& polyline : polylines) {
         std::vector<std::uint32_t> chain;
         if (!polyline.empty())
             chain.push_back(polyline.front());
         for (std::size_t j = 1; j < polyline.size(); ++j, ++owner) {
-            const std::vector<std::uint32_t> piece =
-                inserter.chainOf(polyline[j - 1], polyline[j], static_cast<std::uint32_t>(owner));
+            const std::vector<std::uint32_t>& piece =
+                inserter.chainOf(static_cast<std::uint32_t>(owner));
             chain.insert(chain.end(), piece.begin() + 1, piece.end());
         }
         tin.chains.push_back(std::move(chain));

@@ -305,6 +305,34 @@ TEST(InsertConstraints, LinesThroughOnePointShareOneCrossingVertex) {
     EXPECT_EQ(tin.intersections, 1U);
 }
 
+// Regression: sixty lines through the middle of a Gauss cloud cross within a few ulps of one
+// another; a crossing a rounding beyond an earlier one once made a segment run to it and back,
+// and reading the chains back by following edges then failed ("a constraint's edges do not
+// form a chain").
+TEST(InsertConstraints, RegressionChainsThroughACrowdOfCrossings) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Gauss, 300, 6));
+    double cx = 0.0;
+    double cy = 0.0;
+    for (const Point3& p : mesh.vertices) {
+        cx += p.x / double(mesh.vertexCount());
+        cy += p.y / double(mesh.vertexCount());
+    }
+    ConstraintSet constraints;
+    for (int k = 0; k < 60; ++k) {
+        const double angle = 3.14159265358979 * k / 60 + 0.06;
+        const double dx = 0.15 * std::cos(angle);
+        const double dy = 0.15 * std::sin(angle);
+        constraints.polylines.push_back({{cx + dx, cy + dy, 1}, {cx - dx, cy - dy, 1}});
+    }
+    const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
+    EXPECT_LT(tin.intersections, 60U); // many lines go through an earlier crossing's vertex
+    for (std::size_t v = mesh.vertexCount(); v < tin.mesh.vertexCount(); ++v)
+        if (tin.mesh.sourceIndex[v] == kIntersectionSource) {
+            EXPECT_LT(std::hypot(tin.mesh.vertices[v].x - cx, tin.mesh.vertices[v].y - cy), 1e-14)
+                << "crossing vertex " << v << " strays from the lines' common point";
+        }
+}
+
 TEST(InsertConstraints, SegmentAlongTheHull) {
     const TinMesh mesh = delaunayOf(grid(5));
     ConstraintSet constraints;

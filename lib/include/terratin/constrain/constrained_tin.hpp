@@ -29,7 +29,9 @@ inline constexpr std::uint32_t kIntersectionSource = std::numeric_limits<std::ui
 ///   constrained, else 0; both half-edges of an interior edge carry the same flag.
 /// - `chains[k]`: the vertices input constraint k became, in order from its first point to its
 ///   last (ConstraintSet::segments first, then ConstraintSet::polylines); consecutive vertices
-///   are joined by a constrained edge. A constraint of zero length is its one vertex.
+///   are joined by a constrained edge. A constraint of zero length is its one vertex. Where
+///   rounding leaves several crossings within a few ulps of each other, a chain may run to one
+///   of them and back over the same edge (insertConstraints).
 struct ConstrainedTin {
     TinMesh mesh;
     std::vector<std::uint8_t> constrained;
