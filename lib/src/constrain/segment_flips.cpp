@@ -31,6 +31,7 @@ bool strictlySeparates(const Point2& p, const Point2& q, const Point2& a, const 
 void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw,
                        const std::vector<Edge>& crossing, std::vector<Edge>& touched) {
     std::deque<Edge> queue(crossing.begin(), crossing.end());
+    std::size_t retriesInARow = 0; // a whole round of them would mean the theorem failed us
     while (!queue.empty()) {
         const Edge edge = queue.front();
         queue.pop_front();
@@ -43,8 +44,11 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw,
         const Point2 pd = mesh.xy(d);
         if (!strictlySeparates(pc, pd, mesh.xy(edge.a), mesh.xy(edge.b))) {
             queue.push_back(edge);
+            if (++retriesInARow > queue.size())
+                throw std::logic_error("insertConstraints: no crossed edge can be flipped");
             continue;
         }
+        retriesInARow = 0;
         mesh.flipAndRecord(h, touched);
         if (strictlySeparates(pu, pw, pc, pd))
             queue.push_back(touched[touched.size() - 5]); // the new diagonal
