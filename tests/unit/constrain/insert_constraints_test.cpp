@@ -250,6 +250,25 @@ TEST(InsertConstraints, GridLinesOfARegularGrid) {
     EXPECT_GT(tin.intersections, 0U);
 }
 
+// A DEM's grid lines at UTM-like coordinates: x = 1e6 + 0.1 i is not exact, so the posts of
+// a row are collinear only up to rounding, and rows cross columns a rounding away from posts.
+TEST(InsertConstraints, GridLinesOfARegularGrid_WhenOffsetByAMillion) {
+    const int n = 21;
+    std::vector<Point3> points;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            points.push_back({1e6 + 0.1 * i, 5e6 + 0.1 * j, double(i)});
+    const TinMesh mesh = delaunayOf(points);
+    ConstraintSet constraints;
+    const auto post = [&](int i, int j) { return vertexAt(mesh, 1e6 + 0.1 * i, 5e6 + 0.1 * j); };
+    for (int k = 0; k < n; k += 4) {
+        constraints.segments.push_back({post(0, k), post(n - 1, k)});
+        constraints.segments.push_back({post(k, 0), post(k, n - 1)});
+    }
+    constraints.segments.push_back({post(0, 0), post(n - 1, n - 1)});
+    constrainAndCheck(mesh, constraints);
+}
+
 TEST(InsertConstraints, ThreeSegmentsThroughOnePoint) {
     const TinMesh mesh = delaunayOf(grid(5));
     ConstraintSet constraints;
