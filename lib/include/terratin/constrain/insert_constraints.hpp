@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Constrained Delaunay triangulation: constraint segments inserted into a Delaunay TIN.
+
+#include "terratin/constrain/constrained_tin.hpp"
+#include "terratin/geometry/point.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace terratin {
+
+/// The constraints to insert, in the mesh's planar units.
+struct ConstraintSet {
+    /// Segments between vertices of the mesh, as vertex indices (TinMesh::vertices).
+    std::vector<std::array<std::uint32_t, 2>> segments;
+    /// Polylines of points (x, y as the mesh's vertices, z the elevation the point gets when it
+    /// becomes a new vertex). A closed ring repeats its first point at the end.
+    std::vector<std::vector<Point3>> polylines;
+};
+
+/// Inserts every constraint of `constraints` into `mesh`, a Delaunay triangulation (as
+/// triangulate() makes it), and returns the constrained Delaunay triangulation.
+///
+/// Postconditions: every constraint segment is a chain of constrained edges; every unconstrained
+/// interior edge passes the exact empty-circle test with the opposite vertex; the triangles
+/// still cover the convex hull. Every orientation and in-circle decision is exact
+/// (geometry/predicates.hpp).
+/// - A vertex lying exactly on a segment (exact orient2d == 0, strictly between its ends)
+///   splits it; overlapping, duplicate and collinear segments share their edges.
+/// - A polyline point becomes a new vertex (sourceIndex kConstraintPointSource) unless a vertex
+///   has exactly its x and y: then that vertex is used and keeps its elevation.
+/// - Two segments that cross get a new vertex (sourceIndex kIntersectionSource) at their
+///   intersection, computed in double along the segment inserted first, c + t (d - c), with its
+///   z interpolated linearly along that segment. Rounding may leave the vertex off either segment
+///   by about one unit in the last place of the coordinates: both segments then bend through it
+///   and their halves are constrained as they are.
+/// - Where a segment crosses a constrained edge and passes within 2^-50 times the largest
+///   coordinate involved (about 4 ulps) of one of that edge's vertices, it goes through that
+///   vertex instead (so segments through an earlier crossing reuse its vertex); such a chain
+///   vertex may lie that far off the segment.
+/// - Zero-length segments are ignored.
+/// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
+/// non-finite coordinate, or a polyline point outside the convex hull of the mesh (clipping to
+/// the hull is not supported), and for more than 2^32 - 2 segments in all; `mesh` is consumed
+/// either way.
+/// Complexity: O(n) once for the vertex-to-triangle map (and a bucket grid when there are
+/// polylines), then per segment the degree of its first vertex plus O(k) flips for the k edges
+/// it crosses (O(k^2) at worst), per crossing a point insertion, per polyline point a walk from
+/// the previous point (the first from its bucket). Sequential. docs/algorithms.md ("Constrained
+/// Delaunay") describes the method.
+ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
+
+} // namespace terratin

@@ -1,0 +1,310 @@
+#include "cdt_mesh.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace terratin::detail {
+
+namespace {
+
+// The largest triangle index a TinMesh neighbour (int32) can hold.
+constexpr std::size_t kMaxTriangles =
+    static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
+
+// The largest vertex index, below the sourceIndex markers of constrained_tin.hpp.
+constexpr std::size_t kMaxVertices = std::numeric_limits<std::uint32_t>::max() - 4;
+
+} // namespace
+
+CdtMesh::CdtMesh(TinMesh mesh)
+    : m_mesh(std::move(mesh)), m_constrained(m_mesh.triangles.size(), 0),
+      m_vertexTriangle(m_mesh.vertices.size(), 0) {
+    const std::size_t triangleCount = m_mesh.triangleCount();
+    for (std::size_t t = 0; t < triangleCount; ++t)
+        for (std::size_t i = 0; i < 3; ++i)
+            m_vertexTriangle[m_mesh.triangles[3 * t + i]] = static_cast<std::uint32_t>(t);
+}
+
+std::size_t CdtMesh::twin(std::size_t h) const {
+    const std::int32_t neighbour = m_mesh.neighbours[h];
+    if (neighbour < 0)
+        return kNoHalfEdge;
+    const std::uint32_t end = to(h);
+    const std::size_t base = 3 * static_cast<std::size_t>(neighbour);
+    for (std::size_t j = 0; j < 3; ++j)
+        if (m_mesh.triangles[base + j] == end)
+            return base + j;
+    throw std::logic_error("CdtMesh: neighbour links are not mutual");
+}
+
+void CdtMesh::setConstrained(std::size_t h, bool constrained) {
+    setFlag(h, constrained);
+    const std::size_t other = twin(h);
+    if (other != kNoHalfEdge)
+        setFlag(other, constrained);
+}
+
+std::size_t CdtMesh::halfEdgeLeaving(std::uint32_t v) const {
+    const std::size_t base = 3 * static_cast<std::size_t>(m_vertexTriangle[v]);
+    for (std::size_t i = 0; i < 3; ++i)
+        if (m_mesh.triangles[base + i] == v)
+            return base + i;
+    throw std::logic_error("CdtMesh: vertex-to-triangle map is stale");
+}
+
+std::size_t CdtMesh::findEdge(std::uint32_t a, std::uint32_t b) const {
+    std::size_t found = kNoHalfEdge;
+    forEachHalfEdgeAround(a, [&](std::size_t h) {
+        if (to(h) != b && from(h) != b)
+            return false;
+        found = h;
+        return true;
+    });
+    return found;
+}
+
+std::size_t CdtMesh::find(const Edge& edge) const {
+    if (edge.hint != kNoHalfEdge) {
+        const std::uint32_t a = from(edge.hint);
+        const std::uint32_t b = to(edge.hint);
+        if ((a == edge.a && b == edge.b) || (a == edge.b && b == edge.a))
+            return edge.hint;
+    }
+    return findEdge(edge.a, edge.b);
+}
+
+MeshLocation CdtMesh::locate(const Point2& p, std::size_t startTriangle) {
+    std::size_t t = startTriangle;
+    std::size_t cameThrough = kNoHalfEdge;
+    for (;;) {
+        // xorshift64: the random first edge is what makes the walk terminate on any mesh.
+        m_walkRandom ^= m_walkRandom << 13U;
+        m_walkRandom ^= m_walkRandom >> 7U;
+        m_walkRandom ^= m_walkRandom << 17U;
+        const std::size_t first = m_walkRandom % 3;
+        bool moved = false;
+        for (std::size_t k = 0; k < 3 && !moved; ++k) {
+            const std::size_t h = 3 * t + (first + k) % 3;
+            if (h == cameThrough || predicates::orient2d(xy(from(h)), xy(to(h)), p) >= 0.0)
+                continue;
+            if (m_mesh.neighbours[h] < 0)
+                return {MeshLocation::Kind::OutsideHull, h, 0};
+            cameThrough = twin(h);
+            t = cameThrough / 3;
+            moved = true;
+        }
+        if (!moved)
+            break;
+    }
+    MeshLocation where{MeshLocation::Kind::InTriangle, 3 * t, 0};
+    for (std::size_t i = 0; i < 3; ++i) {
+        const std::size_t h = 3 * t + i;
+        if (xy(from(h)) == p)
+            return {MeshLocation::Kind::OnVertex, h, from(h)};
+        if (predicates::orient2d(xy(from(h)), xy(to(h)), p) == 0.0)
+            where = {MeshLocation::Kind::OnEdge, h, 0};
+    }
+    return where;
+}
+
+std::size_t CdtMesh::addTriangle() {
+    const std::size_t t = m_mesh.triangleCount();
+    if (t >= kMaxTriangles)
+        throw InvalidInputError("insertConstraints: too many triangles");
+    for (int i = 0; i < 3; ++i) {
+        m_mesh.triangles.push_back(0);
+        m_mesh.neighbours.push_back(kNoNeighbour);
+        m_constrained.push_back(0);
+    }
+    return t;
+}
+
+std::uint32_t CdtMesh::addVertex(const Point3& p, std::uint32_t source) {
+    const std::size_t v = m_mesh.vertices.size();
+    if (v >= kMaxVertices)
+        throw InvalidInputError("insertConstraints: too many vertices");
+    m_mesh.vertices.push_back(p);
+    m_mesh.sourceIndex.push_back(source);
+    m_vertexTriangle.push_back(0);
+    return static_cast<std::uint32_t>(v);
+}
+
+void CdtMesh::writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const std::uint32_t corners[3] = {a, b, c};
+    for (std::size_t i = 0; i < 3; ++i) {
+        m_mesh.triangles[3 * t + i] = corners[i];
+        m_mesh.neighbours[3 * t + i] = kNoNeighbour;
+        m_constrained[3 * t + i] = 0;
+        m_vertexTriangle[corners[i]] = static_cast<std::uint32_t>(t);
+    }
+}
+
+void CdtMesh::link(std::size_t h, std::size_t other) {
+    if (other == kNoHalfEdge) {
+        m_mesh.neighbours[h] = kNoNeighbour;
+        return;
+    }
+    m_mesh.neighbours[h] = static_cast<std::int32_t>(other / 3);
+    m_mesh.neighbours[other] = static_cast<std::int32_t>(h / 3);
+}
+
+// Triangle (a, b, c) of h becomes (a, b, v), (b, c, v), (c, a, v).
+void CdtMesh::splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck) {
+    const std::size_t t = h / 3;
+    const std::uint32_t a = m_mesh.triangles[3 * t];
+    const std::uint32_t b = m_mesh.triangles[3 * t + 1];
+    const std::uint32_t c = m_mesh.triangles[3 * t + 2];
+    const std::size_t outer[3] = {twin(3 * t), twin(3 * t + 1), twin(3 * t + 2)};
+    const bool flags[3] = {isConstrained(3 * t), isConstrained(3 * t + 1),
+                           isConstrained(3 * t + 2)};
+    const std::size_t t1 = addTriangle();
+    const std::size_t t2 = addTriangle();
+    writeTriangle(t, a, b, v);
+    writeTriangle(t1, b, c, v);
+    writeTriangle(t2, c, a, v);
+    const std::size_t fans[3] = {t, t1, t2};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t fan = fans[k];
+        link(3 * fan, outer[k]);
+        setFlag(3 * fan, flags[k]);
+        // v -> start of this fan triangle is the twin of (its start) -> v in the previous one.
+        link(3 * fan + 2, 3 * fans[(k + 2) % 3] + 1);
+        toCheck.push_back(3 * fan);
+    }
+}
+
+// Edge a -> b of h, in triangle (a, b, c), with d across: (a, v, c), (v, b, c) and, across,
+// (b, v, d), (v, a, d). Both halves keep the edge's flag.
+void CdtMesh::splitEdge(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck) {
+    const std::size_t g = twin(h);
+    const std::size_t t = h / 3;
+    const std::uint32_t a = from(h);
+    const std::uint32_t b = to(h);
+    const std::uint32_t c = from(previousHalfEdge(h));
+    const bool edgeFlag = isConstrained(h);
+    const std::size_t outerBc = twin(nextHalfEdge(h));
+    const std::size_t outerCa = twin(previousHalfEdge(h));
+    const bool flagBc = isConstrained(nextHalfEdge(h));
+    const bool flagCa = isConstrained(previousHalfEdge(h));
+
+    const std::size_t t1 = addTriangle();
+    writeTriangle(t, a, v, c);
+    writeTriangle(t1, v, b, c);
+    link(3 * t + 1, 3 * t1 + 2);
+    link(3 * t + 2, outerCa);
+    setFlag(3 * t + 2, flagCa);
+    link(3 * t1 + 1, outerBc);
+    setFlag(3 * t1 + 1, flagBc);
+    setFlag(3 * t, edgeFlag);
+    setFlag(3 * t1, edgeFlag);
+    toCheck.push_back(3 * t + 2);
+    toCheck.push_back(3 * t1 + 1);
+    if (g == kNoHalfEdge) {
+        link(3 * t, kNoHalfEdge);
+        link(3 * t1, kNoHalfEdge);
+        return;
+    }
+
+    const std::size_t u = g / 3;
+    const std::uint32_t d = from(previousHalfEdge(g));
+    const std::size_t outerAd = twin(nextHalfEdge(g));
+    const std::size_t outerDb = twin(previousHalfEdge(g));
+    const bool flagAd = isConstrained(nextHalfEdge(g));
+    const bool flagDb = isConstrained(previousHalfEdge(g));
+    const std::size_t u1 = addTriangle();
+    writeTriangle(u, b, v, d);
+    writeTriangle(u1, v, a, d);
+    link(3 * u, 3 * t1);
+    link(3 * u1, 3 * t);
+    link(3 * u + 1, 3 * u1 + 2);
+    link(3 * u + 2, outerDb);
+    setFlag(3 * u + 2, flagDb);
+    link(3 * u1 + 1, outerAd);
+    setFlag(3 * u1 + 1, flagAd);
+    setFlag(3 * u, edgeFlag);
+    setFlag(3 * u1, edgeFlag);
+    toCheck.push_back(3 * u + 2);
+    toCheck.push_back(3 * u1 + 1);
+}
+
+void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
+    while (!toCheck.empty()) {
+        const std::size_t h = toCheck.back();
+        toCheck.pop_back();
+        if (isConstrained(h) || from(previousHalfEdge(h)) != v)
+            continue;
+        const std::size_t g = twin(h);
+        if (g == kNoHalfEdge)
+            continue;
+        const std::uint32_t opposite = from(previousHalfEdge(g));
+        // v inside the circle of the triangle across h makes their quadrilateral convex.
+        if (predicates::incircle(xy(from(h)), xy(to(h)), xy(v), xy(opposite)) <= 0.0)
+            continue;
+        flip(h);
+        toCheck.push_back(3 * (h / 3));
+        toCheck.push_back(3 * (g / 3));
+    }
+}
+
+void CdtMesh::flipAndRecord(std::size_t h, std::vector<Edge>& touched) {
+    const std::uint32_t a = from(h);
+    const std::uint32_t b = to(h);
+    const std::uint32_t c = from(previousHalfEdge(h));
+    const std::uint32_t d = from(previousHalfEdge(twin(h)));
+    const std::size_t t = h / 3;
+    const std::size_t u = twin(h) / 3;
+    flip(h);
+    // Triangle t is now (a, d, c), triangle u (d, b, c).
+    touched.insert(touched.end(), {Edge{d, c, 3 * t + 1}, Edge{a, d, 3 * t}, Edge{d, b, 3 * u},
+                                   Edge{b, c, 3 * u + 1}, Edge{c, a, 3 * t + 2}});
+}
+
+void CdtMesh::restoreDelaunay(std::vector<Edge>& stack) {
+    while (!stack.empty()) {
+        const Edge edge = stack.back();
+        stack.pop_back();
+        const std::size_t h = find(edge);
+        if (h == kNoHalfEdge || isConstrained(h) || twin(h) == kNoHalfEdge)
+            continue;
+        const std::uint32_t opposite = from(previousHalfEdge(twin(h)));
+        if (predicates::incircle(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
+                                 xy(opposite)) > 0.0)
+            flipAndRecord(h, stack);
+    }
+}
+
+void CdtMesh::flip(std::size_t h) {
+    const std::size_t g = twin(h);
+    const std::size_t t = h / 3;
+    const std::size_t u = g / 3;
+    const std::uint32_t a = from(h);
+    const std::uint32_t b = to(h);
+    const std::uint32_t c = from(previousHalfEdge(h));
+    const std::uint32_t d = from(previousHalfEdge(g));
+    const std::size_t outerBc = twin(nextHalfEdge(h));
+    const std::size_t outerCa = twin(previousHalfEdge(h));
+    const std::size_t outerAd = twin(nextHalfEdge(g));
+    const std::size_t outerDb = twin(previousHalfEdge(g));
+    const bool flagBc = isConstrained(nextHalfEdge(h));
+    const bool flagCa = isConstrained(previousHalfEdge(h));
+    const bool flagAd = isConstrained(nextHalfEdge(g));
+    const bool flagDb = isConstrained(previousHalfEdge(g));
+
+    writeTriangle(t, a, d, c);
+    writeTriangle(u, d, b, c);
+    link(3 * t, outerAd);
+    setFlag(3 * t, flagAd);
+    link(3 * t + 1, 3 * u + 2);
+    link(3 * t + 2, outerCa);
+    setFlag(3 * t + 2, flagCa);
+    link(3 * u, outerDb);
+    setFlag(3 * u, flagDb);
+    link(3 * u + 1, outerBc);
+    setFlag(3 * u + 1, flagBc);
+}
+
+} // namespace terratin::detail

@@ -1,0 +1,173 @@
+#pragma once
+// The mutable triangulation behind insertConstraints: TinMesh's flat arrays plus a constrained
+// flag per half-edge and one incident triangle per vertex, with the local operations
+// (location, point insertion, flips) that keep it constrained Delaunay.
+//
+// Notation: half-edge h = 3t + i runs from corner i to corner (i+1)%3 of triangle t; its twin
+// is the half-edge of the neighbour across that edge, running the other way.
+
+#include "terratin/geometry/point.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace terratin::detail {
+
+inline constexpr std::size_t kNoHalfEdge = std::numeric_limits<std::size_t>::max();
+
+inline std::size_t nextHalfEdge(std::size_t h) {
+    return h % 3 == 2 ? h - 2 : h + 1;
+}
+inline std::size_t previousHalfEdge(std::size_t h) {
+    return h % 3 == 0 ? h + 2 : h - 1;
+}
+
+/// Where a point lies in the triangulation.
+struct MeshLocation {
+    enum class Kind { InTriangle, OnEdge, OnVertex, OutsideHull };
+    Kind kind = Kind::OutsideHull;
+    /// InTriangle: a half-edge of the triangle; OnEdge: the half-edge the point lies on.
+    std::size_t halfEdge = kNoHalfEdge;
+    /// OnVertex: the vertex.
+    std::uint32_t vertex = 0;
+};
+
+class CdtMesh {
+public:
+    /// Takes the arrays of a valid triangulation; builds the vertex-to-triangle map (O(n)).
+    explicit CdtMesh(TinMesh mesh);
+
+    [[nodiscard]] const TinMesh& mesh() const { return m_mesh; }
+    [[nodiscard]] TinMesh takeMesh() { return std::move(m_mesh); }
+    [[nodiscard]] std::vector<std::uint8_t> takeFlags() { return std::move(m_constrained); }
+
+    [[nodiscard]] std::size_t vertexCount() const { return m_mesh.vertices.size(); }
+    [[nodiscard]] Point2 xy(std::uint32_t v) const {
+        return {m_mesh.vertices[v].x, m_mesh.vertices[v].y};
+    }
+    [[nodiscard]] const Point3& vertex(std::uint32_t v) const { return m_mesh.vertices[v]; }
+    [[nodiscard]] std::uint32_t from(std::size_t h) const { return m_mesh.triangles[h]; }
+    [[nodiscard]] std::uint32_t to(std::size_t h) const {
+        return m_mesh.triangles[nextHalfEdge(h)];
+    }
+    /// The twin of `h`, or kNoHalfEdge on the convex hull. O(1).
+    [[nodiscard]] std::size_t twin(std::size_t h) const;
+    [[nodiscard]] bool isConstrained(std::size_t h) const { return m_constrained[h] != 0; }
+    /// Sets the flag of `h` and of its twin.
+    void setConstrained(std::size_t h, bool constrained);
+    /// A half-edge leaving `v`.
+    [[nodiscard]] std::size_t halfEdgeLeaving(std::uint32_t v) const;
+
+    /// Every half-edge leaving `v`, counter-clockwise, then (when `v` is on the hull) the
+    /// hull half-edge arriving at `v`; `visit(h)` returns true to stop. O(degree).
+    template <class Visit> void forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const;
+
+    /// Locates `p`, walking from triangle `startTriangle` (a remembering stochastic walk,
+    /// which terminates on any triangulation, constrained ones included).
+    [[nodiscard]] MeshLocation locate(const Point2& p, std::size_t startTriangle);
+
+    /// Inserts `p` at `where` (InTriangle or OnEdge, as locate found it) as a new vertex with
+    /// source index `source`, then restores the constrained Delaunay property by Lawson flips
+    /// that never flip a constrained edge. A constrained edge split by `p` stays constrained
+    /// in both halves; `onSplit(a, b, p)` is told. Returns the new vertex.
+    template <class OnSplit>
+    std::uint32_t insertPoint(const Point3& p, std::uint32_t source, const MeshLocation& where,
+                              OnSplit&& onSplit);
+
+    /// The half-edge a -> b, or b -> a on the hull, or kNoHalfEdge when a-b is no edge.
+    /// O(degree of a).
+    [[nodiscard]] std::size_t findEdge(std::uint32_t a, std::uint32_t b) const;
+    /// Flips the edge of `h` (interior, unconstrained, its quadrilateral strictly convex).
+    /// Afterwards triangle h/3 is (a, d, c) and the twin's triangle (d, b, c), where h ran
+    /// a -> b in triangle (a, b, c) and d was opposite across it.
+    void flip(std::size_t h);
+
+    /// An edge as its two vertices (either order), with a half-edge that held it when it was
+    /// recorded: flips renumber half-edges, so the hint is checked before it is used.
+    struct Edge {
+        std::uint32_t a;
+        std::uint32_t b;
+        std::size_t hint = kNoHalfEdge;
+    };
+    /// The half-edge of `edge` now (its hint when still valid, else findEdge), or kNoHalfEdge.
+    [[nodiscard]] std::size_t find(const Edge& edge) const;
+    /// flip(h), adding the five edges of the two new triangles to `touched`.
+    void flipAndRecord(std::size_t h, std::vector<Edge>& touched);
+    /// Lawson's flips from the edges in `stack` (those no longer edges are skipped), spreading
+    /// to the neighbours of every flip, never across a constrained edge: afterwards every edge
+    /// reached is locally constrained Delaunay. Empties `stack`.
+    void restoreDelaunay(std::vector<Edge>& stack);
+
+private:
+    /// Writes triangle `t` as (a, b, c) with no neighbours and no flags, and points the three
+    /// vertices at it.
+    void writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c);
+    /// Makes `h` and `other` twins (`other` may be kNoHalfEdge: `h` is then a hull edge).
+    void link(std::size_t h, std::size_t other);
+    /// Sets the flag of `h` alone (the twin is set by the caller).
+    void setFlag(std::size_t h, bool constrained) { m_constrained[h] = constrained ? 1 : 0; }
+    std::size_t addTriangle();
+    std::uint32_t addVertex(const Point3& p, std::uint32_t source);
+    void splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck);
+    void splitEdge(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck);
+    void legalise(std::uint32_t v, std::vector<std::size_t>& toCheck);
+
+    TinMesh m_mesh;
+    std::vector<std::uint8_t> m_constrained;
+    std::vector<std::uint32_t> m_vertexTriangle;
+    std::uint64_t m_walkRandom = 0x9e3779b97f4a7c15ULL;
+};
+
+template <class Visit> void CdtMesh::forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const {
+    const std::size_t start = halfEdgeLeaving(v);
+    std::size_t h = start;
+    for (;;) {
+        if (visit(h))
+            return;
+        const std::size_t incoming = previousHalfEdge(h);
+        const std::size_t next = twin(incoming);
+        if (next == kNoHalfEdge) {
+            // On the hull: the hull half-edge arriving at v, then the other way round.
+            if (visit(incoming))
+                return;
+            break;
+        }
+        if (next == start)
+            return;
+        h = next;
+    }
+    h = start;
+    for (;;) {
+        const std::size_t back = twin(h);
+        if (back == kNoHalfEdge)
+            return;
+        h = nextHalfEdge(back);
+        if (visit(h))
+            return;
+    }
+}
+
+template <class OnSplit>
+std::uint32_t CdtMesh::insertPoint(const Point3& p, std::uint32_t source, const MeshLocation& where,
+                                   OnSplit&& onSplit) {
+    const std::uint32_t v = addVertex(p, source);
+    std::vector<std::size_t> toCheck;
+    if (where.kind == MeshLocation::Kind::OnEdge) {
+        const std::uint32_t a = from(where.halfEdge);
+        const std::uint32_t b = to(where.halfEdge);
+        const bool wasConstrained = isConstrained(where.halfEdge);
+        splitEdge(where.halfEdge, v, toCheck);
+        if (wasConstrained)
+            onSplit(a, b, v);
+    } else {
+        splitTriangle(where.halfEdge, v, toCheck);
+    }
+    legalise(v, toCheck);
+    return v;
+}
+
+} // namespace terratin::detail

@@ -1,0 +1,33 @@
+#pragma once
+// The chain of vertices each input segment becomes, kept as it grows: a segment starts as its
+// two ends, and every vertex that splits one of its edges (a vertex on it, a crossing, a point
+// on a constrained edge) goes between that edge's two vertices.
+
+#include "constraint_owners.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace terratin::detail {
+
+class ConstraintChains {
+public:
+    /// Segment `owner` (numbered from 0 without gaps) from a to b: the chain (a, b), or (a)
+    /// when a == b.
+    void start(std::uint32_t owner, std::uint32_t a, std::uint32_t b);
+
+    /// Puts `w` between x and y wherever they are consecutive (either order) in the chain of
+    /// each of `owners`; nothing when w is x or y. Throws std::logic_error when an owner's
+    /// chain has no such pair (a broken invariant). O(chain length) per owner.
+    void insertBetween(const ConstraintOwners::Owners& owners, std::uint32_t x, std::uint32_t y,
+                       std::uint32_t w);
+
+    [[nodiscard]] const std::vector<std::uint32_t>& chain(std::uint32_t owner) const {
+        return m_chains[owner];
+    }
+
+private:
+    std::vector<std::vector<std::uint32_t>> m_chains;
+};
+
+} // namespace terratin::detail

@@ -1,0 +1,187 @@
+#include "constraint_inserter.hpp"
+
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace terratin::detail {
+
+namespace {
+
+// How close, in units of 2^-52 times the largest coordinate involved (4 to 8 ulps), a vertex
+// must be to a segment or a crossing to be taken as on it. The crossing vertices computed
+// below lie within about an ulp of both segments (the rounding of t, of the product and of the
+// sum); twice that each way, and a margin, is 4.
+constexpr double kSnapUlps = 4.0;
+
+} // namespace
+
+std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p, bool jump) {
+    if (jump) {
+        if (!m_buckets)
+            m_buckets.emplace(m_mesh.mesh().vertices);
+        m_hintTriangle = m_mesh.halfEdgeLeaving(m_buckets->vertexNear({p.x, p.y})) / 3;
+    }
+    const MeshLocation where = m_mesh.locate({p.x, p.y}, m_hintTriangle);
+    if (where.kind == MeshLocation::Kind::OutsideHull)
+        return std::nullopt;
+    m_hintTriangle = where.halfEdge / 3;
+    if (where.kind == MeshLocation::Kind::OnVertex)
+        return where.vertex;
+    ++m_addedPoints;
+    return insertVertex(p, kConstraintPointSource, where);
+}
+
+std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t source,
+                                               const MeshLocation& where) {
+    const std::uint32_t v = m_mesh.insertPoint(
+        p, source, where, [this](std::uint32_t a, std::uint32_t b, std::uint32_t middle) {
+            const ConstraintOwners::Owners owners = m_owners.take(a, b);
+            m_owners.add(a, middle, owners);
+            m_owners.add(middle, b, owners);
+            m_chains.insertBetween(owners, a, b, middle);
+        });
+    m_hintTriangle = m_mesh.halfEdgeLeaving(v) / 3;
+    return v;
+}
+
+void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner) {
+    m_chains.start(owner, a, b);
+    m_pieces.push_back({a, b, {owner}});
+    while (!m_pieces.empty()) {
+        const Piece piece = std::move(m_pieces.back());
+        m_pieces.pop_back();
+        insertPiece(piece);
+    }
+}
+
+void ConstraintInserter::insertPiece(const Piece& piece) {
+    std::uint32_t u = piece.from;
+    const std::uint32_t v = piece.to;
+    while (u != v) {
+        const SegmentStart start = findSegmentStart(m_mesh, u, v);
+        if (start.kind == SegmentStart::Kind::AlongEdge) {
+            markConstrained(start.halfEdge, piece.owners);
+            m_chains.insertBetween(piece.owners, u, v, start.vertex);
+            u = start.vertex;
+            continue;
+        }
+        const std::size_t blocking = walkCrossedEdges(m_mesh, u, v, start, m_crossed);
+        if (blocking != kNoHalfEdge) {
+            splitAtCrossing(u, v, piece.owners, blocking);
+            return;
+        }
+        markConstrained(flipSegmentIn(m_mesh, u, m_crossed), piece.owners);
+        m_chains.insertBetween(piece.owners, u, v, m_crossed.end);
+        u = m_crossed.end;
+    }
+}
+
+void ConstraintInserter::markConstrained(std::size_t h, const ConstraintOwners::Owners& owners) {
+    m_mesh.setConstrained(h, true);
+    m_owners.add(m_mesh.from(h), m_mesh.to(h), owners);
+}
+
+// u -> v crosses the constrained edge c -> d: both segments are bent through a vertex at the
+// crossing, computed along c -> d (the segment inserted first). Rounding may put that vertex an
+// ulp off either segment, so it is found again by location, c -> d is unmarked and both are
+// re-inserted in two pieces. When c or d lies within rounding distance of u -> v, u -> v goes
+// through it instead: a later segment through an earlier crossing then uses its vertex rather
+// than making another one a rounding away from it.
+void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
+                                         const ConstraintOwners::Owners& owners,
+                                         std::size_t crossed) {
+    const std::uint32_t c = m_mesh.from(crossed);
+    const std::uint32_t d = m_mesh.to(crossed);
+    const Point2 pu = m_mesh.xy(u);
+    const Point2 pv = m_mesh.xy(v);
+    // Distances of c and d from the line uv, times |uv|; their signs differ exactly.
+    const double sideC = predicates::orient2d(pu, pv, m_mesh.xy(c));
+    const double sideD = predicates::orient2d(pu, pv, m_mesh.xy(d));
+    const std::optional<std::uint32_t> near = nearEndpoint(u, v, c, d, sideC, sideD);
+    if (near) {
+        m_chains.insertBetween(owners, u, v, *near);
+        m_pieces.push_back({*near, v, owners});
+        m_pieces.push_back({u, *near, owners});
+        return;
+    }
+    const double t = std::clamp(sideC / (sideC - sideD), 0.0, 1.0);
+    const Point3& pc = m_mesh.vertex(c);
+    const Point3& pd = m_mesh.vertex(d);
+    const Point3 crossing{pc.x + t * (pd.x - pc.x), pc.y + t * (pd.y - pc.y),
+                          pc.z + t * (pd.z - pc.z)};
+
+    const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
+    m_mesh.setConstrained(crossed, false);
+    const MeshLocation where = m_mesh.locate({crossing.x, crossing.y}, crossed / 3);
+    if (where.kind == MeshLocation::Kind::OutsideHull)
+        throw std::logic_error("insertConstraints: a crossing lies outside the convex hull");
+    std::optional<std::uint32_t> w;
+    if (where.kind == MeshLocation::Kind::OnVertex)
+        w = where.vertex;
+    else
+        w = vertexWithinRounding(crossing, where.halfEdge / 3);
+    if (!w) {
+        w = insertVertex(crossing, kIntersectionSource, where);
+        ++m_intersections;
+    }
+    m_chains.insertBetween(crossedOwners, c, d, *w);
+    m_chains.insertBetween(owners, u, v, *w);
+    // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
+    // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
+    std::vector<CdtMesh::Edge> unmarked{{c, d, kNoHalfEdge}};
+    m_mesh.restoreDelaunay(unmarked);
+    // A stack: c -> d is restored first, then u -> v goes on through w.
+    m_pieces.push_back({*w, v, owners});
+    m_pieces.push_back({u, *w, owners});
+    m_pieces.push_back({*w, d, crossedOwners});
+    m_pieces.push_back({c, *w, crossedOwners});
+}
+
+// c or d when it lies within rounding (kSnapUlps) of the line through u and v.
+std::optional<std::uint32_t> ConstraintInserter::nearEndpoint(std::uint32_t u, std::uint32_t v,
+                                                              std::uint32_t c, std::uint32_t d,
+                                                              double sideC, double sideD) const {
+    const Point2 pu = m_mesh.xy(u);
+    const Point2 pv = m_mesh.xy(v);
+    const Point2 pc = m_mesh.xy(c);
+    const Point2 pd = m_mesh.xy(d);
+    const double magnitude =
+        std::max({std::fabs(pu.x), std::fabs(pu.y), std::fabs(pv.x), std::fabs(pv.y),
+                  std::fabs(pc.x), std::fabs(pc.y), std::fabs(pd.x), std::fabs(pd.y)});
+    const double tolerance = kSnapUlps * std::numeric_limits<double>::epsilon() * magnitude *
+                             std::hypot(pv.x - pu.x, pv.y - pu.y);
+    if (std::fabs(sideC) <= tolerance && std::fabs(sideC) <= std::fabs(sideD))
+        return c;
+    if (std::fabs(sideD) <= tolerance)
+        return d;
+    return std::nullopt;
+}
+
+// A crossing within rounding of a vertex of the triangle it falls in (an earlier crossing, most
+// often, where several segments pass through one point) is that vertex.
+std::optional<std::uint32_t> ConstraintInserter::vertexWithinRounding(const Point3& p,
+                                                                      std::size_t triangle) const {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const std::uint32_t corner = m_mesh.from(3 * triangle + i);
+        const Point2 q = m_mesh.xy(corner);
+        const double magnitude =
+            std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(q.x), std::fabs(q.y)});
+        const double tolerance = kSnapUlps * std::numeric_limits<double>::epsilon() * magnitude;
+        if (std::fabs(q.x - p.x) <= tolerance && std::fabs(q.y - p.y) <= tolerance)
+            return corner;
+    }
+    return std::nullopt;
+}
+
+void ConstraintInserter::finish(ConstrainedTin& tin) {
+    tin.mesh = m_mesh.takeMesh();
+    tin.constrained = m_mesh.takeFlags();
+    tin.addedPoints = m_addedPoints;
+    tin.intersections = m_intersections;
+}
+
+} // namespace terratin::detail

@@ -1,0 +1,104 @@
+#include "terratin/constrain/insert_constraints.hpp"
+
+#include "constraint_inserter.hpp"
+#include "terratin/error.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace terratin {
+
+namespace {
+
+std::string pointText(const Point3& p) {
+    return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
+}
+
+void checkConstraints(const TinMesh& mesh, const ConstraintSet& constraints) {
+    const std::size_t vertexCount = mesh.vertexCount();
+    for (std::size_t k = 0; k < constraints.segments.size(); ++k)
+        for (const std::uint32_t v : constraints.segments[k])
+            if (v >= vertexCount)
+                throw InvalidInputError("insertConstraints: segment " + std::to_string(k) +
+                                        " names vertex " + std::to_string(v) + " of a mesh of " +
+                                        std::to_string(vertexCount) + " vertices");
+    for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
+        for (std::size_t j = 0; j < constraints.polylines[k].size(); ++j) {
+            const Point3& p = constraints.polylines[k][j];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) +
+                                        ", point " + std::to_string(j) + " is not finite");
+        }
+    std::size_t segments = constraints.segments.size();
+    for (const std::vector<Point3>& polyline : constraints.polylines)
+        segments += polyline.empty() ? 0 : polyline.size() - 1;
+    if (segments >= std::numeric_limits<std::uint32_t>::max() - 1)
+        throw InvalidInputError("insertConstraints: too many segments (" +
+                                std::to_string(segments) + ")");
+    const bool any = !constraints.segments.empty() || !constraints.polylines.empty();
+    if (any && mesh.triangleCount() == 0)
+        throw InvalidInputError("insertConstraints: the mesh has no triangles");
+}
+
+// The vertices of polyline k's points, each inserted unless a vertex has its x and y.
+std::vector<std::uint32_t> polylineVertices(detail::ConstraintInserter& inserter,
+                                            const std::vector<Point3>& polyline, std::size_t k) {
+    std::vector<std::uint32_t> vertices;
+    vertices.reserve(polyline.size());
+    for (std::size_t j = 0; j < polyline.size(); ++j) {
+        const std::optional<std::uint32_t> v = inserter.insertPoint(polyline[j], j == 0);
+        if (!v)
+            throw InvalidInputError(
+                "insertConstraints: polyline " + std::to_string(k) + ", point " +
+                std::to_string(j) + " " + pointText(polyline[j]) +
+                " lies outside the convex hull of the mesh (clipping is not supported)");
+        vertices.push_back(*v);
+    }
+    return vertices;
+}
+
+} // namespace
+
+ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints) {
+    checkConstraints(mesh, constraints);
+    detail::ConstraintInserter inserter(std::move(mesh));
+
+    // The index segments, then each polyline: its points (a point on a constrained edge splits
+    // it), then its segments, while the mesh around them is still in cache. Every input segment
+    // is numbered as the owner of the edges it becomes.
+    std::vector<std::array<std::uint32_t, 2>> segments = constraints.segments;
+    for (std::size_t s = 0; s < segments.size(); ++s)
+        inserter.insertSegment(segments[s][0], segments[s][1], static_cast<std::uint32_t>(s));
+    std::vector<std::vector<std::uint32_t>> polylines;
+    polylines.reserve(constraints.polylines.size());
+    for (std::size_t k = 0; k < constraints.polylines.size(); ++k) {
+        polylines.push_back(polylineVertices(inserter, constraints.polylines[k], k));
+        const std::vector<std::uint32_t>& polyline = polylines.back();
+        for (std::size_t j = 1; j < polyline.size(); ++j) {
+            inserter.insertSegment(polyline[j - 1], polyline[j],
+                                   static_cast<std::uint32_t>(segments.size()));
+            segments.push_back({polyline[j - 1], polyline[j]});
+        }
+    }
+
+    ConstrainedTin tin;
+    for (std::size_t s = 0; s < constraints.segments.size(); ++s)
+        tin.chains.push_back(inserter.chainOf(static_cast<std::uint32_t>(s)));
+    std::size_t owner = constraints.segments.size();
+    for (const std::vector<std::uint32_t>& polyline : polylines) {
+        std::vector<std::uint32_t> chain;
+        if (!polyline.empty())
+            chain.push_back(polyline.front());
+        for (std::size_t j = 1; j < polyline.size(); ++j, ++owner) {
+            const std::vector<std::uint32_t>& piece =
+                inserter.chainOf(static_cast<std::uint32_t>(owner));
+            chain.insert(chain.end(), piece.begin() + 1, piece.end());
+        }
+        tin.chains.push_back(std::move(chain));
+    }
+    inserter.finish(tin);
+    return tin;
+}
+
+} // namespace terratin
