@@ -789,6 +789,24 @@ case "$case_name" in
     run 1 build "$sample" --s_srs garbage -o tin.gpkg --quiet
     ! grep -q "unknown GDAL error" err.txt || fail "unknown GDAL error for --s_srs garbage"
     ;;
+  breaklines)
+    # Issue 24: a breakline layer through the command line; its segment is an edge of the TIN.
+    printf 'WKT;id\n"LINESTRING (455501.3 5104003.7, 456700.9 5103100.2)";1\n' >lines.csv
+    ogr2ogr -q -f GPKG lines.gpkg lines.csv -oo GEOM_POSSIBLE_NAMES=WKT -a_srs EPSG:32633 \
+      -nlt LINESTRING -nln roads || fail "ogr2ogr failed"
+    run 0 build "$sample" --breaklines "lines.gpkg|layername=roads" --breakline-z surface \
+      -o tin.gpkg --validate --json --quiet
+    grep -q '"validated": true' out.txt || fail "not validated"
+    grep -q '"breaklines": 1' out.txt || fail "no breakline in the report"
+    [ "$(report_count added_vertices)" -eq 2 ] || fail "not 2 added vertices"
+    run 1 build "$sample" --breaklines lines.gpkg --breakline-z line -o tin2.gpkg --quiet
+    expect_one_error_line "--breakline-z line"
+    run 2 build "$sample" --breaklines lines.gpkg --breakline-z sky -o tin3.gpkg --quiet
+    expect_one_error_line "--breakline-z"
+    run 2 build "$sample" --breaklines lines.gpkg --max-error 1 -o tin4.gpkg --quiet
+    expect_one_error_line "--breaklines does not combine with simplification"
+    [ ! -e tin2.gpkg ] && [ ! -e tin4.gpkg ] || fail "an output written after an error"
+    ;;
   *)
     fail "unknown case"
     ;;

@@ -63,6 +63,32 @@ std::string xmlEscaped(std::string_view text) {
     return escaped;
 }
 
+namespace {
+
+/// The breaklines as LandXML 1.2 <SourceData><Breaklines>: each a <Breakline> whose
+/// <PntList3D> lists northing easting elevation of every point, as <P> does.
+void writeBreaklines(const MeshFileInfo& info, BufferedFile& file) {
+    if (info.breaklines == nullptr || info.breaklines->empty())
+        return;
+    file.text("<SourceData>\n<Breaklines>\n");
+    for (const std::vector<Point3>& line : *info.breaklines) {
+        file.text("<Breakline brkType=\"standard\">\n<PntList3D>");
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            if (i > 0)
+                file.put(' ');
+            file.number(line[i].y);
+            file.put(' ');
+            file.number(line[i].x);
+            file.put(' ');
+            file.number(line[i].z);
+        }
+        file.text("</PntList3D>\n</Breakline>\n");
+    }
+    file.text("</Breaklines>\n</SourceData>\n");
+}
+
+} // namespace
+
 std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
                            const ProgressTicker& ticker) {
     const std::uint64_t vertexCount = mesh.vertexCount();
@@ -118,7 +144,9 @@ std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, Buffer
     file.text(xmlEscaped(info.softwareVersion));
     file.text("\"/>\n<Surfaces>\n<Surface name=\"");
     file.text(xmlEscaped(info.name));
-    file.text("\">\n<Definition surfType=\"TIN\" area2DSurf=\"");
+    file.text("\">\n");
+    writeBreaklines(info, file);
+    file.text("<Definition surfType=\"TIN\" area2DSurf=\"");
     file.number(area2d);
     file.text("\" area3DSurf=\"");
     file.number(area3d);

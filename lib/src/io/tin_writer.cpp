@@ -81,6 +81,11 @@ void checkMesh(std::string_view stage, const TinMesh& mesh, const fs::path& outp
         throwInvalid(stage, "vertexCells has " + std::to_string(options.vertexCells.size()) +
                                 " entries for " + std::to_string(vertexCount) + " vertices" +
                                 nothing);
+    if (!options.constrainedEdges.empty() &&
+        options.constrainedEdges.size() != mesh.triangles.size())
+        throwInvalid(stage, "constrainedEdges has " +
+                                std::to_string(options.constrainedEdges.size()) + " entries for " +
+                                std::to_string(mesh.triangles.size()) + " half-edges" + nothing);
 }
 
 fs::path stylePath(const fs::path& output) {
@@ -94,6 +99,7 @@ detail::MeshFileInfo meshFileInfo(std::string_view stage, const TinWriteOptions&
     info.name = options.layerName;
     info.crs = detail::summariseCrs(stage, options.crsWkt);
     info.softwareVersion = options.softwareVersion;
+    info.breaklines = &options.breaklines;
     return info;
 }
 

@@ -3,12 +3,14 @@
 /// Pieces every TIN writer shares: progress with cancellation, the CRS as the mesh formats
 /// describe it.
 
+#include "terratin/geometry/point.hpp"
 #include "terratin/progress.hpp"
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace terratin::io::detail {
 
@@ -80,6 +82,8 @@ struct MeshFileInfo {
     std::string name = "tin";
     CrsSummary crs;
     std::string softwareVersion;
+    /// LandXML: the breaklines (TinWriteOptions::breaklines); null or empty for none.
+    const std::vector<std::vector<Point3>>* breaklines = nullptr;
 };
 
 } // namespace terratin::io::detail

@@ -345,6 +345,24 @@ std::vector<BuildOptionSpec> makeTable() {
         {"input_layer", "input-layer", 0, Kind::Text, false, "NAME", "",
          "vector points: the layer to read (default: the first point layer)",
          [](BuildOptions& o, const std::string& t, const std::string&) { o.inputLayer = t; }},
+        {"breaklines", "breaklines", 0, Kind::Repeatable, false, "FILE", "",
+         "hard breaklines: an OGR line layer (FILE or FILE|layername=NAME); every segment "
+         "becomes a chain of TIN edges (full-resolution TINs); repeatable",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             if (t.empty())
+                 refuse(n + " needs a file name");
+             o.breaklines.push_back(t);
+         }},
+        {"breaklines_layer", "breaklines-layer", 0, Kind::Text, false, "NAME", "",
+         "the layer of a breaklines source that names none (default: its only layer)",
+         [](BuildOptions& o, const std::string& t, const std::string&) { o.breaklinesLayer = t; }},
+        {"breakline_z", "breakline-z", 0, Kind::Text, false, "FROM", "",
+         "elevation of breakline vertices: line (the line's z) or surface (the TIN of the "
+         "inputs); default: the line's z when it has one, else the surface",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             o.breaklineZ = parseChoice<BreaklineZ>(
+                 t, n, {{"line", BreaklineZ::Line}, {"surface", BreaklineZ::Surface}});
+         }},
         {"s_srs", "s_srs", 0, Kind::Text, false, "SRS", "",
          "CRS of the inputs, overriding theirs (EPSG:n, WKT, PROJ string, .prj file...); "
          "horizontal: projected or geographic 2D, or compound with such a part",

@@ -1,8 +1,10 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
 #include "../stopwatch.hpp"
+#include "breaklines.hpp"
 #include "gather_inputs.hpp"
 #include "refine_placement.hpp"
+#include "terratin/constrain/constrained_validation.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
 #include "terratin/io/height_grid_reader.hpp"
@@ -49,8 +51,53 @@ void describeCrs(const std::string& wkt, BuildReport& report) {
         report.crsCode = std::string(authority) + ":" + code;
 }
 
+/// Throws when `validation` found a problem (MeshValidation or ConstrainedValidation).
+template <class Validation> void checkValid(const Validation& validation, const char* what) {
+    if (!validation.ok())
+        throw Error(std::string("Validation: the mesh is not an exact ") + what +
+                    " triangulation: " +
+                    (validation.problems.empty() ? std::string("unknown problem")
+                                                 : validation.problems.front()));
+}
+
 std::string formatName(io::TinFormat format) {
     return std::string(io::tinFormatName(format));
+}
+
+bool isConstraintVertex(std::uint32_t source) {
+    return source == kConstraintPointSource || source == kIntersectionSource;
+}
+
+// Each breakline's vertices, as points (LandXML writes them so; a vertex number would not
+// survive dropping triangles).
+std::vector<std::vector<Point3>> chainPoints(const ConstrainedTin& constrained,
+                                             const TinMesh& mesh) {
+    std::vector<std::vector<Point3>> lines;
+    lines.reserve(constrained.chains.size());
+    for (const std::vector<std::uint32_t>& chain : constrained.chains) {
+        if (chain.size() < 2)
+            continue;
+        std::vector<Point3>& line = lines.emplace_back();
+        for (const std::uint32_t vertex : chain)
+            line.push_back(mesh.vertices[vertex]);
+    }
+    return lines;
+}
+
+// The per-half-edge flags of the triangles `drop` keeps, in order (dropTriangles keeps the
+// kept triangles' order and corners).
+void keepEdgesOfKeptTriangles(std::vector<std::uint8_t>& edgeFlags,
+                              const std::vector<std::uint8_t>& drop) {
+    if (edgeFlags.empty())
+        return;
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < drop.size(); ++t)
+        if (drop[t] == 0) {
+            std::copy_n(edgeFlags.begin() + static_cast<std::ptrdiff_t>(3 * t), 3,
+                        edgeFlags.begin() + static_cast<std::ptrdiff_t>(3 * kept));
+            ++kept;
+        }
+    edgeFlags.resize(3 * kept);
 }
 
 // The raster cell of every vertex, for the GeoPackage nodes layer: `cellOf(source)` is the
@@ -59,6 +106,10 @@ template <class CellOf>
 std::vector<io::RasterCell> vertexCells(const TinMesh& mesh, std::uint64_t width, CellOf cellOf) {
     std::vector<io::RasterCell> cells(mesh.vertexCount());
     for (std::size_t v = 0; v < cells.size(); ++v) {
+        if (isConstraintVertex(mesh.sourceIndex[v])) {
+            cells[v] = {-1, -1}; // a breakline's point or crossing: no cell
+            continue;
+        }
         const std::uint64_t cell = cellOf(mesh.sourceIndex[v]);
         cells[v] = {static_cast<std::int64_t>(cell / width),
                     static_cast<std::int64_t>(cell % width)};
@@ -191,6 +242,10 @@ void checkBuildOptions(const BuildOptions& options) {
                                 std::to_string(options.band) + ")");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
         throw InvalidInputError("Build: the z factor must be a finite number other than 0");
+    if (options.refine && !options.breaklines.empty())
+        throw InvalidInputError("Build: " + optionName("breaklines", options.optionSpelling) +
+                                " does not combine with simplification yet: build the "
+                                "full-resolution TIN");
     if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
         throw InvalidInputError("Build: the longest edge kept must be a positive length");
     if (options.format)
@@ -238,21 +293,39 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.threads = triangulation.threads;
     report.historyBytesPerPoint = static_cast<double>(triangulation.historyBytes) /
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
+    std::optional<ConstrainedTin> constrained;
+    if (!options.breaklines.empty()) {
+        constrained =
+            detail::addBreaklines(std::move(triangulation.mesh), options, gathered.crsWkt, report);
+        triangulation.mesh = std::move(constrained->mesh);
+        report.vertices = triangulation.mesh.vertexCount();
+        report.triangles = triangulation.mesh.triangleCount();
+    }
     report.timings.triangulate = triangulateTime.seconds();
 
     if (options.validate) {
         const Stopwatch validateTime;
-        const MeshValidation validation = validateDelaunay(triangulation.mesh);
-        if (!validation.ok())
-            throw Error("Validation: the mesh is not an exact Delaunay triangulation: " +
-                        (validation.problems.empty() ? std::string("unknown problem")
-                                                     : validation.problems.front()));
+        if (constrained) {
+            constrained->mesh = std::move(triangulation.mesh);
+            checkValid(validateConstrainedDelaunay(*constrained), "constrained Delaunay");
+            triangulation.mesh = std::move(constrained->mesh);
+        } else {
+            checkValid(validateDelaunay(triangulation.mesh), "Delaunay");
+        }
         report.validated = true;
         report.timings.validate = validateTime.seconds();
     }
 
+    if (constrained) {
+        // The breaklines as the writers take them, before any triangle is dropped.
+        writeOptions.constrainedEdges = std::move(constrained->constrained);
+        writeOptions.breaklines = chainPoints(*constrained, triangulation.mesh);
+    }
     if (options.maxEdge) {
-        report.longEdgeTriangles = dropLongEdgeTriangles(triangulation.mesh, *options.maxEdge);
+        const std::vector<std::uint8_t> drop =
+            longEdgeTriangles(triangulation.mesh, *options.maxEdge);
+        keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, drop);
+        report.longEdgeTriangles = dropTriangles(triangulation.mesh, drop);
         report.triangles = triangulation.mesh.triangleCount();
     }
 

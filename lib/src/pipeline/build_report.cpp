@@ -114,6 +114,10 @@ std::string toJson(const BuildReport& report) {
     }
     if (report.longEdgeTriangles > 0)
         json << ", \"long_edge_triangles\": " << report.longEdgeTriangles;
+    json << ", \"constraints\": {\"breaklines\": " << report.breaklines
+         << ", \"clipped_breaklines\": " << report.clippedBreaklines
+         << ", \"added_vertices\": " << report.constraintVertices
+         << ", \"crossings\": " << report.constraintCrossings << "}";
     json << ", \"writing\": {\"features\": " << report.writeFeatures
          << ", \"features_per_second\": " << report.writeFeaturesPerSecond
          << ", \"rows_seconds\": " << report.writeRowSeconds

@@ -60,7 +60,7 @@ std::size_t dropTriangles(TinMesh& mesh, std::span<const std::uint8_t> drop) {
     return triangleCount - kept;
 }
 
-std::size_t dropLongEdgeTriangles(TinMesh& mesh, double maxEdge) {
+std::vector<std::uint8_t> longEdgeTriangles(const TinMesh& mesh, double maxEdge) {
     if (!(maxEdge > 0.0) || !std::isfinite(maxEdge))
         throw InvalidInputError("MeshFilter: the maximum edge length must be positive and finite");
     const double maxSquared = maxEdge * maxEdge;
@@ -75,7 +75,11 @@ std::size_t dropLongEdgeTriangles(TinMesh& mesh, double maxEdge) {
                 drop[t] = 1;
         }
     }
-    return dropTriangles(mesh, drop);
+    return drop;
+}
+
+std::size_t dropLongEdgeTriangles(TinMesh& mesh, double maxEdge) {
+    return dropTriangles(mesh, longEdgeTriangles(mesh, maxEdge));
 }
 
 } // namespace terratin

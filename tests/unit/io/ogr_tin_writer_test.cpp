@@ -248,7 +248,7 @@ TEST(OgrTinWriterLayers, WritesEachEdgeOnceWithItsTwoTriangles_WhenEdgesAreAsked
     ASSERT_NE(edges, nullptr);
     EXPECT_EQ(edges->GetGeomType(), wkbLineString25D);
     EXPECT_EQ(fieldNames(*edges), (std::vector<std::string>{"node_from", "node_to", "tri_left",
-                                                            "tri_right", "length"}));
+                                                            "tri_right", "length", "constrained"}));
     ASSERT_EQ(edges->GetFeatureCount(), 33);
 
     // The directed edge (a, b) of triangle t in CCW order, for every triangle.
@@ -262,6 +262,7 @@ TEST(OgrTinWriterLayers, WritesEachEdgeOnceWithItsTwoTriangles_WhenEdgesAreAsked
         const auto from = static_cast<std::uint32_t>(feature->GetFieldAsInteger64("node_from") - 1);
         const auto to = static_cast<std::uint32_t>(feature->GetFieldAsInteger64("node_to") - 1);
         EXPECT_TRUE(seen.insert({std::min(from, to), std::max(from, to)}).second) << "repeated";
+        EXPECT_EQ(feature->GetFieldAsInteger("constrained"), 0); // no breaklines
         const auto left = halfEdges.find({from, to});
         ASSERT_NE(left, halfEdges.end());
         EXPECT_EQ(feature->GetFieldAsInteger64("tri_left"), static_cast<GIntBig>(left->second + 1));

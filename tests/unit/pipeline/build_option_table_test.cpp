@@ -111,7 +111,7 @@ TEST(BuildOptionTable, NamesAreUniqueAndEveryOptionIsDocumented) {
     }
     // The inputs and every option of `terratin build --help` but the CLI's own (quiet, json,
     // help).
-    EXPECT_EQ(keywords.size(), 37U);
+    EXPECT_EQ(keywords.size(), 40U);
 }
 
 TEST(BuildOptionTable, DefaultTextParsesToTheDefault) {
@@ -169,23 +169,40 @@ TEST(ParseBuildOptions, ParsesNoneBasicAll_WhenCaseDiffers) {
 }
 
 TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
-    const BuildOptions options =
-        parseBuildOptions({{"inputs", "a.las"},     {"inputs", "b.xyz"},
-                           {"output", "out.fgb"},   {"format", "FlatGeobuf"},
-                           {"band", "2"},           {"seed", "18446744073709551615"},
-                           {"order", "Random"},     {"duplicate_z", "mean"},
-                           {"method", "batch"},     {"locate", "walk"},
-                           {"threads", "4"},        {"searchers", "2"},
-                           {"queue_length", "64"},  {"searchers_help", "true"},
-                           {"max_edge", "12.5"},    {"layer", "surface"},
-                           {"attributes", "basic"}, {"qgis_style", "TRUE"},
-                           {"classes", "2,9"},      {"classes", "6"},
-                           {"returns", "last"},     {"columns", "E,N,H"},
-                           {"z_field", "elev"},     {"input_layer", "spots"},
-                           {"s_srs", "EPSG:4326"},  {"t_srs", "EPSG:32619"},
-                           {"z_factor", "0.3048"},  {"overwrite", "true"},
-                           {"validate", "true"}},
-                          OptionSpelling::Keyword);
+    const BuildOptions options = parseBuildOptions({{"inputs", "a.las"},
+                                                    {"inputs", "b.xyz"},
+                                                    {"output", "out.fgb"},
+                                                    {"format", "FlatGeobuf"},
+                                                    {"band", "2"},
+                                                    {"seed", "18446744073709551615"},
+                                                    {"order", "Random"},
+                                                    {"duplicate_z", "mean"},
+                                                    {"method", "batch"},
+                                                    {"locate", "walk"},
+                                                    {"threads", "4"},
+                                                    {"searchers", "2"},
+                                                    {"queue_length", "64"},
+                                                    {"searchers_help", "true"},
+                                                    {"max_edge", "12.5"},
+                                                    {"layer", "surface"},
+                                                    {"attributes", "basic"},
+                                                    {"qgis_style", "TRUE"},
+                                                    {"classes", "2,9"},
+                                                    {"classes", "6"},
+                                                    {"returns", "last"},
+                                                    {"columns", "E,N,H"},
+                                                    {"z_field", "elev"},
+                                                    {"input_layer", "spots"},
+                                                    {"s_srs", "EPSG:4326"},
+                                                    {"t_srs", "EPSG:32619"},
+                                                    {"z_factor", "0.3048"},
+                                                    {"overwrite", "true"},
+                                                    {"validate", "true"},
+                                                    {"breaklines", "roads.gpkg"},
+                                                    {"breaklines", "rivers.shp"},
+                                                    {"breaklines_layer", "lines"},
+                                                    {"breakline_z", "Surface"}},
+                                                   OptionSpelling::Keyword);
     EXPECT_EQ(options.inputs, (std::vector<std::string>{"a.las", "b.xyz"}));
     EXPECT_EQ(options.output, "out.fgb");
     EXPECT_EQ(options.format, io::TinFormat::FlatGeobuf);
@@ -213,6 +230,9 @@ TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
     EXPECT_EQ(options.zFactor, 0.3048);
     EXPECT_TRUE(options.overwrite);
     EXPECT_TRUE(options.validate);
+    EXPECT_EQ(options.breaklines, (std::vector<std::string>{"roads.gpkg", "rivers.shp"}));
+    EXPECT_EQ(options.breaklinesLayer, "lines");
+    EXPECT_EQ(options.breaklineZ, BreaklineZ::Surface);
     EXPECT_FALSE(options.refine);
     EXPECT_EQ(options.optionSpelling, OptionSpelling::Keyword);
 }
@@ -301,6 +321,8 @@ TEST(ParseBuildOptions, RefusesBadValues_NamingTheOptionInBothSpellings) {
         {"t_srs", " ", "{} needs a CRS (EPSG:n, WKT, PROJ string, .prj file), not an empty string"},
         {"s_srs", "", "{} needs a CRS (EPSG:n, WKT, PROJ string, .prj file), not an empty string"},
         {"validate", "yes", "{} takes true or false (got 'yes')"},
+        {"breakline_z", "sky", "{} must be line or surface (got 'sky')"},
+        {"breaklines", "", "{} needs a file name"},
     };
     for (const OptionSpelling spelling : {OptionSpelling::CommandLine, OptionSpelling::Keyword})
         for (const BadValue& bad : cases) {

@@ -49,7 +49,8 @@ struct TinWriteOptions {
     /// and row / col when vertexCells is given).
     bool nodes = false;
     /// GeoPackage only: a LineString Z layer of the edges (node_from, node_to, tri_left,
-    /// tri_right = triangle fids, tri_right NULL on the hull, length = 3D length in CRS units).
+    /// tri_right = triangle fids, tri_right NULL on the hull, length = 3D length in CRS units,
+    /// constrained = 1 on a breakline, else 0).
     bool edges = false;
     /// GeoPackage only: add the layers to an existing GeoPackage, leaving its other layers as
     /// they are (a new file is created when it does not exist).
@@ -63,6 +64,12 @@ struct TinWriteOptions {
     /// For a DEM input: vertexCells[v] is the raster cell of vertex v (size = vertex count);
     /// empty otherwise.
     std::vector<RasterCell> vertexCells;
+    /// A constrained TIN: constrainedEdges[3t+i] is 1 when the edge from corner i of triangle t
+    /// to corner (i+1)%3 lies on a breakline (size = 3 x triangle count); empty: none is.
+    std::vector<std::uint8_t> constrainedEdges;
+    /// LandXML: the breaklines, each as the TIN vertices it runs through, written as
+    /// <Breakline> elements of the surface's <SourceData>.
+    std::vector<std::vector<Point3>> breaklines;
     /// Software version written into LandXML's Application element (and the PLY / OBJ
     /// headers): this library's by default.
     std::string softwareVersion = kVersionString;

@@ -20,6 +20,16 @@
 
 namespace terratin {
 
+/// Where breakline vertices get their elevation (--breakline-z).
+enum class BreaklineZ {
+    /// The line's z where it has one, else the surface's.
+    Auto,
+    /// The line's z; a line without z is an error.
+    Line,
+    /// The surface's: the TIN of the inputs, linear in the triangle holding the vertex.
+    Surface,
+};
+
 /// Everything `terratin build` can be asked.
 struct BuildOptions {
     /// Inputs to merge, at least one: rasters (anything GDAL opens), LAS, delimited text, OGR
@@ -50,6 +60,14 @@ struct BuildOptions {
     std::string zField;
     /// Vector inputs: the layer to read (empty: the first point layer).
     std::string inputLayer;
+
+    // Constraints.
+    /// Breaklines: OGR line layers, "FILE" or "FILE|layername=NAME", reprojected like the
+    /// inputs and clipped to their hull; every segment becomes a chain of TIN edges.
+    std::vector<std::string> breaklines;
+    /// The layer of every breakline source that names none (empty: the source's only layer).
+    std::string breaklinesLayer;
+    BreaklineZ breaklineZ = BreaklineZ::Auto;
 
     // Coordinate systems.
     /// Overrides every input's CRS (anything crs::crsFromUserInput accepts); required when an
@@ -165,6 +183,13 @@ struct BuildReport {
     std::uint64_t uncoveredCells = 0;
     /// Triangles removed by BuildOptions::maxEdge.
     std::uint64_t longEdgeTriangles = 0;
+    /// Breaklines: the lines inserted (after clipping to the hull: a line may become
+    /// several), the lines clipped, and the vertices added for them (their own points, and
+    /// where two of them cross).
+    std::uint64_t breaklines = 0;
+    std::uint64_t clippedBreaklines = 0;
+    std::uint64_t constraintVertices = 0;
+    std::uint64_t constraintCrossings = 0;
     BuildTimings timings;
 
     /// Per input, in command-line order.

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace terratin {
 
@@ -17,8 +18,12 @@ namespace terratin {
 /// Returns the number of triangles removed. O(vertices + triangles).
 std::size_t dropTriangles(TinMesh& mesh, std::span<const std::uint8_t> drop);
 
-/// Removes the triangles with an edge longer than `maxEdge` (planimetric length in the CRS's
-/// x, y units, > 0), as dropTriangles does. Returns the number removed.
+/// drop[t] = 1 for the triangles with an edge longer than `maxEdge` (planimetric length in the
+/// CRS's x, y units, > 0 and finite; InvalidInputError otherwise), 0 for the others.
+std::vector<std::uint8_t> longEdgeTriangles(const TinMesh& mesh, double maxEdge);
+
+/// Removes the triangles longEdgeTriangles marks, as dropTriangles does. Returns the number
+/// removed.
 std::size_t dropLongEdgeTriangles(TinMesh& mesh, double maxEdge);
 
 } // namespace terratin

@@ -89,6 +89,7 @@ struct EdgeRow {
     std::uint64_t left = 0;
     std::int32_t right = kNoNeighbour;
     double length = 0.0;
+    bool constrained = false;
 };
 
 struct EdgeChunk {
@@ -172,10 +173,11 @@ void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
 }
 
 void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
-                    const TinMesh& mesh, const RowProgress& progress) {
-    BatchedInsert insert(
-        connection, table.table(),
-        columnNames(table, {"node_from", "node_to", "tri_left", "tri_right", "length"}));
+                    const TinMesh& mesh, std::span<const std::uint8_t> constrainedEdges,
+                    const RowProgress& progress) {
+    BatchedInsert insert(connection, table.table(),
+                         columnNames(table, {"node_from", "node_to", "tri_left", "tri_right",
+                                             "length", "constrained"}));
     // Chunks are ranges of triangles; the fid of an edge counts the edges of the chunks before.
     const std::size_t triangles = mesh.triangleCount();
     const std::size_t chunks = chunkCount(triangles);
@@ -197,7 +199,8 @@ void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
             const Point3& a = mesh.vertices[from];
             const Point3& b = mesh.vertices[to];
             chunk.rows.push_back({from, to, t + 1, mesh.neighbours[3 * t + i],
-                                  std::hypot(std::hypot(b.x - a.x, b.y - a.y), b.z - a.z)});
+                                  std::hypot(std::hypot(b.x - a.x, b.y - a.y), b.z - a.z),
+                                  !constrainedEdges.empty() && constrainedEdges[3 * t + i] != 0});
         });
         encodeBlobs<kGpkgSegmentBytes>(
             0, chunk.rows.size(), chunk.blobs, [&](std::size_t e, auto out) {
@@ -219,6 +222,7 @@ void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
             else
                 statement.bindInteger(p + 5, static_cast<std::int64_t>(row.right) + 1);
             statement.bindReal(p + 6, row.length);
+            statement.bindInteger(p + 7, row.constrained ? 1 : 0);
         });
     };
     runBesideOneWriter<EdgeChunk>(chunks, prepare, consume);

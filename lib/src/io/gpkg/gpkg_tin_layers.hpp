@@ -33,9 +33,11 @@ void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
                     const RowProgress& progress);
 
 /// Inserts one row per edge: fid, geometry, node_from, node_to, tri_left, tri_right (NULL on
-/// the hull) and length (3D). Edges come in mesh order, see forEachEdge.
+/// the hull), length (3D) and constrained (constrainedEdges[3t+i], 0 when empty). Edges come
+/// in mesh order, see forEachEdge.
 void insertEdgeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
-                    const TinMesh& mesh, const RowProgress& progress);
+                    const TinMesh& mesh, std::span<const std::uint8_t> constrainedEdges,
+                    const RowProgress& progress);
 
 /// The number of edges: interior edges are shared by two triangles, hull edges belong to one.
 std::uint64_t edgeCount(const TinMesh& mesh);

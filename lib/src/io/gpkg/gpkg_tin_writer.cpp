@@ -173,7 +173,8 @@ void createLayers(const fs::path& temporary, bool appending, std::uint64_t featu
                      {"node_to", OFTInteger64},
                      {"tri_left", OFTInteger64},
                      {"tri_right", OFTInteger64},
-                     {"length", OFTReal}},
+                     {"length", OFTReal},
+                     {"constrained", OFTInteger}},
                     output);
     closeDataset(dataset, output);
 }
@@ -207,7 +208,7 @@ std::vector<LayerJob> layerJobs(const TinMesh& mesh, const TinWriteOptions& opti
         jobs.push_back(
             {names.edges, edgeCount(mesh), "Writing edges",
              [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
-                 insertEdgeRows(db, table, mesh, progress);
+                 insertEdgeRows(db, table, mesh, options.constrainedEdges, progress);
              },
              [&] { return edgeBoxes(mesh); }});
     return jobs;

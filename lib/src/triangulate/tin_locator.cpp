@@ -1,0 +1,199 @@
+#include "terratin/triangulate/tin_locator.hpp"
+
+#include "terratin/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace terratin {
+
+namespace {
+
+Point2 planar(const Point3& p) {
+    return {p.x, p.y};
+}
+
+Point3 along(const Point3& a, const Point3& b, double t) {
+    return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+}
+
+} // namespace
+
+TinLocator::TinLocator(const TinMesh& mesh) : m_mesh(&mesh) {
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::size_t i = 0; i < 3; ++i)
+            if (mesh.neighbours[3 * t + i] == kNoNeighbour)
+                m_hullEdges.push_back(
+                    {mesh.triangles[3 * t + i], mesh.triangles[3 * t + (i + 1) % 3]});
+    if (mesh.vertexCount() == 0)
+        return;
+    Point2 low{mesh.vertices[0].x, mesh.vertices[0].y};
+    Point2 high = low;
+    for (const Point3& v : mesh.vertices) {
+        low = {std::min(low.x, v.x), std::min(low.y, v.y)};
+        high = {std::max(high.x, v.x), std::max(high.y, v.y)};
+    }
+    // About kTrianglesPerBucket triangles per bucket: a walk from a bucket's triangle to any
+    // point of the bucket crosses a few of them.
+    constexpr double kTrianglesPerBucket = 16.0;
+    const double area = (high.x - low.x) * (high.y - low.y);
+    const double buckets =
+        std::max(1.0, static_cast<double>(mesh.triangleCount()) / kTrianglesPerBucket);
+    m_bucketSize =
+        area > 0.0 ? std::sqrt(area / buckets) : std::max({high.x - low.x, high.y - low.y, 1.0});
+    m_origin = low;
+    m_columns = static_cast<std::size_t>((high.x - low.x) / m_bucketSize) + 1;
+    m_rows = static_cast<std::size_t>((high.y - low.y) / m_bucketSize) + 1;
+    m_buckets.assign(m_columns * m_rows, kNoTriangle);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const Point3& corner = mesh.vertices[mesh.triangles[3 * t]];
+        const auto column =
+            std::min(static_cast<std::size_t>((corner.x - low.x) / m_bucketSize), m_columns - 1);
+        const auto row =
+            std::min(static_cast<std::size_t>((corner.y - low.y) / m_bucketSize), m_rows - 1);
+        std::uint32_t& bucket = m_buckets[row * m_columns + column];
+        if (bucket == kNoTriangle)
+            bucket = static_cast<std::uint32_t>(t);
+    }
+}
+
+std::uint32_t TinLocator::startNear(Point2 point) const {
+    if (m_buckets.empty())
+        return m_last;
+    const double column =
+        std::clamp((point.x - m_origin.x) / m_bucketSize, 0.0, static_cast<double>(m_columns - 1));
+    const double row =
+        std::clamp((point.y - m_origin.y) / m_bucketSize, 0.0, static_cast<double>(m_rows - 1));
+    const std::uint32_t bucket =
+        m_buckets[static_cast<std::size_t>(row) * m_columns + static_cast<std::size_t>(column)];
+    return bucket != kNoTriangle ? bucket : m_last;
+}
+
+std::optional<std::uint32_t> TinLocator::locate(Point2 point) {
+    const TinMesh& mesh = *m_mesh;
+    const std::size_t triangles = mesh.triangleCount();
+    if (triangles == 0)
+        return std::nullopt;
+    // From the last triangle when the point is near it (queries along a line), else from the
+    // point's bucket.
+    std::uint32_t t = m_last < triangles ? m_last : 0;
+    const Point3& last = mesh.vertices[mesh.triangles[3 * t]];
+    if (std::fabs(last.x - point.x) + std::fabs(last.y - point.y) > 2.0 * m_bucketSize)
+        t = startNear(point);
+    // A walk in a Delaunay triangulation never cycles (Edelsbrunner); the bound only guards a
+    // mesh that is not one.
+    for (std::size_t step = 0; step < 4 * triangles + 16; ++step) {
+        int exitEdge = -1;
+        for (std::size_t k = 0; k < 3 && exitEdge < 0; ++k) {
+            const std::size_t i = (k + step) % 3;
+            const Point2 a = planar(mesh.vertices[mesh.triangles[3 * t + i]]);
+            const Point2 b = planar(mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]]);
+            if (predicates::orient2d(a, b, point) < 0.0)
+                exitEdge = static_cast<int>(i);
+        }
+        if (exitEdge < 0) {
+            m_last = t;
+            return t;
+        }
+        const std::int32_t next = mesh.neighbours[3 * t + static_cast<std::size_t>(exitEdge)];
+        // Strictly outside a hull edge: outside the convex hull.
+        if (next == kNoNeighbour)
+            return std::nullopt;
+        t = static_cast<std::uint32_t>(next);
+    }
+    return std::nullopt;
+}
+
+std::optional<double> TinLocator::elevation(Point2 point) {
+    const std::optional<std::uint32_t> triangle = locate(point);
+    if (!triangle)
+        return std::nullopt;
+    const TinMesh& mesh = *m_mesh;
+    const Point3& a = mesh.vertices[mesh.triangles[3 * *triangle]];
+    const Point3& b = mesh.vertices[mesh.triangles[3 * *triangle + 1]];
+    const Point3& c = mesh.vertices[mesh.triangles[3 * *triangle + 2]];
+    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double wa =
+        ((b.x - point.x) * (c.y - point.y) - (b.y - point.y) * (c.x - point.x)) / area;
+    const double wb =
+        ((c.x - point.x) * (a.y - point.y) - (c.y - point.y) * (a.x - point.x)) / area;
+    return wa * a.z + wb * b.z + (1.0 - wa - wb) * c.z;
+}
+
+TinLocator::Interval TinLocator::hullInterval(const Point3& a, const Point3& b) const {
+    Interval interval;
+    for (const auto& [u, v] : m_hullEdges) {
+        const Point3& from = m_mesh->vertices[u];
+        const Point3& to = m_mesh->vertices[v];
+        const auto side = [&](const Point3& p) {
+            return (to.x - from.x) * (p.y - from.y) - (to.y - from.y) * (p.x - from.x);
+        };
+        const double atA = side(a);
+        const double atB = side(b);
+        if (atA < 0.0 && atB < 0.0)
+            return {1.0, 0.0}; // wholly outside this edge
+        if (atA < 0.0)
+            interval.enter = std::max(interval.enter, atA / (atA - atB));
+        else if (atB < 0.0)
+            interval.exit = std::min(interval.exit, atA / (atA - atB));
+    }
+    return interval;
+}
+
+Point3 TinLocator::cutPoint(const Point3& inside, const Point3& outside) {
+    const double exit = hullInterval(inside, outside).exit;
+    // Back towards `inside` until the exact test agrees, by steps that double from one unit in
+    // the last place of the parameter; `inside` itself ends the search.
+    double step = std::numeric_limits<double>::epsilon();
+    for (double t = exit; t > 0.0; t -= step, step *= 2.0) {
+        const Point3 point = along(inside, outside, t);
+        if (locate(planar(point)))
+            return point;
+    }
+    return inside;
+}
+
+std::optional<Point3> TinLocator::pointInside(const Point3& a, const Point3& b) {
+    const Interval interval = hullInterval(a, b);
+    if (interval.enter >= interval.exit)
+        return std::nullopt;
+    const Point3 middle = along(a, b, 0.5 * (interval.enter + interval.exit));
+    if (!locate(planar(middle)))
+        return std::nullopt; // a touch too slight for double to place a point inside
+    return middle;
+}
+
+std::vector<std::vector<Point3>> TinLocator::clipToHull(const std::vector<Point3>& polyline) {
+    std::vector<std::vector<Point3>> parts;
+    std::vector<Point3> part;
+    const auto closePart = [&] {
+        if (part.size() >= 2)
+            parts.push_back(std::move(part));
+        part.clear();
+    };
+    bool previousInside = false;
+    for (std::size_t i = 0; i < polyline.size(); ++i) {
+        const Point3& point = polyline[i];
+        const bool inside = locate(planar(point)).has_value();
+        if (inside) {
+            if (i > 0 && !previousInside)
+                part.push_back(cutPoint(point, polyline[i - 1])); // entering the hull
+            part.push_back(point);
+        } else if (previousInside) {
+            part.push_back(cutPoint(polyline[i - 1], point)); // leaving it
+            closePart();
+        } else if (i > 0) {
+            // Both ends outside: the segment may still cross the hull.
+            if (const std::optional<Point3> middle = pointInside(polyline[i - 1], point)) {
+                part = {cutPoint(*middle, polyline[i - 1]), cutPoint(*middle, point)};
+                closePart();
+            }
+        }
+        previousInside = inside;
+    }
+    closePart();
+    return parts;
+}
+
+} // namespace terratin

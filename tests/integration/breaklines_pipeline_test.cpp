@@ -1,0 +1,267 @@
+// runBuild with --breaklines on the bundled sample DEM, checked from the written PLY: every
+// breakline segment inside the data is an edge (or a chain of edges) of the TIN, the TIN is
+// exactly constrained Delaunay (validate), and lines outside the data are clipped with a
+// notice.
+
+#include "terratin/pipeline/build_pipeline.hpp"
+
+#include "mesh_readers.hpp"
+#include "terratin/error.hpp"
+#include "terratin/gdal_error.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "temporary_directory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace terratin {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TemporaryDirectory;
+
+const fs::path kSample = fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif";
+
+/// Lines over the sample (cell centres 455005..458195 x 5102605..5104995, EPSG:32633) at
+/// positions off the cell grid, so that each segment is one edge unless another line crosses
+/// it. `crs` 0: no CRS.
+void writeLines(const fs::path& path, const std::vector<std::string>& wkts, int epsg = 32633) {
+    initialiseGdal();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+    std::unique_ptr<GDALDataset> dataset(
+        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    ASSERT_NE(dataset, nullptr);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(epsg);
+    OGRLayer* layer =
+        dataset->CreateLayer("lines", epsg != 0 ? &srs : nullptr, wkbUnknown, nullptr);
+    for (const std::string& wkt : wkts) {
+        OGRFeature feature(layer->GetLayerDefn());
+        OGRGeometry* geometry = nullptr;
+        ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkt.c_str(), nullptr, &geometry), OGRERR_NONE);
+        feature.SetGeometryDirectly(geometry);
+        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    }
+}
+
+BuildOptions optionsFor(const fs::path& lines, const fs::path& output) {
+    BuildOptions options;
+    options.inputs = {kSample.string()};
+    options.output = output;
+    options.breaklines = {lines.string()};
+    options.validate = true;
+    return options;
+}
+
+using Edge = std::pair<std::uint32_t, std::uint32_t>;
+
+struct ReadTin {
+    test::ReadMesh mesh;
+    std::set<Edge> edges;
+    std::map<std::pair<double, double>, std::uint32_t> vertexAt;
+};
+
+ReadTin readTin(const fs::path& path) {
+    ReadTin tin{test::readPly(path), {}, {}};
+    for (std::size_t t = 0; t < tin.mesh.triangles.size(); t += 3)
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::uint32_t a = tin.mesh.triangles[t + i];
+            const std::uint32_t b = tin.mesh.triangles[t + (i + 1) % 3];
+            tin.edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    for (std::uint32_t v = 0; v < tin.mesh.vertices.size(); ++v)
+        tin.vertexAt[{tin.mesh.vertices[v].x, tin.mesh.vertices[v].y}] = v;
+    return tin;
+}
+
+/// Whether the TIN has an edge between the vertices at (x, y) of `a` and `b`.
+bool hasEdge(const ReadTin& tin, Point2 a, Point2 b) {
+    const auto from = tin.vertexAt.find({a.x, a.y});
+    const auto to = tin.vertexAt.find({b.x, b.y});
+    if (from == tin.vertexAt.end() || to == tin.vertexAt.end())
+        return false;
+    return tin.edges.count(
+               {std::min(from->second, to->second), std::max(from->second, to->second)}) == 1;
+}
+
+TEST(BreaklinesPipeline, EverySegmentIsAnEdgeOfTheTin_WithLineZOrTheSurface) {
+    TemporaryDirectory directory;
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {"LINESTRING Z (455501.3 5104003.7 500, 456700.9 5103100.2 501, "
+                       "457800.1 5104500.3 502)",
+                       "LINESTRING (455300.7 5102700.1, 456000.3 5102900.9)"});
+    const BuildReport report = runBuild(optionsFor(lines, directory.path() / "tin.ply"));
+    EXPECT_TRUE(report.validated);
+    EXPECT_EQ(report.breaklines, 2U);
+    EXPECT_EQ(report.clippedBreaklines, 0U);
+    EXPECT_EQ(report.constraintVertices, 5U);
+    EXPECT_EQ(report.constraintCrossings, 0U);
+    EXPECT_EQ(report.vertices, report.points + 5);
+
+    const ReadTin tin = readTin(directory.path() / "tin.ply");
+    EXPECT_TRUE(hasEdge(tin, {455501.3, 5104003.7}, {456700.9, 5103100.2}));
+    EXPECT_TRUE(hasEdge(tin, {456700.9, 5103100.2}, {457800.1, 5104500.3}));
+    EXPECT_TRUE(hasEdge(tin, {455300.7, 5102700.1}, {456000.3, 5102900.9}));
+    // The 3D line keeps its z; the 2D one takes the surface's, between its neighbours'.
+    EXPECT_EQ(tin.mesh.vertices[tin.vertexAt.at({456700.9, 5103100.2})].z, 501.0);
+    const double surface = tin.mesh.vertices[tin.vertexAt.at({455300.7, 5102700.1})].z;
+    EXPECT_TRUE(std::isfinite(surface));
+    EXPECT_NE(surface, 0.0);
+}
+
+const std::vector<std::string> kTwoLines{
+    "LINESTRING Z (455501.3 5104003.7 500, 456700.9 5103100.2 501, 457800.1 5104500.3 502)",
+    "LINESTRING (455300.7 5102700.1, 456000.3 5102900.9)"};
+
+TEST(BreaklinesPipeline, GeoPackageEdgesSayWhichAreConstrained_AndLandXmlListsTheBreaklines) {
+    TemporaryDirectory directory;
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, kTwoLines);
+    BuildOptions options = optionsFor(lines, directory.path() / "tin.gpkg");
+    options.edges = true;
+    (void)runBuild(options);
+    std::unique_ptr<GDALDataset> dataset(GDALDataset::Open((directory.path() / "tin.gpkg").c_str(),
+                                                           GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    ASSERT_NE(dataset, nullptr);
+    OGRLayer* edges = dataset->GetLayerByName("edges");
+    ASSERT_NE(edges, nullptr);
+    edges->SetAttributeFilter("constrained = 1");
+    EXPECT_EQ(edges->GetFeatureCount(), 3); // the three segments, each one edge
+    edges->SetAttributeFilter("constrained = 0");
+    EXPECT_GT(edges->GetFeatureCount(), 200000);
+
+    options = optionsFor(lines, directory.path() / "tin.xml");
+    (void)runBuild(options);
+    std::ifstream xml(directory.path() / "tin.xml");
+    const std::string text((std::istreambuf_iterator<char>(xml)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("<Breakline brkType=\"standard\">\n<PntList3D>5104003.7 455501.3 500 "
+                        "5103100.2 456700.9 501 5104500.3 457800.1 502</PntList3D>"),
+              std::string::npos);
+    std::size_t breaklines = 0;
+    for (std::size_t at = text.find("<Breakline "); at != std::string::npos;
+         at = text.find("<Breakline ", at + 1))
+        ++breaklines;
+    EXPECT_EQ(breaklines, 2U);
+    EXPECT_LT(text.find("</SourceData>"), text.find("<Definition"));
+}
+
+TEST(BreaklinesPipeline, OneThreadAndTwoGiveTheSameVerticesAndBreaklineEdges) {
+    // A DEM's cells are cocircular four by four: which diagonal splits a cell may differ with
+    // the number of strips (both are exactly Delaunay), so the triangles are compared by
+    // count; the vertices and the breaklines' edges must be the same.
+    TemporaryDirectory directory;
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {"LINESTRING (455300.7 5102900.1, 458000.3 5104900.9)",
+                       "LINESTRING (455501.3 5104803.7, 457900.9 5102700.2)"});
+    std::vector<ReadTin> tins;
+    for (const unsigned threads : {1U, 2U}) {
+        BuildOptions options = optionsFor(lines, directory.path() / "tin.ply");
+        options.overwrite = true;
+        options.triangulation.threads = threads;
+        EXPECT_TRUE(runBuild(options).validated);
+        tins.push_back(readTin(directory.path() / "tin.ply"));
+    }
+    EXPECT_EQ(tins[0].mesh.triangles.size(), tins[1].mesh.triangles.size());
+    ASSERT_EQ(tins[0].vertexAt.size(), tins[1].vertexAt.size());
+    EXPECT_TRUE(std::equal(tins[0].vertexAt.begin(), tins[0].vertexAt.end(),
+                           tins[1].vertexAt.begin(),
+                           [](const auto& a, const auto& b) { return a.first == b.first; }));
+    // The four ends and the crossing are the added vertices.
+    std::vector<Point2> added;
+    for (const auto& [place, v] : tins[0].vertexAt)
+        if (std::fmod(place.first - 5.0, 10.0) != 0.0 || std::fmod(place.second - 5.0, 10.0) != 0.0)
+            added.push_back({place.first, place.second});
+    ASSERT_EQ(added.size(), 5U);
+}
+
+TEST(BreaklinesPipeline, CrossingLinesMeetAtANewVertex_AndLinesOutsideAreClipped) {
+    TemporaryDirectory directory;
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {"LINESTRING (455300.7 5102900.1, 458000.3 5104900.9)",
+                       "LINESTRING (455501.3 5104803.7, 457900.9 5102700.2)",
+                       "LINESTRING (454000.5 5103000.5, 459000.5 5103700.25)",
+                       "LINESTRING (450000 5000000, 451000 5000001)"});
+    std::vector<std::string> notices;
+    BuildOptions options = optionsFor(lines, directory.path() / "tin.ply");
+    options.notice = [&](std::string_view text) { notices.emplace_back(text); };
+    const BuildReport report = runBuild(options);
+    EXPECT_TRUE(report.validated);
+    EXPECT_EQ(report.constraintCrossings, 3U); // each pair of the three inside lines
+    EXPECT_EQ(report.clippedBreaklines, 2U);   // the long line cut, the far one dropped
+    EXPECT_EQ(report.breaklines, 3U);
+    ASSERT_EQ(notices.size(), 1U);
+    EXPECT_NE(notices[0].find("2 of the 4 lines"), std::string::npos) << notices[0];
+}
+
+TEST(BreaklinesPipeline, LineZRefusesALineWithoutZ_AndSimplificationIsRefused) {
+    TemporaryDirectory directory;
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {"LINESTRING (455300.7 5102700.1, 456000.3 5102900.9)"});
+    BuildOptions options = optionsFor(lines, directory.path() / "tin.ply");
+    options.breaklineZ = BreaklineZ::Line;
+    EXPECT_THROW((void)runBuild(options), InvalidInputError);
+    EXPECT_FALSE(fs::exists(directory.path() / "tin.ply"));
+    options.breaklineZ = BreaklineZ::Auto;
+    options.refine.emplace();
+    options.refine->maxError = 1.0;
+    EXPECT_THROW((void)runBuild(options), InvalidInputError);
+}
+
+TEST(BreaklinesPipeline, AnEmptyLayerGivesANotice_AndALayerInAnotherCrsIsReprojected) {
+    TemporaryDirectory directory;
+    const fs::path empty = directory.path() / "empty.gpkg";
+    writeLines(empty, {});
+    // The first segment of the first test, in WGS 84 (EPSG:4326 axis order is handled by OGR).
+    const fs::path geographic = directory.path() / "geographic.gpkg";
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32633);
+    OGRSpatialReference wgs84;
+    wgs84.importFromEPSG(4326);
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> toWgs84(
+        OGRCreateCoordinateTransformation(&utm, &wgs84));
+    double x[2] = {455501.3, 456700.9};
+    double y[2] = {5104003.7, 5103100.2};
+    ASSERT_TRUE(toWgs84->Transform(2, x, y));
+    char wkt[256];
+    std::snprintf(wkt, sizeof wkt, "LINESTRING (%.15g %.15g, %.15g %.15g)", x[0], y[0], x[1], y[1]);
+    writeLines(geographic, {wkt}, 4326);
+
+    std::vector<std::string> notices;
+    BuildOptions options = optionsFor(empty, directory.path() / "tin.ply");
+    options.breaklines.push_back(geographic.string());
+    options.notice = [&](std::string_view text) { notices.emplace_back(text); };
+    const BuildReport report = runBuild(options);
+    EXPECT_TRUE(report.validated);
+    EXPECT_EQ(report.breaklines, 1U);
+    ASSERT_GE(notices.size(), 1U);
+    EXPECT_NE(notices[0].find("has no lines"), std::string::npos) << notices[0];
+    // The reprojected ends are within a millimetre of the UTM ones, and joined by an edge.
+    const ReadTin tin = readTin(directory.path() / "tin.ply");
+    std::vector<Point2> added;
+    for (const auto& [place, v] : tin.vertexAt)
+        if (std::fmod(place.first - 5.0, 10.0) != 0.0 || std::fmod(place.second - 5.0, 10.0) != 0.0)
+            added.push_back({place.first, place.second});
+    ASSERT_EQ(added.size(), 2U);
+    EXPECT_NEAR(added[0].x, 455501.3, 1e-3);
+    EXPECT_TRUE(hasEdge(tin, added[0], added[1]));
+}
+
+} // namespace
+} // namespace terratin

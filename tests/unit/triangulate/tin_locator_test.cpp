@@ -1,0 +1,92 @@
+// TinLocator: locating points, the TIN's elevation, and polylines clipped to the hull, with
+// every point of a clipped line checked inside by the exact predicate.
+
+#include "terratin/triangulate/tin_locator.hpp"
+#include "terratin/triangulate/triangulate.hpp"
+
+#include "point_distributions.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace terratin {
+namespace {
+
+/// The Delaunay TIN of a 5 x 5 grid at 10 m steps from (1000, 2000), z = 3x + 2y (a plane).
+TinMesh planeGrid() {
+    std::vector<Point3> points;
+    for (int row = 0; row < 5; ++row)
+        for (int col = 0; col < 5; ++col) {
+            const double x = 1000.0 + 10.0 * col;
+            const double y = 2000.0 + 10.0 * row;
+            points.push_back({x, y, 3.0 * x + 2.0 * y});
+        }
+    return triangulate(points).mesh;
+}
+
+TEST(TinLocator, FindsTheTriangleHoldingAPoint_AndNoneOutsideTheHull) {
+    const TinMesh mesh = planeGrid();
+    TinLocator locator(mesh);
+    EXPECT_TRUE(locator.locate({1012.5, 2031.25}).has_value());
+    EXPECT_TRUE(locator.locate({1000.0, 2000.0}).has_value()); // a hull corner
+    EXPECT_TRUE(locator.locate({1040.0, 2020.0}).has_value()); // on a hull edge
+    EXPECT_FALSE(locator.locate({999.999, 2020.0}).has_value());
+    EXPECT_FALSE(locator.locate({1020.0, 2040.0 + 1e-9}).has_value());
+}
+
+TEST(TinLocator, ElevationIsTheTinsLinearSurface) {
+    const TinMesh mesh = planeGrid();
+    TinLocator locator(mesh);
+    for (const Point2 p : {Point2{1012.5, 2031.25}, Point2{1000.0, 2000.0}, Point2{1039.0, 2001.0}})
+        EXPECT_NEAR(*locator.elevation(p), 3.0 * p.x + 2.0 * p.y, 1e-9);
+    EXPECT_FALSE(locator.elevation({1050.0, 2000.0}).has_value());
+}
+
+TEST(TinLocator, ClipsToTheHull_KeepingInsideParts) {
+    const TinMesh mesh = planeGrid();
+    TinLocator locator(mesh);
+    // In, out through the right side, back in: two parts, each cut on the hull.
+    const std::vector<Point3> line{{1010, 2010, 1}, {1060, 2015, 2}, {1030, 2035, 3}};
+    const auto parts = locator.clipToHull(line);
+    ASSERT_EQ(parts.size(), 2U);
+    EXPECT_EQ(parts[0].front(), line[0]);
+    EXPECT_NEAR(parts[0].back().x, 1040.0, 1e-9);
+    EXPECT_NEAR(parts[0].back().y, 2013.0, 1e-9);
+    EXPECT_NEAR(parts[0].back().z, 1.6, 1e-9); // z along the segment
+    EXPECT_EQ(parts[1].back(), line[2]);
+    // Both ends outside, crossing the whole hull: one part between the two sides.
+    const auto across = locator.clipToHull({{990, 2020, 0}, {1050, 2020, 0}});
+    ASSERT_EQ(across.size(), 1U);
+    EXPECT_NEAR(across[0][0].x, 1000.0, 1e-9);
+    EXPECT_NEAR(across[0][1].x, 1040.0, 1e-9);
+    // Wholly outside, and one point alone: nothing.
+    EXPECT_TRUE(locator.clipToHull({{900, 1900, 0}, {950, 1990, 0}}).empty());
+    EXPECT_TRUE(locator.clipToHull({{1010, 2010, 0}}).empty());
+}
+
+TEST(TinLocator, EveryClippedPointIsInsideByTheExactTest_OnRandomLinesAcrossAGaussCloud) {
+    const std::vector<Point3> points = test::generatePoints(test::Distribution::Gauss, 2000, 7);
+    const TinMesh mesh = triangulate(points).mesh;
+    TinLocator locator(mesh);
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> coordinate(-0.5, 1.5);
+    std::size_t cut = 0;
+    for (int line = 0; line < 300; ++line) {
+        std::vector<Point3> polyline;
+        for (int i = 0; i < 4; ++i)
+            polyline.push_back({coordinate(random), coordinate(random), 0.0});
+        for (const std::vector<Point3>& part : locator.clipToHull(polyline)) {
+            ASSERT_GE(part.size(), 2U);
+            for (const Point3& p : part)
+                ASSERT_TRUE(locator.locate({p.x, p.y}).has_value()) << p.x << " " << p.y;
+            cut += part.size();
+        }
+    }
+    EXPECT_GT(cut, 100U);
+}
+
+} // namespace
+} // namespace terratin

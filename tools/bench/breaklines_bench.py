@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""A DEM's TIN with breaklines against the same TIN without, side by side (issue 24).
+
+Makes a road-like network over the DEM (--lines polylines of --segments segments each: random
+walks that turn gently, inside the raster's extent), then runs, in turn, --rounds times:
+`terratin build DEM -o tin.ply` and the same with `--breaklines network.gpkg`, and prints the
+median seconds of each (the JSON report's total and its triangulate phase, which holds the
+constraint insertion) and their ratio. PLY output keeps the write phase small, so that the
+ratio measures the triangulation. Run from the source tree after the release build:
+
+    /usr/bin/python3 tools/bench/breaklines_bench.py build/release/tools/terratin \\
+        ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif
+
+docs/benchmarks.md holds the measurement, with its date, commit and machine.
+"""
+
+import argparse
+import json
+import math
+import random
+import statistics
+import subprocess
+import tempfile
+from pathlib import Path
+
+from osgeo import gdal, ogr, osr
+
+gdal.UseExceptions()
+ogr.UseExceptions()
+
+
+def write_network(dem, path, lines, segments, seed):
+    """`lines` random-walk polylines of `segments` segments inside the DEM's extent."""
+    dataset = gdal.Open(str(dem))
+    x0, dx, _, y0, _, dy = dataset.GetGeoTransform()
+    x1, y1 = x0 + dx * dataset.RasterXSize, y0 + dy * dataset.RasterYSize
+    left, right, bottom, top = min(x0, x1), max(x0, x1), min(y0, y1), max(y0, y1)
+    step = 0.004 * min(right - left, top - bottom)
+    random.seed(seed)
+    layer_crs = osr.SpatialReference(wkt=dataset.GetProjection())
+    network = ogr.GetDriverByName("GPKG").CreateDataSource(str(path))
+    layer = network.CreateLayer("roads", layer_crs, ogr.wkbLineString)
+    layer.StartTransaction()
+    for _ in range(lines):
+        x, y = random.uniform(left, right), random.uniform(bottom, top)
+        heading = random.uniform(0, 2 * math.pi)
+        line = ogr.Geometry(ogr.wkbLineString)
+        line.AddPoint_2D(x, y)
+        for _ in range(segments):
+            heading += random.gauss(0, 0.3)
+            x = min(max(x + step * math.cos(heading), left), right)
+            y = min(max(y + step * math.sin(heading), bottom), top)
+            line.AddPoint_2D(x, y)
+        feature = ogr.Feature(layer.GetLayerDefn())
+        feature.SetGeometry(line)
+        layer.CreateFeature(feature)
+    layer.CommitTransaction()
+
+
+def run(terratin, dem, output, extra):
+    report = subprocess.run(
+        [terratin, "build", str(dem), "-o", str(output), "--overwrite", "--json", "--quiet",
+         *extra],
+        check=True, capture_output=True, text=True,
+    ).stdout
+    return json.loads(report)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("terratin")
+    parser.add_argument("dem")
+    parser.add_argument("--lines", type=int, default=1000)
+    parser.add_argument("--segments", type=int, default=50)
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--options", default="", help="more build options, e.g. '--max-error 1'")
+    arguments = parser.parse_args()
+
+    with tempfile.TemporaryDirectory() as work:
+        network = Path(work) / "network.gpkg"
+        write_network(arguments.dem, network, arguments.lines, arguments.segments, arguments.seed)
+        output = Path(work) / "tin.ply"
+        extra = arguments.options.split()
+        sides = {"plain": extra, "breaklines": [*extra, "--breaklines", str(network)]}
+        seconds = {side: {"total": [], "triangulate": []} for side in sides}
+        for round_number in range(1, arguments.rounds + 1):
+            for side, options in sides.items():
+                report = run(arguments.terratin, arguments.dem, output, options)
+                seconds[side]["total"].append(report["timings"]["total"])
+                seconds[side]["triangulate"].append(report["timings"]["triangulate"])
+                if side == "breaklines" and round_number == 1:
+                    constraints = report["constraints"]
+                    print(f"breaklines: {constraints}, vertices {report['counts']['vertices']},"
+                          f" triangles {report['counts']['triangles']}")
+        print(f"{arguments.lines} lines x {arguments.segments} segments, "
+              f"options '{arguments.options}', medians of {arguments.rounds} interleaved rounds:")
+        print("| phase | without s | with breaklines s | with / without |")
+        print("|---|---|---|---|")
+        for phase in ("triangulate", "total"):
+            plain = statistics.median(seconds["plain"][phase])
+            constrained = statistics.median(seconds["breaklines"][phase])
+            print(f"| {phase} | {plain:.3f} | {constrained:.3f} | {constrained / plain:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
