@@ -94,10 +94,11 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802 (QGIS's name)
         terratin = import_terratin()
         self.styledOutput = None
-        inputs, options = self.inputOptions(parameters, context, feedback)
-        options.update(self.tinOptions(parameters, context, feedback))
+        # The output first: a refused one should cost no copy of a point layer.
         output = self.parameterAsOutputLayer(parameters, self.OUTPUT, context)
         check_vector_file(self.displayName(), output)
+        inputs, options = self.inputOptions(parameters, context, feedback)
+        options.update(self.tinOptions(parameters, context, feedback))
         try:
             report = terratin.build(
                 inputs, output, progress=progress_of(feedback), overwrite=True, **options

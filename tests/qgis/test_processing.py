@@ -76,6 +76,32 @@ def test_provider_offers_both_algorithms(processing):
         assert algorithm.parameterDefinition("OUTPUT") is not None
 
 
+def test_the_plugin_installs_into_a_profile_by_link(tmp_path):
+    # docs/qgis.md's step: a link in the profile's python/plugins folder; QGIS then loads it.
+    plugins = tmp_path / "profile" / "python" / "plugins"
+    plugins.mkdir(parents=True)
+    source = pathlib.Path(__file__).parents[2] / "qgis" / "terratin_processing"
+    (plugins / "terratin_processing").symlink_to(source)
+    environment = dict(os.environ)
+    # Only the terratin module on the path: the plugin must come from the profile.
+    environment["PYTHONPATH"] = os.pathsep.join(
+        p for p in environment.get("PYTHONPATH", "").split(os.pathsep)
+        if p and not (pathlib.Path(p) / "terratin_processing").exists()
+    )
+    run = subprocess.run(
+        [sys.executable, str(pathlib.Path(__file__).with_name("plugin_install_check.py")),
+         str(tmp_path / "profile")],
+        env=environment, capture_output=True, text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    lines = dict(line.split(": ", 1) for line in run.stdout.splitlines() if ": " in line)
+    assert lines["available"] == "terratin_processing"
+    assert lines["processing provider"] == "yes"
+    assert lines["from"] == str(plugins / "terratin_processing")
+    assert lines["algorithms"] == "terratin:demtotin terratin:pointstotin"
+    assert lines["after unload"] == "None"
+
+
 @pytest.mark.parametrize("extension", ["gpkg", "shp", "fgb"])
 def test_dem_to_tin_makes_the_command_lines_tin_with_the_terrain_style(
     processing, extension, tmp_path
