@@ -230,6 +230,24 @@ def test_points_to_tin_from_a_layer_and_from_a_file(processing, tmp_path):
     assert opened(tmp_path / "file.fgb").crs().authid() == "EPSG:32633"
 
 
+def test_points_to_tin_keeps_the_las_classes_asked_for(processing, tmp_path):
+    las = pathlib.Path(os.environ.get("TERRATIN_SHARED_DEMS", "absent")) / "pdal__1.2-with-color.las"
+    if not las.exists():
+        pytest.skip(f"{las} is absent")
+    result = processing.run(
+        "terratin:pointstotin",
+        {"POINTS_FILE": str(las), "CLASSES": "2", "SOURCE_CRS": "EPSG:2992",
+         "OUTPUT": str(tmp_path / "ground.gpkg")},
+    )
+    ground = cli_counts(las, "-o", tmp_path / "cli.ply", "--class", "2")
+    every = cli_counts(las, "-o", tmp_path / "cli.ply", "--overwrite")
+    assert ground["points"] < every["points"], "the sample has other classes than ground"
+    assert result["VERTICES"] == ground["vertices"]
+    layer = opened(tmp_path / "ground.gpkg")
+    assert layer.featureCount() == ground["triangles"]
+    assert layer.crs().authid() == "EPSG:2992"
+
+
 def test_a_scratch_layer_is_saved_for_terratin_first(processing, tmp_path):
     layer = QgsVectorLayer("PointZ?crs=EPSG:32633", "scratch", "memory")
     from qgis.core import QgsFeature, QgsGeometry
