@@ -1,6 +1,8 @@
 """What terratin's Processing algorithms share: the triangulation and output parameters, and
 the run of terratin.build with progress and cancellation wired to QgsProcessingFeedback."""
 
+import os
+
 from qgis.core import (
     QgsProcessing,
     QgsProcessingAlgorithm,
@@ -13,9 +15,14 @@ from qgis.core import (
     QgsProcessingParameterVectorDestination,
 )
 
+from .terrain_style import apply_terrain_style_on_load
+
 # The choices as terratin names them; the first is the default.
 METHODS = ["auto", "strips", "sequential", "batch", "circumcircle"]
 ATTRIBUTE_SETS = ["all", "basic", "none"]
+# The formats terratin writes that Processing loads as a vector layer (terratin's mesh formats,
+# 2dm ply obj landxml, would come back as a file QGIS opens as no polygon layer).
+VECTOR_EXTENSIONS = ["gpkg", "shp", "fgb"]
 
 
 class TerratinAlgorithm(QgsProcessingAlgorithm):
@@ -86,9 +93,12 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802 (QGIS's name)
         terratin = import_terratin()
+        self.styledOutput = None
+        # The output first: a refused one should cost no copy of a point layer.
+        output = self.parameterAsOutputLayer(parameters, self.OUTPUT, context)
+        check_vector_file(self.displayName(), output)
         inputs, options = self.inputOptions(parameters, context, feedback)
         options.update(self.tinOptions(parameters, context, feedback))
-        output = self.parameterAsOutputLayer(parameters, self.OUTPUT, context)
         try:
             report = terratin.build(
                 inputs, output, progress=progress_of(feedback), overwrite=True, **options
@@ -104,11 +114,18 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
             f"{counts['vertices']} vertices, {counts['triangles']} triangles "
             f"in {report['timings']['total']:.2f} s ({report['crs']['name']})"
         )
+        self.styledOutput = output if options["qgis_style"] else None
         return {
             self.OUTPUT: output,
             self.VERTICES: counts["vertices"],
             self.TRIANGLES: counts["triangles"],
         }
+
+    def postProcessAlgorithm(self, context, feedback):  # noqa: N802 (QGIS's name)
+        # Here, in the main thread, after the run: the layer details belong to the context.
+        if self.styledOutput:
+            apply_terrain_style_on_load(self.styledOutput, context)
+        return {}
 
     def tinOptions(self, parameters, context, feedback):  # noqa: N802
         """terratin.build's options of the shared parameters."""
@@ -143,11 +160,27 @@ def import_terratin():
     return terratin
 
 
+def check_vector_file(algorithm, output):
+    """A QgsProcessingException unless `output` is a file path of a format terratin writes and
+    Processing loads as a vector layer (a script may pass "memory:" or "x.ply")."""
+    extension = os.path.splitext(output)[1].lstrip(".").lower()
+    if extension not in VECTOR_EXTENSIONS:
+        raise QgsProcessingException(
+            f"{algorithm}: terratin writes the TIN to a file ending in "
+            f"{', '.join('.' + e for e in VECTOR_EXTENSIONS)}, not to '{output}'"
+        )
+
+
 def progress_of(feedback):
-    """terratin's progress callable for `feedback`: the bar, and False once cancelled."""
+    """terratin's progress callable for `feedback`: the bar and the phase's name, and False
+    once cancelled."""
+    shown = [None]
 
     def progress(fraction, message):
         feedback.setProgress(100.0 * fraction)
+        if message and message != shown[0]:
+            feedback.setProgressText(f"terratin: {message}")
+            shown[0] = message
         return not feedback.isCanceled()
 
     return progress

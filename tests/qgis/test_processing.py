@@ -20,17 +20,24 @@ from qgis.core import (  # noqa: E402
     QgsApplication,
     QgsProcessingException,
     QgsProcessingFeedback,
+    QgsProject,
+    QgsRasterLayer,
     QgsVectorLayer,
 )
+from qgis.PyQt.QtCore import QSettings  # noqa: E402
 
 SAMPLE = pathlib.Path(__file__).parents[2] / "sample_dems" / "ridges_utm.tif"
 
 
 @pytest.fixture(scope="session")
-def processing():
-    """QGIS with Processing and terratin's provider, once for the whole session."""
+def processing(tmp_path_factory):
+    """QGIS with Processing and terratin's provider, once for the whole session; its profile
+    and settings in a temporary folder, so that the tests change no user's QGIS."""
+    QSettings.setPath(
+        QSettings.NativeFormat, QSettings.UserScope, str(tmp_path_factory.mktemp("settings"))
+    )
     QgsApplication.setPrefixPath("/usr", True)
-    application = QgsApplication([], False)
+    application = QgsApplication([], False, str(tmp_path_factory.mktemp("profile")))
     application.initQgis()
     sys.path.append("/usr/share/qgis/python/plugins")
     import processing as qgis_processing
@@ -69,6 +76,32 @@ def test_provider_offers_both_algorithms(processing):
         assert algorithm.parameterDefinition("OUTPUT") is not None
 
 
+def test_the_plugin_installs_into_a_profile_by_link(tmp_path):
+    # docs/qgis.md's step: a link in the profile's python/plugins folder; QGIS then loads it.
+    plugins = tmp_path / "profile" / "python" / "plugins"
+    plugins.mkdir(parents=True)
+    source = pathlib.Path(__file__).parents[2] / "qgis" / "terratin_processing"
+    (plugins / "terratin_processing").symlink_to(source)
+    environment = dict(os.environ)
+    # Only the terratin module on the path: the plugin must come from the profile.
+    environment["PYTHONPATH"] = os.pathsep.join(
+        p for p in environment.get("PYTHONPATH", "").split(os.pathsep)
+        if p and not (pathlib.Path(p) / "terratin_processing").exists()
+    )
+    run = subprocess.run(
+        [sys.executable, str(pathlib.Path(__file__).with_name("plugin_install_check.py")),
+         str(tmp_path / "profile")],
+        env=environment, capture_output=True, text=True,
+    )
+    assert run.returncode == 0, run.stderr
+    lines = dict(line.split(": ", 1) for line in run.stdout.splitlines() if ": " in line)
+    assert lines["available"] == "terratin_processing"
+    assert lines["processing provider"] == "yes"
+    assert lines["from"] == str(plugins / "terratin_processing")
+    assert lines["algorithms"] == "terratin:demtotin terratin:pointstotin"
+    assert lines["after unload"] == "None"
+
+
 @pytest.mark.parametrize("extension", ["gpkg", "shp", "fgb"])
 def test_dem_to_tin_makes_the_command_lines_tin_with_the_terrain_style(
     processing, extension, tmp_path
@@ -88,6 +121,59 @@ def test_dem_to_tin_makes_the_command_lines_tin_with_the_terrain_style(
     # The terrain style (<output>.qml) is what QGIS applies when it adds the layer.
     assert layer.renderer().type() == "graduatedSymbol"
     assert layer.renderer().classAttribute() == "z_mean"
+
+
+def test_the_loaded_tin_keeps_the_terrain_style_over_processings_polygon_style(
+    processing, tmp_path
+):
+    from processing.core.ProcessingConfig import ProcessingConfig
+
+    # A user's "Style for polygon layers" that Processing applies to every polygon output.
+    plain = tmp_path / "plain.qml"
+    QgsVectorLayer("Polygon?crs=EPSG:32633", "plain", "memory").saveNamedStyle(str(plain))
+    ProcessingConfig.setSettingValue(ProcessingConfig.VECTOR_POLYGON_STYLE, str(plain))
+    try:
+        processing.runAndLoadResults(
+            "terratin:demtotin",
+            {"INPUT": str(SAMPLE), "MAX_ERROR": 2.0, "OUTPUT": str(tmp_path / "tin.gpkg")},
+        )
+    finally:
+        ProcessingConfig.setSettingValue(ProcessingConfig.VECTOR_POLYGON_STYLE, "")
+    renderers = [
+        (layer.renderer().type(), layer.renderer().classAttribute())
+        for layer in QgsProject.instance().mapLayers().values()
+        if layer.source() == str(tmp_path / "tin.gpkg")
+    ]
+    QgsProject.instance().removeAllMapLayers()
+    assert renderers == [("graduatedSymbol", "z_mean")]
+
+
+class ProgressRecorder(QgsProcessingFeedback):
+    def __init__(self):
+        super().__init__()
+        self.percentages = []
+        self.texts = []
+
+    def setProgress(self, progress):  # noqa: N802 (QGIS's name)
+        super().setProgress(progress)
+        self.percentages.append(progress)
+
+    def setProgressText(self, text):  # noqa: N802 (QGIS's name)
+        super().setProgressText(text)
+        self.texts.append(text)
+
+
+def test_the_progress_bar_follows_terratins_phases(processing, tmp_path):
+    feedback = ProgressRecorder()
+    processing.run(
+        "terratin:demtotin",
+        {"INPUT": str(SAMPLE), "MAX_ERROR": 1.0, "OUTPUT": str(tmp_path / "tin.gpkg")},
+        feedback=feedback,
+    )
+    assert feedback.percentages == sorted(feedback.percentages)
+    assert feedback.percentages[-1] == 100
+    assert "terratin: reading raster" in feedback.texts
+    assert len(feedback.texts) == len(set(feedback.texts)), "each phase named once"
 
 
 def test_dem_to_tin_limits_points_and_reprojects(processing, tmp_path):
@@ -144,6 +230,24 @@ def test_points_to_tin_from_a_layer_and_from_a_file(processing, tmp_path):
     assert opened(tmp_path / "file.fgb").crs().authid() == "EPSG:32633"
 
 
+def test_points_to_tin_keeps_the_las_classes_asked_for(processing, tmp_path):
+    las = pathlib.Path(os.environ.get("TERRATIN_SHARED_DEMS", "absent")) / "pdal__1.2-with-color.las"
+    if not las.exists():
+        pytest.skip(f"{las} is absent")
+    result = processing.run(
+        "terratin:pointstotin",
+        {"POINTS_FILE": str(las), "CLASSES": "2", "SOURCE_CRS": "EPSG:2992",
+         "OUTPUT": str(tmp_path / "ground.gpkg")},
+    )
+    ground = cli_counts(las, "-o", tmp_path / "cli.ply", "--class", "2")
+    every = cli_counts(las, "-o", tmp_path / "cli.ply", "--overwrite")
+    assert ground["points"] < every["points"], "the sample has other classes than ground"
+    assert result["VERTICES"] == ground["vertices"]
+    layer = opened(tmp_path / "ground.gpkg")
+    assert layer.featureCount() == ground["triangles"]
+    assert layer.crs().authid() == "EPSG:2992"
+
+
 def test_a_scratch_layer_is_saved_for_terratin_first(processing, tmp_path):
     layer = QgsVectorLayer("PointZ?crs=EPSG:32633", "scratch", "memory")
     from qgis.core import QgsFeature, QgsGeometry
@@ -172,6 +276,55 @@ def test_a_cancelled_run_leaves_no_output(processing, tmp_path):
         processing.run(
             "terratin:demtotin", {"INPUT": str(SAMPLE), "OUTPUT": str(output)},
             feedback=CancelAtFirstReport(),
+        )
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "output, message",
+    [
+        ("tin.ply", r"to a file ending in \.gpkg, \.shp, \.fgb, not to '.*tin\.ply'"),
+        ("tin", "to a file ending in"),
+        ("memory:", "not to 'memory:'"),
+    ],
+)
+def test_an_output_processing_cannot_load_as_a_tin_layer_is_refused(
+    processing, output, message, tmp_path
+):
+    destination = output if output.endswith(":") else str(tmp_path / output)
+    with pytest.raises(QgsProcessingException, match=message):
+        processing.run(
+            "terratin:demtotin",
+            {"INPUT": str(SAMPLE), "MAX_ERROR": 1.0, "TERRAIN_STYLE": False,
+             "OUTPUT": destination},
+        )
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_dem_that_gdal_cannot_read_as_a_file_is_refused(processing, tmp_path):
+    # A virtual raster (raster calculator on the fly) exists only inside QGIS.
+    virtual = QgsRasterLayer(
+        f"?crs=EPSG:32633&extent=0,0,100,100&width=10&height=10&formula=%22r@1%22*2"
+        f"&r:uri={SAMPLE}&r:provider=gdal",
+        "doubled", "virtualraster",
+    )
+    assert virtual.isValid()
+    QgsProject.instance().addMapLayer(virtual)
+    try:
+        with pytest.raises(QgsProcessingException, match="virtualraster layer.*GeoTIFF"):
+            processing.run(
+                "terratin:demtotin", {"INPUT": virtual, "OUTPUT": str(tmp_path / "tin.gpkg")}
+            )
+    finally:
+        QgsProject.instance().removeAllMapLayers()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_band_the_dem_lacks_gives_terratins_message(processing, tmp_path):
+    with pytest.raises(QgsProcessingException, match="terratin: .*band 3 does not exist"):
+        processing.run(
+            "terratin:demtotin",
+            {"INPUT": str(SAMPLE), "BAND": 3, "OUTPUT": str(tmp_path / "tin.gpkg")},
         )
     assert list(tmp_path.iterdir()) == []
 
