@@ -10,9 +10,11 @@
 #include "terratin/geometry/point.hpp"
 #include "vertex_buckets.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace terratin::detail {
@@ -61,6 +63,9 @@ private:
     ConstraintOwners m_owners;
     ConstraintChains m_chains;
     std::vector<Piece> m_pieces;
+    /// The crossings (u, v, c, d) met while inserting the current segment: one met again means
+    /// that rounding sends the pieces round in a circle (see splitAtCrossing).
+    std::set<std::array<std::uint32_t, 4>> m_crossingsMet;
     CrossedEdges m_crossed;
     std::optional<VertexBuckets> m_buckets; // built for the first polyline
     std::size_t m_hintTriangle = 0;

@@ -40,7 +40,10 @@ struct ConstraintSet {
 /// - Where a segment crosses a constrained edge and passes within 2^-50 times the largest
 ///   coordinate involved (about 4 ulps) of one of that edge's vertices, it goes through that
 ///   vertex instead (so segments through an earlier crossing reuse its vertex); such a chain
-///   vertex may lie that far off the segment.
+///   vertex may lie that far off the segment. A crossing within that distance of a vertex is
+///   that vertex. Where crossings still crowd within a few ulps and the same crossing comes
+///   back while one segment is inserted, the segment goes through the nearer end of the
+///   crossed edge (docs/algorithms.md).
 /// - Zero-length segments are ignored.
 /// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
 /// non-finite coordinate, or a polyline point outside the convex hull of the mesh (clipping to
