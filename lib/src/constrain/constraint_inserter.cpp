@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace terratin::detail {
 
@@ -52,7 +53,13 @@ void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::ui
     m_chains.start(owner, a, b);
     m_crossingsMet.clear();
     m_pieces.push_back({a, b, {owner}});
-    while (!m_pieces.empty()) {
+    // Each crossing makes at most four pieces and there are fewer than 3n constrained edges to
+    // cross, so more pieces than this means a loop: an error rather than a hang.
+    const std::size_t maxPieces = 64 + 16 * m_mesh.vertexCount();
+    for (std::size_t pieces = 0; !m_pieces.empty(); ++pieces) {
+        if (pieces > maxPieces)
+            throw std::logic_error("insertConstraints: segment " + std::to_string(owner) +
+                                   " does not converge");
         const Piece piece = std::move(m_pieces.back());
         m_pieces.pop_back();
         insertPiece(piece);
