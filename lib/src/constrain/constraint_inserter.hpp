@@ -21,7 +21,10 @@ namespace terratin::detail {
 
 class ConstraintInserter {
 public:
-    explicit ConstraintInserter(TinMesh mesh) : m_mesh(std::move(mesh)) {}
+    /// `segments`: how many segments will be inserted (to size the tables).
+    ConstraintInserter(TinMesh mesh, std::size_t segments) : m_mesh(std::move(mesh)) {
+        m_owners.reserve(2 * segments);
+    }
 
     /// The vertex at `p`'s x and y: an existing one, or a new one (sourceIndex
     /// kConstraintPointSource); nothing when `p` lies outside the convex hull. The search
