@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace terratin::detail {
 
@@ -50,8 +51,15 @@ std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t so
 
 void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner) {
     m_chains.start(owner, a, b);
+    m_crossingsMet.clear();
     m_pieces.push_back({a, b, {owner}});
-    while (!m_pieces.empty()) {
+    // Each crossing makes at most four pieces and there are fewer than 3n constrained edges to
+    // cross, so more pieces than this means a loop: an error rather than a hang.
+    const std::size_t maxPieces = 64 + 16 * m_mesh.vertexCount();
+    for (std::size_t pieces = 0; !m_pieces.empty(); ++pieces) {
+        if (pieces > maxPieces)
+            throw std::logic_error("insertConstraints: segment " + std::to_string(owner) +
+                                   " does not converge");
         const Piece piece = std::move(m_pieces.back());
         m_pieces.pop_back();
         insertPiece(piece);
@@ -91,6 +99,12 @@ void ConstraintInserter::markConstrained(std::size_t h, const ConstraintOwners::
 // re-inserted in two pieces. When c or d lies within rounding distance of u -> v, u -> v goes
 // through it instead: a later segment through an earlier crossing then uses its vertex rather
 // than making another one a rounding away from it.
+//
+// Where crossings crowd within a few ulps of each other, the rounding of these rules can send
+// the pieces round in a circle (c -> d re-inserted through a vertex that routes it back onto
+// c -> d). A crossing met a second time while inserting one segment is therefore resolved the
+// way that cannot recur: u -> v goes through whichever of c and d is nearer the crossing, and
+// c -> d stays as it is. That only happens inside such a crowd, so the detour is a few ulps.
 void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
                                          const ConstraintOwners::Owners& owners,
                                          std::size_t crossed) {
@@ -101,14 +115,17 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     // Distances of c and d from the line uv, times |uv|; their signs differ exactly.
     const double sideC = predicates::orient2d(pu, pv, m_mesh.xy(c));
     const double sideD = predicates::orient2d(pu, pv, m_mesh.xy(d));
-    const std::optional<std::uint32_t> near = nearEndpoint(u, v, c, d, sideC, sideD);
+    const double t = std::clamp(sideC / (sideC - sideD), 0.0, 1.0);
+    const bool metBefore = !m_crossingsMet.insert({u, v, c, d}).second;
+    std::optional<std::uint32_t> near = nearEndpoint(u, v, c, d, sideC, sideD);
+    if (!near && metBefore)
+        near = t <= 0.5 ? c : d;
     if (near) {
         m_chains.insertBetween(owners, u, v, *near);
         m_pieces.push_back({*near, v, owners});
         m_pieces.push_back({u, *near, owners});
         return;
     }
-    const double t = std::clamp(sideC / (sideC - sideD), 0.0, 1.0);
     const Point3& pc = m_mesh.vertex(c);
     const Point3& pd = m_mesh.vertex(d);
     const Point3 crossing{pc.x + t * (pd.x - pc.x), pc.y + t * (pd.y - pc.y),

@@ -10,16 +10,21 @@
 #include "terratin/geometry/point.hpp"
 #include "vertex_buckets.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <vector>
 
 namespace terratin::detail {
 
 class ConstraintInserter {
 public:
-    explicit ConstraintInserter(TinMesh mesh) : m_mesh(std::move(mesh)) {}
+    /// `segments`: how many segments will be inserted (to size the tables).
+    ConstraintInserter(TinMesh mesh, std::size_t segments) : m_mesh(std::move(mesh)) {
+        m_owners.reserve(2 * segments);
+    }
 
     /// The vertex at `p`'s x and y: an existing one, or a new one (sourceIndex
     /// kConstraintPointSource); nothing when `p` lies outside the convex hull. The search
@@ -61,6 +66,9 @@ private:
     ConstraintOwners m_owners;
     ConstraintChains m_chains;
     std::vector<Piece> m_pieces;
+    /// The crossings (u, v, c, d) met while inserting the current segment: one met again means
+    /// that rounding sends the pieces round in a circle (see splitAtCrossing).
+    std::set<std::array<std::uint32_t, 4>> m_crossingsMet;
     CrossedEdges m_crossed;
     std::optional<VertexBuckets> m_buckets; // built for the first polyline
     std::size_t m_hintTriangle = 0;

@@ -15,7 +15,8 @@ std::string pointText(const Point3& p) {
     return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
 }
 
-void checkConstraints(const TinMesh& mesh, const ConstraintSet& constraints) {
+// Returns the number of segments in all.
+std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constraints) {
     const std::size_t vertexCount = mesh.vertexCount();
     for (std::size_t k = 0; k < constraints.segments.size(); ++k)
         for (const std::uint32_t v : constraints.segments[k])
@@ -39,6 +40,7 @@ void checkConstraints(const TinMesh& mesh, const ConstraintSet& constraints) {
     const bool any = !constraints.segments.empty() || !constraints.polylines.empty();
     if (any && mesh.triangleCount() == 0)
         throw InvalidInputError("insertConstraints: the mesh has no triangles");
+    return segments;
 }
 
 // The vertices of polyline k's points, each inserted unless a vertex has its x and y.
@@ -61,8 +63,8 @@ std::vector<std::uint32_t> polylineVertices(detail::ConstraintInserter& inserter
 } // namespace
 
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints) {
-    checkConstraints(mesh, constraints);
-    detail::ConstraintInserter inserter(std::move(mesh));
+    const std::size_t segmentCount = checkConstraints(mesh, constraints);
+    detail::ConstraintInserter inserter(std::move(mesh), segmentCount);
 
     // The index segments, then each polyline: its points (a point on a constrained edge splits
     // it), then its segments, while the mesh around them is still in cache. Every input segment

@@ -2,7 +2,6 @@
 
 #include "terratin/geometry/predicates.hpp"
 
-#include <deque>
 #include <stdexcept>
 
 namespace terratin::detail {
@@ -28,13 +27,13 @@ bool strictlySeparates(const Point2& p, const Point2& q, const Point2& a, const 
 
 // Sloan's loop: flip a crossing edge when its quadrilateral is strictly convex, else retry it
 // later; one of the remaining crossing edges is always flippable, so the queue empties.
-void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw,
-                       const std::vector<Edge>& crossing, std::vector<Edge>& touched) {
-    std::deque<Edge> queue(crossing.begin(), crossing.end());
+void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw, CrossedEdges& crossed) {
+    std::vector<Edge>& queue = crossed.queue;
+    queue.assign(crossed.edges.begin(), crossed.edges.end());
+    std::size_t head = 0;
     std::size_t retriesInARow = 0; // a whole round of them would mean the theorem failed us
-    while (!queue.empty()) {
-        const Edge edge = queue.front();
-        queue.pop_front();
+    while (head < queue.size()) {
+        const Edge edge = queue[head++];
         const std::size_t h = mesh.find(edge);
         if (h == kNoHalfEdge || mesh.twin(h) == kNoHalfEdge)
             throw std::logic_error("insertConstraints: a crossed edge vanished");
@@ -44,14 +43,14 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw,
         const Point2 pd = mesh.xy(d);
         if (!strictlySeparates(pc, pd, mesh.xy(edge.a), mesh.xy(edge.b))) {
             queue.push_back(edge);
-            if (++retriesInARow > queue.size())
+            if (++retriesInARow > queue.size() - head)
                 throw std::logic_error("insertConstraints: no crossed edge can be flipped");
             continue;
         }
         retriesInARow = 0;
-        mesh.flipAndRecord(h, touched);
+        mesh.flipAndRecord(h, crossed.touched);
         if (strictlySeparates(pu, pw, pc, pd))
-            queue.push_back(touched[touched.size() - 5]); // the new diagonal
+            queue.push_back(crossed.touched[crossed.touched.size() - 5]); // the new diagonal
     }
 }
 
@@ -114,14 +113,14 @@ std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t
     }
 }
 
-std::size_t flipSegmentIn(CdtMesh& mesh, std::uint32_t u, const CrossedEdges& crossed) {
-    std::vector<Edge> touched;
-    flipCrossingsAway(mesh, mesh.xy(u), mesh.xy(crossed.end), crossed.edges, touched);
+std::size_t flipSegmentIn(CdtMesh& mesh, std::uint32_t u, CrossedEdges& crossed) {
+    crossed.touched.clear();
+    flipCrossingsAway(mesh, mesh.xy(u), mesh.xy(crossed.end), crossed);
     const std::size_t segment = mesh.findEdge(u, crossed.end);
     if (segment == kNoHalfEdge)
         throw std::logic_error("insertConstraints: flips did not make the segment an edge");
     mesh.setConstrained(segment, true);
-    mesh.restoreDelaunay(touched);
+    mesh.restoreDelaunay(crossed.touched);
     return mesh.findEdge(u, crossed.end);
 }
 

@@ -37,6 +37,9 @@ SegmentStart findSegmentStart(const CdtMesh& mesh, std::uint32_t u, std::uint32_
 struct CrossedEdges {
     std::vector<CdtMesh::Edge> edges;
     std::uint32_t end = 0;
+    /// Scratch space of flipSegmentIn, kept to spare an allocation per segment.
+    std::vector<CdtMesh::Edge> queue;
+    std::vector<CdtMesh::Edge> touched;
 };
 
 /// Walks from the triangle of `start` (IntoTriangle) towards v, filling `crossed`. Returns
@@ -49,6 +52,6 @@ std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t
 /// Flips the crossed edges until u -> crossed.end is an edge, restores the constrained
 /// Delaunay property, and returns the half-edge between u and crossed.end (not yet marked
 /// constrained). O(k) flips for k crossed edges in the usual case, O(k^2) at worst.
-std::size_t flipSegmentIn(CdtMesh& mesh, std::uint32_t u, const CrossedEdges& crossed);
+std::size_t flipSegmentIn(CdtMesh& mesh, std::uint32_t u, CrossedEdges& crossed);
 
 } // namespace terratin::detail

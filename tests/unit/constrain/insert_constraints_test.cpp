@@ -324,32 +324,51 @@ TEST(InsertConstraints, LinesThroughOnePointShareOneCrossingVertex) {
     EXPECT_EQ(tin.intersections, 1U);
 }
 
-// Regression: sixty lines through the middle of a Gauss cloud cross within a few ulps of one
-// another; a crossing a rounding beyond an earlier one once made a segment run to it and back,
-// and reading the chains back by following edges then failed ("a constraint's edges do not
-// form a chain").
-TEST(InsertConstraints, RegressionChainsThroughACrowdOfCrossings) {
-    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Gauss, 300, 6));
+// Sixty lines through the middle of a Gauss cloud: they cross within a few ulps of one another.
+std::vector<std::vector<Point3>> linesThroughTheMiddle(const TinMesh& mesh, double angleOffset) {
     double cx = 0.0;
     double cy = 0.0;
     for (const Point3& p : mesh.vertices) {
         cx += p.x / double(mesh.vertexCount());
         cy += p.y / double(mesh.vertexCount());
     }
-    ConstraintSet constraints;
+    std::vector<std::vector<Point3>> lines;
     for (int k = 0; k < 60; ++k) {
-        const double angle = 3.14159265358979 * k / 60 + 0.06;
+        const double angle = 3.14159265358979 * k / 60 + angleOffset;
         const double dx = 0.15 * std::cos(angle);
         const double dy = 0.15 * std::sin(angle);
-        constraints.polylines.push_back({{cx + dx, cy + dy, 1}, {cx - dx, cy - dy, 1}});
+        lines.push_back({{cx + dx, cy + dy, 1}, {cx - dx, cy - dy, 1}});
     }
+    return lines;
+}
+
+// Regression: a crossing a rounding beyond an earlier one once made a segment run to it and
+// back, and reading the chains back by following edges then failed ("a constraint's edges do
+// not form a chain").
+TEST(InsertConstraints, RegressionChainsThroughACrowdOfCrossings) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Gauss, 300, 6));
+    ConstraintSet constraints;
+    constraints.polylines = linesThroughTheMiddle(mesh, 0.06);
     const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
     EXPECT_LT(tin.intersections, 60U); // many lines go through an earlier crossing's vertex
+    const Point3& a = constraints.polylines[0][0];
+    const Point3& b = constraints.polylines[0][1];
     for (std::size_t v = mesh.vertexCount(); v < tin.mesh.vertexCount(); ++v)
         if (tin.mesh.sourceIndex[v] == kIntersectionSource) {
-            EXPECT_LT(std::hypot(tin.mesh.vertices[v].x - cx, tin.mesh.vertices[v].y - cy), 1e-14)
+            const Point3& p = tin.mesh.vertices[v];
+            EXPECT_LT(std::hypot(p.x - (a.x + b.x) / 2, p.y - (a.y + b.y) / 2), 1e-14)
                 << "crossing vertex " << v << " strays from the lines' common point";
         }
+}
+
+// Regression: in such a crowd, a crossing rounded onto the end of the segment being inserted,
+// the crossed constraint was re-inserted through it and rounded back onto its old edge, which
+// crossed the segment again: the insertion never ended.
+TEST(InsertConstraints, RegressionCrowdOfCrossingsDoesNotLoop) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Gauss, 5000, 10));
+    ConstraintSet constraints;
+    constraints.polylines = linesThroughTheMiddle(mesh, 0.1);
+    constrainAndCheck(mesh, constraints);
 }
 
 TEST(InsertConstraints, SegmentAlongTheHull) {

@@ -33,19 +33,23 @@ struct ConstraintSet {
 /// - A polyline point becomes a new vertex (sourceIndex kConstraintPointSource) unless a vertex
 ///   has exactly its x and y: then that vertex is used and keeps its elevation.
 /// - Two segments that cross get a new vertex (sourceIndex kIntersectionSource) at their
-///   intersection, computed in double along the segment inserted first, c + t (d - c), with its
+///   intersection, computed in double along the segment inserted first (segments go in the
+///   order given: `segments`, then each polyline's points and segments), c + t (d - c), with its
 ///   z interpolated linearly along that segment. Rounding may leave the vertex off either segment
 ///   by about one unit in the last place of the coordinates: both segments then bend through it
 ///   and their halves are constrained as they are.
 /// - Where a segment crosses a constrained edge and passes within 2^-50 times the largest
 ///   coordinate involved (about 4 ulps) of one of that edge's vertices, it goes through that
 ///   vertex instead (so segments through an earlier crossing reuse its vertex); such a chain
-///   vertex may lie that far off the segment.
+///   vertex may lie that far off the segment. A crossing within that distance of a vertex is
+///   that vertex. Where crossings still crowd within a few ulps and the same crossing comes
+///   back while one segment is inserted, the segment goes through the nearer end of the
+///   crossed edge (docs/algorithms.md).
 /// - Zero-length segments are ignored.
 /// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
 /// non-finite coordinate, or a polyline point outside the convex hull of the mesh (clipping to
 /// the hull is not supported), and for more than 2^32 - 2 segments in all; `mesh` is consumed
-/// either way.
+/// either way. std::logic_error only means a broken internal invariant (a bug).
 /// Complexity: O(n) once for the vertex-to-triangle map (and a bucket grid when there are
 /// polylines), then per segment the degree of its first vertex plus O(k) flips for the k edges
 /// it crosses (O(k^2) at worst), per crossing a point insertion, per polyline point a walk from
