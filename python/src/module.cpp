@@ -1,6 +1,7 @@
 /// @file
 /// The extension module `terratin._terratin`: terratin::core for Python, NumPy arrays in and
-/// out, and terratin::io's build of files. docs/python.md describes the API; python/terratin/__init__.py documents each function.
+/// out, and terratin::io's build of files. docs/python.md describes the API;
+/// python/terratin/__init__.py documents each function.
 
 #include "bindings.hpp"
 
