@@ -21,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -187,6 +188,39 @@ TEST(BreaklinesPipeline, OneThreadAndTwoGiveTheSameVerticesAndBreaklineEdges) {
         if (std::fmod(place.first - 5.0, 10.0) != 0.0 || std::fmod(place.second - 5.0, 10.0) != 0.0)
             added.push_back({place.first, place.second});
     ASSERT_EQ(added.size(), 5U);
+}
+
+TEST(BreaklinesPipeline, APointCloudTakesBreaklines_WithZFromItsTin) {
+    // Scattered points of the plane z = x / 100 + y / 50 (text, no CRS: the lines have none
+    // either); a breakline's vertices get the TIN's z, exact on a plane up to rounding.
+    TemporaryDirectory directory;
+    const fs::path points = directory.path() / "points.xyz";
+    {
+        std::ofstream text(points);
+        std::uint64_t state = 12345;
+        for (int i = 0; i < 2000; ++i) {
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            const double x = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            const double y = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
+            text << std::setprecision(17) << x << ' ' << y << ' ' << x / 100.0 + y / 50.0 << '\n';
+        }
+    }
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {"LINESTRING (100.25 200.5, 800.75 650.125, 300.5 900.25)"}, 0);
+    BuildOptions options;
+    options.inputs = {points.string()};
+    options.output = directory.path() / "tin.ply";
+    options.breaklines = {lines.string()};
+    options.validate = true;
+    const BuildReport report = runBuild(options);
+    EXPECT_TRUE(report.validated);
+    EXPECT_EQ(report.breaklines, 1U);
+    const ReadTin tin = readTin(directory.path() / "tin.ply");
+    EXPECT_TRUE(hasEdge(tin, {100.25, 200.5}, {800.75, 650.125}));
+    EXPECT_TRUE(hasEdge(tin, {800.75, 650.125}, {300.5, 900.25}));
+    const Point3& corner = tin.mesh.vertices[tin.vertexAt.at({800.75, 650.125})];
+    EXPECT_NEAR(corner.z, 800.75 / 100.0 + 650.125 / 50.0, 1e-9);
 }
 
 TEST(BreaklinesPipeline, CrossingLinesMeetAtANewVertex_AndLinesOutsideAreClipped) {
