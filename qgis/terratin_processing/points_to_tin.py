@@ -1,8 +1,6 @@
 """Processing algorithm terratin:pointstotin: a point layer, or LAS / LAZ / delimited text
 files, to an exactly Delaunay TIN."""
 
-import os
-
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingParameterCrs,
@@ -11,11 +9,9 @@ from qgis.core import (
     QgsProcessingParameterString,
     QgsProcessingParameterVectorLayer,
     QgsProcessing,
-    QgsProcessingUtils,
-    QgsProviderRegistry,
-    QgsVectorFileWriter,
 )
 
+from .layer_files import layer_file
 from .terratin_algorithm import TerratinAlgorithm, crs_text, given
 
 
@@ -94,7 +90,7 @@ class PointsToTin(TerratinAlgorithm):
             )
         options = {}
         if layer is not None:
-            path, layer_name = self.layerFile(layer, context, feedback)
+            path, layer_name = layer_file(layer, context, feedback, "points")
             inputs = [path]
             if layer_name:
                 options["input_layer"] = layer_name
@@ -111,24 +107,3 @@ class PointsToTin(TerratinAlgorithm):
         if source_crs.isValid():
             options["s_srs"] = crs_text(source_crs)
         return inputs, options
-
-    def layerFile(self, layer, context, feedback):  # noqa: N802
-        """(file, layer name or None) terratin reads `layer` from. A layer OGR reads whole from
-        a file is read there; any other (a scratch layer, delimited text, a database, a
-        filtered layer) is first saved to a GeoPackage in Processing's temporary folder."""
-        if layer.providerType() == "ogr":
-            parts = QgsProviderRegistry.instance().decodeUri("ogr", layer.source())
-            path = parts.get("path", "")
-            if os.path.isfile(path) and not parts.get("subset"):
-                return path, parts.get("layerName") or None
-        path = os.path.join(QgsProcessingUtils.tempFolder(), f"terratin_points_{id(layer)}.gpkg")
-        feedback.pushInfo(f"Saving '{layer.name()}' to {path} for terratin")
-        options = QgsVectorFileWriter.SaveVectorOptions()
-        options.driverName = "GPKG"
-        options.layerName = "points"
-        error = QgsVectorFileWriter.writeAsVectorFormatV3(
-            layer, path, context.transformContext(), options
-        )
-        if error[0] != QgsVectorFileWriter.NoError:
-            raise QgsProcessingException(f"Points to TIN: cannot save '{layer.name()}': {error[1]}")
-        return path, "points"

@@ -11,10 +11,12 @@ from qgis.core import (
     QgsProcessingParameterBoolean,
     QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
+    QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterNumber,
     QgsProcessingParameterVectorDestination,
 )
 
+from .layer_files import layer_source
 from .terrain_style import apply_terrain_style_on_load
 
 # The choices as terratin names them; the first is the default.
@@ -33,6 +35,7 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
     ATTRIBUTES = "ATTRIBUTES"
     TERRAIN_STYLE = "TERRAIN_STYLE"
     TARGET_CRS = "TARGET_CRS"
+    BREAKLINES = "BREAKLINES"
     OUTPUT = "OUTPUT"
     VERTICES = "VERTICES"
     TRIANGLES = "TRIANGLES"
@@ -50,6 +53,13 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
 
     def addTinParameters(self):  # noqa: N802 (the QGIS API's case)
         """The parameters after the inputs: how to triangulate, and the output."""
+        self.addParameter(
+            QgsProcessingParameterMultipleLayers(
+                self.BREAKLINES,
+                "Breaklines (line layers: every segment becomes TIN edges; full resolution)",
+                QgsProcessing.TypeVectorLine, optional=True,
+            )
+        )
         self.addParameter(
             QgsProcessingParameterCrs(
                 self.TARGET_CRS, "Output CRS (default: the input's; geographic: its UTM zone)",
@@ -141,6 +151,11 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
             "attributes": attributes,
             "qgis_style": style,
         }
+        breaklines = self.parameterAsLayerList(parameters, self.BREAKLINES, context)
+        if breaklines:
+            options["breaklines"] = [
+                layer_source(layer, context, feedback, "breaklines") for layer in breaklines
+            ]
         target = self.parameterAsCrs(parameters, self.TARGET_CRS, context)
         if target.isValid():
             options["t_srs"] = crs_text(target)

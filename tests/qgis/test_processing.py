@@ -189,6 +189,43 @@ def test_dem_to_tin_limits_points_and_reprojects(processing, tmp_path):
     assert layer.renderer().type() != "graduatedSymbol"
 
 
+def test_dem_to_tin_takes_breaklines_from_a_file_layer_and_a_scratch_layer(processing, tmp_path):
+    from qgis.core import QgsFeature, QgsGeometry
+
+    roads = tmp_path / "roads.gpkg"
+    crs = osr.SpatialReference()
+    crs.ImportFromEPSG(32633)
+    dataset = ogr.GetDriverByName("GPKG").CreateDataSource(str(roads))
+    layer = dataset.CreateLayer("roads", crs, ogr.wkbLineString)
+    feature = ogr.Feature(layer.GetLayerDefn())
+    feature.SetGeometry(ogr.CreateGeometryFromWkt(
+        "LINESTRING (455501.3 5104003.7, 456700.9 5103100.2)"))
+    layer.CreateFeature(feature)
+    dataset = None
+    scratch = QgsVectorLayer("LineString?crs=EPSG:32633", "scratch", "memory")
+    line = QgsFeature()
+    line.setGeometry(QgsGeometry.fromWkt("LineString (455300.7 5102700.1, 456000.3 5102900.9)"))
+    scratch.dataProvider().addFeatures([line])
+    file_layer = QgsVectorLayer(f"{roads}|layername=roads", "roads", "ogr")
+    result = processing.run(
+        "terratin:demtotin",
+        {"INPUT": str(SAMPLE), "BREAKLINES": [file_layer, scratch],
+         "OUTPUT": str(tmp_path / "tin.gpkg")},
+    )
+    scratch_file = tmp_path / "scratch.gpkg"
+    dataset = ogr.GetDriverByName("GPKG").CreateDataSource(str(scratch_file))
+    layer = dataset.CreateLayer("lines", crs, ogr.wkbLineString)
+    feature = ogr.Feature(layer.GetLayerDefn())
+    feature.SetGeometry(ogr.CreateGeometryFromWkt(
+        "LINESTRING (455300.7 5102700.1, 456000.3 5102900.9)"))
+    layer.CreateFeature(feature)
+    dataset = None
+    counts = cli_counts(SAMPLE, "-o", tmp_path / "cli.ply", "--breaklines", roads,
+                        "--breaklines", scratch_file)
+    assert result["VERTICES"] == counts["vertices"] == 75644 + 4
+    assert result["TRIANGLES"] == counts["triangles"]
+
+
 def write_points(path, count=300):
     """A GeoPackage of PointZ with an elevation field too, in UTM 33N."""
     import random
