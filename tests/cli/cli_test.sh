@@ -805,7 +805,19 @@ case "$case_name" in
     expect_one_error_line "--breakline-z"
     run 2 build "$sample" --breaklines lines.gpkg --max-error 1 -o tin4.gpkg --quiet
     expect_one_error_line "--breaklines does not combine with simplification"
-    [ ! -e tin2.gpkg ] && [ ! -e tin4.gpkg ] || fail "an output written after an error"
+    # Issue 24: clip and erase areas; a line layer is not one.
+    run 1 build "$sample" --clip lines.gpkg -o tin5.gpkg --quiet
+    expect_one_error_line "not a Polygon"
+    printf 'WKT;id\n"POLYGON ((455600.5 5103000.25,457200.75 5102800.5,456500.5 5104700.25,455600.5 5103000.25))";1\n' >area.csv
+    ogr2ogr -q -f GPKG area.gpkg area.csv -oo GEOM_POSSIBLE_NAMES=WKT -a_srs EPSG:32633 \
+      -nlt POLYGON || fail "ogr2ogr failed"
+    run 1 build "$sample" --clip area.gpkg --erase area.gpkg -o tin6.gpkg --quiet
+    expect_one_error_line "no triangle is left"
+    [ ! -e tin6.gpkg ] || fail "an output written with no triangle"
+    run 0 build "$sample" --erase area.gpkg -o tin7.gpkg --quiet --json
+    [ "$(report_count area_triangles)" -gt 0 ] || fail "nothing erased"
+    [ ! -e tin2.gpkg ] && [ ! -e tin4.gpkg ] && [ ! -e tin5.gpkg ] ||
+      fail "an output written after an error"
     ;;
   *)
     fail "unknown case"

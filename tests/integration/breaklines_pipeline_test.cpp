@@ -223,6 +223,80 @@ TEST(BreaklinesPipeline, APointCloudTakesBreaklines_WithZFromItsTin) {
     EXPECT_NEAR(corner.z, 800.75 / 100.0 + 650.125 / 50.0, 1e-9);
 }
 
+/// Twice the planimetric area of the TIN in `path` (a PLY).
+double twiceTinArea(const fs::path& path) {
+    const test::ReadMesh mesh = test::readPly(path);
+    double area = 0.0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        const Point3& a = mesh.vertices[mesh.triangles[t]];
+        const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
+        area += (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    }
+    return area;
+}
+
+// A pentagon inside the sample's data, off the cell grid: twice its area by the shoelace.
+const char* const kPentagon = "POLYGON ((455600.5 5103000.25, 457200.75 5102800.5, "
+                              "457900.25 5103900.75, 456500.5 5104700.25, 455300.25 5104100.5, "
+                              "455600.5 5103000.25))";
+double twicePentagonArea() {
+    const double x[] = {455600.5, 457200.75, 457900.25, 456500.5, 455300.25};
+    const double y[] = {5103000.25, 5102800.5, 5103900.75, 5104700.25, 5104100.5};
+    double area = 0.0;
+    for (int i = 0; i < 5; ++i)
+        area += x[i] * y[(i + 1) % 5] - x[(i + 1) % 5] * y[i];
+    return area;
+}
+
+TEST(ConstraintAreas, ClipKeepsExactlyThePolygon_AndEraseCutsItOut) {
+    TemporaryDirectory directory;
+    const fs::path area = directory.path() / "area.gpkg";
+    writeLines(area, {kPentagon});
+    BuildOptions options;
+    options.inputs = {kSample.string()};
+    options.validate = true;
+
+    options.output = directory.path() / "whole.ply";
+    (void)runBuild(options);
+    const double whole = twiceTinArea(options.output);
+
+    options.clip = area.string();
+    options.output = directory.path() / "clipped.ply";
+    const BuildReport clipped = runBuild(options);
+    EXPECT_TRUE(clipped.validated);
+    EXPECT_GT(clipped.areaTriangles, 0U);
+    EXPECT_NEAR(twiceTinArea(options.output), twicePentagonArea(), 1e-6 * twicePentagonArea());
+
+    options.clip.clear();
+    options.erase = area.string();
+    options.output = directory.path() / "erased.ply";
+    (void)runBuild(options);
+    EXPECT_NEAR(twiceTinArea(options.output), whole - twicePentagonArea(), 1e-6 * whole);
+}
+
+TEST(ConstraintAreas, ABowTieOrALineIsRefused_AndSimplificationToo) {
+    TemporaryDirectory directory;
+    const fs::path bowTie = directory.path() / "bowtie.gpkg";
+    writeLines(bowTie, {"POLYGON ((455600 5103000, 457000 5104000, 457000 5103000, "
+                        "455600 5104000, 455600 5103000))"});
+    const fs::path line = directory.path() / "line.gpkg";
+    writeLines(line, {"LINESTRING (455300.7 5102700.1, 456000.3 5102900.9)"});
+    BuildOptions options;
+    options.inputs = {kSample.string()};
+    options.output = directory.path() / "tin.ply";
+    options.clip = bowTie.string();
+    EXPECT_THROW((void)runBuild(options), InvalidInputError);
+    options.clip = line.string();
+    EXPECT_THROW((void)runBuild(options), InvalidInputError);
+    options.clip.clear();
+    options.erase = bowTie.string();
+    options.refine.emplace();
+    options.refine->maxError = 1.0;
+    EXPECT_THROW((void)runBuild(options), InvalidInputError);
+    EXPECT_FALSE(fs::exists(options.output));
+}
+
 TEST(BreaklinesPipeline, CrossingLinesMeetAtANewVertex_AndLinesOutsideAreClipped) {
     TemporaryDirectory directory;
     const fs::path lines = directory.path() / "lines.gpkg";

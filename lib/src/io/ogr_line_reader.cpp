@@ -105,10 +105,36 @@ void addGeometry(const OGRGeometry& geometry, std::int64_t fid, const std::strin
                             ", not a LineString or MultiLineString");
 }
 
-} // namespace
+void addPolygon(const OGRPolygon& polygon, std::int64_t fid, const std::string& where,
+                LineLayer& layer) {
+    const std::size_t number = layer.polygonOf.empty() ? 0 : layer.polygonOf.back() + 1;
+    for (const OGRLinearRing* ring : polygon)
+        if (addLine(*ring, fid, where, layer))
+            layer.polygonOf.push_back(number);
+}
 
-LineLayer readOgrLines(const std::string& source, const std::string& layerName,
-                       const std::string& option) {
+void addPolygons(const OGRGeometry& geometry, std::int64_t fid, const std::string& where,
+                 LineLayer& layer) {
+    const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
+    if (type != wkbPolygon && type != wkbMultiPolygon)
+        throw InvalidInputError(where + "feature " + std::to_string(fid) + " is a " +
+                                OGRGeometryTypeToName(geometry.getGeometryType()) +
+                                ", not a Polygon or MultiPolygon");
+    if (!geometry.IsValid())
+        throw InvalidInputError(where + "feature " + std::to_string(fid) +
+                                " is not a valid polygon (a ring crosses itself or another)");
+    if (type == wkbPolygon) {
+        addPolygon(*geometry.toPolygon(), fid, where, layer);
+        return;
+    }
+    for (const OGRPolygon* part : *geometry.toMultiPolygon())
+        addPolygon(*part, fid, where, layer);
+}
+
+using AddFeature = void (*)(const OGRGeometry&, std::int64_t, const std::string&, LineLayer&);
+
+LineLayer readLayer(const std::string& source, const std::string& layerName,
+                    const std::string& option, AddFeature add) {
     initialiseGdal();
     CPLErrorReset();
     const SourceName name = splitSource(source);
@@ -130,9 +156,21 @@ LineLayer readOgrLines(const std::string& source, const std::string& layerName,
     for (const auto& feature : *layer) {
         const OGRGeometry* geometry = feature->GetGeometryRef();
         if (geometry != nullptr && !geometry->IsEmpty())
-            addGeometry(*geometry, feature->GetFID(), where, lines);
+            add(*geometry, feature->GetFID(), where, lines);
     }
     return lines;
+}
+
+} // namespace
+
+LineLayer readOgrLines(const std::string& source, const std::string& layer,
+                       const std::string& option) {
+    return readLayer(source, layer, option, addGeometry);
+}
+
+LineLayer readOgrPolygons(const std::string& source, const std::string& layer,
+                          const std::string& option) {
+    return readLayer(source, layer, option, addPolygons);
 }
 
 } // namespace terratin::io

@@ -10,20 +10,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
+#include <string_view>
 
 namespace terratin::detail {
 
 namespace {
 
-/// The lines of one source in `crsWkt`.
-io::LineLayer readInCrs(const std::string& source, const BuildOptions& options,
-                        const std::string& crsWkt, BuildReport& report) {
-    const std::string option = optionName("breaklines", options.optionSpelling);
-    io::LineLayer layer = io::readOgrLines(source, options.breaklinesLayer, option);
+/// The lines (or polygon rings) of one source in `crsWkt`; `keyword` names the option it came
+/// from.
+io::LineLayer readInCrs(const std::string& source, std::string_view keyword,
+                        const BuildOptions& options, const std::string& crsWkt,
+                        BuildReport& report) {
+    const std::string option = optionName(keyword, options.optionSpelling);
+    io::LineLayer layer = keyword == "breaklines"
+                              ? io::readOgrLines(source, options.breaklinesLayer, option)
+                              : io::readOgrPolygons(source, "", option);
     const std::string name = option + " '" + source + "' layer '" + layer.layerName + "'";
     if (layer.lines.empty()) {
-        notify(options, report, name + " has no lines");
+        notify(options, report,
+               name + (keyword == "breaklines" ? " has no lines" : " has no polygons"));
         return layer;
     }
     if (layer.crsWkt.empty() || crsWkt.empty()) {
@@ -58,44 +65,115 @@ void checkLineZ(const io::LineLayer& layer, const BuildOptions& options) {
                 "' has no z");
 }
 
+std::size_t addLines(io::LineLayer& layer, TinLocator& locator, BreaklineZ zFrom,
+                     ConstraintSet& constraints) {
+    std::size_t clipped = 0;
+    for (std::vector<Point3>& line : layer.lines) {
+        if (zFrom == BreaklineZ::Surface)
+            for (Point3& point : line)
+                point.z = std::nan("");
+        std::vector<std::vector<Point3>> parts = locator.clipToHull(line);
+        clipped += parts.size() != 1 || !samePlaces(parts.front(), line) ? 1 : 0;
+        for (std::vector<Point3>& part : parts) {
+            // Inside the hull after clipping: the surface is defined at every point.
+            for (Point3& point : part)
+                if (std::isnan(point.z))
+                    point.z = *locator.elevation({point.x, point.y});
+            constraints.polylines.push_back(std::move(part));
+        }
+    }
+    return clipped;
+}
+
+void notifyClipped(const BuildOptions& options, BuildReport& report, const std::string& source,
+                   std::size_t clipped, std::size_t lines) {
+    if (clipped > 0)
+        notify(options, report,
+               std::to_string(clipped) + " of the " + std::to_string(lines) + " lines of '" +
+                   source + "' were clipped to the data's extent");
+}
+
+/// Whether `point` lies inside polygon `polygon` of `rings` (even-odd over its rings).
+bool insidePolygon(const io::LineLayer& rings, std::size_t polygon, Point2 point) {
+    bool inside = false;
+    for (std::size_t r = 0; r < rings.lines.size(); ++r) {
+        if (rings.polygonOf[r] != polygon)
+            continue;
+        const std::vector<Point3>& ring = rings.lines[r];
+        for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+            if ((ring[i].y > point.y) != (ring[j].y > point.y) &&
+                point.x <
+                    (ring[j].x - ring[i].x) * (point.y - ring[i].y) / (ring[j].y - ring[i].y) +
+                        ring[i].x)
+                inside = !inside;
+    }
+    return inside;
+}
+
+bool insideAny(const io::LineLayer& rings, Point2 point) {
+    const std::size_t polygons = rings.polygonOf.empty() ? 0 : rings.polygonOf.back() + 1;
+    for (std::size_t polygon = 0; polygon < polygons; ++polygon)
+        if (insidePolygon(rings, polygon, point))
+            return true;
+    return false;
+}
+
+/// 1 for the triangles outside the clip area or inside the erase area, by their centroids:
+/// the areas' boundaries are chains of TIN edges, so no triangle straddles one.
+std::vector<std::uint8_t> outsideArea(const TinMesh& mesh, const io::LineLayer* clip,
+                                      const io::LineLayer* erase) {
+    std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
+    for (std::size_t t = 0; t < drop.size(); ++t) {
+        Point2 centroid{0.0, 0.0};
+        for (std::size_t i = 0; i < 3; ++i) {
+            centroid.x += mesh.vertices[mesh.triangles[3 * t + i]].x / 3.0;
+            centroid.y += mesh.vertices[mesh.triangles[3 * t + i]].y / 3.0;
+        }
+        drop[t] = (clip != nullptr && !insideAny(*clip, centroid)) ||
+                  (erase != nullptr && insideAny(*erase, centroid));
+    }
+    return drop;
+}
+
 } // namespace
 
-ConstrainedTin addBreaklines(TinMesh mesh, const BuildOptions& options, const std::string& crsWkt,
-                             BuildReport& report) {
+ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
+                                const std::string& crsWkt, BuildReport& report) {
     ConstraintSet constraints;
+    std::optional<io::LineLayer> clip;
+    std::optional<io::LineLayer> erase;
     {
         TinLocator locator(mesh);
         for (const std::string& source : options.breaklines) {
-            io::LineLayer layer = readInCrs(source, options, crsWkt, report);
+            io::LineLayer layer = readInCrs(source, "breaklines", options, crsWkt, report);
             if (options.breaklineZ == BreaklineZ::Line)
                 checkLineZ(layer, options);
-            std::size_t clipped = 0;
-            for (std::vector<Point3>& line : layer.lines) {
-                if (options.breaklineZ == BreaklineZ::Surface)
-                    for (Point3& point : line)
-                        point.z = std::nan("");
-                std::vector<std::vector<Point3>> parts = locator.clipToHull(line);
-                clipped += parts.size() != 1 || !samePlaces(parts.front(), line) ? 1 : 0;
-                for (std::vector<Point3>& part : parts) {
-                    // Inside the hull after clipping: the surface is defined at every point.
-                    for (Point3& point : part)
-                        if (std::isnan(point.z))
-                            point.z = *locator.elevation({point.x, point.y});
-                    constraints.polylines.push_back(std::move(part));
-                }
-            }
-            if (clipped > 0)
-                notify(options, report,
-                       std::to_string(clipped) + " of the " + std::to_string(layer.lines.size()) +
-                           " lines of '" + source + "' were clipped to the data's extent");
+            const std::size_t clipped = addLines(layer, locator, options.breaklineZ, constraints);
+            notifyClipped(options, report, source, clipped, layer.lines.size());
             report.clippedBreaklines += clipped;
         }
+        report.breaklines = constraints.polylines.size();
+        // The areas' boundaries: constrained rings with the surface's z.
+        const auto addArea = [&](const std::string& source, std::string_view keyword) {
+            io::LineLayer rings = readInCrs(source, keyword, options, crsWkt, report);
+            io::LineLayer copy = rings;
+            notifyClipped(options, report, source,
+                          addLines(copy, locator, BreaklineZ::Surface, constraints),
+                          rings.lines.size());
+            return rings;
+        };
+        if (!options.clip.empty())
+            clip = addArea(options.clip, "clip");
+        if (!options.erase.empty())
+            erase = addArea(options.erase, "erase");
     }
-    report.breaklines = constraints.polylines.size();
-    ConstrainedTin constrained = insertConstraints(std::move(mesh), constraints);
-    report.constraintVertices = constrained.addedPoints + constrained.intersections;
-    report.constraintCrossings = constrained.intersections;
-    return constrained;
+    ConstrainedBuild build{insertConstraints(std::move(mesh), constraints), {}};
+    report.constraintVertices = build.tin.addedPoints + build.tin.intersections;
+    report.constraintCrossings = build.tin.intersections;
+    if (clip || erase)
+        build.outsideArea =
+            outsideArea(build.tin.mesh, clip ? &*clip : nullptr, erase ? &*erase : nullptr);
+    return build;
 }
 
 } // namespace terratin::detail

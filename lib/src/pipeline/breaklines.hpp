@@ -1,23 +1,36 @@
 #pragma once
 /// @file
-/// The breaklines stage of a build: OGR lines read, put into the TIN's CRS, clipped to its
-/// hull, given elevations, and inserted as constraints (docs/cli.md, --breaklines).
+/// The constraints stage of a build: OGR lines (breaklines) and polygons (clip and erase
+/// areas) read, put into the TIN's CRS, clipped to its hull, given elevations, and inserted as
+/// constraints (docs/cli.md, --breaklines, --clip, --erase).
 
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace terratin::detail {
 
+/// A constrained TIN and the triangles to drop for --clip / --erase.
+struct ConstrainedBuild {
+    ConstrainedTin tin;
+    /// outsideArea[t] = 1 for a triangle outside the clip area or inside the erase area; empty
+    /// without either.
+    std::vector<std::uint8_t> outsideArea;
+};
+
 /// `mesh` (the Delaunay TIN of the inputs, in `crsWkt`) with every line of
-/// options.breaklines inserted: a constrained Delaunay TIN. Lines are reprojected from their
-/// layer's CRS (a layer without one is taken to be in `crsWkt`, with a notice), clipped to the
-/// mesh's convex hull (with a notice), and their vertices get z per options.breaklineZ. A
-/// source without lines gives a notice. Fills report.breaklines, clippedBreaklines,
-/// constraintVertices and constraintCrossings. Throws what io::readOgrLines and
-/// insertConstraints throw, and InvalidInputError for a line without z under BreaklineZ::Line.
-ConstrainedTin addBreaklines(TinMesh mesh, const BuildOptions& options, const std::string& crsWkt,
-                             BuildReport& report);
+/// options.breaklines and every ring of options.clip and options.erase inserted: a constrained
+/// Delaunay TIN. Lines and rings are reprojected from their layer's CRS (a layer without one is
+/// taken to be in `crsWkt`, with a notice) and clipped to the mesh's convex hull (with a
+/// notice); breakline vertices get z per options.breaklineZ, ring vertices the surface's. A
+/// source without features gives a notice. Fills report.breaklines, clippedBreaklines,
+/// constraintVertices and constraintCrossings. Throws what io::readOgrLines,
+/// io::readOgrPolygons and insertConstraints throw, and InvalidInputError for a line without z
+/// under BreaklineZ::Line.
+ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
+                                const std::string& crsWkt, BuildReport& report);
 
 } // namespace terratin::detail

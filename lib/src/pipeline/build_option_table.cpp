@@ -363,6 +363,21 @@ std::vector<BuildOptionSpec> makeTable() {
              o.breaklineZ = parseChoice<BreaklineZ>(
                  t, n, {{"line", BreaklineZ::Line}, {"surface", BreaklineZ::Surface}});
          }},
+        {"clip", "clip", 0, Kind::Text, false, "FILE", "",
+         "clip area: an OGR polygon layer (FILE or FILE|layername=NAME); triangles outside "
+         "are removed, its boundary becomes TIN edges (full-resolution TINs)",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             if (t.empty())
+                 refuse(n + " needs a file name");
+             o.clip = t;
+         }},
+        {"erase", "erase", 0, Kind::Text, false, "FILE", "",
+         "erase areas: polygons cut out of the TIN as holes, their boundaries TIN edges",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             if (t.empty())
+                 refuse(n + " needs a file name");
+             o.erase = t;
+         }},
         {"s_srs", "s_srs", 0, Kind::Text, false, "SRS", "",
          "CRS of the inputs, overriding theirs (EPSG:n, WKT, PROJ string, .prj file...); "
          "horizontal: projected or geographic 2D, or compound with such a part",

@@ -242,10 +242,13 @@ void checkBuildOptions(const BuildOptions& options) {
                                 std::to_string(options.band) + ")");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
         throw InvalidInputError("Build: the z factor must be a finite number other than 0");
-    if (options.refine && !options.breaklines.empty())
-        throw InvalidInputError("Build: " + optionName("breaklines", options.optionSpelling) +
-                                " does not combine with simplification yet: build the "
-                                "full-resolution TIN");
+    for (const auto& [keyword, given] :
+         {std::pair{"breaklines", !options.breaklines.empty()},
+          std::pair{"clip", !options.clip.empty()}, std::pair{"erase", !options.erase.empty()}})
+        if (options.refine && given)
+            throw InvalidInputError("Build: " + optionName(keyword, options.optionSpelling) +
+                                    " does not combine with simplification yet: build the "
+                                    "full-resolution TIN");
     if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
         throw InvalidInputError("Build: the longest edge kept must be a positive length");
     if (options.format)
@@ -294,9 +297,12 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.historyBytesPerPoint = static_cast<double>(triangulation.historyBytes) /
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
     std::optional<ConstrainedTin> constrained;
-    if (!options.breaklines.empty()) {
-        constrained =
-            detail::addBreaklines(std::move(triangulation.mesh), options, gathered.crsWkt, report);
+    std::vector<std::uint8_t> outsideArea;
+    if (!options.breaklines.empty() || !options.clip.empty() || !options.erase.empty()) {
+        detail::ConstrainedBuild build =
+            detail::addConstraints(std::move(triangulation.mesh), options, gathered.crsWkt, report);
+        constrained = std::move(build.tin);
+        outsideArea = std::move(build.outsideArea);
         triangulation.mesh = std::move(constrained->mesh);
         report.vertices = triangulation.mesh.vertexCount();
         report.triangles = triangulation.mesh.triangleCount();
@@ -320,6 +326,15 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
         // The breaklines as the writers take them, before any triangle is dropped.
         writeOptions.constrainedEdges = std::move(constrained->constrained);
         writeOptions.breaklines = chainPoints(*constrained, triangulation.mesh);
+    }
+    if (!outsideArea.empty()) {
+        keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, outsideArea);
+        report.areaTriangles = dropTriangles(triangulation.mesh, outsideArea);
+        report.vertices = triangulation.mesh.vertexCount();
+        report.triangles = triangulation.mesh.triangleCount();
+        if (report.triangles == 0)
+            throw InvalidInputError("Build: no triangle is left inside the clip area and "
+                                    "outside the erase areas");
     }
     if (options.maxEdge) {
         const std::vector<std::uint8_t> drop =

@@ -117,7 +117,8 @@ std::string toJson(const BuildReport& report) {
     json << ", \"constraints\": {\"breaklines\": " << report.breaklines
          << ", \"clipped_breaklines\": " << report.clippedBreaklines
          << ", \"added_vertices\": " << report.constraintVertices
-         << ", \"crossings\": " << report.constraintCrossings << "}";
+         << ", \"crossings\": " << report.constraintCrossings
+         << ", \"area_triangles\": " << report.areaTriangles << "}";
     json << ", \"writing\": {\"features\": " << report.writeFeatures
          << ", \"features_per_second\": " << report.writeFeaturesPerSecond
          << ", \"rows_seconds\": " << report.writeRowSeconds

@@ -111,7 +111,7 @@ TEST(BuildOptionTable, NamesAreUniqueAndEveryOptionIsDocumented) {
     }
     // The inputs and every option of `terratin build --help` but the CLI's own (quiet, json,
     // help).
-    EXPECT_EQ(keywords.size(), 40U);
+    EXPECT_EQ(keywords.size(), 42U);
 }
 
 TEST(BuildOptionTable, DefaultTextParsesToTheDefault) {
@@ -201,7 +201,9 @@ TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
                                                     {"breaklines", "roads.gpkg"},
                                                     {"breaklines", "rivers.shp"},
                                                     {"breaklines_layer", "lines"},
-                                                    {"breakline_z", "Surface"}},
+                                                    {"breakline_z", "Surface"},
+                                                    {"clip", "area.gpkg"},
+                                                    {"erase", "lakes.gpkg|layername=lakes"}},
                                                    OptionSpelling::Keyword);
     EXPECT_EQ(options.inputs, (std::vector<std::string>{"a.las", "b.xyz"}));
     EXPECT_EQ(options.output, "out.fgb");
@@ -233,6 +235,8 @@ TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
     EXPECT_EQ(options.breaklines, (std::vector<std::string>{"roads.gpkg", "rivers.shp"}));
     EXPECT_EQ(options.breaklinesLayer, "lines");
     EXPECT_EQ(options.breaklineZ, BreaklineZ::Surface);
+    EXPECT_EQ(options.clip, "area.gpkg");
+    EXPECT_EQ(options.erase, "lakes.gpkg|layername=lakes");
     EXPECT_FALSE(options.refine);
     EXPECT_EQ(options.optionSpelling, OptionSpelling::Keyword);
 }

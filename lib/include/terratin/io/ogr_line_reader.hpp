@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// OgrLineReader: the line features of an OGR vector dataset (breaklines) as polylines.
+/// OgrLineReader: the line and polygon features of an OGR vector dataset (breaklines, clip and
+/// erase areas) as polylines.
 
 #include "terratin/geometry/point.hpp"
 
@@ -22,6 +23,10 @@ struct LineLayer {
     std::vector<std::int64_t> featureIds;
     /// Whether any line has z.
     bool hasZ = false;
+    /// Polygon layers (readOgrPolygons): each line is a closed ring (last point = first), and
+    /// polygonOf[i] numbers the polygon ring i belongs to (its first ring is the exterior, the
+    /// others holes). Empty for line layers.
+    std::vector<std::size_t> polygonOf;
     /// The layer's CRS as WKT, empty when it has none.
     std::string crsWkt;
 };
@@ -35,5 +40,11 @@ struct LineLayer {
 /// coordinate. Complexity: O(vertices).
 LineLayer readOgrLines(const std::string& source, const std::string& layer,
                        const std::string& option);
+
+/// The rings of every Polygon and MultiPolygon of a layer (clip and erase areas), as
+/// readOgrLines reads lines. Throws InvalidInputError for a feature that is not a polygon, or
+/// is not a valid one (a self-intersecting ring, say), naming its FID.
+LineLayer readOgrPolygons(const std::string& source, const std::string& layer,
+                          const std::string& option);
 
 } // namespace terratin::io

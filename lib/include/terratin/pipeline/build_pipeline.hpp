@@ -68,6 +68,11 @@ struct BuildOptions {
     /// The layer of every breakline source that names none (empty: the source's only layer).
     std::string breaklinesLayer;
     BreaklineZ breaklineZ = BreaklineZ::Auto;
+    /// Clip area: an OGR polygon layer ("FILE" or "FILE|layername=NAME"); triangles outside it
+    /// are removed and its boundary is constrained (z from the surface). Empty: none.
+    std::string clip;
+    /// Erase area: polygons cut out as holes, their boundaries constrained. Empty: none.
+    std::string erase;
 
     // Coordinate systems.
     /// Overrides every input's CRS (anything crs::crsFromUserInput accepts); required when an
@@ -190,6 +195,8 @@ struct BuildReport {
     std::uint64_t clippedBreaklines = 0;
     std::uint64_t constraintVertices = 0;
     std::uint64_t constraintCrossings = 0;
+    /// Triangles removed outside the clip area or inside the erase areas.
+    std::uint64_t areaTriangles = 0;
     BuildTimings timings;
 
     /// Per input, in command-line order.
