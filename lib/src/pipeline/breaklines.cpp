@@ -93,29 +93,23 @@ void notifyClipped(const BuildOptions& options, BuildReport& report, const std::
                    source + "' were clipped to the data's extent");
 }
 
-/// Whether `point` lies inside polygon `polygon` of `rings` (even-odd over its rings).
-bool insidePolygon(const io::LineLayer& rings, std::size_t polygon, Point2 point) {
-    bool inside = false;
+/// Whether `point` lies inside any polygon of `rings`: even-odd over each polygon's rings, all
+/// rings in one pass: O(ring points) per query, whatever the number of polygons.
+bool insideAny(const io::LineLayer& rings, Point2 point) {
+    std::vector<bool> inside(rings.polygonOf.empty() ? 0 : rings.polygonOf.back() + 1, false);
     for (std::size_t r = 0; r < rings.lines.size(); ++r) {
-        if (rings.polygonOf[r] != polygon)
-            continue;
         const std::vector<Point3>& ring = rings.lines[r];
+        bool crossings = false;
         for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
             if ((ring[i].y > point.y) != (ring[j].y > point.y) &&
                 point.x <
                     (ring[j].x - ring[i].x) * (point.y - ring[i].y) / (ring[j].y - ring[i].y) +
                         ring[i].x)
-                inside = !inside;
+                crossings = !crossings;
+        if (crossings)
+            inside[rings.polygonOf[r]] = !inside[rings.polygonOf[r]];
     }
-    return inside;
-}
-
-bool insideAny(const io::LineLayer& rings, Point2 point) {
-    const std::size_t polygons = rings.polygonOf.empty() ? 0 : rings.polygonOf.back() + 1;
-    for (std::size_t polygon = 0; polygon < polygons; ++polygon)
-        if (insidePolygon(rings, polygon, point))
-            return true;
-    return false;
+    return std::find(inside.begin(), inside.end(), true) != inside.end();
 }
 
 /// 1 for the triangles outside the clip area or inside the erase area, by their centroids:
@@ -156,9 +150,9 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
         // The areas' boundaries: constrained rings with the surface's z.
         const auto addArea = [&](const std::string& source, std::string_view keyword) {
             io::LineLayer rings = readInCrs(source, keyword, options, crsWkt, report);
-            io::LineLayer copy = rings;
+            // addLines leaves x and y as they are: the rings still bound the area after it.
             notifyClipped(options, report, source,
-                          addLines(copy, locator, BreaklineZ::Surface, constraints),
+                          addLines(rings, locator, BreaklineZ::Surface, constraints),
                           rings.lines.size());
             return rings;
         };
