@@ -131,10 +131,42 @@ void addPolygons(const OGRGeometry& geometry, std::int64_t fid, const std::strin
         addPolygon(*part, fid, where, layer);
 }
 
+std::string fieldList(const OGRFeatureDefn& definition) {
+    std::string names;
+    for (int i = 0; i < definition.GetFieldCount(); ++i)
+        names += (names.empty() ? "'" : ", '") +
+                 std::string(definition.GetFieldDefn(i)->GetNameRef()) + "'";
+    return names.empty() ? std::string("none") : names;
+}
+
+/// The index of the numeric field `name` in `layer`.
+int numericField(OGRLayer& layer, const std::string& name, const std::string& where) {
+    const OGRFeatureDefn& definition = *layer.GetLayerDefn();
+    const int index = definition.GetFieldIndex(name.c_str());
+    if (index < 0)
+        throw InvalidInputError(where + "no field '" + name +
+                                "'; its fields: " + fieldList(definition));
+    const OGRFieldType type = definition.GetFieldDefn(index)->GetType();
+    if (type != OFTInteger && type != OFTInteger64 && type != OFTReal)
+        throw InvalidInputError(where + "field '" + name + "' is not numeric (" +
+                                OGRFieldDefn::GetFieldTypeName(type) + ")");
+    return index;
+}
+
+/// Feature `feature`'s value of field `index`, finite.
+double featureValue(const OGRFeature& feature, int index, const std::string& where) {
+    const double value = feature.GetFieldAsDouble(index);
+    if (!feature.IsFieldSetAndNotNull(index) || !std::isfinite(value))
+        throw InvalidInputError(where + "feature " + std::to_string(feature.GetFID()) +
+                                " has no value in field '" +
+                                feature.GetFieldDefnRef(index)->GetNameRef() + "'");
+    return value;
+}
+
 using AddFeature = void (*)(const OGRGeometry&, std::int64_t, const std::string&, LineLayer&);
 
 LineLayer readLayer(const std::string& source, const std::string& layerName,
-                    const std::string& option, AddFeature add) {
+                    const std::string& option, AddFeature add, const std::string& valueField = {}) {
     initialiseGdal();
     CPLErrorReset();
     const SourceName name = splitSource(source);
@@ -152,11 +184,17 @@ LineLayer readLayer(const std::string& source, const std::string& layerName,
     lines.source = source;
     lines.layerName = layer->GetName();
     lines.crsWkt = layerCrs(*layer, where);
+    const int valueIndex = valueField.empty() ? -1 : numericField(*layer, valueField, where);
     layer->ResetReading();
     for (const auto& feature : *layer) {
         const OGRGeometry* geometry = feature->GetGeometryRef();
-        if (geometry != nullptr && !geometry->IsEmpty())
-            add(*geometry, feature->GetFID(), where, lines);
+        if (geometry == nullptr || geometry->IsEmpty())
+            continue;
+        add(*geometry, feature->GetFID(), where, lines);
+        if (valueIndex >= 0) {
+            const std::size_t polygons = lines.polygonOf.empty() ? 0 : lines.polygonOf.back() + 1;
+            lines.polygonValues.resize(polygons, featureValue(*feature, valueIndex, where));
+        }
     }
     return lines;
 }
@@ -169,8 +207,8 @@ LineLayer readOgrLines(const std::string& source, const std::string& layer,
 }
 
 LineLayer readOgrPolygons(const std::string& source, const std::string& layer,
-                          const std::string& option) {
-    return readLayer(source, layer, option, addPolygons);
+                          const std::string& option, const std::string& valueField) {
+    return readLayer(source, layer, option, addPolygons, valueField);
 }
 
 } // namespace terratin::io

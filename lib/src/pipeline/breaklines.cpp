@@ -1,5 +1,6 @@
 #include "breaklines.hpp"
 
+#include "constraint_areas.hpp"
 #include "gather_inputs.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
 #include "terratin/crs/reprojection.hpp"
@@ -24,9 +25,11 @@ io::LineLayer readInCrs(const std::string& source, std::string_view keyword,
                         const BuildOptions& options, const std::string& crsWkt,
                         BuildReport& report) {
     const std::string option = optionName(keyword, options.optionSpelling);
-    io::LineLayer layer = keyword == "breaklines"
-                              ? io::readOgrLines(source, options.breaklinesLayer, option)
-                              : io::readOgrPolygons(source, "", option);
+    io::LineLayer layer =
+        keyword == "breaklines"
+            ? io::readOgrLines(source, options.breaklinesLayer, option)
+            : io::readOgrPolygons(source, "", option,
+                                  keyword == "replace" ? options.replaceZField : std::string());
     const std::string name = option + " '" + source + "' layer '" + layer.layerName + "'";
     if (layer.lines.empty()) {
         notify(options, report,
@@ -93,51 +96,86 @@ void notifyClipped(const BuildOptions& options, BuildReport& report, const std::
                    source + "' were clipped to the data's extent");
 }
 
-/// Whether `point` lies inside any polygon of `rings`: even-odd over each polygon's rings, all
-/// rings in one pass: O(ring points) per query, whatever the number of polygons.
-bool insideAny(const io::LineLayer& rings, Point2 point) {
-    std::vector<bool> inside(rings.polygonOf.empty() ? 0 : rings.polygonOf.back() + 1, false);
-    for (std::size_t r = 0; r < rings.lines.size(); ++r) {
-        const std::vector<Point3>& ring = rings.lines[r];
-        bool crossings = false;
-        for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
-            if ((ring[i].y > point.y) != (ring[j].y > point.y) &&
-                point.x <
-                    (ring[j].x - ring[i].x) * (point.y - ring[i].y) / (ring[j].y - ring[i].y) +
-                        ring[i].x)
-                crossings = !crossings;
-        if (crossings)
-            inside[rings.polygonOf[r]] = !inside[rings.polygonOf[r]];
+/// The mean spacing of `mesh`'s vertices: the side of a square of its bounding box's area
+/// shared among them.
+double meanSpacing(const TinMesh& mesh) {
+    Point2 low{mesh.vertices[0].x, mesh.vertices[0].y};
+    Point2 high = low;
+    for (const Point3& p : mesh.vertices) {
+        low = {std::min(low.x, p.x), std::min(low.y, p.y)};
+        high = {std::max(high.x, p.x), std::max(high.y, p.y)};
     }
-    return std::find(inside.begin(), inside.end(), true) != inside.end();
+    return std::sqrt((high.x - low.x) * (high.y - low.y) / static_cast<double>(mesh.vertexCount()));
 }
 
-/// 1 for the triangles outside the clip area or inside the erase area, by their centroids:
-/// the areas' boundaries are chains of TIN edges, so no triangle straddles one.
-std::vector<std::uint8_t> outsideArea(const TinMesh& mesh, const io::LineLayer* clip,
-                                      const io::LineLayer* erase) {
-    std::vector<std::uint8_t> drop(mesh.triangleCount(), 0);
-    for (std::size_t t = 0; t < drop.size(); ++t) {
-        Point2 centroid{0.0, 0.0};
-        for (std::size_t i = 0; i < 3; ++i) {
-            centroid.x += mesh.vertices[mesh.triangles[3 * t + i]].x / 3.0;
-            centroid.y += mesh.vertices[mesh.triangles[3 * t + i]].y / 3.0;
-        }
-        drop[t] = (clip != nullptr && !insideAny(*clip, centroid)) ||
-                  (erase != nullptr && insideAny(*erase, centroid));
+/// Each replace polygon's level: its --replace-z-field value, or the lowest surface elevation on
+/// its boundary (sampled at a quarter of the vertices' mean spacing).
+std::vector<double> replaceLevels(const io::LineLayer& rings, const PolygonSet& polygons,
+                                  TinLocator& locator, const TinMesh& mesh,
+                                  const BuildOptions& options) {
+    if (!options.replaceZField.empty())
+        return rings.polygonValues;
+    std::vector<double> levels = lowestLevelsOnBoundary(polygons, locator, meanSpacing(mesh) / 4);
+    for (std::size_t r = 0, k = 0; r < rings.lines.size(); ++r) {
+        k = rings.polygonOf[r];
+        if (std::isnan(levels[k]))
+            throw InvalidInputError(
+                "Build: " + optionName("replace", options.optionSpelling) + " '" + rings.source +
+                "' feature " + std::to_string(rings.featureIds[r]) +
+                ": its boundary lies outside the data; give its elevation with " +
+                optionName("replace_z_field", options.optionSpelling));
     }
-    return drop;
+    return levels;
+}
+
+/// The replace rings as constraints at their polygon's level, clipped to the hull; returns the
+/// level of each polyline added.
+std::vector<double> addFlatRings(io::LineLayer& rings, const std::vector<double>& levels,
+                                 TinLocator& locator, ConstraintSet& constraints) {
+    std::vector<double> ringLevels;
+    for (std::size_t r = 0; r < rings.lines.size(); ++r) {
+        for (Point3& point : rings.lines[r])
+            point.z = levels[rings.polygonOf[r]];
+        for (std::vector<Point3>& part : locator.clipToHull(rings.lines[r])) {
+            constraints.polylines.push_back(std::move(part));
+            ringLevels.push_back(levels[rings.polygonOf[r]]);
+        }
+    }
+    return ringLevels;
+}
+
+/// Every point of `polylines` inside a replace polygon gets that polygon's level.
+void flattenPointsInside(std::span<std::vector<Point3>> polylines, const PolygonSet& replace,
+                         const std::vector<double>& levels) {
+    for (std::vector<Point3>& line : polylines)
+        for (Point3& point : line)
+            if (const std::optional<std::size_t> k = replace.polygonHolding({point.x, point.y}))
+                point.z = levels[*k];
 }
 
 } // namespace
 
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
                                 const std::string& crsWkt, BuildReport& report) {
+    // Replace rings go in first, so that where a line crosses one the new vertex takes the
+    // ring's level.
     ConstraintSet constraints;
+    std::optional<io::LineLayer> replace;
+    std::optional<PolygonSet> replaceAreas;
+    std::vector<double> levels;     // per replace polygon
+    std::vector<double> ringLevels; // per replace ring, the first polylines
     std::optional<io::LineLayer> clip;
     std::optional<io::LineLayer> erase;
     {
-        TinLocator locator(mesh);
+        TinLocator locator(mesh); // the inputs' surface, before any point is left out
+        if (!options.replace.empty()) {
+            replace = readInCrs(options.replace, "replace", options, crsWkt, report);
+            replaceAreas.emplace(*replace);
+            levels = replaceLevels(*replace, *replaceAreas, locator, mesh, options);
+            ringLevels = addFlatRings(*replace, levels, locator, constraints);
+            report.replacePolygons = levels.size();
+        }
+        const std::size_t firstBreakline = constraints.polylines.size();
         for (const std::string& source : options.breaklines) {
             io::LineLayer layer = readInCrs(source, "breaklines", options, crsWkt, report);
             if (options.breaklineZ == BreaklineZ::Line)
@@ -146,7 +184,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
             notifyClipped(options, report, source, clipped, layer.lines.size());
             report.clippedBreaklines += clipped;
         }
-        report.breaklines = constraints.polylines.size();
+        report.breaklines = constraints.polylines.size() - firstBreakline;
         // The areas' boundaries: constrained rings with the surface's z.
         const auto addArea = [&](const std::string& source, std::string_view keyword) {
             io::LineLayer rings = readInCrs(source, keyword, options, crsWkt, report);
@@ -160,13 +198,30 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
             clip = addArea(options.clip, "clip");
         if (!options.erase.empty())
             erase = addArea(options.erase, "erase");
+        if (replaceAreas)
+            flattenPointsInside(std::span(constraints.polylines).subspan(firstBreakline),
+                                *replaceAreas, levels);
+    }
+    if (replaceAreas) {
+        std::size_t removed = 0;
+        mesh = flattenAreas(std::move(mesh), *replaceAreas, levels, options.triangulation, removed);
+        report.replacedPoints = removed;
     }
     ConstrainedBuild build{insertConstraints(std::move(mesh), constraints), {}};
+    // A ring's chain may pass through input vertices lying on it: they take its level too.
+    for (std::size_t r = 0; r < ringLevels.size(); ++r)
+        for (const std::uint32_t v : build.tin.chains[constraints.segments.size() + r])
+            build.tin.mesh.vertices[v].z = ringLevels[r];
     report.constraintVertices = build.tin.addedPoints + build.tin.intersections;
     report.constraintCrossings = build.tin.intersections;
-    if (clip || erase)
-        build.outsideArea =
-            outsideArea(build.tin.mesh, clip ? &*clip : nullptr, erase ? &*erase : nullptr);
+    if (clip || erase) {
+        const std::optional<PolygonSet> clipArea =
+            clip ? std::optional<PolygonSet>(*clip) : std::nullopt;
+        const std::optional<PolygonSet> eraseArea =
+            erase ? std::optional<PolygonSet>(*erase) : std::nullopt;
+        build.outsideArea = trianglesOutsideArea(build.tin, clipArea ? &*clipArea : nullptr,
+                                                 eraseArea ? &*eraseArea : nullptr);
+    }
     return build;
 }
 

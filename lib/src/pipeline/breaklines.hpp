@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The constraints stage of a build: OGR lines (breaklines) and polygons (clip and erase
-/// areas) read, put into the TIN's CRS, clipped to its hull, given elevations, and inserted as
-/// constraints (docs/cli.md, --breaklines, --clip, --erase).
+/// The constraints stage of a build: OGR lines (breaklines) and polygons (clip, erase and
+/// replace areas) read, put into the TIN's CRS, clipped to its hull, given elevations, and inserted
+/// as constraints (docs/cli.md, --breaklines, --clip, --erase).
 
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
@@ -22,14 +22,17 @@ struct ConstrainedBuild {
 };
 
 /// `mesh` (the Delaunay TIN of the inputs, in `crsWkt`) with every line of
-/// options.breaklines and every ring of options.clip and options.erase inserted: a constrained
-/// Delaunay TIN. Lines and rings are reprojected from their layer's CRS (a layer without one is
-/// taken to be in `crsWkt`, with a notice) and clipped to the mesh's convex hull (with a
-/// notice); breakline vertices get z per options.breaklineZ, ring vertices the surface's. A
-/// source without features gives a notice. Fills report.breaklines, clippedBreaklines,
-/// constraintVertices and constraintCrossings. Throws what io::readOgrLines,
-/// io::readOgrPolygons and insertConstraints throw, and InvalidInputError for a line without z
-/// under BreaklineZ::Line.
+/// options.breaklines and every ring of options.clip, options.erase and options.replace
+/// inserted: a constrained Delaunay TIN. Lines and rings are reprojected from their layer's CRS
+/// (a layer without one is taken to be in `crsWkt`, with a notice) and clipped to the mesh's
+/// convex hull (with a notice); breakline vertices get z per options.breaklineZ, clip and erase
+/// ring vertices the surface's. Replace areas are flat: the vertices inside one are left out
+/// (those on the convex hull stay, at its level) and every constraint vertex on or inside one
+/// takes its level (options.replaceZField, else the lowest surface elevation on its boundary).
+/// A source without features gives a notice. Fills report.breaklines, clippedBreaklines,
+/// constraintVertices, constraintCrossings, replacePolygons and replacedPoints. Throws what
+/// io::readOgrLines, io::readOgrPolygons and insertConstraints throw, and InvalidInputError for a
+/// line without z under BreaklineZ::Line.
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
                                 const std::string& crsWkt, BuildReport& report);
 

@@ -378,6 +378,22 @@ std::vector<BuildOptionSpec> makeTable() {
                  refuse(n + " needs a file name");
              o.erase = t;
          }},
+        {"replace", "replace", 0, Kind::Text, false, "FILE", "",
+         "replace areas (lakes, rivers): polygons flattened to one elevation; no input point "
+         "inside is kept, their boundaries become TIN edges at that elevation",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             if (t.empty())
+                 refuse(n + " needs a file name");
+             o.replace = t;
+         }},
+        {"replace_z_field", "replace-z-field", 0, Kind::Text, false, "NAME", "",
+         "the numeric attribute holding each replace polygon's elevation (default: the lowest "
+         "elevation of the surface on its boundary)",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             if (t.empty())
+                 refuse(n + " needs a field name");
+             o.replaceZField = t;
+         }},
         {"s_srs", "s_srs", 0, Kind::Text, false, "SRS", "",
          "CRS of the inputs, overriding theirs (EPSG:n, WKT, PROJ string, .prj file...); "
          "horizontal: projected or geographic 2D, or compound with such a part",

@@ -244,11 +244,17 @@ void checkBuildOptions(const BuildOptions& options) {
         throw InvalidInputError("Build: the z factor must be a finite number other than 0");
     for (const auto& [keyword, given] :
          {std::pair{"breaklines", !options.breaklines.empty()},
-          std::pair{"clip", !options.clip.empty()}, std::pair{"erase", !options.erase.empty()}})
+          std::pair{"clip", !options.clip.empty()}, std::pair{"erase", !options.erase.empty()},
+          std::pair{"replace", !options.replace.empty()}})
         if (options.refine && given)
             throw InvalidInputError("Build: " + optionName(keyword, options.optionSpelling) +
                                     " does not combine with simplification yet: build the "
                                     "full-resolution TIN");
+    if (!options.replaceZField.empty() && options.replace.empty())
+        throw InvalidInputError("Build: " + optionName("replace_z_field", options.optionSpelling) +
+                                " names the field of " +
+                                optionName("replace", options.optionSpelling) +
+                                " polygons: give them too");
     if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
         throw InvalidInputError("Build: the longest edge kept must be a positive length");
     if (options.format)
@@ -298,7 +304,8 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
     std::optional<ConstrainedTin> constrained;
     std::vector<std::uint8_t> outsideArea;
-    if (!options.breaklines.empty() || !options.clip.empty() || !options.erase.empty()) {
+    if (!options.breaklines.empty() || !options.clip.empty() || !options.erase.empty() ||
+        !options.replace.empty()) {
         detail::ConstrainedBuild build =
             detail::addConstraints(std::move(triangulation.mesh), options, gathered.crsWkt, report);
         constrained = std::move(build.tin);

@@ -118,7 +118,9 @@ std::string toJson(const BuildReport& report) {
          << ", \"clipped_breaklines\": " << report.clippedBreaklines
          << ", \"added_vertices\": " << report.constraintVertices
          << ", \"crossings\": " << report.constraintCrossings
-         << ", \"area_triangles\": " << report.areaTriangles << "}";
+         << ", \"area_triangles\": " << report.areaTriangles
+         << ", \"replace_polygons\": " << report.replacePolygons
+         << ", \"replaced_points\": " << report.replacedPoints << "}";
     json << ", \"writing\": {\"features\": " << report.writeFeatures
          << ", \"features_per_second\": " << report.writeFeaturesPerSecond
          << ", \"rows_seconds\": " << report.writeRowSeconds

@@ -111,7 +111,7 @@ TEST(BuildOptionTable, NamesAreUniqueAndEveryOptionIsDocumented) {
     }
     // The inputs and every option of `terratin build --help` but the CLI's own (quiet, json,
     // help).
-    EXPECT_EQ(keywords.size(), 42U);
+    EXPECT_EQ(keywords.size(), 44U);
 }
 
 TEST(BuildOptionTable, DefaultTextParsesToTheDefault) {
@@ -203,7 +203,9 @@ TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
                                                     {"breaklines_layer", "lines"},
                                                     {"breakline_z", "Surface"},
                                                     {"clip", "area.gpkg"},
-                                                    {"erase", "lakes.gpkg|layername=lakes"}},
+                                                    {"erase", "lakes.gpkg|layername=lakes"},
+                                                    {"replace", "water.shp"},
+                                                    {"replace_z_field", "level"}},
                                                    OptionSpelling::Keyword);
     EXPECT_EQ(options.inputs, (std::vector<std::string>{"a.las", "b.xyz"}));
     EXPECT_EQ(options.output, "out.fgb");
@@ -237,6 +239,8 @@ TEST(ParseBuildOptions, ParsesEveryOptionFromText) {
     EXPECT_EQ(options.breaklineZ, BreaklineZ::Surface);
     EXPECT_EQ(options.clip, "area.gpkg");
     EXPECT_EQ(options.erase, "lakes.gpkg|layername=lakes");
+    EXPECT_EQ(options.replace, "water.shp");
+    EXPECT_EQ(options.replaceZField, "level");
     EXPECT_FALSE(options.refine);
     EXPECT_EQ(options.optionSpelling, OptionSpelling::Keyword);
 }

@@ -27,6 +27,9 @@ struct LineLayer {
     /// polygonOf[i] numbers the polygon ring i belongs to (its first ring is the exterior, the
     /// others holes). Empty for line layers.
     std::vector<std::size_t> polygonOf;
+    /// readOgrPolygons with a value field: polygonValues[k] is polygon k's value of that field.
+    /// Empty otherwise.
+    std::vector<double> polygonValues;
     /// The layer's CRS as WKT, empty when it has none.
     std::string crsWkt;
 };
@@ -41,10 +44,13 @@ struct LineLayer {
 LineLayer readOgrLines(const std::string& source, const std::string& layer,
                        const std::string& option);
 
-/// The rings of every Polygon and MultiPolygon of a layer (clip and erase areas), as
-/// readOgrLines reads lines. Throws InvalidInputError for a feature that is not a polygon, or
-/// is not a valid one (a self-intersecting ring, say), naming its FID.
+/// The rings of every Polygon and MultiPolygon of a layer (clip, erase and replace areas), as
+/// readOgrLines reads lines. With a `valueField`, each polygon's value of that numeric
+/// attribute goes into polygonValues (every part of a MultiPolygon gets its feature's value).
+/// Throws InvalidInputError for a feature that is not a polygon, or is not a valid one (a
+/// self-intersecting ring, say), or has no finite value in `valueField`, naming its FID; and for
+/// a `valueField` the layer lacks or that is not numeric, naming the layer's fields.
 LineLayer readOgrPolygons(const std::string& source, const std::string& layer,
-                          const std::string& option);
+                          const std::string& option, const std::string& valueField = {});
 
 } // namespace terratin::io

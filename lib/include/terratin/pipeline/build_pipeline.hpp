@@ -73,6 +73,13 @@ struct BuildOptions {
     std::string clip;
     /// Erase area: polygons cut out as holes, their boundaries constrained. Empty: none.
     std::string erase;
+    /// Replace areas (hydro-flattening): polygons whose inside is flat at one elevation; no
+    /// input point inside one is kept, and its boundary is a constrained ring at that
+    /// elevation. Empty: none.
+    std::string replace;
+    /// The numeric attribute holding each replace polygon's elevation; empty: the lowest
+    /// elevation of the inputs' surface on the polygon's boundary.
+    std::string replaceZField;
 
     // Coordinate systems.
     /// Overrides every input's CRS (anything crs::crsFromUserInput accepts); required when an
@@ -197,6 +204,9 @@ struct BuildReport {
     std::uint64_t constraintCrossings = 0;
     /// Triangles removed outside the clip area or inside the erase areas.
     std::uint64_t areaTriangles = 0;
+    /// Replace polygons flattened, and the input points inside them left out.
+    std::uint64_t replacePolygons = 0;
+    std::uint64_t replacedPoints = 0;
     BuildTimings timings;
 
     /// Per input, in command-line order.

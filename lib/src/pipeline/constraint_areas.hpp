@@ -1,0 +1,66 @@
+#pragma once
+/// @file
+/// The polygons of --clip, --erase and --replace as areas: which polygon holds a point, which
+/// triangles of a constrained TIN lie in them, and the flat level of each replace polygon.
+
+#include "terratin/constrain/constrained_tin.hpp"
+#include "terratin/geometry/point.hpp"
+#include "terratin/io/ogr_line_reader.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
+#include "terratin/triangulate/triangulate.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace terratin::detail {
+
+/// The polygons of a polygon layer (io::readOgrPolygons), for point-in-polygon queries: each
+/// polygon's rings and bounding box, so that a query tests only the polygons whose box holds
+/// the point. Holds a pointer to the layer, which must outlive it.
+class PolygonSet {
+public:
+    explicit PolygonSet(const io::LineLayer& rings);
+
+    /// The first polygon, in layer order, whose inside holds `point` (even-odd over its rings:
+    /// a hole's inside is outside); nullopt for none. A point on a ring may count either way.
+    [[nodiscard]] std::optional<std::size_t> polygonHolding(Point2 point) const;
+    [[nodiscard]] bool holds(Point2 point) const { return polygonHolding(point).has_value(); }
+
+    [[nodiscard]] std::size_t polygonCount() const { return m_boxes.size(); }
+    [[nodiscard]] const io::LineLayer& layer() const { return *m_rings; }
+
+private:
+    struct Box {
+        double minX, minY, maxX, maxY;
+    };
+    const io::LineLayer* m_rings;
+    /// Polygon k's rings are m_firstRing[k] to m_firstRing[k + 1] - 1.
+    std::vector<std::size_t> m_firstRing;
+    std::vector<Box> m_boxes;
+};
+
+/// 1 for every triangle of `tin` outside `clip` (when given) or inside `erase` (when given).
+/// The areas' rings are constrained chains, so no triangle straddles one: triangles joined
+/// across unconstrained edges form regions that lie wholly on one side of every ring, and each
+/// region is decided once, by the centroid of one of its triangles. O(triangles) plus one
+/// polygon query per region.
+std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin, const PolygonSet* clip,
+                                               const PolygonSet* erase);
+
+/// Each replace polygon's flat level: the lowest elevation of `locator`'s surface on the
+/// polygon's rings, sampled at every ring point and every `step` along each segment (only where
+/// the surface is, inside its hull); NaN for a polygon whose rings all lie outside the hull.
+std::vector<double> lowestLevelsOnBoundary(const PolygonSet& polygons, TinLocator& locator,
+                                           double step);
+
+/// `mesh` without the vertices inside any polygon of `areas`, triangulated again with
+/// `options` (sourceIndex still indexes the caller's input points). Vertices on the convex hull
+/// stay, at their polygon's level in `levels`, so that the TIN still covers the data. Sets
+/// `removed` to the number of vertices left out; returns `mesh` unchanged when there are none.
+/// Throws InvalidInputError when fewer than 3 vertices are left.
+TinMesh flattenAreas(TinMesh mesh, const PolygonSet& areas, const std::vector<double>& levels,
+                     const TriangulationOptions& options, std::size_t& removed);
+
+} // namespace terratin::detail
