@@ -816,8 +816,19 @@ case "$case_name" in
     [ ! -e tin6.gpkg ] || fail "an output written with no triangle"
     run 0 build "$sample" --erase area.gpkg -o tin7.gpkg --quiet --json
     [ "$(report_count area_triangles)" -gt 0 ] || fail "nothing erased"
-    [ ! -e tin2.gpkg ] && [ ! -e tin4.gpkg ] && [ ! -e tin5.gpkg ] ||
-      fail "an output written after an error"
+    # Issue 24: a replace polygon (a lake) flattened to its field's level.
+    printf 'WKT;level\n"POLYGON ((456100.5 5103300.25,457000.75 5103150.5,456600.5 5104400.25,456100.5 5103300.25))";812.5\n' >lake.csv
+    ogr2ogr -q -f GPKG lake.gpkg lake.csv -oo GEOM_POSSIBLE_NAMES=WKT -oo AUTODETECT_TYPE=YES \
+      -a_srs EPSG:32633 -nlt POLYGON || fail "ogr2ogr failed"
+    run 0 build "$sample" --replace lake.gpkg --replace-z-field level -o tin8.gpkg --quiet --json
+    [ "$(report_count replaced_points)" -gt 100 ] || fail "no point replaced"
+    [ "$(report_count replace_polygons)" -eq 1 ] || fail "not 1 replace polygon"
+    run 1 build "$sample" --replace lake.gpkg --replace-z-field depth -o tin9.gpkg --quiet
+    expect_one_error_line "no field 'depth'"
+    run 2 build "$sample" --replace-z-field level -o tin10.gpkg --quiet
+    expect_one_error_line "--replace-z-field names the field of --replace polygons"
+    [ ! -e tin2.gpkg ] && [ ! -e tin4.gpkg ] && [ ! -e tin5.gpkg ] && [ ! -e tin9.gpkg ] &&
+      [ ! -e tin10.gpkg ] || fail "an output written after an error"
     ;;
   *)
     fail "unknown case"
