@@ -29,6 +29,12 @@ CdtMesh::CdtMesh(TinMesh mesh)
             m_vertexTriangle[m_mesh.triangles[3 * t + i]] = static_cast<std::uint32_t>(t);
 }
 
+CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained) : CdtMesh(std::move(mesh)) {
+    if (constrained.size() != m_constrained.size())
+        throw std::logic_error("CdtMesh: one constrained flag per half-edge expected");
+    m_constrained = std::move(constrained);
+}
+
 std::size_t CdtMesh::twin(std::size_t h) const {
     const std::int32_t neighbour = m_mesh.neighbours[h];
     if (neighbour < 0)

@@ -40,6 +40,8 @@ class CdtMesh {
 public:
     /// Takes the arrays of a valid triangulation; builds the vertex-to-triangle map (O(n)).
     explicit CdtMesh(TinMesh mesh);
+    /// The same, with the constrained flags of a constrained triangulation (one per half-edge).
+    CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained);
 
     [[nodiscard]] const TinMesh& mesh() const { return m_mesh; }
     [[nodiscard]] TinMesh takeMesh() { return std::move(m_mesh); }

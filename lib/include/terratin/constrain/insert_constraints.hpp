@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace terratin {
@@ -56,5 +57,18 @@ struct ConstraintSet {
 /// the previous point (the first from its bucket). Sequential. docs/algorithms.md ("Constrained
 /// Delaunay") describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
+
+/// Inserts `points` into `tin` (a constrained Delaunay TIN as insertConstraints makes it) as new
+/// vertices, point i with sourceIndex `sources[i]`, and restores the constrained Delaunay
+/// property by flips that never flip a constrained edge: afterwards every constraint is still a
+/// chain of constrained edges and every unconstrained interior edge passes the exact
+/// empty-circle test. A point on a constrained edge splits it; both halves stay constrained and
+/// the chains through that edge get the point. A point with exactly the x and y of a vertex is
+/// skipped. Returns the number of points inserted. Throws InvalidInputError for a point outside
+/// the convex hull or not finite, or sizes that differ (`tin` is unchanged but for the points
+/// before it). Sequential; per point a walk from the previous point's triangle and its flips:
+/// give the points in spatial order (row by row, say) for short walks.
+std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
+                           std::span<const std::uint32_t> sources);
 
 } // namespace terratin

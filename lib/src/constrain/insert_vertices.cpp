@@ -1,0 +1,67 @@
+#include "cdt_mesh.hpp"
+#include "terratin/constrain/insert_constraints.hpp"
+#include "terratin/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace terratin {
+
+namespace {
+
+/// Puts `middle` between consecutive vertices a and b (either order) of every chain holding
+/// them. Splits of constrained edges are rare, so the chains are searched.
+void insertIntoChains(std::vector<std::vector<std::uint32_t>>& chains, std::uint32_t a,
+                      std::uint32_t b, std::uint32_t middle) {
+    for (std::vector<std::uint32_t>& chain : chains)
+        for (std::size_t j = 1; j < chain.size(); ++j)
+            if ((chain[j - 1] == a && chain[j] == b) || (chain[j - 1] == b && chain[j] == a)) {
+                chain.insert(chain.begin() + static_cast<std::ptrdiff_t>(j), middle);
+                ++j;
+            }
+}
+
+} // namespace
+
+std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
+                           std::span<const std::uint32_t> sources) {
+    if (points.size() != sources.size())
+        throw InvalidInputError("insertVertices: " + std::to_string(points.size()) +
+                                " points and " + std::to_string(sources.size()) + " sources");
+    if (points.empty())
+        return 0;
+    detail::CdtMesh mesh(std::move(tin.mesh), std::move(tin.constrained));
+    std::size_t inserted = 0;
+    std::size_t hint = 0;
+    try {
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const Point3& p = points[i];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                throw InvalidInputError("insertVertices: point " + std::to_string(i) +
+                                        " is not finite");
+            const detail::MeshLocation where = mesh.locate({p.x, p.y}, hint);
+            if (where.kind == detail::MeshLocation::Kind::OutsideHull)
+                throw InvalidInputError("insertVertices: point " + std::to_string(i) +
+                                        " lies outside the convex hull of the mesh");
+            hint = where.halfEdge / 3;
+            if (where.kind == detail::MeshLocation::Kind::OnVertex)
+                continue;
+            const std::uint32_t v = mesh.insertPoint(
+                p, sources[i], where, [&](std::uint32_t a, std::uint32_t b, std::uint32_t middle) {
+                    insertIntoChains(tin.chains, a, b, middle);
+                });
+            hint = mesh.halfEdgeLeaving(v) / 3;
+            ++inserted;
+        }
+    } catch (...) {
+        tin.constrained = mesh.takeFlags();
+        tin.mesh = mesh.takeMesh();
+        throw;
+    }
+    tin.constrained = mesh.takeFlags();
+    tin.mesh = mesh.takeMesh();
+    return inserted;
+}
+
+} // namespace terratin
