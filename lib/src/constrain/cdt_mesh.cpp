@@ -140,6 +140,11 @@ std::uint32_t CdtMesh::addVertex(const Point3& p, std::uint32_t source) {
 }
 
 void CdtMesh::writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    if (m_written != nullptr) {
+        if (t >= m_written->size())
+            m_written->resize(t + 1, 0);
+        (*m_written)[t] = 1;
+    }
     const std::uint32_t corners[3] = {a, b, c};
     for (std::size_t i = 0; i < 3; ++i) {
         m_mesh.triangles[3 * t + i] = corners[i];

@@ -43,6 +43,10 @@ public:
     /// The same, with the constrained flags of a constrained triangulation (one per half-edge).
     CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained);
 
+    /// From now on, sets (*written)[t] = 1 for every triangle t written (growing it as
+    /// triangles are added); nullptr stops.
+    void recordWrites(std::vector<std::uint8_t>* written) { m_written = written; }
+
     [[nodiscard]] const TinMesh& mesh() const { return m_mesh; }
     [[nodiscard]] TinMesh takeMesh() { return std::move(m_mesh); }
     [[nodiscard]] std::vector<std::uint8_t> takeFlags() { return std::move(m_constrained); }
@@ -122,6 +126,7 @@ private:
     std::vector<std::uint8_t> m_constrained;
     std::vector<std::uint32_t> m_vertexTriangle;
     std::uint64_t m_walkRandom = 0x9e3779b97f4a7c15ULL;
+    std::vector<std::uint8_t>* m_written = nullptr;
 };
 
 template <class Visit> void CdtMesh::forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const {

@@ -25,13 +25,17 @@ void insertIntoChains(std::vector<std::vector<std::uint32_t>>& chains, std::uint
 } // namespace
 
 std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
-                           std::span<const std::uint32_t> sources) {
+                           std::span<const std::uint32_t> sources,
+                           std::vector<std::uint8_t>* changedTriangles) {
     if (points.size() != sources.size())
         throw InvalidInputError("insertVertices: " + std::to_string(points.size()) +
                                 " points and " + std::to_string(sources.size()) + " sources");
+    if (changedTriangles != nullptr)
+        changedTriangles->assign(tin.mesh.triangleCount(), 0);
     if (points.empty())
         return 0;
     detail::CdtMesh mesh(std::move(tin.mesh), std::move(tin.constrained));
+    mesh.recordWrites(changedTriangles);
     std::size_t inserted = 0;
     std::size_t hint = 0;
     try {
@@ -61,6 +65,8 @@ std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
     }
     tin.constrained = mesh.takeFlags();
     tin.mesh = mesh.takeMesh();
+    if (changedTriangles != nullptr)
+        changedTriangles->resize(tin.mesh.triangleCount(), 0);
     return inserted;
 }
 

@@ -155,24 +155,30 @@ void flattenPointsInside(std::span<std::vector<Point3>> polylines, const Polygon
 
 } // namespace
 
+void flattenReplaceRings(ConstrainedBuild& build) {
+    for (std::size_t r = 0; r < build.ringLevels.size(); ++r)
+        for (const std::uint32_t v : build.tin.chains[r])
+            build.tin.mesh.vertices[v].z = build.ringLevels[r];
+}
+
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
                                 const std::string& crsWkt, BuildReport& report) {
     // Replace rings go in first, so that where a line crosses one the new vertex takes the
     // ring's level.
     ConstraintSet constraints;
-    std::optional<io::LineLayer> replace;
+    ConstrainedBuild build;
+    std::optional<io::LineLayer>& replace = build.replace;
     std::optional<PolygonSet> replaceAreas;
-    std::vector<double> levels;     // per replace polygon
-    std::vector<double> ringLevels; // per replace ring, the first polylines
-    std::optional<io::LineLayer> clip;
-    std::optional<io::LineLayer> erase;
+    std::vector<double> levels; // per replace polygon
+    std::optional<io::LineLayer>& clip = build.clip;
+    std::optional<io::LineLayer>& erase = build.erase;
     {
         TinLocator locator(mesh); // the inputs' surface, before any point is left out
         if (!options.replace.empty()) {
             replace = readInCrs(options.replace, "replace", options, crsWkt, report);
             replaceAreas.emplace(*replace);
             levels = replaceLevels(*replace, *replaceAreas, locator, mesh, options);
-            ringLevels = addFlatRings(*replace, levels, locator, constraints);
+            build.ringLevels = addFlatRings(*replace, levels, locator, constraints);
             report.replacePolygons = levels.size();
         }
         const std::size_t firstBreakline = constraints.polylines.size();
@@ -207,11 +213,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
         mesh = flattenAreas(std::move(mesh), *replaceAreas, levels, options.triangulation, removed);
         report.replacedPoints = removed;
     }
-    ConstrainedBuild build{insertConstraints(std::move(mesh), constraints), {}};
-    // A ring's chain may pass through input vertices lying on it: they take its level too.
-    for (std::size_t r = 0; r < ringLevels.size(); ++r)
-        for (const std::uint32_t v : build.tin.chains[constraints.segments.size() + r])
-            build.tin.mesh.vertices[v].z = ringLevels[r];
+    build.tin = insertConstraints(std::move(mesh), constraints);
+    flattenReplaceRings(build);
     report.constraintVertices = build.tin.addedPoints + build.tin.intersections;
     report.constraintCrossings = build.tin.intersections;
     if (clip || erase) {

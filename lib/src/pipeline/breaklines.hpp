@@ -5,9 +5,11 @@
 /// as constraints (docs/cli.md, --breaklines, --clip, --erase).
 
 #include "terratin/constrain/constrained_tin.hpp"
+#include "terratin/io/ogr_line_reader.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,13 @@ struct ConstrainedBuild {
     /// outsideArea[t] = 1 for a triangle outside the clip area or inside the erase area; empty
     /// without either.
     std::vector<std::uint8_t> outsideArea;
+    /// The areas' polygons in the TIN's CRS (nullopt: not given), to decide triangles again
+    /// after more vertices go in.
+    std::optional<io::LineLayer> clip;
+    std::optional<io::LineLayer> erase;
+    std::optional<io::LineLayer> replace;
+    /// The replace rings are tin.chains[0 .. ringLevels.size()), ring r flat at ringLevels[r].
+    std::vector<double> ringLevels;
 };
 
 /// `mesh` (the Delaunay TIN of the inputs, in `crsWkt`) with every line of
@@ -35,5 +44,9 @@ struct ConstrainedBuild {
 /// line without z under BreaklineZ::Line.
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
                                 const std::string& crsWkt, BuildReport& report);
+
+/// Every vertex of a replace ring's chain at the ring's level: vertices lying on a ring (input
+/// points, or points inserted later) are on the lake's shore line.
+void flattenReplaceRings(ConstrainedBuild& build);
 
 } // namespace terratin::detail

@@ -2,6 +2,7 @@
 
 #include "../stopwatch.hpp"
 #include "breaklines.hpp"
+#include "constrained_refine.hpp"
 #include "gather_inputs.hpp"
 #include "refine_placement.hpp"
 #include "terratin/constrain/constrained_validation.hpp"
@@ -84,6 +85,11 @@ std::vector<std::vector<Point3>> chainPoints(const ConstrainedTin& constrained,
     return lines;
 }
 
+bool hasConstraints(const BuildOptions& options) {
+    return !options.breaklines.empty() || !options.clip.empty() || !options.erase.empty() ||
+           !options.replace.empty();
+}
+
 // The per-half-edge flags of the triangles `drop` keeps, in order (dropTriangles keeps the
 // kept triangles' order and corners).
 void keepEdgesOfKeptTriangles(std::vector<std::uint8_t>& edgeFlags,
@@ -144,6 +150,46 @@ BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
     return report;
 }
 
+// The constrained TIN as the writers take it: its constrained edges and breaklines go into
+// `writeOptions` (the breaklines before any triangle is dropped), and the triangles `drop`
+// marks (none when empty) are removed. Returns how many were removed.
+std::size_t takeConstrainedOutput(ConstrainedTin& tin, const std::vector<std::uint8_t>& drop,
+                                  io::TinWriteOptions& writeOptions) {
+    writeOptions.constrainedEdges = std::move(tin.constrained);
+    writeOptions.breaklines = chainPoints(tin, tin.mesh);
+    if (drop.empty())
+        return 0;
+    keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, drop);
+    const std::size_t removed = dropTriangles(tin.mesh, drop);
+    if (tin.mesh.triangleCount() == 0)
+        throw InvalidInputError("Build: no triangle is left inside the clip area and outside "
+                                "the erase areas");
+    return removed;
+}
+
+// The simplified constrained TIN for the writers (validated when asked), and its figures in
+// `report` in place of the refiner's.
+TinMesh takeConstrainedMesh(detail::ConstrainedRefinement corrected, const BuildOptions& options,
+                            io::TinWriteOptions& writeOptions, BuildReport& report) {
+    if (options.validate) {
+        checkValid(validateConstrainedDelaunay(corrected.build.tin), "constrained Delaunay");
+        report.validated = true;
+    }
+    report.achievedMaxError = corrected.maxError;
+    report.rmse = corrected.rmse;
+    report.uncoveredCells = corrected.uncoveredCells;
+    report.holeTriangles = corrected.holeTriangles;
+    report.constraintPasses = corrected.passes;
+    report.constraintCells = corrected.insertedCells;
+    if (corrected.limitReached)
+        report.refineStop = options.refine->maxPoints ? toString(RefineStop::PointLimit)
+                                                      : toString(RefineStop::TriangleLimit);
+    report.areaTriangles =
+        takeConstrainedOutput(corrected.build.tin, corrected.drop, writeOptions) -
+        corrected.holeTriangles;
+    return std::move(corrected.build.tin.mesh);
+}
+
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
 BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
                            const ProgressCallback& progress, BuildReport report,
@@ -176,13 +222,15 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     if (refineOptions.threads == 0)
         refineOptions.threads = options.triangulation.threads;
     refineOptions.validate = options.validate;
-    const ProgressCallback refineProgress = phaseProgress(progress, kReadShare, kTriangulateShare);
+    const bool constrained = hasConstraints(options);
+    refineOptions.keepHoleTriangles = constrained;
+    // With constraints, the refiner has most of the phase and the cells' insertion the rest.
+    const double refineShare = constrained ? 0.8 * kTriangulateShare : kTriangulateShare;
+    const ProgressCallback refineProgress = phaseProgress(progress, kReadShare, refineShare);
     RefineResult result =
         placement.positions.empty()
             ? refine(raster.grid, refineOptions, refineProgress)
             : refine(raster.grid, placement.positions, refineOptions, refineProgress);
-    const int gridWidth = raster.grid.width;
-    raster.grid = {}; // the mesh holds its own vertices
     report.refined = true;
     report.targetMaxError = refineOptions.maxError;
     report.achievedMaxError = result.maxError;
@@ -194,24 +242,36 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     report.validated = result.validated;
     report.method = "refine";
     report.threads = result.threads;
-    report.points = result.mesh.vertexCount();
-    report.vertices = result.mesh.vertexCount();
     report.meshBytesPerPoint =
         static_cast<double>(result.meshBytes) /
         static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
-    if (options.maxEdge)
-        report.longEdgeTriangles = dropLongEdgeTriangles(result.mesh, *options.maxEdge);
-    report.triangles = result.mesh.triangleCount();
+    TinMesh mesh = std::move(result.mesh);
+    if (constrained) {
+        detail::ConstrainedRefinement corrected = detail::refineWithConstraints(
+            raster.grid, placement.positions, std::move(mesh), options, placement.targetWkt, report,
+            phaseProgress(progress, kReadShare + refineShare, kTriangulateShare - refineShare));
+        mesh = takeConstrainedMesh(std::move(corrected), options, writeOptions, report);
+    }
+    const int gridWidth = raster.grid.width;
+    raster.grid = {}; // the mesh holds its own vertices
+    report.points = mesh.vertexCount();
+    report.vertices = mesh.vertexCount();
+    if (options.maxEdge) {
+        const std::vector<std::uint8_t> drop = longEdgeTriangles(mesh, *options.maxEdge);
+        keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, drop);
+        report.longEdgeTriangles = dropTriangles(mesh, drop);
+    }
+    report.triangles = mesh.triangleCount();
     report.timings.triangulate = refineTime.seconds();
 
     const Stopwatch writeTime;
     writeOptions.crsWkt = placement.targetWkt;
     if (options.nodes) // the refiner's sourceIndex is the cell index
         writeOptions.vertexCells =
-            vertexCells(result.mesh, static_cast<std::uint64_t>(gridWidth),
+            vertexCells(mesh, static_cast<std::uint64_t>(gridWidth),
                         [](std::uint32_t cell) { return std::uint64_t{cell}; });
     const io::TinWriteResult written =
-        io::writeTin(result.mesh, options.output, writeOptions,
+        io::writeTin(mesh, options.output, writeOptions,
                      phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
     return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
@@ -242,14 +302,6 @@ void checkBuildOptions(const BuildOptions& options) {
                                 std::to_string(options.band) + ")");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
         throw InvalidInputError("Build: the z factor must be a finite number other than 0");
-    for (const auto& [keyword, given] :
-         {std::pair{"breaklines", !options.breaklines.empty()},
-          std::pair{"clip", !options.clip.empty()}, std::pair{"erase", !options.erase.empty()},
-          std::pair{"replace", !options.replace.empty()}})
-        if (options.refine && given)
-            throw InvalidInputError("Build: " + optionName(keyword, options.optionSpelling) +
-                                    " does not combine with simplification yet: build the "
-                                    "full-resolution TIN");
     if (!options.replaceZField.empty() && options.replace.empty())
         throw InvalidInputError("Build: " + optionName("replace_z_field", options.optionSpelling) +
                                 " names the field of " +
@@ -302,46 +354,31 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.threads = triangulation.threads;
     report.historyBytesPerPoint = static_cast<double>(triangulation.historyBytes) /
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
-    std::optional<ConstrainedTin> constrained;
-    std::vector<std::uint8_t> outsideArea;
-    if (!options.breaklines.empty() || !options.clip.empty() || !options.erase.empty() ||
-        !options.replace.empty()) {
-        detail::ConstrainedBuild build =
+    std::optional<detail::ConstrainedBuild> constrained;
+    if (hasConstraints(options)) {
+        constrained =
             detail::addConstraints(std::move(triangulation.mesh), options, gathered.crsWkt, report);
-        constrained = std::move(build.tin);
-        outsideArea = std::move(build.outsideArea);
-        triangulation.mesh = std::move(constrained->mesh);
-        report.vertices = triangulation.mesh.vertexCount();
-        report.triangles = triangulation.mesh.triangleCount();
+        report.vertices = constrained->tin.mesh.vertexCount();
+        report.triangles = constrained->tin.mesh.triangleCount();
     }
     report.timings.triangulate = triangulateTime.seconds();
 
     if (options.validate) {
         const Stopwatch validateTime;
-        if (constrained) {
-            constrained->mesh = std::move(triangulation.mesh);
-            checkValid(validateConstrainedDelaunay(*constrained), "constrained Delaunay");
-            triangulation.mesh = std::move(constrained->mesh);
-        } else {
+        if (constrained)
+            checkValid(validateConstrainedDelaunay(constrained->tin), "constrained Delaunay");
+        else
             checkValid(validateDelaunay(triangulation.mesh), "Delaunay");
-        }
         report.validated = true;
         report.timings.validate = validateTime.seconds();
     }
 
     if (constrained) {
-        // The breaklines as the writers take them, before any triangle is dropped.
-        writeOptions.constrainedEdges = std::move(constrained->constrained);
-        writeOptions.breaklines = chainPoints(*constrained, triangulation.mesh);
-    }
-    if (!outsideArea.empty()) {
-        keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, outsideArea);
-        report.areaTriangles = dropTriangles(triangulation.mesh, outsideArea);
+        report.areaTriangles =
+            takeConstrainedOutput(constrained->tin, constrained->outsideArea, writeOptions);
+        triangulation.mesh = std::move(constrained->tin.mesh);
         report.vertices = triangulation.mesh.vertexCount();
         report.triangles = triangulation.mesh.triangleCount();
-        if (report.triangles == 0)
-            throw InvalidInputError("Build: no triangle is left inside the clip area and "
-                                    "outside the erase areas");
     }
     if (options.maxEdge) {
         const std::vector<std::uint8_t> drop =

@@ -120,7 +120,9 @@ std::string toJson(const BuildReport& report) {
          << ", \"crossings\": " << report.constraintCrossings
          << ", \"area_triangles\": " << report.areaTriangles
          << ", \"replace_polygons\": " << report.replacePolygons
-         << ", \"replaced_points\": " << report.replacedPoints << "}";
+         << ", \"replaced_points\": " << report.replacedPoints
+         << ", \"check_passes\": " << report.constraintPasses
+         << ", \"inserted_cells\": " << report.constraintCells << "}";
     json << ", \"writing\": {\"features\": " << report.writeFeatures
          << ", \"features_per_second\": " << report.writeFeaturesPerSecond
          << ", \"rows_seconds\": " << report.writeRowSeconds

@@ -90,19 +90,22 @@ std::optional<std::size_t> PolygonSet::polygonHolding(Point2 point) const {
     return std::nullopt;
 }
 
-std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin, const PolygonSet* clip,
-                                               const PolygonSet* erase) {
+std::vector<std::uint8_t> regionsWhere(const ConstrainedTin& tin,
+                                       const std::function<bool(Point2)>& inRegion) {
     std::vector<std::uint8_t> region(tin.mesh.triangleCount(), kUndecided);
     std::vector<std::size_t> stack;
-    for (std::size_t t = 0; t < region.size(); ++t) {
-        if (region[t] != kUndecided)
-            continue;
-        const Point2 inner = centroid(tin.mesh, t);
-        const bool drop =
-            (clip != nullptr && !clip->holds(inner)) || (erase != nullptr && erase->holds(inner));
-        fillRegion(tin, t, drop ? 1 : 0, region, stack);
-    }
+    for (std::size_t t = 0; t < region.size(); ++t)
+        if (region[t] == kUndecided)
+            fillRegion(tin, t, inRegion(centroid(tin.mesh, t)) ? 1 : 0, region, stack);
     return region;
+}
+
+std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin, const PolygonSet* clip,
+                                               const PolygonSet* erase) {
+    return regionsWhere(tin, [&](Point2 inner) {
+        return (clip != nullptr && !clip->holds(inner)) ||
+               (erase != nullptr && erase->holds(inner));
+    });
 }
 
 std::vector<double> lowestLevelsOnBoundary(const PolygonSet& polygons, TinLocator& locator,

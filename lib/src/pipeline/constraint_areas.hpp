@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -41,11 +42,14 @@ private:
     std::vector<Box> m_boxes;
 };
 
+/// 1 for every triangle of `tin` in a region that `inRegion` accepts at one of its triangles'
+/// centroid, else 0. A region is a set of triangles joined across unconstrained edges; the
+/// areas' rings are constrained chains, so no region straddles one, and each region is decided
+/// once. O(triangles) plus one call per region.
+std::vector<std::uint8_t> regionsWhere(const ConstrainedTin& tin,
+                                       const std::function<bool(Point2)>& inRegion);
+
 /// 1 for every triangle of `tin` outside `clip` (when given) or inside `erase` (when given).
-/// The areas' rings are constrained chains, so no triangle straddles one: triangles joined
-/// across unconstrained edges form regions that lie wholly on one side of every ring, and each
-/// region is decided once, by the centroid of one of its triangles. O(triangles) plus one
-/// polygon query per region.
 std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin, const PolygonSet* clip,
                                                const PolygonSet* erase);
 

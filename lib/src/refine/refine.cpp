@@ -100,6 +100,9 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     // Holes are decided on the whole triangulation; with positions, so are the errors (the
     // walks that locate cells need the triangles over holes).
     std::vector<std::uint8_t> drop(result.mesh.triangleCount(), 0);
+    TinMesh whole;
+    if (options.keepHoleTriangles && result.openHoleCells > 0)
+        whole = result.mesh;
     if (result.openHoleCells > 0)
         drop = positions.empty()
                    ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
@@ -130,6 +133,8 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                     " from the TIN, more than the maximum error " +
                     std::to_string(*options.maxError));
     result.checkSeconds += lap(phase);
+    if (options.keepHoleTriangles && result.openHoleCells > 0)
+        result.mesh = std::move(whole);
     if (progress)
         progress(1.0, "refined");
     return result;
@@ -166,6 +171,16 @@ const char* toString(RefineStop stop) {
         return "triangles";
     }
     return "unknown";
+}
+
+std::vector<std::uint8_t> openHoleCells(const HeightGrid& grid, const RefineOptions& options) {
+    std::size_t openCells = 0;
+    const detail::CellFlags flags =
+        detail::makeCellFlags(grid, options.maxHole, options.fillHoles, openCells);
+    std::vector<std::uint8_t> open(flags.size(), 0);
+    for (std::size_t cell = 0; cell < flags.size(); ++cell)
+        open[cell] = (flags[cell] & detail::kCellOpenHole) != 0 ? 1 : 0;
+    return open;
 }
 
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,

@@ -56,6 +56,29 @@ TinLocator::TinLocator(const TinMesh& mesh) : m_mesh(&mesh) {
         if (bucket == kNoTriangle)
             bucket = static_cast<std::uint32_t>(t);
     }
+    fillEmptyBuckets();
+}
+
+void TinLocator::fillEmptyBuckets() {
+    // Along each row and then each column, both ways, an empty bucket takes its filled
+    // neighbour's triangle: a walk from a bucket outside the hull or inside a large triangle
+    // starts a few buckets away, not wherever the last query ended.
+    const auto fillLine = [&](std::size_t first, std::size_t count, std::size_t stride) {
+        for (std::size_t k = 1; k < count; ++k) {
+            std::uint32_t& bucket = m_buckets[first + k * stride];
+            if (bucket == kNoTriangle)
+                bucket = m_buckets[first + (k - 1) * stride];
+        }
+        for (std::size_t k = count - 1; k-- > 0;) {
+            std::uint32_t& bucket = m_buckets[first + k * stride];
+            if (bucket == kNoTriangle)
+                bucket = m_buckets[first + (k + 1) * stride];
+        }
+    };
+    for (std::size_t row = 0; row < m_rows; ++row)
+        fillLine(row * m_columns, m_columns, 1);
+    for (std::size_t column = 0; column < m_columns; ++column)
+        fillLine(column, m_rows, m_columns);
 }
 
 std::uint32_t TinLocator::startNear(Point2 point) const {
@@ -70,7 +93,30 @@ std::uint32_t TinLocator::startNear(Point2 point) const {
     return bucket != kNoTriangle ? bucket : m_last;
 }
 
+namespace {
+
+/// Whether `point` lies strictly right of a -> b by orient2d's floating-point stage alone: a
+/// point within that stage's error bound of the line counts as on it.
+bool surelyRight(Point2 a, Point2 b, Point2 point) {
+    const double detLeft = (a.x - point.x) * (b.y - point.y);
+    const double detRight = (a.y - point.y) * (b.x - point.x);
+    return detLeft - detRight <
+           -predicates::detail::kOrient2dErrorBoundA * (std::fabs(detLeft) + std::fabs(detRight));
+}
+
+} // namespace
+
 std::optional<std::uint32_t> TinLocator::locate(Point2 point) {
+    return walk(point,
+                [](Point2 a, Point2 b, Point2 p) { return predicates::orient2d(a, b, p) < 0.0; });
+}
+
+std::optional<std::uint32_t> TinLocator::locateNear(Point2 point) {
+    return walk(point, surelyRight);
+}
+
+template <class OutsideOf>
+std::optional<std::uint32_t> TinLocator::walk(Point2 point, OutsideOf outside) {
     const TinMesh& mesh = *m_mesh;
     const std::size_t triangles = mesh.triangleCount();
     if (triangles == 0)
@@ -81,15 +127,22 @@ std::optional<std::uint32_t> TinLocator::locate(Point2 point) {
     const Point3& last = mesh.vertices[mesh.triangles[3 * t]];
     if (std::fabs(last.x - point.x) + std::fabs(last.y - point.y) > 2.0 * m_bucketSize)
         t = startNear(point);
-    // A walk in a Delaunay triangulation never cycles (Edelsbrunner); the bound only guards a
-    // mesh that is not one.
-    for (std::size_t step = 0; step < 4 * triangles + 16; ++step) {
+    // A remembering stochastic walk (Devillers, Pion & Teillaud): it never goes back through
+    // the edge it came in by and tries the other two in a random order, so it ends on any
+    // triangulation, constrained ones included, where a fixed order may cycle. The bound only
+    // guards a broken mesh.
+    std::int32_t previous = kNoNeighbour;
+    for (std::size_t step = 0; step < 16 * triangles + 16; ++step) {
+        m_random = m_random * 6364136223846793005ULL + 1442695040888963407ULL;
+        const auto first = static_cast<std::size_t>((m_random >> 33U) % 3U);
         int exitEdge = -1;
         for (std::size_t k = 0; k < 3 && exitEdge < 0; ++k) {
-            const std::size_t i = (k + step) % 3;
+            const std::size_t i = (k + first) % 3;
+            if (previous != kNoNeighbour && mesh.neighbours[3 * t + i] == previous)
+                continue;
             const Point2 a = planar(mesh.vertices[mesh.triangles[3 * t + i]]);
             const Point2 b = planar(mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]]);
-            if (predicates::orient2d(a, b, point) < 0.0)
+            if (outside(a, b, point))
                 exitEdge = static_cast<int>(i);
         }
         if (exitEdge < 0) {
@@ -100,6 +153,7 @@ std::optional<std::uint32_t> TinLocator::locate(Point2 point) {
         // Strictly outside a hull edge: outside the convex hull.
         if (next == kNoNeighbour)
             return std::nullopt;
+        previous = static_cast<std::int32_t>(t);
         t = static_cast<std::uint32_t>(next);
     }
     return std::nullopt;

@@ -108,5 +108,31 @@ TEST(InsertVertices, APointOnAVertexIsSkipped_AndOneOutsideIsRefused) {
     EXPECT_THROW((void)insertVertices(grid.tin, outside, source), InvalidInputError);
 }
 
+TEST(InsertVertices, ChangedTrianglesAreAllThatDiffer) {
+    const TinMesh mesh = triangulate(test::generatePoints(Distribution::Uniform, 3000, 5)).mesh;
+    ConstraintSet constraints;
+    constraints.segments = test::randomSegments(mesh.vertexCount(), 40, 2);
+    ConstrainedTin tin = insertConstraints(mesh, constraints);
+    const TinMesh before = tin.mesh;
+    const std::vector<Point3> points = centroids(tin.mesh, 97);
+    const std::vector<std::uint32_t> sources(points.size(), 1);
+    std::vector<std::uint8_t> changed;
+    (void)insertVertices(tin, points, sources, &changed);
+    ASSERT_EQ(changed.size(), tin.mesh.triangleCount());
+    std::size_t differing = 0;
+    for (std::size_t t = 0; t < tin.mesh.triangleCount(); ++t) {
+        const bool same =
+            t < before.triangleCount() &&
+            std::equal(before.triangles.begin() + 3 * t, before.triangles.begin() + 3 * t + 3,
+                       tin.mesh.triangles.begin() + 3 * t);
+        differing += same ? 0 : 1;
+        if (!same) {
+            EXPECT_EQ(changed[t], 1) << t;
+        }
+    }
+    EXPECT_GE(differing, 3 * points.size()); // each point makes at least three triangles
+    EXPECT_LT(std::count(changed.begin(), changed.end(), 1), tin.mesh.triangleCount() / 2);
+}
+
 } // namespace
 } // namespace terratin

@@ -66,9 +66,12 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
 /// the chains through that edge get the point. A point with exactly the x and y of a vertex is
 /// skipped. Returns the number of points inserted. Throws InvalidInputError for a point outside
 /// the convex hull or not finite, or sizes that differ (`tin` is unchanged but for the points
-/// before it). Sequential; per point a walk from the previous point's triangle and its flips:
-/// give the points in spatial order (row by row, say) for short walks.
+/// before it). With `changedTriangles`, it is resized to the new triangle count and holds 1 for
+/// every triangle whose corners changed or that is new (the others are as they were), else 0.
+/// Sequential; per point a walk from the previous point's triangle and its flips: give the
+/// points in spatial order (row by row, say) for short walks.
 std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
-                           std::span<const std::uint32_t> sources);
+                           std::span<const std::uint32_t> sources,
+                           std::vector<std::uint8_t>* changedTriangles = nullptr);
 
 } // namespace terratin

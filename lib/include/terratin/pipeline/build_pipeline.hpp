@@ -204,6 +204,10 @@ struct BuildReport {
     std::uint64_t constraintCrossings = 0;
     /// Triangles removed outside the clip area or inside the erase areas.
     std::uint64_t areaTriangles = 0;
+    /// Simplified constrained TINs: checks of the whole TIN after the constraints went in, and
+    /// the cells inserted to bring every measured cell within the bound.
+    std::uint64_t constraintPasses = 0;
+    std::uint64_t constraintCells = 0;
     /// Replace polygons flattened, and the input points inside them left out.
     std::uint64_t replacePolygons = 0;
     std::uint64_t replacedPoints = 0;

@@ -21,6 +21,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace terratin {
 
@@ -56,6 +57,10 @@ struct RefineOptions {
     std::size_t maxHole = 1;
     /// Cover every hole (interpolate across nodata), ignoring maxHole.
     bool fillHoles = false;
+    /// Return the TIN with its triangles over open holes (it covers the convex hull of the
+    /// valid cells), for callers that change it before cutting the holes; the figures are
+    /// measured as without. droppedTriangles still counts the triangles over holes.
+    bool keepHoleTriangles = false;
     /// Run validateDelaunay on the TIN before the triangles over holes are dropped and throw
     /// terratin::Error when it is not exactly Delaunay.
     bool validate = false;
@@ -115,6 +120,11 @@ struct RefineResult {
 
 /// "error", "points" or "triangles".
 const char* toString(RefineStop stop);
+
+/// One byte per cell of `grid`: 1 for the nodata cells refine() with `options` leaves open
+/// (8-connected nodata regions of more than options.maxHole cells; none with
+/// options.fillHoles), else 0. O(cells).
+std::vector<std::uint8_t> openHoleCells(const HeightGrid& grid, const RefineOptions& options);
 
 /// Throws InvalidInputError, naming the option and its range, when an option is outside the
 /// range its documentation states (maxError negative or not finite, maxPoints below 3,

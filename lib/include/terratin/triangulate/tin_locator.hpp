@@ -13,11 +13,12 @@
 
 namespace terratin {
 
-/// Locates points in a TinMesh that covers its convex hull (as triangulate() makes it) by
-/// walking from the triangle found last, or from a bucket grid's triangle when that is nearer:
-/// queries along a line cost O(triangles crossed), a jump O(1) expected for evenly spread
-/// vertices. Every side test is exact (orient2d). Holds a pointer to the mesh, which must outlive
-/// it and stay unchanged.
+/// Locates points in a TinMesh that covers its convex hull (as triangulate() or
+/// insertConstraints make it) by a remembering stochastic walk (it ends on constrained
+/// triangulations too) from the triangle found last, or from a bucket grid's triangle when that
+/// is nearer: queries along a line cost O(triangles crossed), a jump O(1) expected for evenly
+/// spread vertices. Every side test of locate() is exact (orient2d). Holds a pointer to the mesh,
+/// which must outlive it and stay unchanged.
 class TinLocator {
 public:
     explicit TinLocator(const TinMesh& mesh);
@@ -25,6 +26,12 @@ public:
     /// A triangle holding `point` (inside or on its boundary); nullopt when the point lies
     /// outside the convex hull.
     [[nodiscard]] std::optional<std::uint32_t> locate(Point2 point);
+
+    /// A triangle holding `point` up to rounding: the side tests are orient2d's floating-point
+    /// stage alone, and a point within its error bound of an edge counts as on it. Much faster
+    /// than locate() where many points lie on edges (a grid's cells on a grid TIN's edges), for
+    /// callers that only interpolate there. nullopt when the point lies surely outside the hull.
+    [[nodiscard]] std::optional<std::uint32_t> locateNear(Point2 point);
 
     /// The TIN's elevation at `point`, linear in the triangle holding it; nullopt outside the
     /// convex hull.
@@ -53,13 +60,22 @@ private:
     /// it misses the hull.
     [[nodiscard]] std::optional<Point3> pointInside(const Point3& a, const Point3& b);
 
+    /// The walk of locate() and locateNear(): `outside(a, b, p)` says p lies beyond edge a-b.
+    template <class OutsideOf>
+    [[nodiscard]] std::optional<std::uint32_t> walk(Point2 point, OutsideOf outside);
+
+    /// Gives every empty bucket a triangle of a filled bucket near it.
+    void fillEmptyBuckets();
+
     /// A triangle near `point` to start a walk from: the bucket grid's.
     [[nodiscard]] std::uint32_t startNear(Point2 point) const;
 
     const TinMesh* m_mesh;
     std::uint32_t m_last = 0;
+    /// The walk's random choices (a fixed sequence: the same queries give the same answers).
+    std::uint64_t m_random = 0x9e3779b97f4a7c15ULL;
     /// A grid of buckets over the vertices' bounding box, each holding a triangle whose first
-    /// corner lies in it (kNoTriangle for none): a walk starts a few triangles from its goal
+    /// corner lies in it or in a bucket near it: a walk starts a few triangles from its goal
     /// wherever the previous query was.
     static constexpr std::uint32_t kNoTriangle = 0xffffffffU;
     Point2 m_origin{};

@@ -1,0 +1,319 @@
+#include "constrained_refine.hpp"
+
+#include "constraint_areas.hpp"
+#include "terratin/constrain/insert_constraints.hpp"
+#include "terratin/geometry/predicates.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
+#include "terratin/triangulate/triangulate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace terratin::detail {
+
+namespace {
+
+Point2 cellPosition(const HeightGrid& grid, std::span<const Point2> positions, std::size_t cell) {
+    return positions.empty() ? grid.cellCentre(static_cast<std::uint64_t>(cell)) : positions[cell];
+}
+
+/// The triangle across the edge of triangle t that p lies on, up to rounding (within the error
+/// bound of orient2d's floating-point stage, as TinLocator::locateNear decides), or
+/// kNoNeighbour when p lies on none or that edge is on the hull.
+std::int32_t neighbourSharing(const TinMesh& mesh, std::size_t t, Point2 p) {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Point3& a = mesh.vertices[mesh.triangles[3 * t + i]];
+        const Point3& b = mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]];
+        const double detLeft = (a.x - p.x) * (b.y - p.y);
+        const double detRight = (a.y - p.y) * (b.x - p.x);
+        if (std::fabs(detLeft - detRight) <=
+            predicates::detail::kOrient2dErrorBoundA * (std::fabs(detLeft) + std::fabs(detRight)))
+            return mesh.neighbours[3 * t + i];
+    }
+    return kNoNeighbour;
+}
+
+bool isCorner(const TinMesh& mesh, std::size_t t, Point2 p) {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Point3& corner = mesh.vertices[mesh.triangles[3 * t + i]];
+        if (corner.x == p.x && corner.y == p.y)
+            return true;
+    }
+    return false;
+}
+
+/// The plane of triangle t at p (barycentric, in double).
+double planeAt(const TinMesh& mesh, std::size_t t, Point2 p) {
+    const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
+    const Point3& b = mesh.vertices[mesh.triangles[3 * t + 1]];
+    const Point3& c = mesh.vertices[mesh.triangles[3 * t + 2]];
+    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double wb = ((p.x - a.x) * (c.y - a.y) - (p.y - a.y) * (c.x - a.x)) / area;
+    const double wc = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / area;
+    return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
+}
+
+/// Which cells the bound holds for, and where the open holes are.
+struct CellSets {
+    /// 1 for a valid cell outside the replace areas (the clip and erase areas are decided by
+    /// the triangle holding the cell).
+    std::vector<std::uint8_t> measured;
+    std::vector<std::size_t> openHoleCells;
+};
+
+CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
+                  const RefineOptions& refineOptions, const std::optional<PolygonSet>& replace) {
+    CellSets sets{std::vector<std::uint8_t>(grid.cellCount(), 0), {}};
+    const std::vector<std::uint8_t> open = openHoleCells(grid, refineOptions);
+    for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
+        if (open[cell] != 0)
+            sets.openHoleCells.push_back(cell);
+        else if (grid.isValid(cell))
+            sets.measured[cell] =
+                !replace || !replace->holds(cellPosition(grid, positions, cell)) ? 1 : 0;
+    }
+    return sets;
+}
+
+/// A triangle's worst cell: error < 0 for none over the bound.
+struct Candidate {
+    double error = -1.0;
+    std::size_t cell = 0;
+};
+
+/// One check of the whole constrained TIN.
+struct Measure {
+    double maxError = 0.0;
+    double sumSquares = 0.0;
+    std::size_t covered = 0;
+    std::size_t uncovered = 0;
+    std::vector<std::uint8_t> drop;
+    std::size_t holeTriangles = 0;
+    std::vector<Candidate> worst; // per triangle
+};
+
+constexpr std::uint32_t kNoTriangle = 0xffffffffU;
+
+/// Measures the constrained TIN against the grid, again after each round of insertions: every
+/// cell is located once, and after that only the cells of the triangles the insertions changed
+/// (the others hold the same cells with the same errors).
+class ConstrainedCheck {
+public:
+    ConstrainedCheck(const HeightGrid& grid, std::span<const Point2> positions,
+                     const ConstrainedBuild& build, const RefineOptions& refineOptions)
+        : m_grid(&grid), m_positions(positions), m_build(&build),
+          m_maxError(refineOptions.maxError) {
+        if (build.clip)
+            m_clip.emplace(*build.clip);
+        if (build.erase)
+            m_erase.emplace(*build.erase);
+        if (build.replace)
+            m_replace.emplace(*build.replace);
+        m_cells = cellSets(grid, positions, refineOptions, m_replace);
+        for (std::size_t cell = 0; cell < m_cells.measured.size(); ++cell)
+            if (m_cells.measured[cell] != 0)
+                m_measuredCells.push_back(cell);
+        m_cellTriangle.assign(m_measuredCells.size(), kNoTriangle);
+        m_cellError.assign(m_measuredCells.size(), 0.0);
+        m_holeTriangle.assign(m_cells.openHoleCells.size(), kNoTriangle);
+    }
+
+    /// Measures the TIN; `changed` (empty: everything) marks the triangles changed since the
+    /// last call.
+    [[nodiscard]] Measure measure(const std::vector<std::uint8_t>& changed) {
+        relocate(changed);
+        const ConstrainedTin& tin = m_build->tin;
+        const std::size_t triangles = tin.mesh.triangleCount();
+        Measure measure;
+        measure.drop = m_clip || m_erase ? trianglesOutsideArea(tin, m_clip ? &*m_clip : nullptr,
+                                                                m_erase ? &*m_erase : nullptr)
+                                         : std::vector<std::uint8_t>(triangles, 0);
+        const std::vector<std::uint8_t> flat =
+            m_replace ? regionsWhere(tin, [&](Point2 p) { return m_replace->holds(p); })
+                      : std::vector<std::uint8_t>(triangles, 0);
+        // A closed triangle covers a hole's cell on its edge too: both sides go.
+        std::vector<std::uint8_t> overHole(triangles, 0);
+        for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
+            const std::uint32_t t = m_holeTriangle[i];
+            if (t == kNoTriangle)
+                continue;
+            overHole[t] = 1;
+            const std::int32_t other =
+                neighbourSharing(tin.mesh, t, position(m_cells.openHoleCells[i]));
+            if (other != kNoNeighbour)
+                overHole[static_cast<std::size_t>(other)] = 1;
+        }
+        measure.worst.assign(triangles, Candidate{});
+        for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
+            tally(i, overHole, flat, measure);
+        for (std::size_t t = 0; t < triangles; ++t)
+            if (overHole[t] != 0 && measure.drop[t] == 0) {
+                measure.drop[t] = 1;
+                ++measure.holeTriangles;
+            }
+        return measure;
+    }
+
+private:
+    [[nodiscard]] Point2 position(std::size_t cell) const {
+        return cellPosition(*m_grid, m_positions, cell);
+    }
+
+    static bool stale(std::uint32_t t, const std::vector<std::uint8_t>& changed) {
+        return changed.empty() || t == kNoTriangle || changed[t] != 0;
+    }
+
+    /// Locates again the cells (measured ones, and open holes' ones) of changed triangles.
+    void relocate(const std::vector<std::uint8_t>& changed) {
+        const TinMesh& mesh = m_build->tin.mesh;
+        TinLocator locator(mesh);
+        const auto locate = [&](std::size_t cell) {
+            return locator.locateNear(position(cell)).value_or(kNoTriangle);
+        };
+        for (std::size_t i = 0; i < m_cells.openHoleCells.size(); ++i)
+            if (stale(m_holeTriangle[i], changed))
+                m_holeTriangle[i] = locate(m_cells.openHoleCells[i]);
+        for (std::size_t i = 0; i < m_measuredCells.size(); ++i) {
+            if (!stale(m_cellTriangle[i], changed))
+                continue;
+            const std::size_t cell = m_measuredCells[i];
+            const std::uint32_t t = locate(cell);
+            m_cellTriangle[i] = t;
+            if (t != kNoTriangle)
+                m_cellError[i] =
+                    std::abs(double{m_grid->z[cell]} - planeAt(mesh, t, position(cell)));
+        }
+    }
+
+    /// Counts measured cell i, and makes it its triangle's candidate when it is the worst over
+    /// the bound, or lies in a triangle over an open hole.
+    void tally(std::size_t i, const std::vector<std::uint8_t>& overHole,
+               const std::vector<std::uint8_t>& flat, Measure& measure) const {
+        std::uint32_t t = m_cellTriangle[i];
+        if (t == kNoTriangle) {
+            ++measure.uncovered;
+            return;
+        }
+        const std::size_t cell = m_measuredCells[i];
+        const auto left = [&](std::size_t u) {
+            return measure.drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
+        };
+        if (left(t)) {
+            // A cell on an edge belongs to a kept triangle on the other side, if there is one
+            // (its error there is the same: the planes meet along the edge).
+            const std::int32_t other = neighbourSharing(m_build->tin.mesh, t, position(cell));
+            if (other != kNoNeighbour && !left(static_cast<std::size_t>(other)))
+                t = static_cast<std::uint32_t>(other);
+        }
+        if (measure.drop[t] != 0 || flat[t] != 0)
+            return; // outside the output's area, or in a replace area
+        const bool corner = isCorner(m_build->tin.mesh, t, position(cell));
+        if (overHole[t] != 0 && !corner) {
+            // As the refiner does: a hole's triangle is split until it covers no valid cell.
+            ++measure.uncovered;
+            measure.worst[t] = {std::numeric_limits<double>::infinity(), cell};
+            return;
+        }
+        const double error = m_cellError[i];
+        ++measure.covered;
+        measure.sumSquares += error * error;
+        measure.maxError = std::max(measure.maxError, error);
+        if (m_maxError && error > *m_maxError && !corner && error > measure.worst[t].error)
+            measure.worst[t] = {error, cell};
+    }
+
+    const HeightGrid* m_grid;
+    std::span<const Point2> m_positions;
+    const ConstrainedBuild* m_build;
+    std::optional<double> m_maxError;
+    std::optional<PolygonSet> m_clip;
+    std::optional<PolygonSet> m_erase;
+    std::optional<PolygonSet> m_replace;
+    CellSets m_cells;
+    /// The measured cells, and for each the triangle holding it (kNoTriangle: outside the hull)
+    /// and its error there; the triangle holding each open hole cell.
+    std::vector<std::size_t> m_measuredCells;
+    std::vector<std::uint32_t> m_cellTriangle;
+    std::vector<double> m_cellError;
+    std::vector<std::uint32_t> m_holeTriangle;
+};
+
+/// The candidates to insert, worst first when a limit cuts them, then in cell order (short
+/// walks); empty when a limit leaves no room (`limitReached` set).
+std::vector<Candidate> chooseCandidates(std::vector<Candidate> worst, const TinMesh& mesh,
+                                        const RefineOptions& options, bool& limitReached) {
+    std::erase_if(worst, [](const Candidate& c) { return c.error < 0.0; });
+    std::size_t room = worst.size();
+    if (options.maxPoints)
+        room = std::min(room, *options.maxPoints > mesh.vertexCount()
+                                  ? *options.maxPoints - mesh.vertexCount()
+                                  : std::size_t{0});
+    if (options.maxTriangles) // each inserted point adds two triangles
+        room = std::min(room, *options.maxTriangles > mesh.triangleCount() + 1
+                                  ? (*options.maxTriangles - mesh.triangleCount()) / 2
+                                  : std::size_t{0});
+    if (room < worst.size()) {
+        limitReached = true;
+        std::sort(worst.begin(), worst.end(), [](const Candidate& a, const Candidate& b) {
+            return a.error != b.error ? a.error > b.error : a.cell < b.cell;
+        });
+        worst.resize(room);
+    }
+    std::sort(worst.begin(), worst.end(),
+              [](const Candidate& a, const Candidate& b) { return a.cell < b.cell; });
+    return worst;
+}
+
+} // namespace
+
+ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
+                                            std::span<const Point2> positions, TinMesh refined,
+                                            const BuildOptions& options, const std::string& crsWkt,
+                                            BuildReport& report, const ProgressCallback& progress) {
+    const RefineOptions& refineOptions = *options.refine;
+    ConstrainedRefinement result;
+    // Replace areas triangulate the points left again: sequentially, so that the TIN does not
+    // depend on the threads (a grid's cocircular cells may be split either way).
+    BuildOptions constraintOptions = options;
+    constraintOptions.triangulation.method = TriangulationMethod::Sequential;
+    constraintOptions.triangulation.threads = 1;
+    result.build = addConstraints(std::move(refined), constraintOptions, crsWkt, report);
+    ConstrainedCheck check(grid, positions, result.build, refineOptions);
+    std::vector<std::uint8_t> changed; // empty: every triangle is new to the check
+    for (;;) {
+        if (progress)
+            progress(1.0 - 1.0 / static_cast<double>(result.passes + 1),
+                     "inserting cells over the bound");
+        Measure measure = check.measure(changed);
+        ++result.passes;
+        result.maxError = measure.maxError;
+        result.rmse = measure.covered > 0
+                          ? std::sqrt(measure.sumSquares / static_cast<double>(measure.covered))
+                          : 0.0;
+        result.coveredCells = measure.covered;
+        result.uncoveredCells = measure.uncovered;
+        result.holeTriangles = measure.holeTriangles;
+        result.drop = std::move(measure.drop);
+        const std::vector<Candidate> candidates = chooseCandidates(
+            std::move(measure.worst), result.build.tin.mesh, refineOptions, result.limitReached);
+        if (candidates.empty())
+            break;
+        std::vector<Point3> points;
+        std::vector<std::uint32_t> sources;
+        for (const Candidate& candidate : candidates) {
+            const Point2 p = cellPosition(grid, positions, candidate.cell);
+            points.push_back({p.x, p.y, double{grid.z[candidate.cell]}});
+            sources.push_back(static_cast<std::uint32_t>(candidate.cell));
+        }
+        const std::size_t inserted = insertVertices(result.build.tin, points, sources, &changed);
+        flattenReplaceRings(result.build); // a cell on a ring is on the shore line
+        result.insertedCells += inserted;
+        if (inserted == 0)
+            break;
+    }
+    return result;
+}
+
+} // namespace terratin::detail

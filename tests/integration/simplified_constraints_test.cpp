@@ -1,0 +1,257 @@
+// runBuild with --max-error and constraints on the bundled sample DEM, checked from the
+// written PLY against the DEM cell by cell: the bound holds over every valid cell of the output's
+// area (not inside the lake), the roads' points are vertices, the lake is flat, the clip area is
+// exact, and the TIN does not depend on the thread count.
+
+#include "terratin/pipeline/build_pipeline.hpp"
+
+#include "mesh_readers.hpp"
+#include "terratin/gdal_error.hpp"
+#include "terratin/geometry/predicates.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "temporary_directory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace terratin {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TemporaryDirectory;
+
+const fs::path kSample = fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif";
+constexpr int kColumns = 320;
+constexpr int kRows = 240;
+
+Point2 cellCentre(int column, int row) {
+    return {455005.0 + 10.0 * column, 5104995.0 - 10.0 * row};
+}
+
+const std::vector<Point2> kLake = {{456100.5, 5103300.25},
+                                   {457000.75, 5103150.5},
+                                   {457400.25, 5103900.75},
+                                   {456600.5, 5104400.25},
+                                   {455900.25, 5103950.5}};
+const std::vector<Point2> kRoadA = {
+    {455501.3, 5104003.7}, {456700.9, 5102700.2}, {457800.1, 5104500.3}};
+const std::vector<Point2> kRoadB = {{455300.7, 5102900.1}, {458000.3, 5104400.9}};
+
+std::string wkt(const char* type, const std::vector<Point2>& points, bool closed) {
+    std::string text = std::string(type) + (closed ? " ((" : " (");
+    for (std::size_t i = 0; i < points.size() + (closed ? 1 : 0); ++i) {
+        const Point2& p = points[i % points.size()];
+        text += (i > 0 ? ", " : "") + std::to_string(p.x) + " " + std::to_string(p.y);
+    }
+    return text + (closed ? "))" : ")");
+}
+
+/// A layer of `wkts` in EPSG:32633, with a Real field "level" = `level` on every feature.
+void writeLayer(const fs::path& path, const std::vector<std::string>& wkts, double level = 0.0) {
+    initialiseGdal();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+    std::unique_ptr<GDALDataset> dataset(
+        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    ASSERT_NE(dataset, nullptr);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32633);
+    OGRLayer* layer = dataset->CreateLayer("features", &srs, wkbUnknown, nullptr);
+    OGRFieldDefn field("level", OFTReal);
+    ASSERT_EQ(layer->CreateField(&field), OGRERR_NONE);
+    for (const std::string& text : wkts) {
+        OGRFeature feature(layer->GetLayerDefn());
+        OGRGeometry* geometry = nullptr;
+        ASSERT_EQ(OGRGeometryFactory::createFromWkt(text.c_str(), nullptr, &geometry), OGRERR_NONE);
+        feature.SetGeometryDirectly(geometry);
+        feature.SetField(0, level);
+        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    }
+}
+
+bool inside(const std::vector<Point2>& ring, Point2 p) {
+    bool odd = false;
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+        if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
+            p.x < (ring[j].x - ring[i].x) * (p.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x)
+            odd = !odd;
+    return odd;
+}
+
+std::vector<float> sampleElevations() {
+    initialiseGdal();
+    std::unique_ptr<GDALDataset> dataset(
+        GDALDataset::Open(kSample.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    std::vector<float> z(static_cast<std::size_t>(kColumns) * kRows);
+    EXPECT_EQ(dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, kColumns, kRows, z.data(),
+                                                  kColumns, kRows, GDT_Float32, 0, 0),
+              CE_None);
+    double noData = dataset->GetRasterBand(1)->GetNoDataValue();
+    for (float& value : z)
+        if (value == noData)
+            value = std::nanf("");
+    return z;
+}
+
+/// The TIN in `ply` against the sample, every triangle against every cell centre it holds
+/// (closed, exact): the largest error of a valid cell the `skip` ring does not hold, and the
+/// valid cells in no triangle.
+struct Coverage {
+    double maxError = 0.0;
+    std::size_t uncovered = 0;
+};
+
+Coverage coverage(const fs::path& ply, const std::vector<Point2>& skip) {
+    const test::ReadMesh mesh = test::readPly(ply);
+    const std::vector<float> z = sampleElevations();
+    std::vector<std::uint8_t> covered(z.size(), 0);
+    Coverage result;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        const Point3& a = mesh.vertices[mesh.triangles[t]];
+        const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
+        const int firstColumn =
+            std::max(0, int(std::floor((std::min({a.x, b.x, c.x}) - 455005.0) / 10.0)));
+        const int lastColumn =
+            std::min(kColumns - 1, int(std::ceil((std::max({a.x, b.x, c.x}) - 455005.0) / 10.0)));
+        const int firstRow =
+            std::max(0, int(std::floor((5104995.0 - std::max({a.y, b.y, c.y})) / 10.0)));
+        const int lastRow =
+            std::min(kRows - 1, int(std::ceil((5104995.0 - std::min({a.y, b.y, c.y})) / 10.0)));
+        const double area = predicates::orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y});
+        for (int row = firstRow; row <= lastRow; ++row)
+            for (int column = firstColumn; column <= lastColumn; ++column) {
+                const Point2 p = cellCentre(column, row);
+                const double wa = predicates::orient2d({b.x, b.y}, {c.x, c.y}, p);
+                const double wb = predicates::orient2d({c.x, c.y}, {a.x, a.y}, p);
+                const double wc = predicates::orient2d({a.x, a.y}, {b.x, b.y}, p);
+                const std::size_t cell = static_cast<std::size_t>(row) * kColumns + column;
+                if (wa < 0.0 || wb < 0.0 || wc < 0.0 || std::isnan(z[cell]))
+                    continue;
+                covered[cell] = 1;
+                if (!skip.empty() && inside(skip, p))
+                    continue;
+                const double plane = (wa * a.z + wb * b.z + wc * c.z) / area;
+                result.maxError = std::max(result.maxError, std::abs(plane - z[cell]));
+            }
+    }
+    for (std::size_t cell = 0; cell < z.size(); ++cell)
+        result.uncovered += !std::isnan(z[cell]) && covered[cell] == 0 ? 1 : 0;
+    return result;
+}
+
+bool hasVertexAt(const test::ReadMesh& mesh, Point2 p) {
+    return std::any_of(mesh.vertices.begin(), mesh.vertices.end(),
+                       [&](const Point3& v) { return v.x == p.x && v.y == p.y; });
+}
+
+BuildOptions roadsAndLake(const TemporaryDirectory& directory, double maxError) {
+    writeLayer(directory.path() / "roads.gpkg",
+               {wkt("LINESTRING", kRoadA, false), wkt("LINESTRING", kRoadB, false)});
+    writeLayer(directory.path() / "lake.gpkg", {wkt("POLYGON", kLake, true)}, 812.25);
+    BuildOptions options;
+    options.inputs = {kSample.string()};
+    options.output = directory.path() / "tin.ply";
+    options.breaklines = {(directory.path() / "roads.gpkg").string()};
+    options.replace = (directory.path() / "lake.gpkg").string();
+    options.replaceZField = "level";
+    options.refine.emplace();
+    options.refine->maxError = maxError;
+    options.validate = true;
+    return options;
+}
+
+TEST(SimplifiedConstraints, RoadsAndALake_BoundHoldsOutsideTheLake_LakeFlat_RoadsInTheTin) {
+    TemporaryDirectory directory;
+    const BuildOptions options = roadsAndLake(directory, 2.0);
+    const BuildReport report = runBuild(options);
+    EXPECT_TRUE(report.validated); // constrained Delaunay, every road a chain of edges
+    EXPECT_EQ(report.breaklines, 2U);
+    EXPECT_GT(report.constraintCrossings, 0U);
+    EXPECT_LE(report.achievedMaxError, 2.0);
+    EXPECT_LT(report.vertices, std::size_t{kColumns} * kRows / 10); // simplified indeed
+
+    const Coverage check = coverage(options.output, kLake);
+    EXPECT_LE(check.maxError, 2.0 + 1e-9);
+    EXPECT_EQ(check.uncovered, report.uncoveredCells);
+
+    const test::ReadMesh mesh = test::readPly(options.output);
+    for (const std::vector<Point2>* road : {&kRoadA, &kRoadB})
+        for (const Point2& p : *road)
+            EXPECT_TRUE(hasVertexAt(mesh, p)) << p.x << " " << p.y;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        Point2 centroid{0.0, 0.0};
+        for (std::size_t i = 0; i < 3; ++i) {
+            centroid.x += mesh.vertices[mesh.triangles[t + i]].x / 3.0;
+            centroid.y += mesh.vertices[mesh.triangles[t + i]].y / 3.0;
+        }
+        if (!inside(kLake, centroid))
+            continue;
+        for (std::size_t i = 0; i < 3; ++i)
+            EXPECT_EQ(mesh.vertices[mesh.triangles[t + i]].z, 812.25);
+    }
+}
+
+TEST(SimplifiedConstraints, OneThreadAndTwoGiveTheSameTin) {
+    TemporaryDirectory directory;
+    BuildOptions options = roadsAndLake(directory, 3.0);
+    std::vector<std::string> files;
+    for (const unsigned threads : {1U, 2U}) {
+        options.triangulation.threads = threads;
+        options.output = directory.path() / ("tin" + std::to_string(threads) + ".ply");
+        (void)runBuild(options);
+        std::ifstream in(options.output, std::ios::binary);
+        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    EXPECT_EQ(files[0], files[1]);
+}
+
+TEST(SimplifiedConstraints, ClipKeepsExactlyThePolygon_AndTheBoundHoldsInside) {
+    TemporaryDirectory directory;
+    writeLayer(directory.path() / "area.gpkg", {wkt("POLYGON", kLake, true)});
+    BuildOptions options;
+    options.inputs = {kSample.string()};
+    options.output = directory.path() / "clipped.ply";
+    options.clip = (directory.path() / "area.gpkg").string();
+    options.refine.emplace();
+    options.refine->maxError = 1.5;
+    options.validate = true;
+    const BuildReport report = runBuild(options);
+    EXPECT_GT(report.areaTriangles, 0U);
+    const test::ReadMesh mesh = test::readPly(options.output);
+    double twiceArea = 0.0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        const Point3& a = mesh.vertices[mesh.triangles[t]];
+        const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
+        twiceArea += (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    }
+    double twiceLake = 0.0;
+    for (std::size_t i = 0; i < kLake.size(); ++i)
+        twiceLake += kLake[i].x * kLake[(i + 1) % kLake.size()].y -
+                     kLake[(i + 1) % kLake.size()].x * kLake[i].y;
+    EXPECT_NEAR(twiceArea, twiceLake, 1e-6 * twiceLake);
+    EXPECT_LE(coverage(options.output, {}).maxError, 1.5 + 1e-9);
+}
+
+TEST(SimplifiedConstraints, ThePointLimitHoldsForTheDemsPoints) {
+    TemporaryDirectory directory;
+    BuildOptions options = roadsAndLake(directory, 0.5);
+    options.refine->maxPoints = 1500;
+    const BuildReport report = runBuild(options);
+    EXPECT_EQ(report.refineStop, "points");
+    EXPECT_LE(report.vertices, 1500U + report.constraintVertices);
+}
+
+} // namespace
+} // namespace terratin
