@@ -121,8 +121,10 @@ public:
     }
 
     /// Measures the TIN; `changed` (empty: everything) marks the triangles changed since the
-    /// last call.
-    [[nodiscard]] Measure measure(const std::vector<std::uint8_t>& changed) {
+    /// last call. With `everyCell` false, only the cells located again (those of changed
+    /// triangles) are measured and counted: the candidates then come from changed triangles
+    /// alone, where the last insertions left them.
+    [[nodiscard]] Measure measure(const std::vector<std::uint8_t>& changed, bool everyCell) {
         relocate(changed);
         const ConstrainedTin& tin = m_build->tin;
         const std::size_t triangles = tin.mesh.triangleCount();
@@ -133,21 +135,15 @@ public:
         const std::vector<std::uint8_t> flat =
             m_replace ? regionsWhere(tin, [&](Point2 p) { return m_replace->holds(p); })
                       : std::vector<std::uint8_t>(triangles, 0);
-        // A closed triangle covers a hole's cell on its edge too: both sides go.
-        std::vector<std::uint8_t> overHole(triangles, 0);
-        for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
-            const std::uint32_t t = m_holeTriangle[i];
-            if (t == kNoTriangle)
-                continue;
-            overHole[t] = 1;
-            const std::int32_t other =
-                neighbourSharing(tin.mesh, t, position(m_cells.openHoleCells[i]));
-            if (other != kNoNeighbour)
-                overHole[static_cast<std::size_t>(other)] = 1;
-        }
+        const std::vector<std::uint8_t> overHole = trianglesOverHoles();
         measure.worst.assign(triangles, Candidate{});
-        for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
-            tally(i, overHole, flat, measure);
+        if (everyCell) {
+            for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
+                tally(i, overHole, flat, measure);
+        } else {
+            for (const std::size_t i : m_relocated)
+                tally(i, overHole, flat, measure);
+        }
         for (std::size_t t = 0; t < triangles; ++t)
             if (overHole[t] != 0 && measure.drop[t] == 0) {
                 measure.drop[t] = 1;
@@ -161,12 +157,32 @@ private:
         return cellPosition(*m_grid, m_positions, cell);
     }
 
+    /// 1 for the triangles holding an open hole's cell; a closed triangle covers a cell on its
+    /// edge too, so both sides of such an edge count.
+    [[nodiscard]] std::vector<std::uint8_t> trianglesOverHoles() const {
+        const TinMesh& mesh = m_build->tin.mesh;
+        std::vector<std::uint8_t> overHole(mesh.triangleCount(), 0);
+        for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
+            const std::uint32_t t = m_holeTriangle[i];
+            if (t == kNoTriangle)
+                continue;
+            overHole[t] = 1;
+            const std::int32_t other =
+                neighbourSharing(mesh, t, position(m_cells.openHoleCells[i]));
+            if (other != kNoNeighbour)
+                overHole[static_cast<std::size_t>(other)] = 1;
+        }
+        return overHole;
+    }
+
     static bool stale(std::uint32_t t, const std::vector<std::uint8_t>& changed) {
         return changed.empty() || t == kNoTriangle || changed[t] != 0;
     }
 
-    /// Locates again the cells (measured ones, and open holes' ones) of changed triangles.
+    /// Locates again the cells (measured ones, and open holes' ones) of changed triangles; the
+    /// measured ones are listed in m_relocated.
     void relocate(const std::vector<std::uint8_t>& changed) {
+        m_relocated.clear();
         const TinMesh& mesh = m_build->tin.mesh;
         TinLocator locator(mesh);
         const auto locate = [&](std::size_t cell) {
@@ -181,6 +197,7 @@ private:
             const std::size_t cell = m_measuredCells[i];
             const std::uint32_t t = locate(cell);
             m_cellTriangle[i] = t;
+            m_relocated.push_back(i);
             if (t != kNoTriangle)
                 m_cellError[i] =
                     std::abs(double{m_grid->z[cell]} - planeAt(mesh, t, position(cell)));
@@ -238,6 +255,7 @@ private:
     std::vector<std::uint32_t> m_cellTriangle;
     std::vector<double> m_cellError;
     std::vector<std::uint32_t> m_holeTriangle;
+    std::vector<std::size_t> m_relocated;
 };
 
 /// The candidates to insert, worst first when a limit cuts them, then in cell order (short
@@ -282,24 +300,26 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
     result.build = addConstraints(std::move(refined), constraintOptions, crsWkt, report);
     ConstrainedCheck check(grid, positions, result.build, refineOptions);
     std::vector<std::uint8_t> changed; // empty: every triangle is new to the check
+    bool everyCell = false;
+    Measure measure;
     for (;;) {
         if (progress)
             progress(1.0 - 1.0 / static_cast<double>(result.passes + 1),
                      "inserting cells over the bound");
-        Measure measure = check.measure(changed);
+        measure = check.measure(changed, everyCell);
         ++result.passes;
-        result.maxError = measure.maxError;
-        result.rmse = measure.covered > 0
-                          ? std::sqrt(measure.sumSquares / static_cast<double>(measure.covered))
-                          : 0.0;
-        result.coveredCells = measure.covered;
-        result.uncoveredCells = measure.uncovered;
-        result.holeTriangles = measure.holeTriangles;
-        result.drop = std::move(measure.drop);
         const std::vector<Candidate> candidates = chooseCandidates(
             std::move(measure.worst), result.build.tin.mesh, refineOptions, result.limitReached);
-        if (candidates.empty())
-            break;
+        if (candidates.empty()) {
+            if (everyCell)
+                break;
+            // The changed triangles are within the bound: every cell is measured, for the
+            // figures and to make sure.
+            everyCell = true;
+            changed.assign(result.build.tin.mesh.triangleCount(), 0);
+            continue;
+        }
+        everyCell = false;
         std::vector<Point3> points;
         std::vector<std::uint32_t> sources;
         for (const Candidate& candidate : candidates) {
@@ -310,9 +330,19 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
         const std::size_t inserted = insertVertices(result.build.tin, points, sources, &changed);
         flattenReplaceRings(result.build); // a cell on a ring is on the shore line
         result.insertedCells += inserted;
-        if (inserted == 0)
+        if (inserted == 0) {
+            measure = check.measure(changed, true);
             break;
+        }
     }
+    result.maxError = measure.maxError;
+    result.rmse = measure.covered > 0
+                      ? std::sqrt(measure.sumSquares / static_cast<double>(measure.covered))
+                      : 0.0;
+    result.coveredCells = measure.covered;
+    result.uncoveredCells = measure.uncovered;
+    result.holeTriangles = measure.holeTriangles;
+    result.drop = std::move(measure.drop);
     return result;
 }
 
