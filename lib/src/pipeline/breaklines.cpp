@@ -161,24 +161,36 @@ void flattenReplaceRings(ConstrainedBuild& build) {
             build.tin.mesh.vertices[v].z = build.ringLevels[r];
 }
 
+ConstraintAreas readConstraintAreas(const BuildOptions& options, const std::string& crsWkt,
+                                    BuildReport& report) {
+    ConstraintAreas areas;
+    if (!options.clip.empty())
+        areas.clip = readInCrs(options.clip, "clip", options, crsWkt, report);
+    if (!options.erase.empty())
+        areas.erase = readInCrs(options.erase, "erase", options, crsWkt, report);
+    if (!options.replace.empty())
+        areas.replace = readInCrs(options.replace, "replace", options, crsWkt, report);
+    return areas;
+}
+
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
-                                const std::string& crsWkt, BuildReport& report) {
+                                const std::string& crsWkt, BuildReport& report,
+                                ConstraintAreas areas) {
     // Replace rings go in first, so that where a line crosses one the new vertex takes the
     // ring's level.
     ConstraintSet constraints;
     ConstrainedBuild build;
-    std::optional<io::LineLayer>& replace = build.replace;
+    build.clip = std::move(areas.clip);
+    build.erase = std::move(areas.erase);
+    build.replace = std::move(areas.replace);
     std::optional<PolygonSet> replaceAreas;
     std::vector<double> levels; // per replace polygon
-    std::optional<io::LineLayer>& clip = build.clip;
-    std::optional<io::LineLayer>& erase = build.erase;
     {
         TinLocator locator(mesh); // the inputs' surface, before any point is left out
-        if (!options.replace.empty()) {
-            replace = readInCrs(options.replace, "replace", options, crsWkt, report);
-            replaceAreas.emplace(*replace);
-            levels = replaceLevels(*replace, *replaceAreas, locator, mesh, options);
-            build.ringLevels = addFlatRings(*replace, levels, locator, constraints);
+        if (build.replace) {
+            replaceAreas.emplace(*build.replace);
+            levels = replaceLevels(*build.replace, *replaceAreas, locator, mesh, options);
+            build.ringLevels = addFlatRings(*build.replace, levels, locator, constraints);
             report.replacePolygons = levels.size();
         }
         const std::size_t firstBreakline = constraints.polylines.size();
@@ -191,19 +203,13 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
             report.clippedBreaklines += clipped;
         }
         report.breaklines = constraints.polylines.size() - firstBreakline;
-        // The areas' boundaries: constrained rings with the surface's z.
-        const auto addArea = [&](const std::string& source, std::string_view keyword) {
-            io::LineLayer rings = readInCrs(source, keyword, options, crsWkt, report);
-            // addLines leaves x and y as they are: the rings still bound the area after it.
-            notifyClipped(options, report, source,
-                          addLines(rings, locator, BreaklineZ::Surface, constraints),
-                          rings.lines.size());
-            return rings;
-        };
-        if (!options.clip.empty())
-            clip = addArea(options.clip, "clip");
-        if (!options.erase.empty())
-            erase = addArea(options.erase, "erase");
+        // The areas' boundaries: constrained rings with the surface's z. addLines leaves x and
+        // y as they are: the rings still bound the areas after it.
+        for (std::optional<io::LineLayer>* area : {&build.clip, &build.erase})
+            if (*area)
+                notifyClipped(options, report, (*area)->source,
+                              addLines(**area, locator, BreaklineZ::Surface, constraints),
+                              (*area)->lines.size());
         if (replaceAreas)
             flattenPointsInside(std::span(constraints.polylines).subspan(firstBreakline),
                                 *replaceAreas, levels);
@@ -217,11 +223,11 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
     flattenReplaceRings(build);
     report.constraintVertices = build.tin.addedPoints + build.tin.intersections;
     report.constraintCrossings = build.tin.intersections;
-    if (clip || erase) {
+    if (build.clip || build.erase) {
         const std::optional<PolygonSet> clipArea =
-            clip ? std::optional<PolygonSet>(*clip) : std::nullopt;
+            build.clip ? std::optional<PolygonSet>(*build.clip) : std::nullopt;
         const std::optional<PolygonSet> eraseArea =
-            erase ? std::optional<PolygonSet>(*erase) : std::nullopt;
+            build.erase ? std::optional<PolygonSet>(*build.erase) : std::nullopt;
         build.outsideArea = trianglesOutsideArea(build.tin, clipArea ? &*clipArea : nullptr,
                                                  eraseArea ? &*eraseArea : nullptr);
     }

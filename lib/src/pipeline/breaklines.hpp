@@ -30,20 +30,30 @@ struct ConstrainedBuild {
     std::vector<double> ringLevels;
 };
 
+/// The polygons of options.clip, options.erase and options.replace (nullopt where not given),
+/// read and reprojected into `crsWkt` (see addConstraints).
+struct ConstraintAreas {
+    std::optional<io::LineLayer> clip;
+    std::optional<io::LineLayer> erase;
+    std::optional<io::LineLayer> replace;
+};
+ConstraintAreas readConstraintAreas(const BuildOptions& options, const std::string& crsWkt,
+                                    BuildReport& report);
+
 /// `mesh` (the Delaunay TIN of the inputs, in `crsWkt`) with every line of
-/// options.breaklines and every ring of options.clip, options.erase and options.replace
-/// inserted: a constrained Delaunay TIN. Lines and rings are reprojected from their layer's CRS
-/// (a layer without one is taken to be in `crsWkt`, with a notice) and clipped to the mesh's
-/// convex hull (with a notice); breakline vertices get z per options.breaklineZ, clip and erase
-/// ring vertices the surface's. Replace areas are flat: the vertices inside one are left out
-/// (those on the convex hull stay, at its level) and every constraint vertex on or inside one
-/// takes its level (options.replaceZField, else the lowest surface elevation on its boundary).
-/// A source without features gives a notice. Fills report.breaklines, clippedBreaklines,
-/// constraintVertices, constraintCrossings, replacePolygons and replacedPoints. Throws what
-/// io::readOgrLines, io::readOgrPolygons and insertConstraints throw, and InvalidInputError for a
-/// line without z under BreaklineZ::Line.
+/// options.breaklines and every ring of `areas` (readConstraintAreas) inserted: a constrained
+/// Delaunay TIN. Lines and rings are reprojected from their layer's CRS (a layer without one is
+/// taken to be in `crsWkt`, with a notice) and clipped to the mesh's convex hull (with a notice);
+/// breakline vertices get z per options.breaklineZ, clip and erase ring vertices the surface's.
+/// Replace areas are flat: the vertices inside one are left out (those on the convex hull stay, at
+/// its level) and every constraint vertex on or inside one takes its level (options.replaceZField,
+/// else the lowest surface elevation on its boundary). A source without features gives a notice.
+/// Fills report.breaklines, clippedBreaklines, constraintVertices, constraintCrossings,
+/// replacePolygons and replacedPoints. Throws what io::readOgrLines, io::readOgrPolygons and
+/// insertConstraints throw, and InvalidInputError for a line without z under BreaklineZ::Line.
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
-                                const std::string& crsWkt, BuildReport& report);
+                                const std::string& crsWkt, BuildReport& report,
+                                ConstraintAreas areas);
 
 /// Every vertex of a replace ring's chain at the ring's level: vertices lying on a ring (input
 /// points, or points inserted later) are on the lake's shore line.

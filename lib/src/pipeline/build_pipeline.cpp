@@ -179,6 +179,7 @@ TinMesh takeConstrainedMesh(detail::ConstrainedRefinement corrected, const Build
     report.rmse = corrected.rmse;
     report.uncoveredCells = corrected.uncoveredCells;
     report.holeTriangles = corrected.holeTriangles;
+    report.openHoleCells = corrected.openHoleCells;
     report.constraintPasses = corrected.passes;
     report.constraintCells = corrected.insertedCells;
     if (corrected.limitReached)
@@ -227,6 +228,12 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.
     const double refineShare = constrained ? 0.8 * kTriangulateShare : kTriangulateShare;
     const ProgressCallback refineProgress = phaseProgress(progress, kReadShare, refineShare);
+    detail::ConstraintAreas areas;
+    std::size_t replacedCells = 0;
+    if (constrained) {
+        areas = detail::readConstraintAreas(options, placement.targetWkt, report);
+        replacedCells = detail::leaveOutAreaCells(raster.grid, placement.positions, areas);
+    }
     RefineResult result =
         placement.positions.empty()
             ? refine(raster.grid, refineOptions, refineProgress)
@@ -248,9 +255,11 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     TinMesh mesh = std::move(result.mesh);
     if (constrained) {
         detail::ConstrainedRefinement corrected = detail::refineWithConstraints(
-            raster.grid, placement.positions, std::move(mesh), options, placement.targetWkt, report,
+            raster.grid, placement.positions, std::move(mesh), options, std::move(areas),
+            placement.targetWkt, report,
             phaseProgress(progress, kReadShare + refineShare, kTriangulateShare - refineShare));
         mesh = takeConstrainedMesh(std::move(corrected), options, writeOptions, report);
+        report.replacedPoints += replacedCells;
     }
     const int gridWidth = raster.grid.width;
     raster.grid = {}; // the mesh holds its own vertices
@@ -357,7 +366,8 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     std::optional<detail::ConstrainedBuild> constrained;
     if (hasConstraints(options)) {
         constrained =
-            detail::addConstraints(std::move(triangulation.mesh), options, gathered.crsWkt, report);
+            detail::addConstraints(std::move(triangulation.mesh), options, gathered.crsWkt, report,
+                                   detail::readConstraintAreas(options, gathered.crsWkt, report));
         report.vertices = constrained->tin.mesh.vertexCount();
         report.triangles = constrained->tin.mesh.triangleCount();
     }

@@ -63,16 +63,24 @@ struct CellSets {
     std::vector<std::size_t> openHoleCells;
 };
 
+/// Whether the cell at `p` lies in an erase or replace polygon.
+bool inLeftOutArea(Point2 p, const std::optional<PolygonSet>& erase,
+                   const std::optional<PolygonSet>& replace) {
+    return (erase && erase->holds(p)) || (replace && replace->holds(p));
+}
+
 CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
-                  const RefineOptions& refineOptions, const std::optional<PolygonSet>& replace) {
+                  const RefineOptions& refineOptions, const std::optional<PolygonSet>& erase,
+                  const std::optional<PolygonSet>& replace) {
     CellSets sets{std::vector<std::uint8_t>(grid.cellCount(), 0), {}};
     const std::vector<std::uint8_t> open = openHoleCells(grid, refineOptions);
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
-        if (open[cell] != 0)
+        // The erase and replace areas' cells are no data to the refiner, but no hole: the
+        // TIN keeps its triangles there (flat ones), or the area drops them.
+        if (open[cell] != 0 && !inLeftOutArea(cellPosition(grid, positions, cell), erase, replace))
             sets.openHoleCells.push_back(cell);
         else if (grid.isValid(cell))
-            sets.measured[cell] =
-                !replace || !replace->holds(cellPosition(grid, positions, cell)) ? 1 : 0;
+            sets.measured[cell] = 1;
     }
     return sets;
 }
@@ -111,7 +119,7 @@ public:
             m_erase.emplace(*build.erase);
         if (build.replace)
             m_replace.emplace(*build.replace);
-        m_cells = cellSets(grid, positions, refineOptions, m_replace);
+        m_cells = cellSets(grid, positions, refineOptions, m_erase, m_replace);
         for (std::size_t cell = 0; cell < m_cells.measured.size(); ++cell)
             if (m_cells.measured[cell] != 0)
                 m_measuredCells.push_back(cell);
@@ -151,6 +159,8 @@ public:
             }
         return measure;
     }
+
+    [[nodiscard]] std::size_t openHoleCells() const { return m_cells.openHoleCells.size(); }
 
 private:
     [[nodiscard]] Point2 position(std::size_t cell) const {
@@ -286,10 +296,33 @@ std::vector<Candidate> chooseCandidates(std::vector<Candidate> worst, const TinM
 
 } // namespace
 
+std::size_t leaveOutAreaCells(HeightGrid& grid, std::span<const Point2> positions,
+                              const ConstraintAreas& areas) {
+    std::optional<PolygonSet> erase;
+    std::optional<PolygonSet> replace;
+    if (areas.erase)
+        erase.emplace(*areas.erase);
+    if (areas.replace)
+        replace.emplace(*areas.replace);
+    std::size_t replaced = 0;
+    for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
+        if (!grid.isValid(cell))
+            continue;
+        const Point2 p = cellPosition(grid, positions, cell);
+        if (replace && replace->holds(p))
+            ++replaced;
+        else if (!erase || !erase->holds(p))
+            continue;
+        grid.z[cell] = std::numeric_limits<float>::quiet_NaN();
+    }
+    return replaced;
+}
+
 ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
                                             std::span<const Point2> positions, TinMesh refined,
-                                            const BuildOptions& options, const std::string& crsWkt,
-                                            BuildReport& report, const ProgressCallback& progress) {
+                                            const BuildOptions& options, ConstraintAreas areas,
+                                            const std::string& crsWkt, BuildReport& report,
+                                            const ProgressCallback& progress) {
     const RefineOptions& refineOptions = *options.refine;
     ConstrainedRefinement result;
     // Replace areas triangulate the points left again: sequentially, so that the TIN does not
@@ -297,8 +330,10 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
     BuildOptions constraintOptions = options;
     constraintOptions.triangulation.method = TriangulationMethod::Sequential;
     constraintOptions.triangulation.threads = 1;
-    result.build = addConstraints(std::move(refined), constraintOptions, crsWkt, report);
+    result.build =
+        addConstraints(std::move(refined), constraintOptions, crsWkt, report, std::move(areas));
     ConstrainedCheck check(grid, positions, result.build, refineOptions);
+    result.openHoleCells = check.openHoleCells();
     std::vector<std::uint8_t> changed; // empty: every triangle is new to the check
     bool everyCell = false;
     Measure measure;
