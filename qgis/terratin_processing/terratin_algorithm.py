@@ -11,9 +11,11 @@ from qgis.core import (
     QgsProcessingParameterBoolean,
     QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
+    QgsProcessingParameterField,
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterNumber,
     QgsProcessingParameterVectorDestination,
+    QgsProcessingParameterVectorLayer,
 )
 
 from .layer_files import layer_source
@@ -36,6 +38,10 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
     TERRAIN_STYLE = "TERRAIN_STYLE"
     TARGET_CRS = "TARGET_CRS"
     BREAKLINES = "BREAKLINES"
+    CLIP = "CLIP"
+    ERASE = "ERASE"
+    REPLACE = "REPLACE"
+    REPLACE_Z_FIELD = "REPLACE_Z_FIELD"
     OUTPUT = "OUTPUT"
     VERTICES = "VERTICES"
     TRIANGLES = "TRIANGLES"
@@ -56,8 +62,26 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
         self.addParameter(
             QgsProcessingParameterMultipleLayers(
                 self.BREAKLINES,
-                "Breaklines (line layers: every segment becomes TIN edges; full resolution)",
+                "Breaklines (line layers: every segment becomes TIN edges)",
                 QgsProcessing.TypeVectorLine, optional=True,
+            )
+        )
+        for name, description in (
+            (self.CLIP, "Clip area (polygons: triangles outside are removed)"),
+            (self.ERASE, "Erase areas (polygons cut out as holes)"),
+            (self.REPLACE, "Replace areas (lakes: polygons flattened to one level)"),
+        ):
+            self.addParameter(
+                QgsProcessingParameterVectorLayer(
+                    name, description, [QgsProcessing.TypeVectorPolygon], optional=True
+                )
+            )
+        self.addParameter(
+            QgsProcessingParameterField(
+                self.REPLACE_Z_FIELD,
+                "Level field of the replace areas (default: the lowest level of each shore)",
+                parentLayerParameterName=self.REPLACE,
+                type=QgsProcessingParameterField.Numeric, optional=True,
             )
         )
         self.addParameter(
@@ -156,6 +180,13 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
             options["breaklines"] = [
                 layer_source(layer, context, feedback, "breaklines") for layer in breaklines
             ]
+        for name, option in ((self.CLIP, "clip"), (self.ERASE, "erase"), (self.REPLACE, "replace")):
+            layer = self.parameterAsVectorLayer(parameters, name, context)
+            if layer is not None:
+                options[option] = layer_source(layer, context, feedback, option)
+        level_field = self.parameterAsString(parameters, self.REPLACE_Z_FIELD, context)
+        if level_field:
+            options["replace_z_field"] = level_field
         target = self.parameterAsCrs(parameters, self.TARGET_CRS, context)
         if target.isValid():
             options["t_srs"] = crs_text(target)

@@ -226,6 +226,41 @@ def test_dem_to_tin_takes_breaklines_from_a_file_layer_and_a_scratch_layer(proce
     assert result["TRIANGLES"] == counts["triangles"]
 
 
+def test_dem_to_tin_simplified_with_a_lake_and_an_erase_area(processing, tmp_path):
+    crs = osr.SpatialReference()
+    crs.ImportFromEPSG(32633)
+    areas = tmp_path / "areas.gpkg"
+    dataset = ogr.GetDriverByName("GPKG").CreateDataSource(str(areas))
+    for name, wkt, level in (
+        ("lakes", "POLYGON ((456100.5 5103300.25, 457000.75 5103150.5, 456600.5 5104400.25, "
+                  "456100.5 5103300.25))", 812.5),
+        ("buildings", "POLYGON ((455400.5 5102800.5, 455600.5 5102800.5, 455600.5 5102950.5, "
+                      "455400.5 5102950.5, 455400.5 5102800.5))", 0.0),
+    ):
+        layer = dataset.CreateLayer(name, crs, ogr.wkbPolygon)
+        layer.CreateField(ogr.FieldDefn("level", ogr.OFTReal))
+        feature = ogr.Feature(layer.GetLayerDefn())
+        feature.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        feature["level"] = level
+        layer.CreateFeature(feature)
+    dataset = None
+    lakes = QgsVectorLayer(f"{areas}|layername=lakes", "lakes", "ogr")
+    buildings = QgsVectorLayer(f"{areas}|layername=buildings", "buildings", "ogr")
+    output = tmp_path / "tin.gpkg"
+    result = processing.run(
+        "terratin:demtotin",
+        {"INPUT": str(SAMPLE), "MAX_ERROR": 2.0, "REPLACE": lakes, "REPLACE_Z_FIELD": "level",
+         "ERASE": buildings, "OUTPUT": str(output)},
+    )
+    counts = cli_counts(SAMPLE, "-o", tmp_path / "cli.ply", "--max-error", "2",
+                        "--replace", f"{areas}|layername=lakes", "--replace-z-field", "level",
+                        "--erase", f"{areas}|layername=buildings")
+    assert result["VERTICES"] == counts["vertices"]
+    assert result["TRIANGLES"] == counts["triangles"]
+    flat = [f for f in opened(output).getFeatures() if f["z_min"] == f["z_max"] == 812.5]
+    assert len(flat) >= 1  # the triangular lake is one flat triangle
+
+
 def write_points(path, count=300):
     """A GeoPackage of PointZ with an elevation field too, in UTM 33N."""
     import random
