@@ -830,7 +830,12 @@ case "$case_name" in
     expect_one_error_line "no field 'depth'"
     run 2 build "$sample" --replace-z-field level -o tin10.gpkg --quiet
     expect_one_error_line "--replace-z-field names the field of --replace polygons"
-    [ ! -e tin2.gpkg ] && [ ! -e tin5.gpkg ] && [ ! -e tin9.gpkg ] &&
+    # A layer whose CRS does not fit its coordinates: the error names the layer.
+    ogr2ogr -q -f GPKG wrong_crs.gpkg lines.csv -oo GEOM_POSSIBLE_NAMES=WKT -a_srs EPSG:4326 \
+      -nlt LINESTRING || fail "ogr2ogr failed"
+    run 1 build "$sample" --breaklines wrong_crs.gpkg -o tin11.gpkg --quiet
+    expect_one_error_line "--breaklines 'wrong_crs.gpkg' layer 'lines': CRS:"
+    [ ! -e tin2.gpkg ] && [ ! -e tin5.gpkg ] && [ ! -e tin9.gpkg ] && [ ! -e tin11.gpkg ] &&
       [ ! -e tin10.gpkg ] || fail "an output written after an error"
     ;;
   *)

@@ -47,8 +47,13 @@ io::LineLayer readInCrs(const std::string& source, std::string_view keyword,
     }
     if (!crs::sameCrs(layer.crsWkt, crsWkt)) {
         const crs::Reprojector reprojector(layer.crsWkt, crsWkt);
-        for (std::vector<Point3>& line : layer.lines)
-            reprojector.transform(std::span<Point3>(line));
+        try {
+            for (std::vector<Point3>& line : layer.lines)
+                reprojector.transform(std::span<Point3>(line));
+        } catch (const CrsError& error) {
+            // A layer whose CRS does not match its coordinates: say which layer.
+            throw CrsError(name + ": " + error.what());
+        }
     }
     return layer;
 }
