@@ -19,6 +19,8 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -299,6 +301,40 @@ TEST(ReplaceAreas, ALakeOverTheDataEdgeKeepsTheHull_AtItsLevel) {
     EXPECT_EQ(flatLevelInside(tin, edgeLake), 900.0);
     const double whole = twiceArea(test::readPly(plain.output));
     EXPECT_NEAR(twiceArea(tin), whole, 1e-12 * whole); // the TIN still covers the data
+}
+
+TEST(ReplaceAreas, APointCloudsLakeIsFlatAtTheLowestLevelOfItsShore) {
+    // Scattered points of the plane z = x / 100 + y / 50 (text, no CRS): on the lake's shore
+    // the surface is lowest at its corner (300, 300), z = 9.
+    TemporaryDirectory directory;
+    const fs::path points = directory.path() / "points.xyz";
+    const std::vector<Point2> lake = {{300.0, 300.0}, {700.0, 350.0}, {500.0, 700.0}};
+    std::size_t inLake = 0;
+    {
+        std::ofstream text(points);
+        std::uint64_t state = 777;
+        for (int i = 0; i < 3000; ++i) {
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            const double x = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            const double y = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
+            text << std::setprecision(17) << x << ' ' << y << ' ' << x / 100.0 + y / 50.0 << '\n';
+            inLake += inside(lake, {x, y}) ? 1 : 0;
+        }
+    }
+    const fs::path water = directory.path() / "water.gpkg";
+    writePolygons(water, {polygonWkt(lake)});
+    BuildOptions options;
+    options.inputs = {points.string()};
+    options.output = directory.path() / "tin.ply";
+    options.replace = water.string();
+    options.validate = true;
+    const BuildReport report = runBuild(options);
+    EXPECT_TRUE(report.validated);
+    EXPECT_GT(inLake, 100U);
+    EXPECT_EQ(report.replacedPoints, inLake);
+    const double level = flatLevelInside(test::readPly(options.output), lake);
+    EXPECT_NEAR(level, 9.0, 1e-9);
 }
 
 TEST(ReplaceAreas, BadLevelFieldsAreRefusedWithOneLine_AndNoOutputIsLeft) {
