@@ -26,7 +26,12 @@ std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p, bo
             m_buckets.emplace(m_mesh.mesh().vertices);
         m_hintTriangle = m_mesh.halfEdgeLeaving(m_buckets->vertexNear({p.x, p.y})) / 3;
     }
-    const MeshLocation where = m_mesh.locate({p.x, p.y}, m_hintTriangle);
+    return insertPointFrom(p, m_hintTriangle);
+}
+
+std::optional<std::uint32_t> ConstraintInserter::insertPointFrom(const Point3& p,
+                                                                 std::size_t triangle) {
+    const MeshLocation where = m_mesh.locate({p.x, p.y}, triangle);
     if (where.kind == MeshLocation::Kind::OutsideHull)
         return std::nullopt;
     m_hintTriangle = where.halfEdge / 3;

@@ -30,6 +30,8 @@ public:
     /// kConstraintPointSource); nothing when `p` lies outside the convex hull. The search
     /// starts near the previous point, or anywhere when `jump` (the first point of a polyline).
     std::optional<std::uint32_t> insertPoint(const Point3& p, bool jump);
+    /// insertPoint, the search starting from `triangle` (any triangle index of the mesh).
+    std::optional<std::uint32_t> insertPointFrom(const Point3& p, std::size_t triangle);
 
     /// Makes the segment a -> b of input segment `owner` a chain of constrained edges,
     /// splitting it (and what it crosses) where needed.

@@ -15,6 +15,28 @@ std::string pointText(const Point3& p) {
     return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
 }
 
+void checkPolylineTriangles(const TinMesh& mesh, const ConstraintSet& constraints) {
+    const std::vector<std::vector<std::uint32_t>>& triangles = constraints.polylineTriangles;
+    if (triangles.empty())
+        return;
+    if (triangles.size() != constraints.polylines.size())
+        throw InvalidInputError("insertConstraints: triangles given for " +
+                                std::to_string(triangles.size()) + " polylines of " +
+                                std::to_string(constraints.polylines.size()));
+    for (std::size_t k = 0; k < triangles.size(); ++k) {
+        if (triangles[k].size() != constraints.polylines[k].size())
+            throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) + " has " +
+                                    std::to_string(constraints.polylines[k].size()) +
+                                    " points and " + std::to_string(triangles[k].size()) +
+                                    " triangles");
+        for (const std::uint32_t t : triangles[k])
+            if (t >= mesh.triangleCount())
+                throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) +
+                                        " names triangle " + std::to_string(t) + " of a mesh of " +
+                                        std::to_string(mesh.triangleCount()) + " triangles");
+    }
+}
+
 // Returns the number of segments in all.
 std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constraints) {
     const std::size_t vertexCount = mesh.vertexCount();
@@ -31,6 +53,7 @@ std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constrain
                 throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) +
                                         ", point " + std::to_string(j) + " is not finite");
         }
+    checkPolylineTriangles(mesh, constraints);
     std::size_t segments = constraints.segments.size();
     for (const std::vector<Point3>& polyline : constraints.polylines)
         segments += polyline.empty() ? 0 : polyline.size() - 1;
@@ -44,12 +67,17 @@ std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constrain
 }
 
 // The vertices of polyline k's points, each inserted unless a vertex has its x and y.
+// The search for each starts from its triangle in `triangles` when there are any.
 std::vector<std::uint32_t> polylineVertices(detail::ConstraintInserter& inserter,
-                                            const std::vector<Point3>& polyline, std::size_t k) {
+                                            const std::vector<Point3>& polyline,
+                                            const std::vector<std::uint32_t>& triangles,
+                                            std::size_t k) {
     std::vector<std::uint32_t> vertices;
     vertices.reserve(polyline.size());
     for (std::size_t j = 0; j < polyline.size(); ++j) {
-        const std::optional<std::uint32_t> v = inserter.insertPoint(polyline[j], j == 0);
+        const std::optional<std::uint32_t> v =
+            triangles.empty() ? inserter.insertPoint(polyline[j], j == 0)
+                              : inserter.insertPointFrom(polyline[j], triangles[j]);
         if (!v)
             throw InvalidInputError(
                 "insertConstraints: polyline " + std::to_string(k) + ", point " +
@@ -75,7 +103,11 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
     std::vector<std::vector<std::uint32_t>> polylines;
     polylines.reserve(constraints.polylines.size());
     for (std::size_t k = 0; k < constraints.polylines.size(); ++k) {
-        polylines.push_back(polylineVertices(inserter, constraints.polylines[k], k));
+        polylines.push_back(polylineVertices(inserter, constraints.polylines[k],
+                                             constraints.polylineTriangles.empty()
+                                                 ? std::vector<std::uint32_t>{}
+                                                 : constraints.polylineTriangles[k],
+                                             k));
         const std::vector<std::uint32_t>& polyline = polylines.back();
         for (std::size_t j = 1; j < polyline.size(); ++j) {
             inserter.insertSegment(polyline[j - 1], polyline[j],

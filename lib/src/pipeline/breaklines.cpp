@@ -73,21 +73,23 @@ void checkLineZ(const io::LineLayer& layer, const BuildOptions& options) {
                 "' has no z");
 }
 
-std::size_t addLines(io::LineLayer& layer, TinLocator& locator, BreaklineZ zFrom,
-                     ConstraintSet& constraints) {
-    std::size_t clipped = 0;
-    for (std::vector<Point3>& line : layer.lines) {
-        if (zFrom == BreaklineZ::Surface)
+std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, BreaklineZ zFrom,
+                     unsigned threads, ConstraintSet& constraints) {
+    if (zFrom == BreaklineZ::Surface)
+        for (std::vector<Point3>& line : layer.lines)
             for (Point3& point : line)
                 point.z = std::nan("");
-        std::vector<std::vector<Point3>> parts = locator.clipToHull(line);
-        clipped += parts.size() != 1 || !samePlaces(parts.front(), line) ? 1 : 0;
-        for (std::vector<Point3>& part : parts) {
-            // Inside the hull after clipping: the surface is defined at every point.
-            for (Point3& point : part)
-                if (std::isnan(point.z))
-                    point.z = *locator.elevation({point.x, point.y});
-            constraints.polylines.push_back(std::move(part));
+    // Inside the hull after clipping, with the surface's z where the line has none; the
+    // triangles found spare insertConstraints a second search.
+    std::vector<std::vector<TinLocator::LocatedPolyline>> located =
+        locator.clipToSurface(layer.lines, threads);
+    std::size_t clipped = 0;
+    for (std::size_t i = 0; i < located.size(); ++i) {
+        std::vector<TinLocator::LocatedPolyline>& parts = located[i];
+        clipped += parts.size() != 1 || !samePlaces(parts.front().points, layer.lines[i]) ? 1 : 0;
+        for (TinLocator::LocatedPolyline& part : parts) {
+            constraints.polylines.push_back(std::move(part.points));
+            constraints.polylineTriangles.push_back(std::move(part.triangles));
         }
     }
     return clipped;
@@ -141,8 +143,9 @@ std::vector<double> addFlatRings(io::LineLayer& rings, const std::vector<double>
     for (std::size_t r = 0; r < rings.lines.size(); ++r) {
         for (Point3& point : rings.lines[r])
             point.z = levels[rings.polygonOf[r]];
-        for (std::vector<Point3>& part : locator.clipToHull(rings.lines[r])) {
-            constraints.polylines.push_back(std::move(part));
+        for (TinLocator::LocatedPolyline& part : locator.clipToSurface(rings.lines[r])) {
+            constraints.polylines.push_back(std::move(part.points));
+            constraints.polylineTriangles.push_back(std::move(part.triangles));
             ringLevels.push_back(levels[rings.polygonOf[r]]);
         }
     }
@@ -203,7 +206,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
             io::LineLayer layer = readInCrs(source, "breaklines", options, crsWkt, report);
             if (options.breaklineZ == BreaklineZ::Line)
                 checkLineZ(layer, options);
-            const std::size_t clipped = addLines(layer, locator, options.breaklineZ, constraints);
+            const std::size_t clipped = addLines(layer, locator, options.breaklineZ,
+                                                 options.triangulation.threads, constraints);
             notifyClipped(options, report, source, clipped, layer.lines.size());
             report.clippedBreaklines += clipped;
         }
@@ -213,7 +217,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
         for (std::optional<io::LineLayer>* area : {&build.clip, &build.erase})
             if (*area)
                 notifyClipped(options, report, (*area)->source,
-                              addLines(**area, locator, BreaklineZ::Surface, constraints),
+                              addLines(**area, locator, BreaklineZ::Surface,
+                                       options.triangulation.threads, constraints),
                               (*area)->lines.size());
         if (replaceAreas)
             flattenPointsInside(std::span(constraints.polylines).subspan(firstBreakline),
@@ -222,6 +227,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
     if (replaceAreas) {
         std::size_t removed = 0;
         mesh = flattenAreas(std::move(mesh), *replaceAreas, levels, options.triangulation, removed);
+        constraints.polylineTriangles.clear(); // they were the old mesh's
         report.replacedPoints = removed;
     }
     build.tin = insertConstraints(std::move(mesh), constraints);

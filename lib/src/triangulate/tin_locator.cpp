@@ -1,10 +1,13 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
+#include "parallel_for.hpp"
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace terratin {
 
@@ -163,10 +166,14 @@ std::optional<double> TinLocator::elevation(Point2 point) {
     const std::optional<std::uint32_t> triangle = locate(point);
     if (!triangle)
         return std::nullopt;
+    return elevationIn(*triangle, point);
+}
+
+double TinLocator::elevationIn(std::uint32_t triangle, Point2 point) const {
     const TinMesh& mesh = *m_mesh;
-    const Point3& a = mesh.vertices[mesh.triangles[3 * *triangle]];
-    const Point3& b = mesh.vertices[mesh.triangles[3 * *triangle + 1]];
-    const Point3& c = mesh.vertices[mesh.triangles[3 * *triangle + 2]];
+    const Point3& a = mesh.vertices[mesh.triangles[3 * std::size_t{triangle}]];
+    const Point3& b = mesh.vertices[mesh.triangles[3 * std::size_t{triangle} + 1]];
+    const Point3& c = mesh.vertices[mesh.triangles[3 * std::size_t{triangle} + 2]];
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     const double wa =
         ((b.x - point.x) * (c.y - point.y) - (b.y - point.y) * (c.x - point.x)) / area;
@@ -195,17 +202,17 @@ TinLocator::Interval TinLocator::hullInterval(const Point3& a, const Point3& b) 
     return interval;
 }
 
-Point3 TinLocator::cutPoint(const Point3& inside, const Point3& outside) {
+TinLocator::LocatedPoint TinLocator::cutPoint(const Point3& inside, const Point3& outside) {
     const double exit = hullInterval(inside, outside).exit;
     // Back towards `inside` until the exact test agrees, by steps that double from one unit in
     // the last place of the parameter; `inside` itself ends the search.
     double step = std::numeric_limits<double>::epsilon();
     for (double t = exit; t > 0.0; t -= step, step *= 2.0) {
         const Point3 point = along(inside, outside, t);
-        if (locate(planar(point)))
-            return point;
+        if (const std::optional<std::uint32_t> triangle = locate(planar(point)))
+            return {point, *triangle};
     }
-    return inside;
+    return {inside, locate(planar(inside)).value()};
 }
 
 std::optional<Point3> TinLocator::pointInside(const Point3& a, const Point3& b) {
@@ -218,36 +225,87 @@ std::optional<Point3> TinLocator::pointInside(const Point3& a, const Point3& b) 
     return middle;
 }
 
-std::vector<std::vector<Point3>> TinLocator::clipToHull(const std::vector<Point3>& polyline) {
-    std::vector<std::vector<Point3>> parts;
-    std::vector<Point3> part;
+std::vector<TinLocator::LocatedPolyline>
+TinLocator::clipLocated(const std::vector<Point3>& polyline) {
+    std::vector<LocatedPolyline> parts;
+    LocatedPolyline part;
+    const auto add = [&](const LocatedPoint& located) {
+        part.points.push_back(located.point);
+        part.triangles.push_back(located.triangle);
+    };
     const auto closePart = [&] {
-        if (part.size() >= 2)
+        if (part.points.size() >= 2)
             parts.push_back(std::move(part));
-        part.clear();
+        part = {};
     };
     bool previousInside = false;
     for (std::size_t i = 0; i < polyline.size(); ++i) {
         const Point3& point = polyline[i];
-        const bool inside = locate(planar(point)).has_value();
-        if (inside) {
+        const std::optional<std::uint32_t> triangle = locate(planar(point));
+        if (triangle) {
             if (i > 0 && !previousInside)
-                part.push_back(cutPoint(point, polyline[i - 1])); // entering the hull
-            part.push_back(point);
+                add(cutPoint(point, polyline[i - 1])); // entering the hull
+            add({point, *triangle});
         } else if (previousInside) {
-            part.push_back(cutPoint(polyline[i - 1], point)); // leaving it
+            add(cutPoint(polyline[i - 1], point)); // leaving it
             closePart();
         } else if (i > 0) {
             // Both ends outside: the segment may still cross the hull.
             if (const std::optional<Point3> middle = pointInside(polyline[i - 1], point)) {
-                part = {cutPoint(*middle, polyline[i - 1]), cutPoint(*middle, point)};
+                add(cutPoint(*middle, polyline[i - 1]));
+                add(cutPoint(*middle, point));
                 closePart();
             }
         }
-        previousInside = inside;
+        previousInside = triangle.has_value();
     }
     closePart();
     return parts;
+}
+
+std::vector<std::vector<Point3>> TinLocator::clipToHull(const std::vector<Point3>& polyline) {
+    std::vector<std::vector<Point3>> parts;
+    for (LocatedPolyline& part : clipLocated(polyline))
+        parts.push_back(std::move(part.points));
+    return parts;
+}
+
+std::vector<TinLocator::LocatedPolyline>
+TinLocator::clipToSurface(const std::vector<Point3>& polyline) {
+    std::vector<LocatedPolyline> parts = clipLocated(polyline);
+    for (LocatedPolyline& part : parts)
+        for (std::size_t i = 0; i < part.points.size(); ++i) {
+            Point3& point = part.points[i];
+            if (std::isnan(point.z))
+                point.z = elevationIn(part.triangles[i], planar(point));
+        }
+    return parts;
+}
+
+std::vector<std::vector<TinLocator::LocatedPolyline>>
+TinLocator::clipToSurface(const std::vector<std::vector<Point3>>& polylines,
+                          unsigned threads) const {
+    std::vector<std::vector<LocatedPolyline>> located(polylines.size());
+    const unsigned threadCount =
+        threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
+    // A few polylines per chunk: they differ in length, and each costs microseconds.
+    constexpr std::size_t kPolylinesPerChunk = 16;
+    const std::size_t chunks = (polylines.size() + kPolylinesPerChunk - 1) / kPolylinesPerChunk;
+    std::atomic<std::size_t> nextChunk{0};
+    detail::runOnThreads(
+        static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, threadCount)), [&](unsigned) {
+            TinLocator walker = *this; // the walk's state is per thread
+            for (std::size_t chunk = nextChunk++; chunk < chunks; chunk = nextChunk++) {
+                const std::size_t end =
+                    std::min(polylines.size(), (chunk + 1) * kPolylinesPerChunk);
+                for (std::size_t i = chunk * kPolylinesPerChunk; i < end; ++i) {
+                    walker.m_last = 0;
+                    walker.m_random = kWalkSeed;
+                    located[i] = walker.clipToSurface(polylines[i]);
+                }
+            }
+        });
+    return located;
 }
 
 } // namespace terratin

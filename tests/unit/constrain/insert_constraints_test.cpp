@@ -4,12 +4,16 @@
 #include "point_distributions.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <tuple>
 
@@ -445,6 +449,83 @@ TEST(InsertConstraints, Throws_WhenAPointIsNotFinite) {
     ConstraintSet constraints;
     constraints.polylines = {{{1, 1, 0}, {2, std::nan(""), 0}}};
     EXPECT_THROW((void)insertConstraints(mesh, constraints), InvalidInputError);
+}
+
+// The triangles of `mesh` as sorted corner triples, sorted: the triangulation whatever the
+// numbering of its triangles.
+std::vector<std::array<std::uint32_t, 3>> triangleSet(const TinMesh& mesh) {
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        std::array<std::uint32_t, 3> corners{mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                                             mesh.triangles[3 * t + 2]};
+        std::sort(corners.begin(), corners.end());
+        triangles.push_back(corners);
+    }
+    std::sort(triangles.begin(), triangles.end());
+    return triangles;
+}
+
+// Random walks of `steps` steps of about a fiftieth of the cloud's width, inside its hull
+// (TinLocator clips them), with the triangles found for their points.
+ConstraintSet walksWithTriangles(const TinMesh& mesh, int walks, int steps, std::uint64_t seed) {
+    std::vector<std::vector<Point3>> lines;
+    std::mt19937_64 random(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int k = 0; k < walks; ++k) {
+        std::vector<Point3> line{{unit(random), unit(random), 1.0}};
+        double heading = 6.283 * unit(random);
+        for (int j = 0; j < steps; ++j) {
+            heading += unit(random) - 0.5;
+            line.push_back({line.back().x + 0.02 * std::cos(heading),
+                            line.back().y + 0.02 * std::sin(heading), 1.0});
+        }
+        lines.push_back(line);
+    }
+    ConstraintSet constraints;
+    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 2))
+        for (TinLocator::LocatedPolyline& part : parts) {
+            constraints.polylines.push_back(std::move(part.points));
+            constraints.polylineTriangles.push_back(std::move(part.triangles));
+        }
+    return constraints;
+}
+
+TEST(InsertConstraints, PolylineTrianglesGiveTheSameTin_AsTheSearchWithout) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 3000, 21));
+    ConstraintSet located = walksWithTriangles(mesh, 40, 30, 5);
+    ASSERT_GT(located.polylines.size(), 30U);
+    ConstraintSet searched = located;
+    searched.polylineTriangles.clear();
+    const ConstrainedTin withTriangles = constrainAndCheck(mesh, located);
+    const ConstrainedTin without = constrainAndCheck(mesh, searched);
+    EXPECT_GT(withTriangles.intersections, 10U);
+    // Points in general position: one constrained Delaunay triangulation, its vertices made in
+    // the same order.
+    EXPECT_EQ(withTriangles.mesh.vertices, without.mesh.vertices);
+    EXPECT_EQ(withTriangles.chains, without.chains);
+    EXPECT_EQ(triangleSet(withTriangles.mesh), triangleSet(without.mesh));
+}
+
+TEST(InsertConstraints, IsConstrainedDelaunay_WhenPolylineTrianglesAreFarFromTheirPoints) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Grid, 3000, 3));
+    ConstraintSet constraints = walksWithTriangles(mesh, 20, 30, 8);
+    for (std::vector<std::uint32_t>& triangles : constraints.polylineTriangles)
+        std::fill(triangles.begin(), triangles.end(), 0U);
+    constrainAndCheck(mesh, constraints);
+}
+
+TEST(InsertConstraints, Throws_WhenPolylineTrianglesDoNotMatchThePolylines) {
+    const TinMesh mesh = delaunayOf(grid(4));
+    ConstraintSet constraints;
+    constraints.polylines = {{{1, 1, 0}, {2, 2, 0}}};
+    constraints.polylineTriangles = {{0}};
+    EXPECT_THROW((void)insertConstraints(mesh, constraints), InvalidInputError);
+    constraints.polylineTriangles = {{0, 0}, {0, 0}};
+    EXPECT_THROW((void)insertConstraints(mesh, constraints), InvalidInputError);
+    constraints.polylineTriangles = {{0, static_cast<std::uint32_t>(mesh.triangleCount())}};
+    EXPECT_THROW((void)insertConstraints(mesh, constraints), InvalidInputError);
+    constraints.polylineTriangles = {{0, static_cast<std::uint32_t>(mesh.triangleCount() - 1)}};
+    EXPECT_NO_THROW((void)insertConstraints(mesh, constraints));
 }
 
 TEST(InsertConstraints, NoConstraintsLeavesTheMesh) {

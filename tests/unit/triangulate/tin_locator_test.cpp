@@ -1,6 +1,7 @@
 // TinLocator: locating points, the TIN's elevation, and polylines clipped to the hull, with
 // every point of a clipped line checked inside by the exact predicate.
 
+#include "terratin/geometry/predicates.hpp"
 #include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
@@ -86,6 +87,57 @@ TEST(TinLocator, EveryClippedPointIsInsideByTheExactTest_OnRandomLinesAcrossAGau
         }
     }
     EXPECT_GT(cut, 100U);
+}
+
+bool holds(const TinMesh& mesh, std::uint32_t triangle, const Point3& p) {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Point3& a = mesh.vertices[mesh.triangles[3 * triangle + i]];
+        const Point3& b = mesh.vertices[mesh.triangles[3 * triangle + (i + 1) % 3]];
+        if (predicates::orient2d({a.x, a.y}, {b.x, b.y}, {p.x, p.y}) < 0.0)
+            return false;
+    }
+    return true;
+}
+
+TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
+    const std::vector<Point3> points = test::generatePoints(test::Distribution::Gauss, 3000, 4);
+    const TinMesh mesh = triangulate(points).mesh;
+    std::mt19937_64 random(12);
+    std::uniform_real_distribution<double> coordinate(-0.5, 1.5);
+    std::vector<std::vector<Point3>> lines(200);
+    for (std::size_t k = 0; k < lines.size(); ++k)
+        for (int i = 0; i < 5; ++i) // the odd lines without z
+            lines[k].push_back(
+                {coordinate(random), coordinate(random), k % 2 == 1 ? std::nan("") : 7.0});
+    TinLocator locator(mesh);
+    const auto one = locator.clipToSurface(lines, 1);
+    const auto three = locator.clipToSurface(lines, 3);
+    ASSERT_EQ(one.size(), lines.size());
+    std::size_t located = 0;
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+        const std::vector<std::vector<Point3>> hull = locator.clipToHull(lines[k]);
+        ASSERT_EQ(one[k].size(), hull.size());
+        ASSERT_EQ(three[k].size(), hull.size());
+        for (std::size_t part = 0; part < hull.size(); ++part) {
+            const TinLocator::LocatedPolyline& a = one[k][part];
+            EXPECT_EQ(a.triangles, three[k][part].triangles);
+            ASSERT_EQ(a.points.size(), hull[part].size());
+            ASSERT_EQ(a.triangles.size(), hull[part].size());
+            for (std::size_t i = 0; i < a.points.size(); ++i) {
+                const Point3& p = a.points[i];
+                EXPECT_EQ(p, three[k][part].points[i]);
+                EXPECT_EQ(p.x, hull[part][i].x);
+                EXPECT_EQ(p.y, hull[part][i].y);
+                EXPECT_TRUE(holds(mesh, a.triangles[i], p));
+                if (std::isnan(hull[part][i].z))
+                    EXPECT_EQ(p.z, locator.elevationIn(a.triangles[i], {p.x, p.y}));
+                else
+                    EXPECT_EQ(p.z, hull[part][i].z);
+                ++located;
+            }
+        }
+    }
+    EXPECT_GT(located, 200U);
 }
 
 } // namespace

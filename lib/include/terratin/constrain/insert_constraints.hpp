@@ -20,6 +20,13 @@ struct ConstraintSet {
     /// Polylines of points (x, y as the mesh's vertices, z the elevation the point gets when it
     /// becomes a new vertex). A closed ring repeats its first point at the end.
     std::vector<std::vector<Point3>> polylines;
+    /// Optional, for speed: for each polyline, for each of its points, a triangle of the mesh
+    /// as given (a TinMesh triangle index) that holds the point or lies near it, where the
+    /// search for the point starts (TinLocator::clipToSurface finds them). Empty, or one list
+    /// per polyline, as long as it. Any triangles give a constrained Delaunay TIN with the
+    /// same vertices; the numbering of its triangles, and the diagonals of cocircular points,
+    /// may depend on them.
+    std::vector<std::vector<std::uint32_t>> polylineTriangles;
 };
 
 /// Inserts every constraint of `constraints` into `mesh`, a Delaunay triangulation (as
@@ -48,13 +55,14 @@ struct ConstraintSet {
 ///   crossed edge (docs/algorithms.md).
 /// - Zero-length segments are ignored.
 /// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
-/// non-finite coordinate, or a polyline point outside the convex hull of the mesh (clipping to
-/// the hull is not supported), and for more than 2^32 - 2 segments in all; `mesh` is consumed
-/// either way. std::logic_error only means a broken internal invariant (a bug).
-/// Complexity: O(n) once for the vertex-to-triangle map (and a bucket grid when there are
-/// polylines), then per segment the degree of its first vertex plus O(k) flips for the k edges
-/// it crosses (O(k^2) at worst), per crossing a point insertion, per polyline point a walk from
-/// the previous point (the first from its bucket). Sequential. docs/algorithms.md ("Constrained
+/// non-finite coordinate, polylineTriangles of the wrong shape or out of range, or a polyline point
+/// outside the convex hull of the mesh (clipping to the hull is not supported), and for more than
+/// 2^32 - 2 segments in all; `mesh` is consumed either way. std::logic_error only means a broken
+/// internal invariant (a bug). Complexity: O(n) once for the vertex-to-triangle map (and a bucket
+/// grid when there are polylines), then per segment the degree of its first vertex plus O(k) flips
+/// for the k edges it crosses (O(k^2) at worst), per crossing a point insertion, per polyline point
+/// a walk from its triangle in polylineTriangles, else from the previous point (the first from its
+/// bucket). Sequential. docs/algorithms.md ("Constrained
 /// Delaunay") describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 

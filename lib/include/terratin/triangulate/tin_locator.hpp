@@ -45,7 +45,35 @@ public:
     /// segment (NaN stays NaN). Parts of a single point are dropped.
     [[nodiscard]] std::vector<std::vector<Point3>> clipToHull(const std::vector<Point3>& polyline);
 
+    /// The TIN's elevation at `point`, linear in `triangle`, which holds it (as locate gives).
+    [[nodiscard]] double elevationIn(std::uint32_t triangle, Point2 point) const;
+
+    /// A part of a polyline inside the hull, with the triangle holding each of its points.
+    struct LocatedPolyline {
+        std::vector<Point3> points;
+        /// triangles[i] holds points[i] (inside or on its boundary), as locate gives it.
+        std::vector<std::uint32_t> triangles;
+    };
+
+    /// The parts of clipToHull(polyline), each point with its triangle, and a NaN z replaced by
+    /// the TIN's elevation there (elevationIn): each point is located once.
+    [[nodiscard]] std::vector<LocatedPolyline> clipToSurface(const std::vector<Point3>& polyline);
+
+    /// clipToSurface of every polyline, on up to `threads` threads (0: all hardware threads).
+    /// Each polyline's walks start afresh, so the result does not depend on `threads`, nor on
+    /// this locator's earlier queries.
+    [[nodiscard]] std::vector<std::vector<LocatedPolyline>>
+    clipToSurface(const std::vector<std::vector<Point3>>& polylines, unsigned threads) const;
+
 private:
+    /// A point of a clipped part and the triangle holding it.
+    struct LocatedPoint {
+        Point3 point;
+        std::uint32_t triangle = 0;
+    };
+    /// clipToHull's parts, with the triangle of each point.
+    [[nodiscard]] std::vector<LocatedPolyline> clipLocated(const std::vector<Point3>& polyline);
+
     /// The part [enter, exit] of the segment a + t (b - a), 0 <= t <= 1, on the inner side of
     /// every hull edge, in double: Cyrus and Beck's clipping against a convex polygon.
     struct Interval {
@@ -54,8 +82,8 @@ private:
     };
     [[nodiscard]] Interval hullInterval(const Point3& a, const Point3& b) const;
     /// The last point of the segment from `inside` towards `outside` that the exact test finds
-    /// inside the hull.
-    [[nodiscard]] Point3 cutPoint(const Point3& inside, const Point3& outside);
+    /// inside the hull, and its triangle.
+    [[nodiscard]] LocatedPoint cutPoint(const Point3& inside, const Point3& outside);
     /// A point inside the hull on the segment a-b, whose ends are both outside; nullopt when
     /// it misses the hull.
     [[nodiscard]] std::optional<Point3> pointInside(const Point3& a, const Point3& b);
@@ -73,7 +101,8 @@ private:
     const TinMesh* m_mesh;
     std::uint32_t m_last = 0;
     /// The walk's random choices (a fixed sequence: the same queries give the same answers).
-    std::uint64_t m_random = 0x9e3779b97f4a7c15ULL;
+    static constexpr std::uint64_t kWalkSeed = 0x9e3779b97f4a7c15ULL;
+    std::uint64_t m_random = kWalkSeed;
     /// A grid of buckets over the vertices' bounding box, each holding a triangle whose first
     /// corner lies in it or in a bucket near it: a walk starts a few triangles from its goal
     /// wherever the previous query was.
