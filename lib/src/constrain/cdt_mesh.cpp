@@ -261,27 +261,24 @@ void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
     }
 }
 
-void CdtMesh::flipAndRecord(std::size_t h, std::vector<Edge>& touched) {
-    const std::uint32_t a = from(h);
-    const std::uint32_t b = to(h);
-    const std::uint32_t c = from(previousHalfEdge(h));
-    const std::uint32_t d = from(previousHalfEdge(twin(h)));
+void CdtMesh::flipAndRecord(std::size_t h, std::vector<std::size_t>& touched) {
     const std::size_t t = h / 3;
     const std::size_t u = twin(h) / 3;
     flip(h);
-    // Triangle t is now (a, d, c), triangle u (d, b, c).
-    touched.insert(touched.end(), {Edge{d, c, 3 * t + 1}, Edge{a, d, 3 * t}, Edge{d, b, 3 * u},
-                                   Edge{b, c, 3 * u + 1}, Edge{c, a, 3 * t + 2}});
+    // Triangle t is now (a, d, c), triangle u (d, b, c); 3t + 1 and 3u + 2 are the diagonal.
+    touched.insert(touched.end(), {3 * t + 1, 3 * t, 3 * u, 3 * u + 1, 3 * t + 2});
 }
 
-void CdtMesh::restoreDelaunay(std::vector<Edge>& stack) {
+void CdtMesh::restoreDelaunay(std::vector<std::size_t>& stack) {
     while (!stack.empty()) {
-        const Edge edge = stack.back();
+        const std::size_t h = stack.back();
         stack.pop_back();
-        const std::size_t h = find(edge);
-        if (h == kNoHalfEdge || isConstrained(h) || twin(h) == kNoHalfEdge)
+        if (isConstrained(h))
             continue;
-        const std::uint32_t opposite = from(previousHalfEdge(twin(h)));
+        const std::size_t g = twin(h);
+        if (g == kNoHalfEdge)
+            continue;
+        const std::uint32_t opposite = from(previousHalfEdge(g));
         if (predicates::incircle(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
                                  xy(opposite)) > 0.0)
             flipAndRecord(h, stack);

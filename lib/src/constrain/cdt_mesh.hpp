@@ -101,12 +101,17 @@ public:
     };
     /// The half-edge of `edge` now (its hint when still valid, else findEdge), or kNoHalfEdge.
     [[nodiscard]] std::size_t find(const Edge& edge) const;
-    /// flip(h), adding the five edges of the two new triangles to `touched`.
-    void flipAndRecord(std::size_t h, std::vector<Edge>& touched);
-    /// Lawson's flips from the edges in `stack` (those no longer edges are skipped), spreading
-    /// to the neighbours of every flip, never across a constrained edge: afterwards every edge
-    /// reached is locally constrained Delaunay. Empties `stack`.
-    void restoreDelaunay(std::vector<Edge>& stack);
+    /// flip(h), adding the five half-edges of the two new triangles to `touched` (the new
+    /// diagonal first, as the half-edge of triangle h/3).
+    void flipAndRecord(std::size_t h, std::vector<std::size_t>& touched);
+    /// Lawson's flips from the half-edges in `stack`, spreading to the neighbours of every
+    /// flip, never across a constrained edge: afterwards the edges at those places, and every
+    /// edge a flip made or moved, are locally constrained Delaunay. A flip only rewrites its two
+    /// triangles and records all five of their edges, so an edge recorded earlier is either
+    /// still where it was recorded or recorded again: half-edge places need no check that they
+    /// still hold the edge meant (a place now holding another edge is checked, harmlessly).
+    /// Empties `stack`.
+    void restoreDelaunay(std::vector<std::size_t>& stack);
 
 private:
     /// Writes triangle `t` as (a, b, c) with no neighbours and no flags, and points the three

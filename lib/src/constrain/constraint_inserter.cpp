@@ -154,8 +154,10 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     m_chains.insertBetween(owners, u, v, *w);
     // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
     // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
-    std::vector<CdtMesh::Edge> unmarked{{c, d, kNoHalfEdge}};
-    m_mesh.restoreDelaunay(unmarked);
+    if (const std::size_t unmarked = m_mesh.findEdge(c, d); unmarked != kNoHalfEdge) {
+        std::vector<std::size_t> stack{unmarked};
+        m_mesh.restoreDelaunay(stack);
+    }
     // A stack: c -> d is restored first, then u -> v goes on through w.
     m_pieces.push_back({*w, v, owners});
     m_pieces.push_back({u, *w, owners});

@@ -49,8 +49,10 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw, Crosse
         }
         retriesInARow = 0;
         mesh.flipAndRecord(h, crossed.touched);
-        if (strictlySeparates(pu, pw, pc, pd))
-            queue.push_back(crossed.touched[crossed.touched.size() - 5]); // the new diagonal
+        if (strictlySeparates(pu, pw, pc, pd)) {
+            const std::size_t diagonal = crossed.touched[crossed.touched.size() - 5];
+            queue.push_back({mesh.from(diagonal), mesh.to(diagonal), diagonal});
+        }
     }
 }
 

@@ -39,7 +39,7 @@ struct CrossedEdges {
     std::uint32_t end = 0;
     /// Scratch space of flipSegmentIn, kept to spare an allocation per segment.
     std::vector<CdtMesh::Edge> queue;
-    std::vector<CdtMesh::Edge> touched;
+    std::vector<std::size_t> touched;
 };
 
 /// Walks from the triangle of `start` (IntoTriangle) towards v, filling `crossed`. Returns
