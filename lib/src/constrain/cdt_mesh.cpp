@@ -39,12 +39,22 @@ std::size_t CdtMesh::twin(std::size_t h) const {
     const std::int32_t neighbour = m_mesh.neighbours[h];
     if (neighbour < 0)
         return kNoHalfEdge;
-    const std::uint32_t end = to(h);
-    const std::size_t base = 3 * static_cast<std::size_t>(neighbour);
-    for (std::size_t j = 0; j < 3; ++j)
-        if (m_mesh.triangles[base + j] == end)
-            return base + j;
-    throw std::logic_error("CdtMesh: neighbour links are not mutual");
+    return 3 * static_cast<std::size_t>(neighbour) + cornerOf(neighbour, to(h));
+}
+
+// Selects rather than branches: which corner it is is a coin toss for the branch predictor.
+std::size_t CdtMesh::cornerOf(std::int32_t triangle, std::uint32_t v) const {
+    const std::uint32_t* corners = &m_mesh.triangles[3 * static_cast<std::size_t>(triangle)];
+    const std::size_t corner = corners[1] == v ? 1 : (corners[2] == v ? 2 : 0);
+    if (corners[corner] != v)
+        throw std::logic_error("CdtMesh: neighbour links are not mutual");
+    return corner;
+}
+
+void CdtMesh::relink(std::int32_t outer, std::uint32_t edgeStart, std::size_t triangle) {
+    if (outer >= 0)
+        m_mesh.neighbours[3 * static_cast<std::size_t>(outer) + cornerOf(outer, edgeStart)] =
+            static_cast<std::int32_t>(triangle);
 }
 
 void CdtMesh::setConstrained(std::size_t h, bool constrained) {
@@ -139,18 +149,25 @@ std::uint32_t CdtMesh::addVertex(const Point3& p, std::uint32_t source) {
     return static_cast<std::uint32_t>(v);
 }
 
-void CdtMesh::writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+void CdtMesh::writeCorners(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     if (m_written != nullptr) {
         if (t >= m_written->size())
             m_written->resize(t + 1, 0);
         (*m_written)[t] = 1;
     }
-    const std::uint32_t corners[3] = {a, b, c};
+    m_mesh.triangles[3 * t] = a;
+    m_mesh.triangles[3 * t + 1] = b;
+    m_mesh.triangles[3 * t + 2] = c;
+    m_vertexTriangle[a] = static_cast<std::uint32_t>(t);
+    m_vertexTriangle[b] = static_cast<std::uint32_t>(t);
+    m_vertexTriangle[c] = static_cast<std::uint32_t>(t);
+}
+
+void CdtMesh::writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    writeCorners(t, a, b, c);
     for (std::size_t i = 0; i < 3; ++i) {
-        m_mesh.triangles[3 * t + i] = corners[i];
         m_mesh.neighbours[3 * t + i] = kNoNeighbour;
         m_constrained[3 * t + i] = 0;
-        m_vertexTriangle[corners[i]] = static_cast<std::uint32_t>(t);
     }
 }
 
@@ -163,29 +180,37 @@ void CdtMesh::link(std::size_t h, std::size_t other) {
     m_mesh.neighbours[other] = static_cast<std::int32_t>(h / 3);
 }
 
-// Triangle (a, b, c) of h becomes (a, b, v), (b, c, v), (c, a, v).
+// Triangle (a, b, c) of h becomes (a, b, v), (b, c, v), (c, a, v). Its outer edges keep their
+// neighbours and flags; the neighbours across b-c and c-a, which now face the new triangles,
+// are pointed at them.
 void CdtMesh::splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck) {
     const std::size_t t = h / 3;
     const std::uint32_t a = m_mesh.triangles[3 * t];
     const std::uint32_t b = m_mesh.triangles[3 * t + 1];
     const std::uint32_t c = m_mesh.triangles[3 * t + 2];
-    const std::size_t outer[3] = {twin(3 * t), twin(3 * t + 1), twin(3 * t + 2)};
-    const bool flags[3] = {isConstrained(3 * t), isConstrained(3 * t + 1),
-                           isConstrained(3 * t + 2)};
+    const std::int32_t outer[3] = {m_mesh.neighbours[3 * t], m_mesh.neighbours[3 * t + 1],
+                                   m_mesh.neighbours[3 * t + 2]};
+    const std::uint8_t flags[3] = {m_constrained[3 * t], m_constrained[3 * t + 1],
+                                   m_constrained[3 * t + 2]};
     const std::size_t t1 = addTriangle();
     const std::size_t t2 = addTriangle();
-    writeTriangle(t, a, b, v);
-    writeTriangle(t1, b, c, v);
-    writeTriangle(t2, c, a, v);
     const std::size_t fans[3] = {t, t1, t2};
+    const std::uint32_t starts[3] = {a, b, c};
     for (std::size_t k = 0; k < 3; ++k) {
         const std::size_t fan = fans[k];
-        link(3 * fan, outer[k]);
-        setFlag(3 * fan, flags[k]);
-        // v -> start of this fan triangle is the twin of (its start) -> v in the previous one.
-        link(3 * fan + 2, 3 * fans[(k + 2) % 3] + 1);
+        // (start, next start, v): the outer edge, then v's edges shared with the next and the
+        // previous fan triangle.
+        writeCorners(fan, starts[k], starts[(k + 1) % 3], v);
+        m_mesh.neighbours[3 * fan] = outer[k];
+        m_mesh.neighbours[3 * fan + 1] = static_cast<std::int32_t>(fans[(k + 1) % 3]);
+        m_mesh.neighbours[3 * fan + 2] = static_cast<std::int32_t>(fans[(k + 2) % 3]);
+        m_constrained[3 * fan] = flags[k];
+        m_constrained[3 * fan + 1] = 0;
+        m_constrained[3 * fan + 2] = 0;
         toCheck.push_back(3 * fan);
     }
+    relink(outer[1], c, t1);
+    relink(outer[2], a, t2);
 }
 
 // Edge a -> b of h, in triangle (a, b, c), with d across: (a, v, c), (v, b, c) and, across,
@@ -255,16 +280,20 @@ void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
         // v inside the circle of the triangle across h makes their quadrilateral convex.
         if (predicates::incircle(xy(from(h)), xy(to(h)), xy(v), xy(opposite)) <= 0.0)
             continue;
-        flip(h);
+        flipAcross(h, g);
         toCheck.push_back(3 * (h / 3));
         toCheck.push_back(3 * (g / 3));
     }
 }
 
 void CdtMesh::flipAndRecord(std::size_t h, std::vector<std::size_t>& touched) {
+    flipAcrossAndRecord(h, twin(h), touched);
+}
+
+void CdtMesh::flipAcrossAndRecord(std::size_t h, std::size_t g, std::vector<std::size_t>& touched) {
     const std::size_t t = h / 3;
-    const std::size_t u = twin(h) / 3;
-    flip(h);
+    const std::size_t u = g / 3;
+    flipAcross(h, g);
     // Triangle t is now (a, d, c), triangle u (d, b, c); 3t + 1 and 3u + 2 are the diagonal.
     touched.insert(touched.end(), {3 * t + 1, 3 * t, 3 * u, 3 * u + 1, 3 * t + 2});
 }
@@ -281,38 +310,47 @@ void CdtMesh::restoreDelaunay(std::vector<std::size_t>& stack) {
         const std::uint32_t opposite = from(previousHalfEdge(g));
         if (predicates::incircle(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
                                  xy(opposite)) > 0.0)
-            flipAndRecord(h, stack);
+            flipAcrossAndRecord(h, g, stack);
     }
 }
 
 void CdtMesh::flip(std::size_t h) {
-    const std::size_t g = twin(h);
+    flipAcross(h, twin(h));
+}
+
+// Triangle t = (a, b, c) of h and u = (b, a, d) of its twin g become t = (a, d, c) and
+// u = (d, b, c). Edges c-a and d-b stay in their triangles; b-c moves from t to u and a-d
+// from u to t, so only their outer neighbours are pointed anew.
+void CdtMesh::flipAcross(std::size_t h, std::size_t g) {
     const std::size_t t = h / 3;
     const std::size_t u = g / 3;
     const std::uint32_t a = from(h);
     const std::uint32_t b = to(h);
     const std::uint32_t c = from(previousHalfEdge(h));
     const std::uint32_t d = from(previousHalfEdge(g));
-    const std::size_t outerBc = twin(nextHalfEdge(h));
-    const std::size_t outerCa = twin(previousHalfEdge(h));
-    const std::size_t outerAd = twin(nextHalfEdge(g));
-    const std::size_t outerDb = twin(previousHalfEdge(g));
-    const bool flagBc = isConstrained(nextHalfEdge(h));
-    const bool flagCa = isConstrained(previousHalfEdge(h));
-    const bool flagAd = isConstrained(nextHalfEdge(g));
-    const bool flagDb = isConstrained(previousHalfEdge(g));
+    const std::int32_t outerBc = m_mesh.neighbours[nextHalfEdge(h)];
+    const std::int32_t outerCa = m_mesh.neighbours[previousHalfEdge(h)];
+    const std::int32_t outerAd = m_mesh.neighbours[nextHalfEdge(g)];
+    const std::int32_t outerDb = m_mesh.neighbours[previousHalfEdge(g)];
+    const std::uint8_t flagBc = m_constrained[nextHalfEdge(h)];
+    const std::uint8_t flagCa = m_constrained[previousHalfEdge(h)];
+    const std::uint8_t flagAd = m_constrained[nextHalfEdge(g)];
+    const std::uint8_t flagDb = m_constrained[previousHalfEdge(g)];
 
-    writeTriangle(t, a, d, c);
-    writeTriangle(u, d, b, c);
-    link(3 * t, outerAd);
-    setFlag(3 * t, flagAd);
-    link(3 * t + 1, 3 * u + 2);
-    link(3 * t + 2, outerCa);
-    setFlag(3 * t + 2, flagCa);
-    link(3 * u, outerDb);
-    setFlag(3 * u, flagDb);
-    link(3 * u + 1, outerBc);
-    setFlag(3 * u + 1, flagBc);
+    writeCorners(t, a, d, c);
+    writeCorners(u, d, b, c);
+    const std::int32_t tNeighbours[3] = {outerAd, static_cast<std::int32_t>(u), outerCa};
+    const std::int32_t uNeighbours[3] = {outerDb, outerBc, static_cast<std::int32_t>(t)};
+    const std::uint8_t tFlags[3] = {flagAd, 0, flagCa};
+    const std::uint8_t uFlags[3] = {flagDb, flagBc, 0};
+    for (std::size_t i = 0; i < 3; ++i) {
+        m_mesh.neighbours[3 * t + i] = tNeighbours[i];
+        m_mesh.neighbours[3 * u + i] = uNeighbours[i];
+        m_constrained[3 * t + i] = tFlags[i];
+        m_constrained[3 * u + i] = uFlags[i];
+    }
+    relink(outerBc, c, u);
+    relink(outerAd, d, t);
 }
 
 } // namespace terratin::detail

@@ -114,6 +114,17 @@ public:
     void restoreDelaunay(std::vector<std::size_t>& stack);
 
 private:
+    /// The corner of `triangle` that is `v` (0, 1 or 2); std::logic_error when none is.
+    [[nodiscard]] std::size_t cornerOf(std::int32_t triangle, std::uint32_t v) const;
+    /// Points the half-edge of triangle `outer` that starts at `edgeStart` at `triangle`, its
+    /// new neighbour across that edge; nothing when `outer` is kNoNeighbour (the hull).
+    void relink(std::int32_t outer, std::uint32_t edgeStart, std::size_t triangle);
+    /// flip(h) where g is twin(h).
+    void flipAcross(std::size_t h, std::size_t g);
+    void flipAcrossAndRecord(std::size_t h, std::size_t g, std::vector<std::size_t>& touched);
+    /// Writes the corners of triangle `t` as (a, b, c) and points the three vertices at it;
+    /// neighbours and flags are the caller's to write.
+    void writeCorners(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c);
     /// Writes triangle `t` as (a, b, c) with no neighbours and no flags, and points the three
     /// vertices at it.
     void writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c);
