@@ -194,7 +194,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
     std::optional<PolygonSet> replaceAreas;
     std::vector<double> levels; // per replace polygon
     {
-        TinLocator locator(mesh); // the inputs' surface, before any point is left out
+        // The inputs' surface, before any point is left out.
+        TinLocator locator(mesh, options.triangulation.threads);
         if (build.replace) {
             replaceAreas.emplace(*build.replace);
             levels = replaceLevels(*build.replace, *replaceAreas, locator, mesh, options);

@@ -4,6 +4,7 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -21,22 +22,56 @@ Point3 along(const Point3& a, const Point3& b, double t) {
     return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
 }
 
+unsigned threadsToUse(unsigned threads) {
+    return threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
+}
+
+// The mesh's edges with no neighbour, in triangle order.
+std::vector<std::array<std::uint32_t, 2>> hullEdgesOf(const TinMesh& mesh, unsigned threads) {
+    const std::size_t count = mesh.triangleCount();
+    std::vector<std::vector<std::array<std::uint32_t, 2>>> perBlock(
+        detail::parallelForThreads(count, threads));
+    detail::parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t)
+            for (std::size_t i = 0; i < 3; ++i)
+                if (mesh.neighbours[3 * t + i] == kNoNeighbour)
+                    perBlock[block].push_back(
+                        {mesh.triangles[3 * t + i], mesh.triangles[3 * t + (i + 1) % 3]});
+    });
+    std::vector<std::array<std::uint32_t, 2>> edges;
+    for (const auto& block : perBlock)
+        edges.insert(edges.end(), block.begin(), block.end());
+    return edges;
+}
+
+// The vertices' bounding box, as (low, high). Precondition: at least one vertex.
+std::array<Point2, 2> boundsOf(const MeshArray<Point3>& vertices, unsigned threads) {
+    const Point2 first{vertices[0].x, vertices[0].y};
+    std::vector<std::array<Point2, 2>> perBlock(
+        detail::parallelForThreads(vertices.size(), threads), {first, first});
+    detail::parallelFor(
+        vertices.size(), threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+            auto& [low, high] = perBlock[block];
+            for (std::size_t v = begin; v < end; ++v) {
+                low = {std::min(low.x, vertices[v].x), std::min(low.y, vertices[v].y)};
+                high = {std::max(high.x, vertices[v].x), std::max(high.y, vertices[v].y)};
+            }
+        });
+    std::array<Point2, 2> bounds{first, first};
+    for (const auto& [low, high] : perBlock)
+        bounds = {Point2{std::min(bounds[0].x, low.x), std::min(bounds[0].y, low.y)},
+                  Point2{std::max(bounds[1].x, high.x), std::max(bounds[1].y, high.y)}};
+    return bounds;
+}
+
 } // namespace
 
-TinLocator::TinLocator(const TinMesh& mesh) : m_mesh(&mesh) {
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        for (std::size_t i = 0; i < 3; ++i)
-            if (mesh.neighbours[3 * t + i] == kNoNeighbour)
-                m_hullEdges.push_back(
-                    {mesh.triangles[3 * t + i], mesh.triangles[3 * t + (i + 1) % 3]});
+TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
+    threads = threadsToUse(threads);
+    m_hullEdges = hullEdgesOf(mesh, threads);
     if (mesh.vertexCount() == 0)
         return;
-    Point2 low{mesh.vertices[0].x, mesh.vertices[0].y};
-    Point2 high = low;
-    for (const Point3& v : mesh.vertices) {
-        low = {std::min(low.x, v.x), std::min(low.y, v.y)};
-        high = {std::max(high.x, v.x), std::max(high.y, v.y)};
-    }
+    const auto [low, high] = boundsOf(mesh.vertices, threads);
     // About kTrianglesPerBucket triangles per bucket: a walk from a bucket's triangle to any
     // point of the bucket crosses a few of them.
     constexpr double kTrianglesPerBucket = 16.0;
@@ -48,18 +83,35 @@ TinLocator::TinLocator(const TinMesh& mesh) : m_mesh(&mesh) {
     m_origin = low;
     m_columns = static_cast<std::size_t>((high.x - low.x) / m_bucketSize) + 1;
     m_rows = static_cast<std::size_t>((high.y - low.y) / m_bucketSize) + 1;
-    m_buckets.assign(m_columns * m_rows, kNoTriangle);
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const Point3& corner = mesh.vertices[mesh.triangles[3 * t]];
-        const auto column =
-            std::min(static_cast<std::size_t>((corner.x - low.x) / m_bucketSize), m_columns - 1);
-        const auto row =
-            std::min(static_cast<std::size_t>((corner.y - low.y) / m_bucketSize), m_rows - 1);
-        std::uint32_t& bucket = m_buckets[row * m_columns + column];
-        if (bucket == kNoTriangle)
-            bucket = static_cast<std::uint32_t>(t);
-    }
+    fillBuckets(threads);
     fillEmptyBuckets();
+}
+
+// Each bucket gets the first triangle, in index order, whose first corner lies in it: each
+// thread fills a grid from its own range of triangles, and the lowest range's wins.
+void TinLocator::fillBuckets(unsigned threads) {
+    const TinMesh& mesh = *m_mesh;
+    const std::size_t count = mesh.triangleCount();
+    std::vector<std::vector<std::uint32_t>> perBlock(detail::parallelForThreads(count, threads));
+    detail::parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        std::vector<std::uint32_t>& grid = perBlock[block];
+        grid.assign(m_columns * m_rows, kNoTriangle);
+        for (std::size_t t = begin; t < end; ++t) {
+            const Point3& corner = mesh.vertices[mesh.triangles[3 * t]];
+            const auto column = std::min(
+                static_cast<std::size_t>((corner.x - m_origin.x) / m_bucketSize), m_columns - 1);
+            const auto row = std::min(
+                static_cast<std::size_t>((corner.y - m_origin.y) / m_bucketSize), m_rows - 1);
+            std::uint32_t& bucket = grid[row * m_columns + column];
+            if (bucket == kNoTriangle)
+                bucket = static_cast<std::uint32_t>(t);
+        }
+    });
+    m_buckets = std::move(perBlock.front());
+    for (std::size_t block = 1; block < perBlock.size(); ++block)
+        for (std::size_t b = 0; b < m_buckets.size(); ++b)
+            if (m_buckets[b] == kNoTriangle)
+                m_buckets[b] = perBlock[block][b];
 }
 
 void TinLocator::fillEmptyBuckets() {

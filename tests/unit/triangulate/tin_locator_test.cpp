@@ -140,5 +140,27 @@ TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
     EXPECT_GT(located, 200U);
 }
 
+TEST(TinLocator, IsTheSameBuiltOnAnyThreads) {
+    // Enough triangles for the construction's loops to run on several threads.
+    const std::vector<Point3> points = test::generatePoints(test::Distribution::Uniform, 60000, 6);
+    const TinMesh mesh = triangulate(points).mesh;
+    std::mt19937_64 random(13);
+    std::uniform_real_distribution<double> coordinate(-0.2, 1.2);
+    std::vector<std::vector<Point3>> lines(100);
+    for (std::vector<Point3>& line : lines)
+        for (int i = 0; i < 6; ++i)
+            line.push_back({coordinate(random), coordinate(random), std::nan("")});
+    const auto one = TinLocator(mesh, 1).clipToSurface(lines, 1);
+    const auto four = TinLocator(mesh, 4).clipToSurface(lines, 1);
+    ASSERT_EQ(one.size(), four.size());
+    for (std::size_t k = 0; k < one.size(); ++k) {
+        ASSERT_EQ(one[k].size(), four[k].size());
+        for (std::size_t part = 0; part < one[k].size(); ++part) {
+            EXPECT_EQ(one[k][part].points, four[k][part].points);
+            EXPECT_EQ(one[k][part].triangles, four[k][part].triangles);
+        }
+    }
+}
+
 } // namespace
 } // namespace terratin

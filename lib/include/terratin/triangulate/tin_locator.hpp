@@ -21,7 +21,9 @@ namespace terratin {
 /// which must outlive it and stay unchanged.
 class TinLocator {
 public:
-    explicit TinLocator(const TinMesh& mesh);
+    /// Reads the mesh's hull edges and fills the bucket grid, on up to `threads` threads (0:
+    /// all hardware threads; the result is the same for any). O(n).
+    explicit TinLocator(const TinMesh& mesh, unsigned threads = 1);
 
     /// A triangle holding `point` (inside or on its boundary); nullopt when the point lies
     /// outside the convex hull.
@@ -95,6 +97,8 @@ private:
     /// Gives every empty bucket a triangle of a filled bucket near it.
     void fillEmptyBuckets();
 
+    /// Fills each bucket with the first triangle, in index order, whose first corner lies in it.
+    void fillBuckets(unsigned threads);
     /// A triangle near `point` to start a walk from: the bucket grid's.
     [[nodiscard]] std::uint32_t startNear(Point2 point) const;
 
