@@ -4,7 +4,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace terratin::detail {
@@ -13,8 +12,8 @@ class ConstraintOwners {
 public:
     using Owners = std::vector<std::uint32_t>;
 
-    /// Room for `edges` edges without rehashing.
-    void reserve(std::size_t edges) { m_first.reserve(edges); }
+    /// Room for `edges` edges without growing.
+    void reserve(std::size_t edges);
     /// Adds `owners` to the edge {a, b} (either order), each at most once.
     void add(std::uint32_t a, std::uint32_t b, const Owners& owners);
     /// Removes the edge {a, b} and returns its owners (empty when it had none).
@@ -24,6 +23,16 @@ private:
     static std::uint64_t key(std::uint32_t a, std::uint32_t b) {
         return a < b ? (std::uint64_t{a} << 32U) | b : (std::uint64_t{b} << 32U) | a;
     }
+    // The edges are an open-addressing table with linear probing (an edge per insertion and
+    // one lookup per split: a node-based map spent more time allocating than looking up).
+    // kEmptyKey cannot be an edge's key, whose first half is the smaller vertex.
+    static constexpr std::uint64_t kEmptyKey = ~std::uint64_t{0};
+    [[nodiscard]] std::size_t home(std::uint64_t edge) const;
+    /// The slot holding `edge`, or the empty slot where it would go.
+    [[nodiscard]] std::size_t slotOf(std::uint64_t edge) const;
+    void rehash(std::size_t slots);
+    void erase(std::size_t slot);
+
     // Almost every edge has one owner: each edge's owners are a list threaded through one pool
     // rather than a vector of its own (an allocation per constrained edge).
     struct Node {
@@ -31,7 +40,10 @@ private:
         std::uint32_t next;
     };
     static constexpr std::uint32_t kEnd = 0xffffffffU;
-    std::unordered_map<std::uint64_t, std::uint32_t> m_first;
+    std::vector<std::uint64_t> m_keys;  // kEmptyKey where free; a power of two long
+    std::vector<std::uint32_t> m_first; // the first node of each slot's edge
+    std::size_t m_edges = 0;
+    unsigned m_shift = 64; // 64 - log2(slots), for Fibonacci hashing
     std::vector<Node> m_nodes;
 };
 
