@@ -143,6 +143,8 @@ private:
     std::vector<std::uint32_t> m_vertexTriangle;
     std::uint64_t m_walkRandom = 0x9e3779b97f4a7c15ULL;
     std::vector<std::uint8_t>* m_written = nullptr;
+    /// insertPoint's stack of edges to legalise, kept to spare an allocation per point.
+    std::vector<std::size_t> m_toCheck;
 };
 
 template <class Visit> void CdtMesh::forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const {
@@ -178,7 +180,7 @@ template <class OnSplit>
 std::uint32_t CdtMesh::insertPoint(const Point3& p, std::uint32_t source, const MeshLocation& where,
                                    OnSplit&& onSplit) {
     const std::uint32_t v = addVertex(p, source);
-    std::vector<std::size_t> toCheck;
+    std::vector<std::size_t>& toCheck = m_toCheck; // empty between insertions
     if (where.kind == MeshLocation::Kind::OnEdge) {
         const std::uint32_t a = from(where.halfEdge);
         const std::uint32_t b = to(where.halfEdge);
