@@ -11,6 +11,9 @@ ratio measures the triangulation. Run from the source tree after the release bui
     /usr/bin/python3 tools/bench/breaklines_bench.py build/release/tools/terratin \\
         ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif
 
+With --baseline OTHER_TERRATIN (a build of another commit), each round runs both binaries in
+turn, so that a change is measured against its baseline under the same load.
+
 docs/benchmarks.md holds the measurement, with its date, commit and machine.
 """
 
@@ -75,6 +78,7 @@ def main():
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--options", default="", help="more build options, e.g. '--max-error 1'")
+    parser.add_argument("--baseline", help="another terratin binary, run in turn with the first")
     arguments = parser.parse_args()
 
     with tempfile.TemporaryDirectory() as work:
@@ -83,24 +87,30 @@ def main():
         output = Path(work) / "tin.ply"
         extra = arguments.options.split()
         sides = {"plain": extra, "breaklines": [*extra, "--breaklines", str(network)]}
-        seconds = {side: {"total": [], "triangulate": []} for side in sides}
+        binaries = [arguments.terratin] + ([arguments.baseline] if arguments.baseline else [])
+        seconds = {(binary, side): {"total": [], "triangulate": []}
+                   for binary in binaries for side in sides}
         for round_number in range(1, arguments.rounds + 1):
-            for side, options in sides.items():
-                report = run(arguments.terratin, arguments.dem, output, options)
-                seconds[side]["total"].append(report["timings"]["total"])
-                seconds[side]["triangulate"].append(report["timings"]["triangulate"])
-                if side == "breaklines" and round_number == 1:
-                    constraints = report["constraints"]
-                    print(f"breaklines: {constraints}, vertices {report['counts']['vertices']},"
-                          f" triangles {report['counts']['triangles']}")
+            for binary in binaries:
+                for side, options in sides.items():
+                    report = run(binary, arguments.dem, output, options)
+                    seconds[binary, side]["total"].append(report["timings"]["total"])
+                    seconds[binary, side]["triangulate"].append(report["timings"]["triangulate"])
+                    if side == "breaklines" and round_number == 1:
+                        constraints = report["constraints"]
+                        print(f"{binary}: breaklines: {constraints}, vertices "
+                              f"{report['counts']['vertices']}, triangles "
+                              f"{report['counts']['triangles']}")
         print(f"{arguments.lines} lines x {arguments.segments} segments, "
               f"options '{arguments.options}', medians of {arguments.rounds} interleaved rounds:")
-        print("| phase | without s | with breaklines s | with / without |")
-        print("|---|---|---|---|")
-        for phase in ("triangulate", "total"):
-            plain = statistics.median(seconds["plain"][phase])
-            constrained = statistics.median(seconds["breaklines"][phase])
-            print(f"| {phase} | {plain:.3f} | {constrained:.3f} | {constrained / plain:.2f} |")
+        print("| binary | phase | without s | with breaklines s | with / without |")
+        print("|---|---|---|---|---|")
+        for binary in binaries:
+            for phase in ("triangulate", "total"):
+                plain = statistics.median(seconds[binary, "plain"][phase])
+                constrained = statistics.median(seconds[binary, "breaklines"][phase])
+                print(f"| {binary} | {phase} | {plain:.3f} | {constrained:.3f} "
+                      f"| {constrained / plain:.2f} |")
 
 
 if __name__ == "__main__":
