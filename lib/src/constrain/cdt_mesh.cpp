@@ -287,10 +287,10 @@ void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
 }
 
 void CdtMesh::flipAndRecord(std::size_t h, std::vector<std::size_t>& touched) {
-    flipAcrossAndRecord(h, twin(h), touched);
+    flipAndRecord(h, twin(h), touched);
 }
 
-void CdtMesh::flipAcrossAndRecord(std::size_t h, std::size_t g, std::vector<std::size_t>& touched) {
+void CdtMesh::flipAndRecord(std::size_t h, std::size_t g, std::vector<std::size_t>& touched) {
     const std::size_t t = h / 3;
     const std::size_t u = g / 3;
     flipAcross(h, g);
@@ -310,7 +310,7 @@ void CdtMesh::restoreDelaunay(std::vector<std::size_t>& stack) {
         const std::uint32_t opposite = from(previousHalfEdge(g));
         if (predicates::incircle(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
                                  xy(opposite)) > 0.0)
-            flipAcrossAndRecord(h, g, stack);
+            flipAndRecord(h, g, stack);
     }
 }
 

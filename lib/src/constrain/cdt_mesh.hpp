@@ -104,6 +104,8 @@ public:
     /// flip(h), adding the five half-edges of the two new triangles to `touched` (the new
     /// diagonal first, as the half-edge of triangle h/3).
     void flipAndRecord(std::size_t h, std::vector<std::size_t>& touched);
+    /// flipAndRecord(h) where g is twin(h).
+    void flipAndRecord(std::size_t h, std::size_t g, std::vector<std::size_t>& touched);
     /// Lawson's flips from the half-edges in `stack`, spreading to the neighbours of every
     /// flip, never across a constrained edge: afterwards the edges at those places, and every
     /// edge a flip made or moved, are locally constrained Delaunay. A flip only rewrites its two
@@ -121,7 +123,6 @@ private:
     void relink(std::int32_t outer, std::uint32_t edgeStart, std::size_t triangle);
     /// flip(h) where g is twin(h).
     void flipAcross(std::size_t h, std::size_t g);
-    void flipAcrossAndRecord(std::size_t h, std::size_t g, std::vector<std::size_t>& touched);
     /// Writes the corners of triangle `t` as (a, b, c) and points the three vertices at it;
     /// neighbours and flags are the caller's to write.
     void writeCorners(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c);

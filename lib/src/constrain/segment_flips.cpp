@@ -35,10 +35,11 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw, Crosse
     while (head < queue.size()) {
         const Edge edge = queue[head++];
         const std::size_t h = mesh.find(edge);
-        if (h == kNoHalfEdge || mesh.twin(h) == kNoHalfEdge)
+        const std::size_t g = h == kNoHalfEdge ? kNoHalfEdge : mesh.twin(h);
+        if (g == kNoHalfEdge)
             throw std::logic_error("insertConstraints: a crossed edge vanished");
         const std::uint32_t c = mesh.from(previousHalfEdge(h));
-        const std::uint32_t d = mesh.from(previousHalfEdge(mesh.twin(h)));
+        const std::uint32_t d = mesh.from(previousHalfEdge(g));
         const Point2 pc = mesh.xy(c);
         const Point2 pd = mesh.xy(d);
         if (!strictlySeparates(pc, pd, mesh.xy(edge.a), mesh.xy(edge.b))) {
@@ -48,7 +49,7 @@ void flipCrossingsAway(CdtMesh& mesh, const Point2& pu, const Point2& pw, Crosse
             continue;
         }
         retriesInARow = 0;
-        mesh.flipAndRecord(h, crossed.touched);
+        mesh.flipAndRecord(h, g, crossed.touched);
         if (strictlySeparates(pu, pw, pc, pd)) {
             const std::size_t diagonal = crossed.touched[crossed.touched.size() - 5];
             queue.push_back({mesh.from(diagonal), mesh.to(diagonal), diagonal});
