@@ -16,7 +16,7 @@ constexpr std::size_t kMinimumSlots = 64;
 
 void ConstraintOwners::reserve(std::size_t edges) {
     const std::size_t slots = std::bit_ceil(std::max(kMinimumSlots, kSlotsPerEdge * edges));
-    if (slots > m_keys.size())
+    if (slots > m_slots.size())
         rehash(slots);
 }
 
@@ -26,58 +26,50 @@ std::size_t ConstraintOwners::home(std::uint64_t edge) const {
 }
 
 std::size_t ConstraintOwners::slotOf(std::uint64_t edge) const {
-    const std::size_t mask = m_keys.size() - 1;
+    const std::size_t mask = m_slots.size() - 1;
     std::size_t slot = home(edge);
-    while (m_keys[slot] != edge && m_keys[slot] != kEmptyKey)
+    while (m_slots[slot].key != edge && m_slots[slot].key != kEmptyKey)
         slot = (slot + 1) & mask;
     return slot;
 }
 
 void ConstraintOwners::rehash(std::size_t slots) {
-    std::vector<std::uint64_t> keys(slots, kEmptyKey);
-    std::vector<std::uint32_t> first(slots, kEnd);
-    keys.swap(m_keys);
-    first.swap(m_first);
+    std::vector<Slot> old(slots);
+    old.swap(m_slots);
     m_shift = 64U - static_cast<unsigned>(std::countr_zero(slots));
-    for (std::size_t old = 0; old < keys.size(); ++old)
-        if (keys[old] != kEmptyKey) {
-            const std::size_t slot = slotOf(keys[old]);
-            m_keys[slot] = keys[old];
-            m_first[slot] = first[old];
-        }
+    for (const Slot& entry : old)
+        if (entry.key != kEmptyKey)
+            m_slots[slotOf(entry.key)] = entry;
 }
 
 // Backward-shift deletion: the entries after the hole that could live in it move up, so that
 // every probe still reaches its key without tombstones.
 void ConstraintOwners::erase(std::size_t slot) {
-    const std::size_t mask = m_keys.size() - 1;
+    const std::size_t mask = m_slots.size() - 1;
     std::size_t hole = slot;
-    for (std::size_t next = (hole + 1) & mask; m_keys[next] != kEmptyKey;
+    for (std::size_t next = (hole + 1) & mask; m_slots[next].key != kEmptyKey;
          next = (next + 1) & mask) {
-        const std::size_t wanted = home(m_keys[next]);
+        const std::size_t wanted = home(m_slots[next].key);
         // It may move to the hole when the hole lies on its probe path: from wanted to next.
         if (((next - wanted) & mask) >= ((next - hole) & mask)) {
-            m_keys[hole] = m_keys[next];
-            m_first[hole] = m_first[next];
+            m_slots[hole] = m_slots[next];
             hole = next;
         }
     }
-    m_keys[hole] = kEmptyKey;
-    m_first[hole] = kEnd;
+    m_slots[hole] = Slot{};
     --m_edges;
 }
 
 void ConstraintOwners::add(std::uint32_t a, std::uint32_t b, const Owners& owners) {
-    if (kSlotsPerEdge * (m_edges + 1) > m_keys.size())
-        rehash(std::max(kMinimumSlots, 2 * m_keys.size()));
+    if (kSlotsPerEdge * (m_edges + 1) > m_slots.size())
+        rehash(std::max(kMinimumSlots, 2 * m_slots.size()));
     const std::uint64_t edge = key(a, b);
-    const std::size_t slot = slotOf(edge);
-    if (m_keys[slot] == kEmptyKey) {
-        m_keys[slot] = edge;
-        m_first[slot] = kEnd;
+    Slot& slot = m_slots[slotOf(edge)];
+    if (slot.key == kEmptyKey) {
+        slot = {edge, kEnd};
         ++m_edges;
     }
-    std::uint32_t& first = m_first[slot];
+    std::uint32_t& first = slot.first;
     for (const std::uint32_t owner : owners) {
         bool known = false;
         for (std::uint32_t n = first; n != kEnd && !known; n = m_nodes[n].next)
@@ -93,13 +85,13 @@ void ConstraintOwners::add(std::uint32_t a, std::uint32_t b, const Owners& owner
 
 // The taken nodes stay in the pool unused: edges are taken only where they are split.
 ConstraintOwners::Owners ConstraintOwners::take(std::uint32_t a, std::uint32_t b) {
-    if (m_keys.empty())
+    if (m_slots.empty())
         return {};
     const std::size_t slot = slotOf(key(a, b));
-    if (m_keys[slot] == kEmptyKey)
+    if (m_slots[slot].key == kEmptyKey)
         return {};
     Owners owners;
-    for (std::uint32_t n = m_first[slot]; n != kEnd; n = m_nodes[n].next)
+    for (std::uint32_t n = m_slots[slot].first; n != kEnd; n = m_nodes[n].next)
         owners.push_back(m_nodes[n].owner);
     erase(slot);
     return owners;

@@ -27,12 +27,6 @@ private:
     // one lookup per split: a node-based map spent more time allocating than looking up).
     // kEmptyKey cannot be an edge's key, whose first half is the smaller vertex.
     static constexpr std::uint64_t kEmptyKey = ~std::uint64_t{0};
-    [[nodiscard]] std::size_t home(std::uint64_t edge) const;
-    /// The slot holding `edge`, or the empty slot where it would go.
-    [[nodiscard]] std::size_t slotOf(std::uint64_t edge) const;
-    void rehash(std::size_t slots);
-    void erase(std::size_t slot);
-
     // Almost every edge has one owner: each edge's owners are a list threaded through one pool
     // rather than a vector of its own (an allocation per constrained edge).
     struct Node {
@@ -40,8 +34,20 @@ private:
         std::uint32_t next;
     };
     static constexpr std::uint32_t kEnd = 0xffffffffU;
-    std::vector<std::uint64_t> m_keys;  // kEmptyKey where free; a power of two long
-    std::vector<std::uint32_t> m_first; // the first node of each slot's edge
+
+    [[nodiscard]] std::size_t home(std::uint64_t edge) const;
+    /// The slot holding `edge`, or the empty slot where it would go.
+    [[nodiscard]] std::size_t slotOf(std::uint64_t edge) const;
+    void rehash(std::size_t slots);
+    void erase(std::size_t slot);
+
+    /// An edge's key (kEmptyKey where free) and the first node of its owners, side by side: a
+    /// lookup is one cache miss.
+    struct Slot {
+        std::uint64_t key = kEmptyKey;
+        std::uint32_t first = kEnd;
+    };
+    std::vector<Slot> m_slots; // a power of two long
     std::size_t m_edges = 0;
     unsigned m_shift = 64; // 64 - log2(slots), for Fibonacci hashing
     std::vector<Node> m_nodes;
