@@ -22,11 +22,22 @@ constexpr std::size_t kMaxVertices = std::numeric_limits<std::uint32_t>::max() -
 
 CdtMesh::CdtMesh(TinMesh mesh)
     : m_mesh(std::move(mesh)), m_constrained(m_mesh.triangles.size(), 0),
-      m_vertexTriangle(m_mesh.vertices.size(), 0) {
+      m_vertexTriangle(m_mesh.vertices.size(), kUnknownTriangle) {}
+
+// Sequential, in triangle order: the same map whatever happened before.
+void CdtMesh::completeVertexMap() const {
     const std::size_t triangleCount = m_mesh.triangleCount();
     for (std::size_t t = 0; t < triangleCount; ++t)
-        for (std::size_t i = 0; i < 3; ++i)
-            m_vertexTriangle[m_mesh.triangles[3 * t + i]] = static_cast<std::uint32_t>(t);
+        for (std::size_t i = 0; i < 3; ++i) {
+            std::uint32_t& triangle = m_vertexTriangle[m_mesh.triangles[3 * t + i]];
+            if (triangle == kUnknownTriangle)
+                triangle = static_cast<std::uint32_t>(t);
+        }
+}
+
+void CdtMesh::rememberTriangleOf(std::size_t h) {
+    m_vertexTriangle[from(h)] = static_cast<std::uint32_t>(h / 3);
+    m_vertexTriangle[to(h)] = static_cast<std::uint32_t>(h / 3);
 }
 
 CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained) : CdtMesh(std::move(mesh)) {
@@ -65,6 +76,8 @@ void CdtMesh::setConstrained(std::size_t h, bool constrained) {
 }
 
 std::size_t CdtMesh::halfEdgeLeaving(std::uint32_t v) const {
+    if (m_vertexTriangle[v] == kUnknownTriangle)
+        completeVertexMap();
     const std::size_t base = 3 * static_cast<std::size_t>(m_vertexTriangle[v]);
     for (std::size_t i = 0; i < 3; ++i)
         if (m_mesh.triangles[base + i] == v)
@@ -119,8 +132,10 @@ MeshLocation CdtMesh::locate(const Point2& p, std::size_t startTriangle) {
     MeshLocation where{MeshLocation::Kind::InTriangle, 3 * t, 0};
     for (std::size_t i = 0; i < 3; ++i) {
         const std::size_t h = 3 * t + i;
-        if (xy(from(h)) == p)
+        if (xy(from(h)) == p) {
+            m_vertexTriangle[from(h)] = static_cast<std::uint32_t>(t);
             return {MeshLocation::Kind::OnVertex, h, from(h)};
+        }
         if (predicates::orient2d(xy(from(h)), xy(to(h)), p) == 0.0)
             where = {MeshLocation::Kind::OnEdge, h, 0};
     }
@@ -145,7 +160,7 @@ std::uint32_t CdtMesh::addVertex(const Point3& p, std::uint32_t source) {
         throw InvalidInputError("insertConstraints: too many vertices");
     m_mesh.vertices.push_back(p);
     m_mesh.sourceIndex.push_back(source);
-    m_vertexTriangle.push_back(0);
+    m_vertexTriangle.push_back(kUnknownTriangle);
     return static_cast<std::uint32_t>(v);
 }
 

@@ -38,7 +38,7 @@ struct MeshLocation {
 
 class CdtMesh {
 public:
-    /// Takes the arrays of a valid triangulation; builds the vertex-to-triangle map (O(n)).
+    /// Takes the arrays of a valid triangulation.
     explicit CdtMesh(TinMesh mesh);
     /// The same, with the constrained flags of a constrained triangulation (one per half-edge).
     CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained);
@@ -65,8 +65,12 @@ public:
     [[nodiscard]] bool isConstrained(std::size_t h) const { return m_constrained[h] != 0; }
     /// Sets the flag of `h` and of its twin.
     void setConstrained(std::size_t h, bool constrained);
-    /// A half-edge leaving `v`.
+    /// A half-edge leaving `v`. O(1), except that the first vertex asked for whose triangle
+    /// is not known yet (neither written since nor found by locate or rememberTriangleOf)
+    /// completes the vertex-to-triangle map, O(n) once.
     [[nodiscard]] std::size_t halfEdgeLeaving(std::uint32_t v) const;
+    /// Notes the triangle of `h` as one holding both its vertices.
+    void rememberTriangleOf(std::size_t h);
 
     /// Every half-edge leaving `v`, counter-clockwise, then (when `v` is on the hull) the
     /// hull half-edge arriving at `v`; `visit(h)` returns true to stop. O(degree).
@@ -141,7 +145,12 @@ private:
 
     TinMesh m_mesh;
     std::vector<std::uint8_t> m_constrained;
-    std::vector<std::uint32_t> m_vertexTriangle;
+    /// A triangle holding each vertex, kUnknownTriangle until one is written or found: the
+    /// constraints touch few of the vertices, so the map is completed (completeVertexMap) only
+    /// when an unknown one is asked for, as index segments and polylines without triangles do.
+    static constexpr std::uint32_t kUnknownTriangle = 0xffffffffU;
+    mutable std::vector<std::uint32_t> m_vertexTriangle;
+    void completeVertexMap() const;
     std::uint64_t m_walkRandom = 0x9e3779b97f4a7c15ULL;
     std::vector<std::uint8_t>* m_written = nullptr;
     /// insertPoint's stack of edges to legalise, kept to spare an allocation per point.

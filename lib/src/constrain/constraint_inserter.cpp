@@ -77,6 +77,7 @@ void ConstraintInserter::insertPiece(const Piece& piece) {
     while (u != v) {
         const SegmentStart start = findSegmentStart(m_mesh, u, v);
         if (start.kind == SegmentStart::Kind::AlongEdge) {
+            m_mesh.rememberTriangleOf(start.halfEdge); // the next piece starts at its vertex
             markConstrained(start.halfEdge, piece.owners);
             m_chains.insertBetween(piece.owners, u, v, start.vertex);
             u = start.vertex;

@@ -506,6 +506,31 @@ TEST(InsertConstraints, PolylineTrianglesGiveTheSameTin_AsTheSearchWithout) {
     EXPECT_EQ(triangleSet(withTriangles.mesh), triangleSet(without.mesh));
 }
 
+// Polylines on a grid's vertices and along its lines, with their triangles: the segments run
+// along edges through vertices that nothing before touched (the vertex-to-triangle map is
+// completed only on demand).
+TEST(InsertConstraints, GridLinePolylinesWithTriangles_AlongEdgesThroughUntouchedVertices) {
+    const int n = 31;
+    const TinMesh mesh = delaunayOf(grid(n));
+    std::vector<std::vector<Point3>> lines;
+    for (int k = 1; k < n - 1; k += 4) {
+        lines.push_back({{0, double(k), 0}, {double(n - 1), double(k), 0}});
+        lines.push_back({{double(k), 0.5, 0}, {double(k), 20, 0}, {double(n - 1), 29.5, 0}});
+    }
+    ConstraintSet constraints;
+    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 1))
+        for (TinLocator::LocatedPolyline& part : parts) {
+            constraints.polylines.push_back(std::move(part.points));
+            constraints.polylineTriangles.push_back(std::move(part.triangles));
+        }
+    const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
+    EXPECT_EQ(tin.chains[0].size(), std::size_t(n)); // every vertex of the row
+    EXPECT_GT(tin.intersections, 0U);
+    ConstraintSet searched = constraints;
+    searched.polylineTriangles.clear();
+    EXPECT_EQ(constrainAndCheck(mesh, searched).chains, tin.chains);
+}
+
 TEST(InsertConstraints, IsConstrainedDelaunay_WhenPolylineTrianglesAreFarFromTheirPoints) {
     const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Grid, 3000, 3));
     ConstraintSet constraints = walksWithTriangles(mesh, 20, 30, 8);
