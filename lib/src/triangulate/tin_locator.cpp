@@ -338,9 +338,9 @@ std::vector<std::vector<TinLocator::LocatedPolyline>>
 TinLocator::clipToSurface(const std::vector<std::vector<Point3>>& polylines,
                           unsigned threads) const {
     std::vector<std::vector<LocatedPolyline>> located(polylines.size());
-    const unsigned threadCount =
-        threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
-    // A few polylines per chunk: they differ in length, and each costs microseconds.
+    const unsigned threadCount = threadsToUse(threads);
+    // A few polylines per chunk: their lengths differ, so the threads take chunks in turn, and
+    // a chunk of one would have them meet at the counter for every polyline.
     constexpr std::size_t kPolylinesPerChunk = 16;
     const std::size_t chunks = (polylines.size() + kPolylinesPerChunk - 1) / kPolylinesPerChunk;
     std::atomic<std::size_t> nextChunk{0};
