@@ -55,15 +55,17 @@ struct ConstraintSet {
 ///   crossed edge (docs/algorithms.md).
 /// - Zero-length segments are ignored.
 /// Throws InvalidInputError, naming the constraint, for a vertex index out of range, a
-/// non-finite coordinate, polylineTriangles of the wrong shape or out of range, or a polyline point
-/// outside the convex hull of the mesh (clipping to the hull is not supported), and for more than
-/// 2^32 - 2 segments in all; `mesh` is consumed either way. std::logic_error only means a broken
-/// internal invariant (a bug). Complexity: O(n) once for the vertex-to-triangle map (and a bucket
-/// grid when there are polylines), then per segment the degree of its first vertex plus O(k) flips
-/// for the k edges it crosses (O(k^2) at worst), per crossing a point insertion, per polyline point
-/// a walk from its triangle in polylineTriangles, else from the previous point (the first from its
-/// bucket). Sequential. docs/algorithms.md ("Constrained
-/// Delaunay") describes the method.
+/// non-finite coordinate, polylineTriangles of the wrong shape or out of range, or a polyline
+/// point outside the convex hull of the mesh (clipping to the hull is not supported), and for
+/// more than 2^32 - 2 segments in all; `mesh` is consumed either way. std::logic_error only
+/// means a broken internal invariant (a bug).
+/// Complexity: an O(n) fill of the flags and of the vertex-to-triangle map; per segment the
+/// degree of its first vertex plus O(k) flips for the k edges it crosses (O(k^2) at worst), per
+/// crossing a point insertion, per polyline point a walk from its triangle in polylineTriangles,
+/// else from the previous point (the first from a bucket grid, O(n) once); a pass over the
+/// triangles, O(n) once, to complete the vertex-to-triangle map when a segment starts at a vertex
+/// nothing before reached (index segments, polylines without triangles). Sequential.
+/// docs/algorithms.md ("Constrained Delaunay") describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 
 /// Inserts `points` into `tin` (a constrained Delaunay TIN as insertConstraints makes it) as new
