@@ -26,10 +26,18 @@ void insertIntoChains(std::vector<std::vector<std::uint32_t>>& chains, std::uint
 
 std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
                            std::span<const std::uint32_t> sources,
-                           std::vector<std::uint8_t>* changedTriangles) {
-    if (points.size() != sources.size())
-        throw InvalidInputError("insertVertices: " + std::to_string(points.size()) +
-                                " points and " + std::to_string(sources.size()) + " sources");
+                           std::vector<std::uint8_t>* changedTriangles,
+                           std::span<const std::uint32_t> near) {
+    if (points.size() != sources.size() || (!near.empty() && near.size() != points.size()))
+        throw InvalidInputError("insertVertices: " + std::to_string(points.size()) + " points, " +
+                                std::to_string(sources.size()) + " sources and " +
+                                std::to_string(near.size()) + " triangles to start from");
+    const std::size_t triangles = tin.mesh.triangleCount();
+    for (const std::uint32_t t : near)
+        if (t >= triangles)
+            throw InvalidInputError("insertVertices: triangle " + std::to_string(t) +
+                                    " to start from is not one of the " +
+                                    std::to_string(triangles));
     if (changedTriangles != nullptr)
         changedTriangles->assign(tin.mesh.triangleCount(), 0);
     if (points.empty())
@@ -44,7 +52,8 @@ std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 throw InvalidInputError("insertVertices: point " + std::to_string(i) +
                                         " is not finite");
-            const detail::MeshLocation where = mesh.locate({p.x, p.y}, hint);
+            const detail::MeshLocation where =
+                mesh.locate({p.x, p.y}, near.empty() ? hint : near[i]);
             if (where.kind == detail::MeshLocation::Kind::OutsideHull)
                 throw InvalidInputError("insertVertices: point " + std::to_string(i) +
                                         " lies outside the convex hull of the mesh");

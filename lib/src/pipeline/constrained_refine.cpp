@@ -85,10 +85,12 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
     return sets;
 }
 
-/// A triangle's worst cell: error < 0 for none over the bound.
+/// A triangle's cell to insert: the worst over the bound (error infinite: a valid cell in a
+/// triangle over an open hole).
 struct Candidate {
-    double error = -1.0;
+    double error = 0.0;
     std::size_t cell = 0;
+    std::uint32_t triangle = 0;
 };
 
 /// One check of the whole constrained TIN.
@@ -99,7 +101,7 @@ struct Measure {
     std::size_t uncovered = 0;
     std::vector<std::uint8_t> drop;
     std::size_t holeTriangles = 0;
-    std::vector<Candidate> worst; // per triangle
+    std::vector<Candidate> candidates; // at most one per triangle
 };
 
 constexpr std::uint32_t kNoTriangle = 0xffffffffU;
@@ -144,7 +146,7 @@ public:
             m_replace ? regionsWhere(tin, [&](Point2 p) { return m_replace->holds(p); })
                       : std::vector<std::uint8_t>(triangles, 0);
         const std::vector<std::uint8_t> overHole = trianglesOverHoles();
-        measure.worst.assign(triangles, Candidate{});
+        m_candidateOf.resize(triangles, kNoTriangle);
         if (everyCell) {
             for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
                 tally(i, overHole, flat, measure);
@@ -152,6 +154,8 @@ public:
             for (const std::size_t i : m_relocated)
                 tally(i, overHole, flat, measure);
         }
+        for (const Candidate& candidate : measure.candidates)
+            m_candidateOf[candidate.triangle] = kNoTriangle;
         for (std::size_t t = 0; t < triangles; ++t)
             if (overHole[t] != 0 && measure.drop[t] == 0) {
                 measure.drop[t] = 1;
@@ -217,7 +221,7 @@ private:
     /// Counts measured cell i, and makes it its triangle's candidate when it is the worst over
     /// the bound, or lies in a triangle over an open hole.
     void tally(std::size_t i, const std::vector<std::uint8_t>& overHole,
-               const std::vector<std::uint8_t>& flat, Measure& measure) const {
+               const std::vector<std::uint8_t>& flat, Measure& measure) {
         std::uint32_t t = m_cellTriangle[i];
         if (t == kNoTriangle) {
             ++measure.uncovered;
@@ -240,15 +244,26 @@ private:
         if (overHole[t] != 0 && !corner) {
             // As the refiner does: a hole's triangle is split until it covers no valid cell.
             ++measure.uncovered;
-            measure.worst[t] = {std::numeric_limits<double>::infinity(), cell};
+            propose({std::numeric_limits<double>::infinity(), cell, t}, measure);
             return;
         }
         const double error = m_cellError[i];
         ++measure.covered;
         measure.sumSquares += error * error;
         measure.maxError = std::max(measure.maxError, error);
-        if (m_maxError && error > *m_maxError && !corner && error > measure.worst[t].error)
-            measure.worst[t] = {error, cell};
+        if (m_maxError && error > *m_maxError && !corner)
+            propose({error, cell, t}, measure);
+    }
+
+    /// `candidate` becomes its triangle's candidate unless that has a worse one.
+    void propose(const Candidate& candidate, Measure& measure) {
+        std::uint32_t& slot = m_candidateOf[candidate.triangle];
+        if (slot == kNoTriangle) {
+            slot = static_cast<std::uint32_t>(measure.candidates.size());
+            measure.candidates.push_back(candidate);
+        } else if (candidate.error > measure.candidates[slot].error) {
+            measure.candidates[slot] = candidate;
+        }
     }
 
     const HeightGrid* m_grid;
@@ -266,13 +281,14 @@ private:
     std::vector<double> m_cellError;
     std::vector<std::uint32_t> m_holeTriangle;
     std::vector<std::size_t> m_relocated;
+    /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
+    std::vector<std::uint32_t> m_candidateOf;
 };
 
 /// The candidates to insert, worst first when a limit cuts them, then in cell order (short
 /// walks); empty when a limit leaves no room (`limitReached` set).
 std::vector<Candidate> chooseCandidates(std::vector<Candidate> worst, const TinMesh& mesh,
                                         const RefineOptions& options, bool& limitReached) {
-    std::erase_if(worst, [](const Candidate& c) { return c.error < 0.0; });
     std::size_t room = worst.size();
     if (options.maxPoints)
         room = std::min(room, *options.maxPoints > mesh.vertexCount()
@@ -343,8 +359,9 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
                      "inserting cells over the bound");
         measure = check.measure(changed, everyCell);
         ++result.passes;
-        const std::vector<Candidate> candidates = chooseCandidates(
-            std::move(measure.worst), result.build.tin.mesh, refineOptions, result.limitReached);
+        const std::vector<Candidate> candidates =
+            chooseCandidates(std::move(measure.candidates), result.build.tin.mesh, refineOptions,
+                             result.limitReached);
         if (candidates.empty()) {
             if (everyCell)
                 break;
@@ -357,12 +374,15 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
         everyCell = false;
         std::vector<Point3> points;
         std::vector<std::uint32_t> sources;
+        std::vector<std::uint32_t> near; // where each was located: its walk starts there
         for (const Candidate& candidate : candidates) {
             const Point2 p = cellPosition(grid, positions, candidate.cell);
             points.push_back({p.x, p.y, double{grid.z[candidate.cell]}});
             sources.push_back(static_cast<std::uint32_t>(candidate.cell));
+            near.push_back(candidate.triangle);
         }
-        const std::size_t inserted = insertVertices(result.build.tin, points, sources, &changed);
+        const std::size_t inserted =
+            insertVertices(result.build.tin, points, sources, &changed, near);
         flattenReplaceRings(result.build); // a cell on a ring is on the shore line
         result.insertedCells += inserted;
         if (inserted == 0) {

@@ -108,6 +108,30 @@ TEST(InsertVertices, APointOnAVertexIsSkipped_AndOneOutsideIsRefused) {
     EXPECT_THROW((void)insertVertices(grid.tin, outside, source), InvalidInputError);
 }
 
+TEST(InsertVertices, StartingTrianglesGiveTheSameTin) {
+    const TinMesh mesh = triangulate(test::generatePoints(Distribution::Gauss, 3000, 9)).mesh;
+    ConstraintSet constraints;
+    constraints.segments = test::randomSegments(mesh.vertexCount(), 40, 4);
+    const ConstrainedTin constrained = insertConstraints(mesh, constraints);
+    const std::vector<Point3> points = centroids(constrained.mesh, 31);
+    const std::vector<std::uint32_t> sources(points.size(), 1);
+    std::vector<std::uint32_t> near; // the triangle each centroid came from
+    for (std::size_t t = 0; t < constrained.mesh.triangleCount(); t += 31)
+        near.push_back(static_cast<std::uint32_t>(t));
+    ConstrainedTin walked = constrained;
+    ConstrainedTin started = constrained;
+    EXPECT_EQ(insertVertices(walked, points, sources), points.size());
+    EXPECT_EQ(insertVertices(started, points, sources, nullptr, near), points.size());
+    expectValid(started);
+    EXPECT_EQ(walked.mesh.vertexCount(), started.mesh.vertexCount());
+    EXPECT_EQ(walked.mesh.triangleCount(), started.mesh.triangleCount());
+    const std::vector<std::uint32_t> outOfRange = {
+        static_cast<std::uint32_t>(started.mesh.triangleCount())};
+    EXPECT_THROW((void)insertVertices(started, std::span(points).first(1),
+                                      std::span(sources).first(1), nullptr, outOfRange),
+                 InvalidInputError);
+}
+
 TEST(InsertVertices, ChangedTrianglesAreAllThatDiffer) {
     const TinMesh mesh = triangulate(test::generatePoints(Distribution::Uniform, 3000, 5)).mesh;
     ConstraintSet constraints;

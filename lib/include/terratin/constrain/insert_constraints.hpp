@@ -78,10 +78,12 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
 /// the convex hull or not finite, or sizes that differ (`tin` is unchanged but for the points
 /// before it). With `changedTriangles`, it is resized to the new triangle count and holds 1 for
 /// every triangle whose corners changed or that is new (the others are as they were), else 0.
-/// Sequential; per point a walk from the previous point's triangle and its flips: give the
-/// points in spatial order (row by row, say) for short walks.
+/// Sequential; per point a walk and its flips. The walk starts at `near[i]` when given (a
+/// triangle index of `tin` before the call, near point i: where it was located), else at the
+/// previous point's triangle: give the points in spatial order (row by row, say) then.
 std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
                            std::span<const std::uint32_t> sources,
-                           std::vector<std::uint8_t>* changedTriangles = nullptr);
+                           std::vector<std::uint8_t>* changedTriangles = nullptr,
+                           std::span<const std::uint32_t> near = {});
 
 } // namespace terratin
