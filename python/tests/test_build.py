@@ -164,3 +164,40 @@ def test_notices_are_in_the_report_and_logged(tmp_path, caplog):
         report = terratin.build(geographic, tmp_path / "tin.ply", max_error=5)
     assert any("UTM" in notice for notice in report["notices"])
     assert [record.getMessage() for record in caplog.records] == report["notices"]
+
+
+def test_a_lake_and_a_road_simplified_match_the_command_line(terratin_cli, tmp_path):
+    from osgeo import osr
+
+    crs = osr.SpatialReference()
+    crs.ImportFromEPSG(32633)
+    areas = tmp_path / "areas.gpkg"
+    dataset = ogr.GetDriverByName("GPKG").CreateDataSource(str(areas))
+    lakes = dataset.CreateLayer("lakes", crs, ogr.wkbPolygon)
+    lakes.CreateField(ogr.FieldDefn("level", ogr.OFTReal))
+    lake = ogr.Feature(lakes.GetLayerDefn())
+    lake.SetGeometry(ogr.CreateGeometryFromWkt(
+        "POLYGON ((456100.5 5103300.25, 457000.75 5103150.5, 456600.5 5104400.25, "
+        "456100.5 5103300.25))"))
+    lake["level"] = 812.5
+    lakes.CreateFeature(lake)
+    roads = dataset.CreateLayer("roads", crs, ogr.wkbLineString)
+    road = ogr.Feature(roads.GetLayerDefn())
+    road.SetGeometry(ogr.CreateGeometryFromWkt(
+        "LINESTRING (455501.3 5104003.7, 456700.9 5103100.2, 457800.1 5104500.3)"))
+    roads.CreateFeature(road)
+    dataset = None
+    report = terratin.build(
+        str(SAMPLE), str(tmp_path / "py.ply"), max_error=2.0,
+        breaklines=[f"{areas}|layername=roads"], replace=f"{areas}|layername=lakes",
+        replace_z_field="level",
+    )
+    cli = subprocess.run(
+        [terratin_cli, "build", str(SAMPLE), "-o", str(tmp_path / "cli.ply"), "--json", "--quiet",
+         "--max-error", "2", "--breaklines", f"{areas}|layername=roads",
+         "--replace", f"{areas}|layername=lakes", "--replace-z-field", "level"],
+        check=True, capture_output=True, text=True,
+    )
+    assert report["constraints"] == json.loads(cli.stdout)["constraints"]
+    assert report["constraints"]["replace_polygons"] == 1
+    assert (tmp_path / "py.ply").read_bytes() == (tmp_path / "cli.ply").read_bytes()
