@@ -6,10 +6,15 @@
 #include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
+#include <thread>
 
 namespace terratin::detail {
 
@@ -112,9 +117,10 @@ constexpr std::uint32_t kNoTriangle = 0xffffffffU;
 class ConstrainedCheck {
 public:
     ConstrainedCheck(const HeightGrid& grid, std::span<const Point2> positions,
-                     const ConstrainedBuild& build, const RefineOptions& refineOptions)
+                     const ConstrainedBuild& build, const RefineOptions& refineOptions,
+                     unsigned threads)
         : m_grid(&grid), m_positions(positions), m_build(&build),
-          m_maxError(refineOptions.maxError) {
+          m_maxError(refineOptions.maxError), m_threads(std::max(threads, 1U)) {
         if (build.clip)
             m_clip.emplace(*build.clip);
         if (build.erase)
@@ -197,25 +203,55 @@ private:
     /// measured ones are listed in m_relocated.
     void relocate(const std::vector<std::uint8_t>& changed) {
         m_relocated.clear();
-        const TinMesh& mesh = m_build->tin.mesh;
-        TinLocator locator(mesh);
-        const auto locate = [&](std::size_t cell) {
-            return locator.locateNear(position(cell)).value_or(kNoTriangle);
-        };
+        // The locator is built once and only copied, so that every walk starts from the same
+        // state: which triangle a cell on an edge gets does not depend on the threads. Later
+        // the cells of changed triangles walk from their old triangle, whose slot now holds a
+        // triangle near it.
+        if (!m_locator)
+            m_locator.emplace(m_build->tin.mesh);
+        TinLocator locator = *m_locator;
         for (std::size_t i = 0; i < m_cells.openHoleCells.size(); ++i)
             if (stale(m_holeTriangle[i], changed))
-                m_holeTriangle[i] = locate(m_cells.openHoleCells[i]);
-        for (std::size_t i = 0; i < m_measuredCells.size(); ++i) {
-            if (!stale(m_cellTriangle[i], changed))
-                continue;
-            const std::size_t cell = m_measuredCells[i];
-            const std::uint32_t t = locate(cell);
-            m_cellTriangle[i] = t;
-            m_relocated.push_back(i);
-            if (t != kNoTriangle)
-                m_cellError[i] =
-                    std::abs(double{m_grid->z[cell]} - planeAt(mesh, t, position(cell)));
+                m_holeTriangle[i] =
+                    locator.locateNearFrom(position(m_cells.openHoleCells[i]), m_holeTriangle[i])
+                        .value_or(kNoTriangle);
+        if (changed.empty()) {
+            relocateEveryCell();
+            return;
         }
+        for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
+            if (stale(m_cellTriangle[i], changed)) {
+                measureAt(i, locator);
+                m_relocated.push_back(i);
+            }
+    }
+
+    /// The first measure: every cell located, in fixed blocks of cells on the threads, each
+    /// block with a fresh copy of the locator.
+    void relocateEveryCell() {
+        constexpr std::size_t kBlock = 16384;
+        const std::size_t blocks = (m_measuredCells.size() + kBlock - 1) / kBlock;
+        tbb::task_arena arena(static_cast<int>(m_threads));
+        arena.execute([&] {
+            tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
+                TinLocator locator = *m_locator;
+                const std::size_t end = std::min(m_measuredCells.size(), (block + 1) * kBlock);
+                for (std::size_t i = block * kBlock; i < end; ++i)
+                    measureAt(i, locator);
+            });
+        });
+        m_relocated.resize(m_measuredCells.size());
+        std::iota(m_relocated.begin(), m_relocated.end(), std::size_t{0});
+    }
+
+    /// Locates measured cell i, walking from its old triangle, and measures its error there.
+    void measureAt(std::size_t i, TinLocator& locator) {
+        const std::size_t cell = m_measuredCells[i];
+        const Point2 p = position(cell);
+        const std::uint32_t t = locator.locateNearFrom(p, m_cellTriangle[i]).value_or(kNoTriangle);
+        m_cellTriangle[i] = t;
+        if (t != kNoTriangle)
+            m_cellError[i] = std::abs(double{m_grid->z[cell]} - planeAt(m_build->tin.mesh, t, p));
     }
 
     /// Counts measured cell i, and makes it its triangle's candidate when it is the worst over
@@ -270,6 +306,7 @@ private:
     std::span<const Point2> m_positions;
     const ConstrainedBuild* m_build;
     std::optional<double> m_maxError;
+    unsigned m_threads;
     std::optional<PolygonSet> m_clip;
     std::optional<PolygonSet> m_erase;
     std::optional<PolygonSet> m_replace;
@@ -281,6 +318,8 @@ private:
     std::vector<double> m_cellError;
     std::vector<std::uint32_t> m_holeTriangle;
     std::vector<std::size_t> m_relocated;
+    /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
+    std::optional<TinLocator> m_locator;
     /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
     std::vector<std::uint32_t> m_candidateOf;
 };
@@ -348,7 +387,11 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
     constraintOptions.triangulation.threads = 1;
     result.build =
         addConstraints(std::move(refined), constraintOptions, crsWkt, report, std::move(areas));
-    ConstrainedCheck check(grid, positions, result.build, refineOptions);
+    unsigned threads =
+        refineOptions.threads != 0 ? refineOptions.threads : options.triangulation.threads;
+    if (threads == 0)
+        threads = std::thread::hardware_concurrency();
+    ConstrainedCheck check(grid, positions, result.build, refineOptions, threads);
     result.openHoleCells = check.openHoleCells();
     std::vector<std::uint8_t> changed; // empty: every triangle is new to the check
     bool everyCell = false;

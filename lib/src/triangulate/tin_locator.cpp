@@ -182,6 +182,20 @@ std::optional<std::uint32_t> TinLocator::walk(Point2 point, OutsideOf outside) {
     const Point3& last = mesh.vertices[mesh.triangles[3 * t]];
     if (std::fabs(last.x - point.x) + std::fabs(last.y - point.y) > 2.0 * m_bucketSize)
         t = startNear(point);
+    return walkFrom(t, point, outside);
+}
+
+std::optional<std::uint32_t> TinLocator::locateNearFrom(Point2 point, std::uint32_t start) {
+    if (start >= m_mesh->triangleCount())
+        return locateNear(point);
+    return walkFrom(start, point, surelyRight);
+}
+
+template <class OutsideOf>
+std::optional<std::uint32_t> TinLocator::walkFrom(std::uint32_t t, Point2 point,
+                                                  OutsideOf outside) {
+    const TinMesh& mesh = *m_mesh;
+    const std::size_t triangles = mesh.triangleCount();
     // A remembering stochastic walk (Devillers, Pion & Teillaud): it never goes back through
     // the edge it came in by and tries the other two in a random order, so it ends on any
     // triangulation, constrained ones included, where a fixed order may cycle. The bound only

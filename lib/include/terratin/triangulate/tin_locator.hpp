@@ -35,6 +35,12 @@ public:
     /// callers that only interpolate there. nullopt when the point lies surely outside the hull.
     [[nodiscard]] std::optional<std::uint32_t> locateNear(Point2 point);
 
+    /// locateNear, walking from triangle `start` instead of the last one or the bucket grid's.
+    /// The one query that may follow changes to the mesh (points inserted into it, which keep
+    /// every triangle slot and add others), as long as it still covers its convex hull: from a
+    /// point's old triangle the walk is short. A `start` past the last triangle: locateNear.
+    [[nodiscard]] std::optional<std::uint32_t> locateNearFrom(Point2 point, std::uint32_t start);
+
     /// The TIN's elevation at `point`, linear in the triangle holding it; nullopt outside the
     /// convex hull.
     [[nodiscard]] std::optional<double> elevation(Point2 point);
@@ -93,6 +99,10 @@ private:
     /// The walk of locate() and locateNear(): `outside(a, b, p)` says p lies beyond edge a-b.
     template <class OutsideOf>
     [[nodiscard]] std::optional<std::uint32_t> walk(Point2 point, OutsideOf outside);
+    /// The walk itself, from triangle `start`.
+    template <class OutsideOf>
+    [[nodiscard]] std::optional<std::uint32_t> walkFrom(std::uint32_t start, Point2 point,
+                                                        OutsideOf outside);
 
     /// Gives every empty bucket a triangle of a filled bucket near it.
     void fillEmptyBuckets();
