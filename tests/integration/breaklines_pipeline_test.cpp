@@ -5,6 +5,7 @@
 
 #include "terratin/pipeline/build_pipeline.hpp"
 
+#include "constraint_test_data.hpp"
 #include "mesh_readers.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -40,24 +41,9 @@ const fs::path kSample = fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif";
 
 /// Lines over the sample (cell centres 455005..458195 x 5102605..5104995, EPSG:32633) at
 /// positions off the cell grid, so that each segment is one edge unless another line crosses
-/// it. `crs` 0: no CRS.
+/// it. `epsg` 0: no CRS.
 void writeLines(const fs::path& path, const std::vector<std::string>& wkts, int epsg = 32633) {
-    initialiseGdal();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-    std::unique_ptr<GDALDataset> dataset(
-        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    ASSERT_NE(dataset, nullptr);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(epsg);
-    OGRLayer* layer =
-        dataset->CreateLayer("lines", epsg != 0 ? &srs : nullptr, wkbUnknown, nullptr);
-    for (const std::string& wkt : wkts) {
-        OGRFeature feature(layer->GetLayerDefn());
-        OGRGeometry* geometry = nullptr;
-        ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkt.c_str(), nullptr, &geometry), OGRERR_NONE);
-        feature.SetGeometryDirectly(geometry);
-        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
-    }
+    test::writeVectorLayer(path, "lines", wkts, epsg);
 }
 
 BuildOptions optionsFor(const fs::path& lines, const fs::path& output) {
@@ -195,17 +181,7 @@ TEST(BreaklinesPipeline, APointCloudTakesBreaklines_WithZFromItsTin) {
     // either); a breakline's vertices get the TIN's z, exact on a plane up to rounding.
     TemporaryDirectory directory;
     const fs::path points = directory.path() / "points.xyz";
-    {
-        std::ofstream text(points);
-        std::uint64_t state = 12345;
-        for (int i = 0; i < 2000; ++i) {
-            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            const double x = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
-            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            const double y = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
-            text << std::setprecision(17) << x << ' ' << y << ' ' << x / 100.0 + y / 50.0 << '\n';
-        }
-    }
+    (void)test::writePlanePoints(points, 2000, 12345);
     const fs::path lines = directory.path() / "lines.gpkg";
     writeLines(lines, {"LINESTRING (100.25 200.5, 800.75 650.125, 300.5 900.25)"}, 0);
     BuildOptions options;

@@ -4,6 +4,7 @@
 
 #include "terratin/pipeline/build_pipeline.hpp"
 
+#include "constraint_test_data.hpp"
 #include "mesh_readers.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -31,99 +32,21 @@ namespace terratin {
 namespace {
 
 namespace fs = std::filesystem;
+using test::insideRing;
+using test::kSampleColumns;
+using test::kSampleRows;
+using test::polygonWkt;
+using test::sampleCellCentre;
 using test::TemporaryDirectory;
+
+void writePolygons(const fs::path& path, const std::vector<std::string>& wkts,
+                   const std::vector<double>& levels = {}, int levelType = OFTReal) {
+    test::writeVectorLayer(path, "water", wkts, 32633, levels, levelType);
+}
 
 const fs::path kSample = fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif";
 
-/// The sample's cells: 320 x 240, 10 m, origin (455000, 5105000), cell centres at +5.
-constexpr int kColumns = 320;
-constexpr int kRows = 240;
-
-/// A lake inside the sample's data, off the cell grid.
-const std::vector<Point2> kLake = {{456100.5, 5103300.25},
-                                   {457000.75, 5103150.5},
-                                   {457400.25, 5103900.75},
-                                   {456600.5, 5104400.25},
-                                   {455900.25, 5103950.5}};
-
-std::string polygonWkt(const std::vector<Point2>& ring) {
-    std::string wkt = "POLYGON ((";
-    for (std::size_t i = 0; i <= ring.size(); ++i) {
-        const Point2& p = ring[i % ring.size()];
-        wkt += (i > 0 ? ", " : "") + std::to_string(p.x) + " " + std::to_string(p.y);
-    }
-    return wkt + "))";
-}
-
-/// A polygon layer in EPSG:32633 with a field "level" of `fieldType`, set to `levels[i]` for
-/// feature i (unset where that is NaN).
-void writePolygons(const fs::path& path, const std::vector<std::string>& wkts,
-                   const std::vector<double>& levels = {}, OGRFieldType fieldType = OFTReal) {
-    initialiseGdal();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-    std::unique_ptr<GDALDataset> dataset(
-        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    ASSERT_NE(dataset, nullptr);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(32633);
-    OGRLayer* layer = dataset->CreateLayer("water", &srs, wkbUnknown, nullptr);
-    OGRFieldDefn field("level", fieldType);
-    ASSERT_EQ(layer->CreateField(&field), OGRERR_NONE);
-    for (std::size_t i = 0; i < wkts.size(); ++i) {
-        OGRFeature feature(layer->GetLayerDefn());
-        OGRGeometry* geometry = nullptr;
-        ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkts[i].c_str(), nullptr, &geometry),
-                  OGRERR_NONE);
-        feature.SetGeometryDirectly(geometry);
-        if (i < levels.size() && !std::isnan(levels[i]))
-            feature.SetField(0, levels[i]);
-        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
-    }
-}
-
-void writeLines(const fs::path& path, const std::vector<std::string>& wkts) {
-    initialiseGdal();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-    std::unique_ptr<GDALDataset> dataset(
-        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    ASSERT_NE(dataset, nullptr);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(32633);
-    OGRLayer* layer = dataset->CreateLayer("roads", &srs, wkbLineString, nullptr);
-    for (const std::string& wkt : wkts) {
-        OGRFeature feature(layer->GetLayerDefn());
-        OGRGeometry* geometry = nullptr;
-        ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkt.c_str(), nullptr, &geometry), OGRERR_NONE);
-        feature.SetGeometryDirectly(geometry);
-        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
-    }
-}
-
-/// Even-odd test, written apart from the library's.
-bool inside(const std::vector<Point2>& ring, Point2 p) {
-    bool odd = false;
-    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
-        if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
-            p.x < (ring[j].x - ring[i].x) * (p.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x)
-            odd = !odd;
-    return odd;
-}
-
-/// The sample's elevations, row by row.
-std::vector<float> sampleElevations() {
-    initialiseGdal();
-    std::unique_ptr<GDALDataset> dataset(
-        GDALDataset::Open(kSample.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-    std::vector<float> z(static_cast<std::size_t>(kColumns) * kRows);
-    EXPECT_EQ(dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, kColumns, kRows, z.data(),
-                                                  kColumns, kRows, GDT_Float32, 0, 0),
-              CE_None);
-    return z;
-}
-
-Point2 cellCentre(int column, int row) {
-    return {455005.0 + 10.0 * column, 5104995.0 - 10.0 * row};
-}
+const std::vector<Point2> kLake = test::sampleLake();
 
 BuildOptions lakeOptions(const fs::path& water, const fs::path& output) {
     BuildOptions options;
@@ -148,7 +71,7 @@ Point2 centroid(const test::ReadMesh& mesh, std::size_t t) {
 double flatLevelInside(const test::ReadMesh& mesh, const std::vector<Point2>& ring) {
     std::optional<double> level;
     for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
-        if (!inside(ring, centroid(mesh, t)))
+        if (!insideRing(ring, centroid(mesh, t)))
             continue;
         for (std::size_t i = 0; i < 3; ++i) {
             const double z = mesh.vertices[mesh.triangles[t + i]].z;
@@ -165,7 +88,7 @@ double flatLevelInside(const test::ReadMesh& mesh, const std::vector<Point2>& ri
 double twiceAreaInside(const test::ReadMesh& mesh, const std::vector<Point2>& ring) {
     double area = 0.0;
     for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
-        if (!ring.empty() && !inside(ring, centroid(mesh, t)))
+        if (!ring.empty() && !insideRing(ring, centroid(mesh, t)))
             continue;
         const Point3& a = mesh.vertices[mesh.triangles[t]];
         const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
@@ -198,9 +121,9 @@ TEST(ReplaceAreas, TheLakeIsFlatAtItsFieldLevel_NoInputPointInside_BoundaryInThe
     EXPECT_EQ(report.replacePolygons, 1U);
 
     std::size_t cellsInside = 0;
-    for (int row = 0; row < kRows; ++row)
-        for (int column = 0; column < kColumns; ++column)
-            cellsInside += inside(kLake, cellCentre(column, row)) ? 1 : 0;
+    for (int row = 0; row < kSampleRows; ++row)
+        for (int column = 0; column < kSampleColumns; ++column)
+            cellsInside += insideRing(kLake, sampleCellCentre(column, row)) ? 1 : 0;
     EXPECT_GT(cellsInside, 1000U);
     EXPECT_EQ(report.replacedPoints, cellsInside);
 
@@ -228,12 +151,12 @@ TEST(ReplaceAreas, TheDefaultLevelIsTheLowestSurfaceOnTheBoundary) {
     // The surface on the boundary interpolates the cells around it: the lowest of it lies
     // between the lowest cell near the boundary and, at every corner, the highest cell near
     // that corner (within 1.5 cells: the corners of the triangle holding a boundary point).
-    const std::vector<float> z = sampleElevations();
+    const std::vector<float> z = test::readElevations(kSample);
     const auto near = [](Point2 a, Point2 b) { return std::hypot(a.x - b.x, a.y - b.y) < 15.0; };
     double lowestNear = std::numeric_limits<double>::infinity();
-    for (int row = 0; row < kRows; ++row)
-        for (int column = 0; column < kColumns; ++column) {
-            const Point2 centre = cellCentre(column, row);
+    for (int row = 0; row < kSampleRows; ++row)
+        for (int column = 0; column < kSampleColumns; ++column) {
+            const Point2 centre = sampleCellCentre(column, row);
             for (std::size_t i = 0; i < kLake.size(); ++i) {
                 const Point2 a = kLake[i];
                 const Point2 b = kLake[(i + 1) % kLake.size()];
@@ -243,16 +166,16 @@ TEST(ReplaceAreas, TheDefaultLevelIsTheLowestSurfaceOnTheBoundary) {
                     close = near(centre,
                                  {a.x + (b.x - a.x) * s / length, a.y + (b.y - a.y) * s / length});
                 if (close)
-                    lowestNear = std::min(lowestNear, double{z[row * kColumns + column]});
+                    lowestNear = std::min(lowestNear, double{z[row * kSampleColumns + column]});
             }
         }
     EXPECT_GE(level, lowestNear);
     for (const Point2& corner : kLake) {
         double highest = -std::numeric_limits<double>::infinity();
-        for (int row = 0; row < kRows; ++row)
-            for (int column = 0; column < kColumns; ++column)
-                if (near(cellCentre(column, row), corner))
-                    highest = std::max(highest, double{z[row * kColumns + column]});
+        for (int row = 0; row < kSampleRows; ++row)
+            for (int column = 0; column < kSampleColumns; ++column)
+                if (near(sampleCellCentre(column, row), corner))
+                    highest = std::max(highest, double{z[row * kSampleColumns + column]});
         EXPECT_LE(level, highest);
     }
 }
@@ -262,7 +185,9 @@ TEST(ReplaceAreas, ARoadAcrossTheLakeIsFlatInside_AndStaysATinEdgeOutside) {
     const fs::path water = directory.path() / "water.gpkg";
     writePolygons(water, {polygonWkt(kLake)}, {805.5});
     const fs::path roads = directory.path() / "roads.gpkg";
-    writeLines(roads, {"LINESTRING (455500.3 5103500.7, 456700.1 5103700.9, 458000.7 5103600.3)"});
+    test::writeVectorLayer(
+        roads, "roads",
+        {"LINESTRING (455500.3 5103500.7, 456700.1 5103700.9, 458000.7 5103600.3)"});
     BuildOptions options = lakeOptions(water, directory.path() / "tin.ply");
     options.replaceZField = "level";
     options.breaklines = {roads.string()};
@@ -310,18 +235,8 @@ TEST(ReplaceAreas, APointCloudsLakeIsFlatAtTheLowestLevelOfItsShore) {
     const fs::path points = directory.path() / "points.xyz";
     const std::vector<Point2> lake = {{300.0, 300.0}, {700.0, 350.0}, {500.0, 700.0}};
     std::size_t inLake = 0;
-    {
-        std::ofstream text(points);
-        std::uint64_t state = 777;
-        for (int i = 0; i < 3000; ++i) {
-            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            const double x = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
-            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            const double y = static_cast<double>(state >> 40) / 16777216.0 * 1000.0;
-            text << std::setprecision(17) << x << ' ' << y << ' ' << x / 100.0 + y / 50.0 << '\n';
-            inLake += inside(lake, {x, y}) ? 1 : 0;
-        }
-    }
+    for (const Point2& p : test::writePlanePoints(points, 3000, 777))
+        inLake += insideRing(lake, p) ? 1 : 0;
     const fs::path water = directory.path() / "water.gpkg";
     writePolygons(water, {polygonWkt(lake)});
     BuildOptions options;

@@ -5,6 +5,7 @@
 
 #include "terratin/pipeline/build_pipeline.hpp"
 
+#include "constraint_test_data.hpp"
 #include "mesh_readers.hpp"
 #include "terratin/gdal_error.hpp"
 #include "terratin/geometry/predicates.hpp"
@@ -29,79 +30,17 @@ namespace terratin {
 namespace {
 
 namespace fs = std::filesystem;
+using test::insideRing;
+using test::kSampleColumns;
+using test::kSampleRows;
+using test::sampleCellCentre;
 using test::TemporaryDirectory;
 
 const fs::path kSample = fs::path(TERRATIN_SAMPLE_DEMS) / "ridges_utm.tif";
-constexpr int kColumns = 320;
-constexpr int kRows = 240;
-
-Point2 cellCentre(int column, int row) {
-    return {455005.0 + 10.0 * column, 5104995.0 - 10.0 * row};
-}
-
-const std::vector<Point2> kLake = {{456100.5, 5103300.25},
-                                   {457000.75, 5103150.5},
-                                   {457400.25, 5103900.75},
-                                   {456600.5, 5104400.25},
-                                   {455900.25, 5103950.5}};
+const std::vector<Point2> kLake = test::sampleLake();
 const std::vector<Point2> kRoadA = {
     {455501.3, 5104003.7}, {456700.9, 5102700.2}, {457800.1, 5104500.3}};
 const std::vector<Point2> kRoadB = {{455300.7, 5102900.1}, {458000.3, 5104400.9}};
-
-std::string wkt(const char* type, const std::vector<Point2>& points, bool closed) {
-    std::string text = std::string(type) + (closed ? " ((" : " (");
-    for (std::size_t i = 0; i < points.size() + (closed ? 1 : 0); ++i) {
-        const Point2& p = points[i % points.size()];
-        text += (i > 0 ? ", " : "") + std::to_string(p.x) + " " + std::to_string(p.y);
-    }
-    return text + (closed ? "))" : ")");
-}
-
-/// A layer of `wkts` in EPSG:32633, with a Real field "level" = `level` on every feature.
-void writeLayer(const fs::path& path, const std::vector<std::string>& wkts, double level = 0.0) {
-    initialiseGdal();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-    std::unique_ptr<GDALDataset> dataset(
-        driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    ASSERT_NE(dataset, nullptr);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(32633);
-    OGRLayer* layer = dataset->CreateLayer("features", &srs, wkbUnknown, nullptr);
-    OGRFieldDefn field("level", OFTReal);
-    ASSERT_EQ(layer->CreateField(&field), OGRERR_NONE);
-    for (const std::string& text : wkts) {
-        OGRFeature feature(layer->GetLayerDefn());
-        OGRGeometry* geometry = nullptr;
-        ASSERT_EQ(OGRGeometryFactory::createFromWkt(text.c_str(), nullptr, &geometry), OGRERR_NONE);
-        feature.SetGeometryDirectly(geometry);
-        feature.SetField(0, level);
-        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
-    }
-}
-
-bool inside(const std::vector<Point2>& ring, Point2 p) {
-    bool odd = false;
-    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
-        if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
-            p.x < (ring[j].x - ring[i].x) * (p.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x)
-            odd = !odd;
-    return odd;
-}
-
-std::vector<float> sampleElevations() {
-    initialiseGdal();
-    std::unique_ptr<GDALDataset> dataset(
-        GDALDataset::Open(kSample.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-    std::vector<float> z(static_cast<std::size_t>(kColumns) * kRows);
-    EXPECT_EQ(dataset->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, kColumns, kRows, z.data(),
-                                                  kColumns, kRows, GDT_Float32, 0, 0),
-              CE_None);
-    double noData = dataset->GetRasterBand(1)->GetNoDataValue();
-    for (float& value : z)
-        if (value == noData)
-            value = std::nanf("");
-    return z;
-}
 
 /// The TIN in `ply` against the sample, every triangle against every cell centre it holds
 /// (closed, exact): the largest error of a valid cell the `skip` ring does not hold, and the
@@ -113,7 +52,7 @@ struct Coverage {
 
 Coverage coverage(const fs::path& ply, const std::vector<Point2>& skip) {
     const test::ReadMesh mesh = test::readPly(ply);
-    const std::vector<float> z = sampleElevations();
+    const std::vector<float> z = test::readElevations(kSample);
     std::vector<std::uint8_t> covered(z.size(), 0);
     Coverage result;
     for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
@@ -122,24 +61,24 @@ Coverage coverage(const fs::path& ply, const std::vector<Point2>& skip) {
         const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
         const int firstColumn =
             std::max(0, int(std::floor((std::min({a.x, b.x, c.x}) - 455005.0) / 10.0)));
-        const int lastColumn =
-            std::min(kColumns - 1, int(std::ceil((std::max({a.x, b.x, c.x}) - 455005.0) / 10.0)));
+        const int lastColumn = std::min(
+            kSampleColumns - 1, int(std::ceil((std::max({a.x, b.x, c.x}) - 455005.0) / 10.0)));
         const int firstRow =
             std::max(0, int(std::floor((5104995.0 - std::max({a.y, b.y, c.y})) / 10.0)));
-        const int lastRow =
-            std::min(kRows - 1, int(std::ceil((5104995.0 - std::min({a.y, b.y, c.y})) / 10.0)));
+        const int lastRow = std::min(
+            kSampleRows - 1, int(std::ceil((5104995.0 - std::min({a.y, b.y, c.y})) / 10.0)));
         const double area = predicates::orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y});
         for (int row = firstRow; row <= lastRow; ++row)
             for (int column = firstColumn; column <= lastColumn; ++column) {
-                const Point2 p = cellCentre(column, row);
+                const Point2 p = sampleCellCentre(column, row);
                 const double wa = predicates::orient2d({b.x, b.y}, {c.x, c.y}, p);
                 const double wb = predicates::orient2d({c.x, c.y}, {a.x, a.y}, p);
                 const double wc = predicates::orient2d({a.x, a.y}, {b.x, b.y}, p);
-                const std::size_t cell = static_cast<std::size_t>(row) * kColumns + column;
+                const std::size_t cell = static_cast<std::size_t>(row) * kSampleColumns + column;
                 if (wa < 0.0 || wb < 0.0 || wc < 0.0 || std::isnan(z[cell]))
                     continue;
                 covered[cell] = 1;
-                if (!skip.empty() && inside(skip, p))
+                if (!skip.empty() && insideRing(skip, p))
                     continue;
                 const double plane = (wa * a.z + wb * b.z + wc * c.z) / area;
                 result.maxError = std::max(result.maxError, std::abs(plane - z[cell]));
@@ -156,9 +95,10 @@ bool hasVertexAt(const test::ReadMesh& mesh, Point2 p) {
 }
 
 BuildOptions roadsAndLake(const TemporaryDirectory& directory, double maxError) {
-    writeLayer(directory.path() / "roads.gpkg",
-               {wkt("LINESTRING", kRoadA, false), wkt("LINESTRING", kRoadB, false)});
-    writeLayer(directory.path() / "lake.gpkg", {wkt("POLYGON", kLake, true)}, 812.25);
+    test::writeVectorLayer(directory.path() / "roads.gpkg", "roads",
+                           {test::lineWkt(kRoadA), test::lineWkt(kRoadB)});
+    test::writeVectorLayer(directory.path() / "lake.gpkg", "lake", {test::polygonWkt(kLake)}, 32633,
+                           {812.25}, OFTReal);
     BuildOptions options;
     options.inputs = {kSample.string()};
     options.output = directory.path() / "tin.ply";
@@ -179,7 +119,7 @@ TEST(SimplifiedConstraints, RoadsAndALake_BoundHoldsOutsideTheLake_LakeFlat_Road
     EXPECT_EQ(report.breaklines, 2U);
     EXPECT_GT(report.constraintCrossings, 0U);
     EXPECT_LE(report.achievedMaxError, 2.0);
-    EXPECT_LT(report.vertices, std::size_t{kColumns} * kRows / 10); // simplified indeed
+    EXPECT_LT(report.vertices, std::size_t{kSampleColumns} * kSampleRows / 10); // simplified indeed
 
     const Coverage check = coverage(options.output, kLake);
     EXPECT_LE(check.maxError, 2.0 + 1e-9);
@@ -195,7 +135,7 @@ TEST(SimplifiedConstraints, RoadsAndALake_BoundHoldsOutsideTheLake_LakeFlat_Road
             centroid.x += mesh.vertices[mesh.triangles[t + i]].x / 3.0;
             centroid.y += mesh.vertices[mesh.triangles[t + i]].y / 3.0;
         }
-        if (!inside(kLake, centroid))
+        if (!insideRing(kLake, centroid))
             continue;
         for (std::size_t i = 0; i < 3; ++i)
             EXPECT_EQ(mesh.vertices[mesh.triangles[t + i]].z, 812.25);
@@ -218,7 +158,7 @@ TEST(SimplifiedConstraints, OneThreadAndTwoGiveTheSameTin) {
 
 TEST(SimplifiedConstraints, ClipKeepsExactlyThePolygon_AndTheBoundHoldsInside) {
     TemporaryDirectory directory;
-    writeLayer(directory.path() / "area.gpkg", {wkt("POLYGON", kLake, true)});
+    test::writeVectorLayer(directory.path() / "area.gpkg", "area", {test::polygonWkt(kLake)});
     BuildOptions options;
     options.inputs = {kSample.string()};
     options.output = directory.path() / "clipped.ply";
