@@ -62,8 +62,8 @@ double planeAt(const TinMesh& mesh, std::size_t t, Point2 p) {
 
 /// Which cells the bound holds for, and where the open holes are.
 struct CellSets {
-    /// 1 for a valid cell outside the replace areas (the clip and erase areas are decided by
-    /// the triangle holding the cell).
+    /// 1 for a valid cell (the erase and replace areas' cells are no data by now,
+    /// leaveOutAreaCells; the clip area is decided by the triangle holding the cell).
     std::vector<std::uint8_t> measured;
     std::vector<std::size_t> openHoleCells;
 };
