@@ -7,8 +7,12 @@
 
 #include "constraint_test_data.hpp"
 #include "mesh_readers.hpp"
+#include "terratin/crs/grid_projection.hpp"
+#include "terratin/crs/reprojection.hpp"
+#include "terratin/crs/utm_zone.hpp"
 #include "terratin/gdal_error.hpp"
 #include "terratin/geometry/predicates.hpp"
+#include "terratin/io/height_grid_reader.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -191,6 +195,73 @@ TEST(SimplifiedConstraints, ThePointLimitHoldsForTheDemsPoints) {
     const BuildReport report = runBuild(options);
     EXPECT_EQ(report.refineStop, "points");
     EXPECT_LE(report.vertices, 1500U + report.constraintVertices);
+}
+
+// A geographic DEM (Luxembourg, WGS 84, 46 % nodata outside the border) is refined in its UTM
+// zone at its cells' projected positions: a road and an erase area in WGS 84 go into that TIN,
+// and the bound holds at every valid cell's projected position outside the erase area.
+TEST(SimplifiedConstraints, AGeographicDemWithHoles_RoadAndEraseArea_BoundAtTheProjectedCells) {
+    const fs::path dem = fs::path(TERRATIN_SHARED_DEMS) / "terra__elev.tif";
+    if (!fs::exists(dem))
+        GTEST_SKIP() << "shared DEM not present: " << dem;
+    TemporaryDirectory directory;
+    const std::vector<Point2> erase = {{6.0, 49.7}, {6.1, 49.7}, {6.1, 49.75}, {6.0, 49.75}};
+    test::writeVectorLayer(directory.path() / "road.gpkg", "road",
+                           {"LINESTRING (5.9 49.6, 6.1 49.8, 6.3 49.9)"}, 4326);
+    test::writeVectorLayer(directory.path() / "erase.gpkg", "erase", {test::polygonWkt(erase)},
+                           4326);
+    BuildOptions options;
+    options.inputs = {dem.string()};
+    options.breaklines = {(directory.path() / "road.gpkg").string()};
+    options.erase = (directory.path() / "erase.gpkg").string();
+    options.refine.emplace();
+    options.refine->maxError = 20.0;
+    options.validate = true;
+    std::vector<std::string> files;
+    for (const unsigned threads : {1U, 2U}) {
+        options.triangulation.threads = threads;
+        options.output = directory.path() / ("tin" + std::to_string(threads) + ".ply");
+        const BuildReport report = runBuild(options);
+        EXPECT_TRUE(report.validated);
+        EXPECT_EQ(report.breaklines, 1U);
+        EXPECT_GT(report.areaTriangles, 0U);
+        std::ifstream in(options.output, std::ios::binary);
+        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    EXPECT_EQ(files[0], files[1]);
+
+    const io::HeightGridRaster raster = io::readHeightGrid(dem.string(), {});
+    const Point2 centre = raster.grid.extentCentre();
+    const std::string utm =
+        crs::utmZoneCrs(crs::standardUtmZone(centre.x, centre.y), raster.crsWkt);
+    const std::vector<Point2> positions = crs::projectCellCentres(raster.grid, raster.crsWkt, utm);
+    const crs::Reprojector toUtm(raster.crsWkt, utm);
+    std::vector<Point2> eraseUtm;
+    for (const Point2& corner : erase)
+        eraseUtm.push_back(toUtm.transform(corner));
+    const test::ReadMesh mesh = test::readPly(options.output);
+    double maxError = 0.0;
+    std::size_t measured = 0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        const Point3& a = mesh.vertices[mesh.triangles[t]];
+        const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
+        const double area = predicates::orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y});
+        for (std::size_t cell = 0; cell < positions.size(); ++cell) {
+            const Point2 p = positions[cell];
+            const double wa = predicates::orient2d({b.x, b.y}, {c.x, c.y}, p);
+            const double wb = predicates::orient2d({c.x, c.y}, {a.x, a.y}, p);
+            const double wc = predicates::orient2d({a.x, a.y}, {b.x, b.y}, p);
+            if (wa < 0.0 || wb < 0.0 || wc < 0.0 || !raster.grid.isValid(cell) ||
+                insideRing(eraseUtm, p))
+                continue;
+            ++measured;
+            const double plane = (wa * a.z + wb * b.z + wc * c.z) / area;
+            maxError = std::max(maxError, std::abs(plane - double{raster.grid.z[cell]}));
+        }
+    }
+    EXPECT_GT(measured, raster.grid.validCount() / 2);
+    EXPECT_LE(maxError, 20.0 + 1e-6);
 }
 
 } // namespace
