@@ -123,15 +123,13 @@ std::vector<double> replaceLevels(const io::LineLayer& rings, const PolygonSet& 
     if (!options.replaceZField.empty())
         return rings.polygonValues;
     std::vector<double> levels = lowestLevelsOnBoundary(polygons, locator, meanSpacing(mesh) / 4);
-    for (std::size_t r = 0, k = 0; r < rings.lines.size(); ++r) {
-        k = rings.polygonOf[r];
-        if (std::isnan(levels[k]))
+    for (std::size_t r = 0; r < rings.lines.size(); ++r)
+        if (std::isnan(levels[rings.polygonOf[r]]))
             throw InvalidInputError(
                 "Build: " + optionName("replace", options.optionSpelling) + " '" + rings.source +
                 "' feature " + std::to_string(rings.featureIds[r]) +
                 ": its boundary lies outside the data; give its elevation with " +
                 optionName("replace_z_field", options.optionSpelling));
-    }
     return levels;
 }
 
@@ -228,7 +226,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
     if (replaceAreas) {
         std::size_t removed = 0;
         mesh = flattenAreas(std::move(mesh), *replaceAreas, levels, options.triangulation, removed);
-        constraints.polylineTriangles.clear(); // they were the old mesh's
+        if (removed > 0)
+            constraints.polylineTriangles.clear(); // they were the old mesh's
         report.replacedPoints = removed;
     }
     build.tin = insertConstraints(std::move(mesh), constraints);
