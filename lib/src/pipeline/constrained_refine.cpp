@@ -62,9 +62,9 @@ double planeAt(const TinMesh& mesh, std::size_t t, Point2 p) {
 
 /// Which cells the bound holds for, and where the open holes are.
 struct CellSets {
-    /// 1 for a valid cell (the erase and replace areas' cells are no data by now,
+    /// The valid cells (the erase and replace areas' cells are no data by now,
     /// leaveOutAreaCells; the clip area is decided by the triangle holding the cell).
-    std::vector<std::uint8_t> measured;
+    std::vector<std::size_t> measuredCells;
     std::vector<std::size_t> openHoleCells;
 };
 
@@ -77,7 +77,7 @@ bool inLeftOutArea(Point2 p, const std::optional<PolygonSet>& erase,
 CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
                   const RefineOptions& refineOptions, const std::optional<PolygonSet>& erase,
                   const std::optional<PolygonSet>& replace) {
-    CellSets sets{std::vector<std::uint8_t>(grid.cellCount(), 0), {}};
+    CellSets sets;
     const std::vector<std::uint8_t> open = openHoleCells(grid, refineOptions);
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
         // The erase and replace areas' cells are no data to the refiner, but no hole: the
@@ -85,7 +85,7 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
         if (open[cell] != 0 && !inLeftOutArea(cellPosition(grid, positions, cell), erase, replace))
             sets.openHoleCells.push_back(cell);
         else if (grid.isValid(cell))
-            sets.measured[cell] = 1;
+            sets.measuredCells.push_back(cell);
     }
     return sets;
 }
@@ -128,11 +128,8 @@ public:
         if (build.replace)
             m_replace.emplace(*build.replace);
         m_cells = cellSets(grid, positions, refineOptions, m_erase, m_replace);
-        for (std::size_t cell = 0; cell < m_cells.measured.size(); ++cell)
-            if (m_cells.measured[cell] != 0)
-                m_measuredCells.push_back(cell);
-        m_cellTriangle.assign(m_measuredCells.size(), kNoTriangle);
-        m_cellError.assign(m_measuredCells.size(), 0.0);
+        m_cellTriangle.assign(m_cells.measuredCells.size(), kNoTriangle);
+        m_cellError.assign(m_cells.measuredCells.size(), 0.0);
         m_holeTriangle.assign(m_cells.openHoleCells.size(), kNoTriangle);
     }
 
@@ -154,7 +151,7 @@ public:
         const std::vector<std::uint8_t> overHole = trianglesOverHoles();
         m_candidateOf.resize(triangles, kNoTriangle);
         if (everyCell) {
-            for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
+            for (std::size_t i = 0; i < m_cells.measuredCells.size(); ++i)
                 tally(i, overHole, flat, measure);
         } else {
             for (const std::size_t i : m_relocated)
@@ -219,7 +216,7 @@ private:
             relocateEveryCell();
             return;
         }
-        for (std::size_t i = 0; i < m_measuredCells.size(); ++i)
+        for (std::size_t i = 0; i < m_cells.measuredCells.size(); ++i)
             if (stale(m_cellTriangle[i], changed)) {
                 measureAt(i, locator);
                 m_relocated.push_back(i);
@@ -230,23 +227,24 @@ private:
     /// block with a fresh copy of the locator.
     void relocateEveryCell() {
         constexpr std::size_t kBlock = 16384;
-        const std::size_t blocks = (m_measuredCells.size() + kBlock - 1) / kBlock;
+        const std::size_t blocks = (m_cells.measuredCells.size() + kBlock - 1) / kBlock;
         tbb::task_arena arena(static_cast<int>(m_threads));
         arena.execute([&] {
             tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
                 TinLocator locator = *m_locator;
-                const std::size_t end = std::min(m_measuredCells.size(), (block + 1) * kBlock);
+                const std::size_t end =
+                    std::min(m_cells.measuredCells.size(), (block + 1) * kBlock);
                 for (std::size_t i = block * kBlock; i < end; ++i)
                     measureAt(i, locator);
             });
         });
-        m_relocated.resize(m_measuredCells.size());
+        m_relocated.resize(m_cells.measuredCells.size());
         std::iota(m_relocated.begin(), m_relocated.end(), std::size_t{0});
     }
 
     /// Locates measured cell i, walking from its old triangle, and measures its error there.
     void measureAt(std::size_t i, TinLocator& locator) {
-        const std::size_t cell = m_measuredCells[i];
+        const std::size_t cell = m_cells.measuredCells[i];
         const Point2 p = position(cell);
         const std::uint32_t t = locator.locateNearFrom(p, m_cellTriangle[i]).value_or(kNoTriangle);
         m_cellTriangle[i] = t;
@@ -263,7 +261,7 @@ private:
             ++measure.uncovered;
             return;
         }
-        const std::size_t cell = m_measuredCells[i];
+        const std::size_t cell = m_cells.measuredCells[i];
         const auto left = [&](std::size_t u) {
             return measure.drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
         };
@@ -311,9 +309,8 @@ private:
     std::optional<PolygonSet> m_erase;
     std::optional<PolygonSet> m_replace;
     CellSets m_cells;
-    /// The measured cells, and for each the triangle holding it (kNoTriangle: outside the hull)
-    /// and its error there; the triangle holding each open hole cell.
-    std::vector<std::size_t> m_measuredCells;
+    /// For each measured cell the triangle holding it (kNoTriangle: outside the hull) and its
+    /// error there; the triangle holding each open hole cell.
     std::vector<std::uint32_t> m_cellTriangle;
     std::vector<double> m_cellError;
     std::vector<std::uint32_t> m_holeTriangle;
@@ -437,7 +434,6 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
     result.rmse = measure.covered > 0
                       ? std::sqrt(measure.sumSquares / static_cast<double>(measure.covered))
                       : 0.0;
-    result.coveredCells = measure.covered;
     result.uncoveredCells = measure.uncovered;
     result.holeTriangles = measure.holeTriangles;
     result.drop = std::move(measure.drop);

@@ -25,11 +25,10 @@ struct ConstrainedRefinement {
     /// over an open hole's cell.
     std::vector<std::uint8_t> drop;
     /// Over the valid cells measured (inside a kept triangle, not in a replace area): the
-    /// largest error, the root mean square error and their count; valid cells in a dropped
-    /// hole triangle or outside the hull.
+    /// largest error and the root mean square error; valid cells in a dropped hole triangle or
+    /// outside the hull.
     double maxError = 0.0;
     double rmse = 0.0;
-    std::size_t coveredCells = 0;
     std::size_t uncoveredCells = 0;
     std::size_t holeTriangles = 0;
     /// Cells of the holes left open (those of erase and replace areas are not holes).
