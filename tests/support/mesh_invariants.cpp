@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -91,6 +92,37 @@ void expectExactDelaunayOf(const TinMesh& mesh, std::span<const Point3> input) {
     const double hullArea = convexHullArea(input);
     const double meshArea = triangleAreaSum(mesh);
     EXPECT_NEAR(meshArea, hullArea, 1e-9 * hullArea) << "triangles do not cover the convex hull";
+}
+
+namespace {
+using Corner = std::pair<double, double>;
+using CornerTriple = std::array<Corner, 3>;
+
+std::vector<CornerTriple> sortedTriangles(const TinMesh& mesh) {
+    std::vector<CornerTriple> triangles;
+    triangles.reserve(mesh.triangleCount());
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        CornerTriple corners{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            const Point3& p = mesh.vertices[mesh.triangles[t + i]];
+            corners[i] = {p.x, p.y};
+        }
+        std::sort(corners.begin(), corners.end());
+        triangles.push_back(corners);
+    }
+    std::sort(triangles.begin(), triangles.end());
+    return triangles;
+}
+} // namespace
+
+void expectSameTriangles(const TinMesh& a, const TinMesh& b) {
+    const std::vector<CornerTriple> first = sortedTriangles(a);
+    const std::vector<CornerTriple> second = sortedTriangles(b);
+    ASSERT_EQ(first.size(), second.size());
+    const auto mismatch = std::mismatch(first.begin(), first.end(), second.begin());
+    EXPECT_TRUE(mismatch.first == first.end())
+        << "triangles differ from the one with corner (" << (*mismatch.first)[0].first << ", "
+        << (*mismatch.first)[0].second << ") on, sorted";
 }
 
 } // namespace terratin::test

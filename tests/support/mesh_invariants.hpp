@@ -21,4 +21,8 @@ double triangleAreaSum(const TinMesh& mesh);
 /// triangle areas add up to the convex hull's area.
 void expectExactDelaunayOf(const TinMesh& mesh, std::span<const Point3> input);
 
+/// Asserts that `a` and `b` have the same triangles, compared by their corners' coordinates
+/// whatever the order of triangles, of corners and of vertices.
+void expectSameTriangles(const TinMesh& a, const TinMesh& b);
+
 } // namespace terratin::test

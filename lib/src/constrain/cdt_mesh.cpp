@@ -293,7 +293,7 @@ void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
             continue;
         const std::uint32_t opposite = from(previousHalfEdge(g));
         // v inside the circle of the triangle across h makes their quadrilateral convex.
-        if (predicates::incircle(xy(from(h)), xy(to(h)), xy(v), xy(opposite)) <= 0.0)
+        if (predicates::incircleTieBroken(xy(from(h)), xy(to(h)), xy(v), xy(opposite)) <= 0)
             continue;
         flipAcross(h, g);
         toCheck.push_back(3 * (h / 3));
@@ -323,8 +323,8 @@ void CdtMesh::restoreDelaunay(std::vector<std::size_t>& stack) {
         if (g == kNoHalfEdge)
             continue;
         const std::uint32_t opposite = from(previousHalfEdge(g));
-        if (predicates::incircle(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
-                                 xy(opposite)) > 0.0)
+        if (predicates::incircleTieBroken(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
+                                          xy(opposite)) > 0)
             flipAndRecord(h, g, stack);
     }
 }

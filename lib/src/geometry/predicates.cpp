@@ -481,4 +481,55 @@ bool axisParallelRectangle(const Point2& a, const Point2& b, const Point2& c, co
     return incircleExact(a, b, c, d);
 }
 
+namespace {
+bool lexicographicallyLess(const Point2& p, const Point2& q) {
+    return p.x < q.x || (p.x == q.x && p.y < q.y);
+}
+
+bool samePoint(const Point2& p, const Point2& q) {
+    return p.x == q.x && p.y == q.y;
+}
+
+int signOf(double value) {
+    return (value > 0.0) - (value < 0.0);
+}
+
+/// The sign of the derivative of incircle(a, b, c, d) by the lift of `point` (one of the four,
+/// by address). By the alternation, moving d outwards lowers incircle at the rate
+/// orient(a, b, c); the others follow by swapping them with d.
+int liftDerivativeSign(const Point2* point, const Point2& a, const Point2& b, const Point2& c,
+                       const Point2& d) {
+    if (point == &d)
+        return -signOf(orient2d(a, b, c));
+    if (point == &c)
+        return signOf(orient2d(a, b, d));
+    if (point == &b)
+        return signOf(orient2d(a, d, c));
+    return signOf(orient2d(d, b, c));
+}
+} // namespace
+
+int cocircularTieSign(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+    if (samePoint(a, b) || samePoint(a, c) || samePoint(a, d) || samePoint(b, c) ||
+        samePoint(b, d) || samePoint(c, d))
+        return 0; // a repeated point lies on every circle through it
+    // The lifted determinant is linear in each lift, so the perturbed one is
+    // incircle + sum(eps_i * dIncircle/dLift_i), and its sign is that of the first nonzero
+    // derivative, largest point first. Four distinct cocircular points have no three collinear,
+    // so the largest point decides; the others matter only for four collinear points.
+    std::array<const Point2*, 4> points{&a, &b, &c, &d};
+    std::iter_swap(points.begin(), std::max_element(points.begin(), points.end(),
+                                                    [](const Point2* p, const Point2* q) {
+                                                        return lexicographicallyLess(*p, *q);
+                                                    }));
+    if (const int sign = liftDerivativeSign(points[0], a, b, c, d); sign != 0) [[likely]]
+        return sign;
+    std::sort(points.begin() + 1, points.end(),
+              [](const Point2* p, const Point2* q) { return lexicographicallyLess(*q, *p); });
+    for (std::size_t i = 1; i < points.size(); ++i)
+        if (const int sign = liftDerivativeSign(points[i], a, b, c, d); sign != 0)
+            return sign;
+    return 0;
+}
+
 } // namespace terratin::predicates::detail

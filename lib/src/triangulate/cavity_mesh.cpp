@@ -116,7 +116,7 @@ bool CavityMesh::inConflict(const CavityTriangle& t, const Point2& p) const {
     const Point2& a = m_points[t.corners[0]];
     const Point2& b = m_points[t.corners[1]];
     if (!isGhost(t))
-        return predicates::incircle(a, b, m_points[t.corners[2]], p) > 0;
+        return predicates::incircleTieBroken(a, b, m_points[t.corners[2]], p) > 0;
     // The ghost of hull edge b -> a: p sees that edge from outside, or lies inside it.
     const double side = predicates::orient2d(a, b, p);
     return side > 0 || (side == 0 && strictlyBetween(a, b, p));

@@ -13,8 +13,9 @@
 /// corner is a vertex at infinity (kGhostVertex, always corner 2). A point outside the hull
 /// conflicts with the ghosts of the hull edges it sees, so points may come in any order and no
 /// auxiliary triangle or symbolic point is needed. Predicates are exact: a real triangle is in
-/// conflict when the point is strictly inside its circumcircle, so cocircular points keep the
-/// diagonal that came first and the result is exactly Delaunay.
+/// conflict when the point is inside its circumcircle, cocircular points decided by
+/// predicates::incircleTieBroken, so the result is exactly Delaunay and the same triangulation
+/// the other methods build.
 ///
 /// Concurrency (the strip method): every triangle has an owner, the strip holding all its
 /// finite corners, or kSharedOwner. An insertion restricted to one owner reads and rewrites

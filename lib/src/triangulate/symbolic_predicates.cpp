@@ -80,7 +80,7 @@ int SymbolicPredicates::incircle(VertexId a, VertexId b, VertexId c, VertexId d)
     if (a == b || a == c || a == d || b == c || b == d || c == d)
         return 0;
     if (isFinite(a) && isFinite(b) && isFinite(c) && isFinite(d))
-        return sign(predicates::incircle(m_points[a], m_points[b], m_points[c], m_points[d]));
+        return predicates::incircleTieBroken(m_points[a], m_points[b], m_points[c], m_points[d]);
     // Move the most symbolic vertex (p-2 before p-1) to the end; each swap of two arguments
     // flips the determinant's sign.
     std::array<VertexId, 4> q{a, b, c, d};

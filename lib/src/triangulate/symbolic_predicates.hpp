@@ -60,18 +60,21 @@ public:
 
     /// Lawson's test for the edge (i, j) shared by the counter-clockwise triangles (i, j, k)
     /// and (j, i, l), where k is a finite vertex just inserted: true when l lies strictly inside
-    /// the circumcircle of (i, j, k), so the edge must be flipped to (k, l). Cocircular
-    /// points never flip, which keeps grids (cocircular everywhere) terminating and exact.
+    /// the circumcircle of (i, j, k), so the edge must be flipped to (k, l). Four cocircular
+    /// finite points are decided by predicates::incircleTieBroken, so that grids (cocircular
+    /// everywhere) get the same diagonals whatever the insertion order.
     /// Precondition: (i, j) is not the edge p-1 p-2.
     [[nodiscard]] bool shouldFlip(VertexId i, VertexId j, VertexId k, VertexId l) const {
         if (i < m_count && j < m_count && l < m_count)
-            return predicates::incircle(m_points[i], m_points[j], m_points[k], m_points[l]) > 0.0;
+            return predicates::incircleTieBroken(m_points[i], m_points[j], m_points[k],
+                                                 m_points[l]) > 0;
         return shouldFlipSymbolic(i, j, k, l);
     }
 
     /// Sign of the in-circle determinant of any four vertices (finite or symbolic): for a
     /// counter-clockwise (a, b, c), +1 when d lies strictly inside their circumcircle, -1
-    /// outside, 0 cocircular or when a vertex repeats. Slower than shouldFlip; for the
+    /// outside (cocircular finite points as predicates::incircleTieBroken decides), 0 when a
+    /// vertex repeats or four finite points are collinear. Slower than shouldFlip; for the
     /// circum-circle method's conflict test and for repairs, where the fourth point is not always
     /// the new one.
     [[nodiscard]] int incircle(VertexId a, VertexId b, VertexId c, VertexId d) const;

@@ -797,5 +797,98 @@ TEST(Incircle, ExactStageMatchesReference_WhenCalledDirectly) {
     }
 }
 
+// ---------------------------------------------------------------------------------------------
+// incircleTieBroken: cocircular points decided by a symbolic perturbation.
+
+Point2 latticePoint(std::size_t n) {
+    return {kRadius5Lattice[n][0], kRadius5Lattice[n][1]};
+}
+
+TEST(IncircleTieBroken, NeverZero_AndFollowsPermutationParity_OnCocircularPoints) {
+    // Every choice of four distinct points of the radius-5 lattice, in every order.
+    const std::size_t n = kRadius5Lattice.size();
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
+            for (std::size_t k = j + 1; k < n; ++k)
+                for (std::size_t l = k + 1; l < n; ++l) {
+                    const std::array<Point2, 4> points{latticePoint(i), latticePoint(j),
+                                                       latticePoint(k), latticePoint(l)};
+                    const int reference = predicates::incircleTieBroken(points[0], points[1],
+                                                                        points[2], points[3]);
+                    ASSERT_NE(reference, 0) << i << j << k << l;
+                    std::array<int, 4> permutation{0, 1, 2, 3};
+                    do {
+                        auto p = [&](std::size_t m) {
+                            return points[static_cast<std::size_t>(permutation[m])];
+                        };
+                        ASSERT_EQ(predicates::incircleTieBroken(p(0), p(1), p(2), p(3)),
+                                  parityOf(permutation) * reference);
+                    } while (std::next_permutation(permutation.begin(), permutation.end()));
+                }
+}
+
+TEST(IncircleTieBroken, LeavesExactlyOneLegalDiagonal_InEveryCocircularQuadrilateral) {
+    // The lattice is listed in no particular order: sort by angle for convex quadrilaterals.
+    std::vector<Point2> ring;
+    for (std::size_t i = 0; i < kRadius5Lattice.size(); ++i)
+        ring.push_back(latticePoint(i));
+    std::sort(ring.begin(), ring.end(), [](const Point2& a, const Point2& b) {
+        return std::atan2(a.y, a.x) < std::atan2(b.y, b.x);
+    });
+    for (std::size_t i = 0; i < ring.size(); ++i)
+        for (std::size_t j = i + 1; j < ring.size(); ++j)
+            for (std::size_t k = j + 1; k < ring.size(); ++k)
+                for (std::size_t l = k + 1; l < ring.size(); ++l) {
+                    const Point2 &a = ring[i], &b = ring[j], &c = ring[k], &d = ring[l];
+                    // Diagonal ac between (a, b, c) and (a, c, d); bd between (b, c, d) and
+                    // (b, d, a). Legal: the opposite corner outside, seen from either side.
+                    const bool acLegal = predicates::incircleTieBroken(a, b, c, d) < 0 &&
+                                         predicates::incircleTieBroken(c, d, a, b) < 0;
+                    const bool bdLegal = predicates::incircleTieBroken(b, c, d, a) < 0 &&
+                                         predicates::incircleTieBroken(d, a, b, c) < 0;
+                    EXPECT_NE(acLegal, bdLegal) << i << j << k << l;
+                }
+}
+
+TEST(IncircleTieBroken, GivesEveryGridCellTheDiagonalAwayFromItsLargestCorner) {
+    // The largest corner in (x, y) order is the top right one: every cell of a grid, at any
+    // offset, is split by the same diagonal, from its top left to its bottom right corner.
+    for (const auto& frame : kCircleFrames) {
+        const double origin = frame[0];
+        const double unit = frame[1];
+        const Point2 bottomLeft{origin, origin};
+        const Point2 bottomRight{origin + unit, origin};
+        const Point2 topRight{origin + unit, origin + unit};
+        const Point2 topLeft{origin, origin + unit};
+        ASSERT_EQ(incircle(bottomLeft, bottomRight, topRight, topLeft), 0.0);
+        // Diagonal bottom right - top left: topRight stays outside (bottomLeft, bottomRight,
+        // topLeft)'s circle.
+        EXPECT_LT(predicates::incircleTieBroken(bottomLeft, bottomRight, topLeft, topRight), 0);
+        EXPECT_GT(predicates::incircleTieBroken(bottomLeft, bottomRight, topRight, topLeft), 0);
+    }
+}
+
+TEST(IncircleTieBroken, AgreesWithIncircle_WhenNotCocircular) {
+    std::mt19937_64 rng(kSeed);
+    std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi);
+    std::uniform_int_distribution<int> ulps(-2, 2);
+    for (int trial = 0; trial < 1000; ++trial) {
+        std::array<Point2, 4> points{};
+        for (auto& p : points) {
+            const double theta = angle(rng);
+            p = {ulpsAway(500000.0 + 10.0 * std::cos(theta), ulps(rng)),
+                 5000000.0 + 10.0 * std::sin(theta)};
+        }
+        const double det = incircle(points[0], points[1], points[2], points[3]);
+        if (det != 0.0)
+            ASSERT_EQ(predicates::incircleTieBroken(points[0], points[1], points[2], points[3]),
+                      signOf(det));
+    }
+}
+
+TEST(IncircleTieBroken, ReturnsZero_WhenAPointRepeats) {
+    EXPECT_EQ(predicates::incircleTieBroken({0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 0.0}), 0);
+}
+
 } // namespace
 } // namespace terratin

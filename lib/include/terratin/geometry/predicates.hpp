@@ -134,6 +134,27 @@ inline double incircle(const Point2& a, const Point2& b, const Point2& c, const 
     return detail::incircleAdaptive(a, b, c, d, permanent);
 }
 
+namespace detail {
+/// The sign incircleTieBroken gives four cocircular points (out of line: rare outside grids).
+int cocircularTieSign(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
+} // namespace detail
+
+/// For a, b, c in counter-clockwise order: +1 if d lies inside their circumcircle, -1 if
+/// outside, like incircle, except that four cocircular points get the sign of a symbolic
+/// perturbation instead of 0. Each point is lifted by an infinitesimal, the lexicographically
+/// largest point ((x, y) order) by the largest one, as in CGAL's Delaunay_triangulation_2 and
+/// Devillers, "Perturbations for Delaunay and weighted Delaunay 3D triangulations" (2011).
+/// The answer depends only on the four coordinates, so every quadrilateral of cocircular points
+/// has exactly one legal diagonal and the Delaunay triangulation is unique: every insertion
+/// order, thread count and method then builds the same one (DEM grids are cocircular at every
+/// cell). 0 only for degenerate input (a repeated point, or all four collinear).
+inline int incircleTieBroken(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+    const double det = incircle(a, b, c, d);
+    if (det != 0.0) [[likely]]
+        return det > 0.0 ? 1 : -1;
+    return detail::cocircularTieSign(a, b, c, d);
+}
+
 /// For a, b, c in counter-clockwise order: true when stage A alone proves d strictly inside
 /// their circumcircle. False when d is outside, on the circle, or too close to it for stage A
 /// to tell: a one-sided test for heuristics that must stay cheap on near-cocircular points
