@@ -377,13 +377,7 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
                                             const ProgressCallback& progress) {
     const RefineOptions& refineOptions = *options.refine;
     ConstrainedRefinement result;
-    // Replace areas triangulate the points left again: sequentially, so that the TIN does not
-    // depend on the threads (a grid's cocircular cells may be split either way).
-    BuildOptions constraintOptions = options;
-    constraintOptions.triangulation.method = TriangulationMethod::Sequential;
-    constraintOptions.triangulation.threads = 1;
-    result.build =
-        addConstraints(std::move(refined), constraintOptions, crsWkt, report, std::move(areas));
+    result.build = addConstraints(std::move(refined), options, crsWkt, report, std::move(areas));
     unsigned threads =
         refineOptions.threads != 0 ? refineOptions.threads : options.triangulation.threads;
     if (threads == 0)

@@ -813,8 +813,8 @@ TEST(IncircleTieBroken, NeverZero_AndFollowsPermutationParity_OnCocircularPoints
                 for (std::size_t l = k + 1; l < n; ++l) {
                     const std::array<Point2, 4> points{latticePoint(i), latticePoint(j),
                                                        latticePoint(k), latticePoint(l)};
-                    const int reference = predicates::incircleTieBroken(points[0], points[1],
-                                                                        points[2], points[3]);
+                    const int reference =
+                        predicates::incircleTieBroken(points[0], points[1], points[2], points[3]);
                     ASSERT_NE(reference, 0) << i << j << k << l;
                     std::array<int, 4> permutation{0, 1, 2, 3};
                     do {
@@ -880,9 +880,10 @@ TEST(IncircleTieBroken, AgreesWithIncircle_WhenNotCocircular) {
                  5000000.0 + 10.0 * std::sin(theta)};
         }
         const double det = incircle(points[0], points[1], points[2], points[3]);
-        if (det != 0.0)
+        if (det != 0.0) {
             ASSERT_EQ(predicates::incircleTieBroken(points[0], points[1], points[2], points[3]),
                       signOf(det));
+        }
     }
 }
 

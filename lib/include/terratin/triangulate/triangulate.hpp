@@ -63,7 +63,8 @@ inline constexpr std::size_t kMaxQueueLength = std::size_t{1} << 20;
 
 /// How to triangulate. checkTriangulationOptions states the ranges.
 struct TriangulationOptions {
-    /// Seed of the random insertion order. The same seed gives the same mesh.
+    /// Seed of the random insertion order. Every seed gives the same triangles (cocircular ties
+    /// are broken by the points alone); the same seed also numbers them the same way.
     std::uint64_t seed = 1;
     InsertionOrder order = InsertionOrder::Brio;
     /// Which elevation survives for points sharing exactly the same (x, y).
