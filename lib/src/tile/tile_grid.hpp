@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// How a DEM is cut into tiles (issue 25's seam-free tiles): along each axis, ranges of cells
+/// that share their end cells with the neighbouring range, so that the cell line on a border
+/// belongs to both tiles and its vertices are decided once (border_profile.hpp).
+
+#include <cstddef>
+
+namespace terratin::detail {
+
+/// Cells first..last of one axis, both included.
+struct CellRange {
+    std::size_t first = 0;
+    std::size_t last = 0;
+
+    [[nodiscard]] std::size_t count() const { return last - first + 1; }
+    friend bool operator==(const CellRange&, const CellRange&) = default;
+};
+
+/// The tiles of a grid of `width` x `height` cells: tile column k spans the cells
+/// k * tileSize .. min((k + 1) * tileSize, width - 1), and likewise for rows, so neighbouring
+/// tiles share one column (or row) of cells and the last tile holds what is left (as little as
+/// one cell beyond its border). A grid of one cell across is one tile of one cell.
+class TileGrid {
+public:
+    /// Throws std::invalid_argument when a size is 0.
+    TileGrid(std::size_t width, std::size_t height, std::size_t tileSize);
+
+    [[nodiscard]] std::size_t tileColumns() const { return countAlong(m_width); }
+    [[nodiscard]] std::size_t tileRows() const { return countAlong(m_height); }
+    [[nodiscard]] std::size_t tileCount() const { return tileColumns() * tileRows(); }
+    [[nodiscard]] CellRange columnsOf(std::size_t tileColumn) const {
+        return rangeAlong(m_width, tileColumn);
+    }
+    [[nodiscard]] CellRange rowsOf(std::size_t tileRow) const {
+        return rangeAlong(m_height, tileRow);
+    }
+
+private:
+    [[nodiscard]] std::size_t countAlong(std::size_t cells) const;
+    [[nodiscard]] CellRange rangeAlong(std::size_t cells, std::size_t tile) const;
+
+    std::size_t m_width;
+    std::size_t m_height;
+    std::size_t m_tileSize;
+};
+
+} // namespace terratin::detail
