@@ -23,6 +23,32 @@ Point2 planar(const Point3& p) {
 double twiceSignedArea(const Point2& a, const Point2& b, const Point2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
+/// Interior edges whose quadrilateral incircleTieBroken would flip: none in the one Delaunay
+/// triangulation every method builds (ties included). Counted from each side.
+std::size_t tieBrokenIllegalEdges(const TinMesh& mesh) {
+    std::size_t illegal = 0;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const std::uint32_t* corner = &mesh.triangles[3 * t];
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::int32_t n = mesh.neighbours[3 * t + i];
+            if (n < 0)
+                continue;
+            // The corner of n that is not on the shared edge corner[i] -> corner[i + 1].
+            const std::uint32_t* other = &mesh.triangles[3 * static_cast<std::size_t>(n)];
+            std::uint32_t opposite = other[0];
+            for (std::size_t j = 0; j < 3; ++j)
+                if (other[j] != corner[i] && other[j] != corner[(i + 1) % 3])
+                    opposite = other[j];
+            auto xy = [&](std::uint32_t v) {
+                return Point2{mesh.vertices[v].x, mesh.vertices[v].y};
+            };
+            if (predicates::incircleTieBroken(xy(corner[0]), xy(corner[1]), xy(corner[2]),
+                                              xy(opposite)) > 0)
+                ++illegal;
+        }
+    }
+    return illegal;
+}
 } // namespace
 
 double convexHullArea(std::span<const Point3> points) {
@@ -73,6 +99,8 @@ void expectExactDelaunayOf(const TinMesh& mesh, std::span<const Point3> input) {
         return all;
     }();
     EXPECT_EQ(validation.nonDelaunayEdges, 0U);
+    EXPECT_EQ(tieBrokenIllegalEdges(mesh), 0U)
+        << "cocircular points not split as predicates::incircleTieBroken decides";
     EXPECT_EQ(validation.asymmetricNeighbours, 0U);
     EXPECT_EQ(validation.notCounterClockwise, 0U);
     EXPECT_TRUE(validation.eulerHolds);
