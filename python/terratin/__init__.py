@@ -89,7 +89,9 @@ def triangulate(points, method="auto", threads=0, *, seed=1, progress=None):
         float64 for other dtypes).
     method: "auto" (the strip method), "strips", "sequential", "batch" or "circumcircle".
     threads: hardware threads, 0 = all.
-    seed: seed of the insertion order; the same seed gives the same mesh.
+    seed: seed of the insertion order. Every seed, method and thread count gives the same
+        triangles (cocircular points, as on grids, are decided by the points alone); the
+        same seed also lists them in the same order.
     progress: callable(fraction, message) -> bool, called from this thread a few times a
         second with the GIL held; False cancels (terratin.Cancelled), None continues, an
         exception it raises stops the work and propagates.
