@@ -91,6 +91,24 @@ def test_same_seed_gives_the_same_mesh():
     assert all(numpy.array_equal(a, b) for a, b in zip(first, second))
 
 
+def triangle_set(vertices, triangles):
+    """The triangles as sorted corner coordinates, whatever their order and numbering."""
+    return sorted(tuple(sorted(map(tuple, vertices[t][:, :2].tolist()))) for t in triangles)
+
+
+def test_every_seed_method_and_thread_count_give_the_same_triangles_on_a_grid():
+    # Every cell of a grid is cocircular: the diagonals are decided by the points alone.
+    xs, ys = numpy.meshgrid(numpy.arange(40.0), numpy.arange(30.0))
+    points = numpy.column_stack([xs.ravel(), ys.ravel(), numpy.zeros(xs.size)])
+    reference = triangle_set(*terratin.triangulate(points, method="sequential", seed=1))
+    assert len(reference) == 2 * 39 * 29
+    for method in ("strips", "batch", "circumcircle"):
+        for threads in (1, 2):
+            for seed in (1, 9):
+                mesh = terratin.triangulate(points, method=method, threads=threads, seed=seed)
+                assert triangle_set(*mesh) == reference, (method, threads, seed)
+
+
 BAD_POINTS = {
     "one dimension": (numpy.zeros(9), "shape"),
     "three dimensions": (numpy.zeros((3, 3, 3)), "shape"),
