@@ -6,6 +6,7 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
 #include "constraint_test_data.hpp"
+#include "mesh_invariants.hpp"
 #include "mesh_readers.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -147,21 +148,6 @@ TEST(BreaklinesPipeline, GeoPackageEdgesSayWhichAreConstrained_AndLandXmlListsTh
     EXPECT_LT(text.find("</SourceData>"), text.find("<Definition"));
 }
 
-/// The triangles of `mesh` as sorted corner coordinates, in sorted order.
-std::vector<std::array<std::pair<double, double>, 3>> sortedTriangles(const test::ReadMesh& mesh) {
-    std::vector<std::array<std::pair<double, double>, 3>> triangles;
-    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
-        std::array<std::pair<double, double>, 3> corners{};
-        for (std::size_t i = 0; i < 3; ++i)
-            corners[i] = {mesh.vertices[mesh.triangles[t + i]].x,
-                          mesh.vertices[mesh.triangles[t + i]].y};
-        std::sort(corners.begin(), corners.end());
-        triangles.push_back(corners);
-    }
-    std::sort(triangles.begin(), triangles.end());
-    return triangles;
-}
-
 TEST(BreaklinesPipeline, EveryMethodAndThreadCountGivesTheSameTin) {
     // A DEM's cells are cocircular four by four; the triangulators break those ties by the
     // points' coordinates alone, so the full-resolution TIN does not depend on the method, the
@@ -182,9 +168,12 @@ TEST(BreaklinesPipeline, EveryMethodAndThreadCountGivesTheSameTin) {
             EXPECT_TRUE(runBuild(options).validated);
             tins.push_back(readTin(directory.path() / "tin.ply"));
         }
-    const auto first = sortedTriangles(tins[0].mesh);
+    auto trianglesOf = [](const ReadTin& tin) {
+        return test::sortedTriangles(tin.mesh.vertices, tin.mesh.triangles);
+    };
+    const std::vector<test::CornerTriple> first = trianglesOf(tins[0]);
     for (std::size_t i = 1; i < tins.size(); ++i)
-        EXPECT_TRUE(sortedTriangles(tins[i].mesh) == first) << "build " << i;
+        EXPECT_TRUE(trianglesOf(tins[i]) == first) << "build " << i;
     // The four ends and the crossing are the added vertices.
     std::vector<Point2> added;
     for (const auto& [place, v] : tins[0].vertexAt)

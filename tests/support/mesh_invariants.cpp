@@ -122,30 +122,26 @@ void expectExactDelaunayOf(const TinMesh& mesh, std::span<const Point3> input) {
     EXPECT_NEAR(meshArea, hullArea, 1e-9 * hullArea) << "triangles do not cover the convex hull";
 }
 
-namespace {
-using Corner = std::pair<double, double>;
-using CornerTriple = std::array<Corner, 3>;
-
-std::vector<CornerTriple> sortedTriangles(const TinMesh& mesh) {
-    std::vector<CornerTriple> triangles;
-    triangles.reserve(mesh.triangleCount());
-    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+std::vector<CornerTriple> sortedTriangles(std::span<const Point3> vertices,
+                                          std::span<const std::uint32_t> triangles) {
+    std::vector<CornerTriple> sorted;
+    sorted.reserve(triangles.size() / 3);
+    for (std::size_t t = 0; t < triangles.size(); t += 3) {
         CornerTriple corners{};
         for (std::size_t i = 0; i < 3; ++i) {
-            const Point3& p = mesh.vertices[mesh.triangles[t + i]];
+            const Point3& p = vertices[triangles[t + i]];
             corners[i] = {p.x, p.y};
         }
         std::sort(corners.begin(), corners.end());
-        triangles.push_back(corners);
+        sorted.push_back(corners);
     }
-    std::sort(triangles.begin(), triangles.end());
-    return triangles;
+    std::sort(sorted.begin(), sorted.end());
+    return sorted;
 }
-} // namespace
 
 void expectSameTriangles(const TinMesh& a, const TinMesh& b) {
-    const std::vector<CornerTriple> first = sortedTriangles(a);
-    const std::vector<CornerTriple> second = sortedTriangles(b);
+    const std::vector<CornerTriple> first = sortedTriangles(a.vertices, a.triangles);
+    const std::vector<CornerTriple> second = sortedTriangles(b.vertices, b.triangles);
     ASSERT_EQ(first.size(), second.size());
     const auto mismatch = std::mismatch(first.begin(), first.end(), second.begin());
     EXPECT_TRUE(mismatch.first == first.end())

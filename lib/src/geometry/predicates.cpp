@@ -486,10 +486,6 @@ bool lexicographicallyLess(const Point2& p, const Point2& q) {
     return p.x < q.x || (p.x == q.x && p.y < q.y);
 }
 
-bool samePoint(const Point2& p, const Point2& q) {
-    return p.x == q.x && p.y == q.y;
-}
-
 int signOf(double value) {
     return (value > 0.0) - (value < 0.0);
 }
@@ -510,8 +506,7 @@ int liftDerivativeSign(const Point2* point, const Point2& a, const Point2& b, co
 } // namespace
 
 int cocircularTieSign(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-    if (samePoint(a, b) || samePoint(a, c) || samePoint(a, d) || samePoint(b, c) ||
-        samePoint(b, d) || samePoint(c, d))
+    if (a == b || a == c || a == d || b == c || b == d || c == d)
         return 0; // a repeated point lies on every circle through it
     // The lifted determinant is linear in each lift, so the perturbed one is
     // incircle + sum(eps_i * dIncircle/dLift_i), and its sign is that of the first nonzero
