@@ -312,6 +312,32 @@ TEST(BreaklinesPipeline, LineZRefusesALineWithoutZ) {
     EXPECT_FALSE(fs::exists(directory.path() / "tin.ply"));
 }
 
+TEST(BreaklinesPipeline, ABadLayerIsRefusedBeforeTheTinIsBuilt) {
+    TemporaryDirectory directory;
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {"LINESTRING (455300.7 5102700.1, 456000.3 5102900.9)"});
+    for (const bool simplified : {false, true}) {
+        BuildOptions options = optionsFor(lines, directory.path() / "tin.ply");
+        options.breaklineZ = BreaklineZ::Line; // and the line has no z
+        if (simplified) {
+            options.refine.emplace();
+            options.refine->maxError = 1.0;
+        }
+        std::vector<std::string> messages;
+        const ProgressCallback progress = [&](double, std::string_view message) {
+            messages.emplace_back(message);
+            return true;
+        };
+        EXPECT_THROW((void)runBuild(options, progress), InvalidInputError);
+        EXPECT_FALSE(messages.empty()); // the DEM was read
+        for (const std::string& message : messages) {
+            EXPECT_EQ(message.find("triangulat"), std::string::npos) << message;
+            EXPECT_EQ(message.find("refin"), std::string::npos) << message;
+        }
+        EXPECT_FALSE(fs::exists(directory.path() / "tin.ply"));
+    }
+}
+
 TEST(BreaklinesPipeline, AnEmptyLayerGivesANotice_AndALayerInAnotherCrsIsReprojected) {
     TemporaryDirectory directory;
     const fs::path empty = directory.path() / "empty.gpkg";

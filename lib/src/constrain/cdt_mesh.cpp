@@ -22,7 +22,11 @@ constexpr std::size_t kMaxVertices = std::numeric_limits<std::uint32_t>::max() -
 
 CdtMesh::CdtMesh(TinMesh mesh)
     : m_mesh(std::move(mesh)), m_constrained(m_mesh.triangles.size(), 0),
-      m_vertexTriangle(m_mesh.vertices.size(), kUnknownTriangle) {}
+      m_vertexTriangle(m_mesh.vertices.size(), kUnknownTriangle) {
+    // As much room as the mesh has (reserveRoom): growing copies the whole array.
+    m_constrained.reserve(m_mesh.triangles.capacity());
+    m_vertexTriangle.reserve(m_mesh.vertices.capacity());
+}
 
 // Sequential, in triangle order: the same map whatever happened before.
 void CdtMesh::completeVertexMap() const {

@@ -167,28 +167,46 @@ void flattenReplaceRings(ConstrainedBuild& build) {
             build.tin.mesh.vertices[v].z = build.ringLevels[r];
 }
 
-ConstraintAreas readConstraintAreas(const BuildOptions& options, const std::string& crsWkt,
-                                    BuildReport& report) {
-    ConstraintAreas areas;
-    if (!options.clip.empty())
-        areas.clip = readInCrs(options.clip, "clip", options, crsWkt, report);
-    if (!options.erase.empty())
-        areas.erase = readInCrs(options.erase, "erase", options, crsWkt, report);
-    if (!options.replace.empty())
-        areas.replace = readInCrs(options.replace, "replace", options, crsWkt, report);
-    return areas;
+std::size_t ConstraintSources::spareVertices() const {
+    std::size_t vertices = 0;
+    const auto add = [&](const io::LineLayer& layer) {
+        for (const std::vector<Point3>& line : layer.lines)
+            vertices += line.size();
+    };
+    for (const std::optional<io::LineLayer>* area : {&clip, &erase, &replace})
+        if (*area)
+            add(**area);
+    for (const io::LineLayer& layer : breaklines)
+        add(layer);
+    return 2 * vertices;
 }
 
-ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
-                                const std::string& crsWkt, BuildReport& report,
-                                ConstraintAreas areas) {
+ConstraintSources readConstraintSources(const BuildOptions& options, const std::string& crsWkt,
+                                        BuildReport& report) {
+    ConstraintSources sources;
+    if (!options.clip.empty())
+        sources.clip = readInCrs(options.clip, "clip", options, crsWkt, report);
+    if (!options.erase.empty())
+        sources.erase = readInCrs(options.erase, "erase", options, crsWkt, report);
+    if (!options.replace.empty())
+        sources.replace = readInCrs(options.replace, "replace", options, crsWkt, report);
+    for (const std::string& source : options.breaklines) {
+        sources.breaklines.push_back(readInCrs(source, "breaklines", options, crsWkt, report));
+        if (options.breaklineZ == BreaklineZ::Line)
+            checkLineZ(sources.breaklines.back(), options);
+    }
+    return sources;
+}
+
+ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, BuildReport& report,
+                                ConstraintSources sources) {
     // Replace rings go in first, so that where a line crosses one the new vertex takes the
     // ring's level.
     ConstraintSet constraints;
     ConstrainedBuild build;
-    build.clip = std::move(areas.clip);
-    build.erase = std::move(areas.erase);
-    build.replace = std::move(areas.replace);
+    build.clip = std::move(sources.clip);
+    build.erase = std::move(sources.erase);
+    build.replace = std::move(sources.replace);
     std::optional<PolygonSet> replaceAreas;
     std::vector<double> levels; // per replace polygon
     {
@@ -201,13 +219,10 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
             report.replacePolygons = levels.size();
         }
         const std::size_t firstBreakline = constraints.polylines.size();
-        for (const std::string& source : options.breaklines) {
-            io::LineLayer layer = readInCrs(source, "breaklines", options, crsWkt, report);
-            if (options.breaklineZ == BreaklineZ::Line)
-                checkLineZ(layer, options);
+        for (io::LineLayer& layer : sources.breaklines) {
             const std::size_t clipped = addLines(layer, locator, options.breaklineZ,
                                                  options.triangulation.threads, constraints);
-            notifyClipped(options, report, source, clipped, layer.lines.size());
+            notifyClipped(options, report, layer.source, clipped, layer.lines.size());
             report.clippedBreaklines += clipped;
         }
         report.breaklines = constraints.polylines.size() - firstBreakline;

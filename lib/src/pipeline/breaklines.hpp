@@ -30,30 +30,39 @@ struct ConstrainedBuild {
     std::vector<double> ringLevels;
 };
 
-/// The polygons of options.clip, options.erase and options.replace (nullopt where not given),
-/// read and reprojected into `crsWkt` (see addConstraints).
-struct ConstraintAreas {
+/// The polygons of options.clip, options.erase and options.replace (nullopt where not given)
+/// and the lines of each options.breaklines source, in the TIN's CRS. They are read before the
+/// TIN is built: a bad layer fails before the long part, and their vertices size the TIN's
+/// arrays.
+struct ConstraintSources {
     std::optional<io::LineLayer> clip;
     std::optional<io::LineLayer> erase;
     std::optional<io::LineLayer> replace;
-};
-ConstraintAreas readConstraintAreas(const BuildOptions& options, const std::string& crsWkt,
-                                    BuildReport& report);
+    std::vector<io::LineLayer> breaklines;
 
-/// `mesh` (the Delaunay TIN of the inputs, in `crsWkt`) with every line of
-/// options.breaklines and every ring of `areas` (readConstraintAreas) inserted: a constrained
-/// Delaunay TIN. Lines and rings are reprojected from their layer's CRS (a layer without one is
-/// taken to be in `crsWkt`, with a notice) and clipped to the mesh's convex hull (with a notice);
-/// breakline vertices get z per options.breaklineZ, clip and erase ring vertices the surface's.
-/// Replace areas are flat: the vertices inside one are left out (those on the convex hull stay, at
-/// its level) and every constraint vertex on or inside one takes its level (options.replaceZField,
-/// else the lowest surface elevation on its boundary). A source without features gives a notice.
+    /// The room to leave in the TIN's arrays (TriangulationOptions::spareVertices): twice the
+    /// vertices of every line and ring, for them and for the crossings and cells inserted
+    /// after them.
+    [[nodiscard]] std::size_t spareVertices() const;
+};
+/// Reads the sources of `options`' constraints and reprojects them from their layer's CRS into
+/// `crsWkt` (a layer without one is taken to be in `crsWkt`, with a notice; so is a source
+/// without features). Throws what io::readOgrLines and io::readOgrPolygons throw, and
+/// InvalidInputError for a line without z under BreaklineZ::Line.
+ConstraintSources readConstraintSources(const BuildOptions& options, const std::string& crsWkt,
+                                        BuildReport& report);
+
+/// `mesh` (the Delaunay TIN of the inputs, in the sources' CRS) with every line and ring of
+/// `sources` inserted: a constrained Delaunay TIN. Lines and rings are clipped to the mesh's
+/// convex hull (with a notice); breakline vertices get z per options.breaklineZ, clip and erase
+/// ring vertices the surface's. Replace areas are flat: the vertices inside one are left out
+/// (those on the convex hull stay, at its level) and every constraint vertex on or inside one
+/// takes its level (options.replaceZField, else the lowest surface elevation on its boundary).
 /// Fills report.breaklines, clippedBreaklines, constraintVertices, constraintCrossings,
-/// replacePolygons and replacedPoints. Throws what io::readOgrLines, io::readOgrPolygons and
-/// insertConstraints throw, and InvalidInputError for a line without z under BreaklineZ::Line.
-ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options,
-                                const std::string& crsWkt, BuildReport& report,
-                                ConstraintAreas areas);
+/// replacePolygons and replacedPoints. Throws what insertConstraints throws, and
+/// InvalidInputError for a replace polygon outside the data without a level.
+ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, BuildReport& report,
+                                ConstraintSources sources);
 
 /// Every vertex of a replace ring's chain at the ring's level: vertices lying on a ring (input
 /// points, or points inserted later) are on the lake's shore line.

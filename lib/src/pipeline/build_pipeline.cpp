@@ -228,11 +228,12 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.
     const double refineShare = constrained ? 0.8 * kTriangulateShare : kTriangulateShare;
     const ProgressCallback refineProgress = phaseProgress(progress, kReadShare, refineShare);
-    detail::ConstraintAreas areas;
+    detail::ConstraintSources sources;
     std::size_t replacedCells = 0;
     if (constrained) {
-        areas = detail::readConstraintAreas(options, placement.targetWkt, report);
-        replacedCells = detail::leaveOutAreaCells(raster.grid, placement.positions, areas);
+        sources = detail::readConstraintSources(options, placement.targetWkt, report);
+        replacedCells = detail::leaveOutAreaCells(raster.grid, placement.positions, sources);
+        refineOptions.spareVertices = sources.spareVertices();
     }
     RefineResult result =
         placement.positions.empty()
@@ -255,8 +256,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     TinMesh mesh = std::move(result.mesh);
     if (constrained) {
         detail::ConstrainedRefinement corrected = detail::refineWithConstraints(
-            raster.grid, placement.positions, std::move(mesh), options, std::move(areas),
-            placement.targetWkt, report,
+            raster.grid, placement.positions, std::move(mesh), options, std::move(sources), report,
             phaseProgress(progress, kReadShare + refineShare, kTriangulateShare - refineShare));
         mesh = takeConstrainedMesh(std::move(corrected), options, writeOptions, report);
         report.replacedPoints += replacedCells;
@@ -351,8 +351,14 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.timings.read = readTime.seconds();
 
     const Stopwatch triangulateTime;
+    std::optional<detail::ConstraintSources> sources;
+    TriangulationOptions triangulationOptions = options.triangulation;
+    if (hasConstraints(options)) {
+        sources = detail::readConstraintSources(options, gathered.crsWkt, report);
+        triangulationOptions.spareVertices = sources->spareVertices();
+    }
     TriangulationResult triangulation =
-        triangulate(gathered.points, options.triangulation,
+        triangulate(gathered.points, triangulationOptions,
                     phaseProgress(progress, kReadShare, kTriangulateShare));
     gathered.points = {}; // the mesh holds its own copy of the vertices
     detail::countDuplicatesPerInput(gathered.offsets, triangulation.mesh.sourceIndex, report);
@@ -364,10 +370,9 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.historyBytesPerPoint = static_cast<double>(triangulation.historyBytes) /
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
     std::optional<detail::ConstrainedBuild> constrained;
-    if (hasConstraints(options)) {
-        constrained =
-            detail::addConstraints(std::move(triangulation.mesh), options, gathered.crsWkt, report,
-                                   detail::readConstraintAreas(options, gathered.crsWkt, report));
+    if (sources) {
+        constrained = detail::addConstraints(std::move(triangulation.mesh), options, report,
+                                             std::move(*sources));
         report.vertices = constrained->tin.mesh.vertexCount();
         report.triangles = constrained->tin.mesh.triangleCount();
     }

@@ -98,6 +98,16 @@ struct Candidate {
     std::uint32_t triangle = 0;
 };
 
+/// What the check of a block of cells found: the figures, and every cell proposed as its
+/// triangle's candidate, in cell order.
+struct BlockTally {
+    double maxError = 0.0;
+    double sumSquares = 0.0;
+    std::size_t covered = 0;
+    std::size_t uncovered = 0;
+    std::vector<Candidate> proposals;
+};
+
 /// One check of the whole constrained TIN.
 struct Measure {
     double maxError = 0.0;
@@ -111,6 +121,11 @@ struct Measure {
 
 constexpr std::uint32_t kNoTriangle = 0xffffffffU;
 
+/// The cells are checked in fixed blocks of this many on the threads: the blocks, not the
+/// threads, decide the order of the walks and of the sums, so the result is the same for any
+/// number of threads.
+constexpr std::size_t kCellBlock = 16384;
+
 /// Measures the constrained TIN against the grid, again after each round of insertions: every
 /// cell is located once, and after that only the cells of the triangles the insertions changed
 /// (the others hold the same cells with the same errors).
@@ -120,7 +135,7 @@ public:
                      const ConstrainedBuild& build, const RefineOptions& refineOptions,
                      unsigned threads)
         : m_grid(&grid), m_positions(positions), m_build(&build),
-          m_maxError(refineOptions.maxError), m_threads(std::max(threads, 1U)) {
+          m_maxError(refineOptions.maxError), m_arena(static_cast<int>(std::max(threads, 1U))) {
         if (build.clip)
             m_clip.emplace(*build.clip);
         if (build.erase)
@@ -150,12 +165,19 @@ public:
                       : std::vector<std::uint8_t>(triangles, 0);
         const std::vector<std::uint8_t> overHole = trianglesOverHoles();
         m_candidateOf.resize(triangles, kNoTriangle);
-        if (everyCell) {
-            for (std::size_t i = 0; i < m_cells.measuredCells.size(); ++i)
-                tally(i, overHole, flat, measure);
-        } else {
-            for (const std::size_t i : m_relocated)
-                tally(i, overHole, flat, measure);
+        const std::size_t count = everyCell ? m_cells.measuredCells.size() : m_relocated.size();
+        std::vector<BlockTally> blocks((count + kCellBlock - 1) / kCellBlock);
+        forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k)
+                tally(everyCell ? k : m_relocated[k], overHole, flat, measure.drop, blocks[block]);
+        });
+        for (const BlockTally& block : blocks) {
+            measure.maxError = std::max(measure.maxError, block.maxError);
+            measure.sumSquares += block.sumSquares;
+            measure.covered += block.covered;
+            measure.uncovered += block.uncovered;
+            for (const Candidate& candidate : block.proposals)
+                propose(candidate, measure);
         }
         for (const Candidate& candidate : measure.candidates)
             m_candidateOf[candidate.triangle] = kNoTriangle;
@@ -196,10 +218,20 @@ private:
         return changed.empty() || t == kNoTriangle || changed[t] != 0;
     }
 
+    /// Calls visit(block, begin, end) for the fixed blocks of kCellBlock of [0, count), on the
+    /// threads.
+    template <class Visit> void forEachBlock(std::size_t count, Visit&& visit) {
+        const std::size_t blocks = (count + kCellBlock - 1) / kCellBlock;
+        m_arena.execute([&] {
+            tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
+                visit(block, block * kCellBlock, std::min(count, (block + 1) * kCellBlock));
+            });
+        });
+    }
+
     /// Locates again the cells (measured ones, and open holes' ones) of changed triangles; the
-    /// measured ones are listed in m_relocated.
+    /// measured ones are listed in m_relocated, in cell order.
     void relocate(const std::vector<std::uint8_t>& changed) {
-        m_relocated.clear();
         // The locator is built once and only copied, so that every walk starts from the same
         // state: which triangle a cell on an edge gets does not depend on the threads. Later
         // the cells of changed triangles walk from their old triangle, whose slot now holds a
@@ -212,34 +244,20 @@ private:
                 m_holeTriangle[i] =
                     locator.locateNearFrom(position(m_cells.openHoleCells[i]), m_holeTriangle[i])
                         .value_or(kNoTriangle);
-        if (changed.empty()) {
-            relocateEveryCell();
-            return;
-        }
-        for (std::size_t i = 0; i < m_cells.measuredCells.size(); ++i)
-            if (stale(m_cellTriangle[i], changed)) {
-                measureAt(i, locator);
-                m_relocated.push_back(i);
-            }
-    }
-
-    /// The first measure: every cell located, in fixed blocks of cells on the threads, each
-    /// block with a fresh copy of the locator.
-    void relocateEveryCell() {
-        constexpr std::size_t kBlock = 16384;
-        const std::size_t blocks = (m_cells.measuredCells.size() + kBlock - 1) / kBlock;
-        tbb::task_arena arena(static_cast<int>(m_threads));
-        arena.execute([&] {
-            tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
-                TinLocator locator = *m_locator;
-                const std::size_t end =
-                    std::min(m_cells.measuredCells.size(), (block + 1) * kBlock);
-                for (std::size_t i = block * kBlock; i < end; ++i)
-                    measureAt(i, locator);
-            });
+        // The measured cells, each block with a fresh copy of the locator.
+        const std::size_t count = m_cells.measuredCells.size();
+        std::vector<std::vector<std::size_t>> relocated((count + kCellBlock - 1) / kCellBlock);
+        forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
+            TinLocator blockLocator = *m_locator;
+            for (std::size_t i = begin; i < end; ++i)
+                if (stale(m_cellTriangle[i], changed)) {
+                    measureAt(i, blockLocator);
+                    relocated[block].push_back(i);
+                }
         });
-        m_relocated.resize(m_cells.measuredCells.size());
-        std::iota(m_relocated.begin(), m_relocated.end(), std::size_t{0});
+        m_relocated.clear();
+        for (const std::vector<std::size_t>& cells : relocated)
+            m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
     }
 
     /// Locates measured cell i, walking from its old triangle, and measures its error there.
@@ -252,18 +270,19 @@ private:
             m_cellError[i] = std::abs(double{m_grid->z[cell]} - planeAt(m_build->tin.mesh, t, p));
     }
 
-    /// Counts measured cell i, and makes it its triangle's candidate when it is the worst over
-    /// the bound, or lies in a triangle over an open hole.
+    /// Counts measured cell i into `block`, and proposes it as its triangle's candidate when it
+    /// is over the bound, or lies in a triangle over an open hole.
     void tally(std::size_t i, const std::vector<std::uint8_t>& overHole,
-               const std::vector<std::uint8_t>& flat, Measure& measure) {
+               const std::vector<std::uint8_t>& flat, const std::vector<std::uint8_t>& drop,
+               BlockTally& block) const {
         std::uint32_t t = m_cellTriangle[i];
         if (t == kNoTriangle) {
-            ++measure.uncovered;
+            ++block.uncovered;
             return;
         }
         const std::size_t cell = m_cells.measuredCells[i];
         const auto left = [&](std::size_t u) {
-            return measure.drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
+            return drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
         };
         if (left(t)) {
             // A cell on an edge belongs to a kept triangle on the other side, if there is one
@@ -272,24 +291,25 @@ private:
             if (other != kNoNeighbour && !left(static_cast<std::size_t>(other)))
                 t = static_cast<std::uint32_t>(other);
         }
-        if (measure.drop[t] != 0 || flat[t] != 0)
+        if (drop[t] != 0 || flat[t] != 0)
             return; // outside the output's area, or in a replace area
         const bool corner = isCorner(m_build->tin.mesh, t, position(cell));
         if (overHole[t] != 0 && !corner) {
             // As the refiner does: a hole's triangle is split until it covers no valid cell.
-            ++measure.uncovered;
-            propose({std::numeric_limits<double>::infinity(), cell, t}, measure);
+            ++block.uncovered;
+            block.proposals.push_back({std::numeric_limits<double>::infinity(), cell, t});
             return;
         }
         const double error = m_cellError[i];
-        ++measure.covered;
-        measure.sumSquares += error * error;
-        measure.maxError = std::max(measure.maxError, error);
+        ++block.covered;
+        block.sumSquares += error * error;
+        block.maxError = std::max(block.maxError, error);
         if (m_maxError && error > *m_maxError && !corner)
-            propose({error, cell, t}, measure);
+            block.proposals.push_back({error, cell, t});
     }
 
-    /// `candidate` becomes its triangle's candidate unless that has a worse one.
+    /// `candidate` becomes its triangle's candidate unless that has a worse one (an earlier
+    /// cell keeps a tie).
     void propose(const Candidate& candidate, Measure& measure) {
         std::uint32_t& slot = m_candidateOf[candidate.triangle];
         if (slot == kNoTriangle) {
@@ -304,7 +324,7 @@ private:
     std::span<const Point2> m_positions;
     const ConstrainedBuild* m_build;
     std::optional<double> m_maxError;
-    unsigned m_threads;
+    tbb::task_arena m_arena;
     std::optional<PolygonSet> m_clip;
     std::optional<PolygonSet> m_erase;
     std::optional<PolygonSet> m_replace;
@@ -349,13 +369,13 @@ std::vector<Candidate> chooseCandidates(std::vector<Candidate> worst, const TinM
 } // namespace
 
 std::size_t leaveOutAreaCells(HeightGrid& grid, std::span<const Point2> positions,
-                              const ConstraintAreas& areas) {
+                              const ConstraintSources& sources) {
     std::optional<PolygonSet> erase;
     std::optional<PolygonSet> replace;
-    if (areas.erase)
-        erase.emplace(*areas.erase);
-    if (areas.replace)
-        replace.emplace(*areas.replace);
+    if (sources.erase)
+        erase.emplace(*sources.erase);
+    if (sources.replace)
+        replace.emplace(*sources.replace);
     std::size_t replaced = 0;
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
         if (!grid.isValid(cell))
@@ -372,12 +392,11 @@ std::size_t leaveOutAreaCells(HeightGrid& grid, std::span<const Point2> position
 
 ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
                                             std::span<const Point2> positions, TinMesh refined,
-                                            const BuildOptions& options, ConstraintAreas areas,
-                                            const std::string& crsWkt, BuildReport& report,
-                                            const ProgressCallback& progress) {
+                                            const BuildOptions& options, ConstraintSources sources,
+                                            BuildReport& report, const ProgressCallback& progress) {
     const RefineOptions& refineOptions = *options.refine;
     ConstrainedRefinement result;
-    result.build = addConstraints(std::move(refined), options, crsWkt, report, std::move(areas));
+    result.build = addConstraints(std::move(refined), options, report, std::move(sources));
     unsigned threads =
         refineOptions.threads != 0 ? refineOptions.threads : options.triangulation.threads;
     if (threads == 0)
@@ -407,16 +426,16 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
         }
         everyCell = false;
         std::vector<Point3> points;
-        std::vector<std::uint32_t> sources;
-        std::vector<std::uint32_t> near; // where each was located: its walk starts there
+        std::vector<std::uint32_t> cells; // each point's source index
+        std::vector<std::uint32_t> near;  // where each was located: its walk starts there
         for (const Candidate& candidate : candidates) {
             const Point2 p = cellPosition(grid, positions, candidate.cell);
             points.push_back({p.x, p.y, double{grid.z[candidate.cell]}});
-            sources.push_back(static_cast<std::uint32_t>(candidate.cell));
+            cells.push_back(static_cast<std::uint32_t>(candidate.cell));
             near.push_back(candidate.triangle);
         }
         const std::size_t inserted =
-            insertVertices(result.build.tin, points, sources, &changed, near);
+            insertVertices(result.build.tin, points, cells, &changed, near);
         flattenReplaceRings(result.build); // a cell on a ring is on the shore line
         result.insertedCells += inserted;
         if (inserted == 0) {

@@ -43,7 +43,7 @@ struct ConstrainedRefinement {
 /// `refined` (the refiner's TIN of `grid` with its triangles over holes, RefineOptions::
 /// keepHoleTriangles; vertices at `positions` or at the cell centres when `positions` is empty;
 /// the cells of erase and replace areas left out, leaveOutAreaCells) with the constraints of
-/// `options` and `areas` inserted (addConstraints, with z from that TIN's surface), then every
+/// `sources` inserted (addConstraints, with z from that TIN's surface), then every
 /// valid cell outside the erase and replace areas and inside the clip area measured against the
 /// constrained TIN: while cells are over options.refine->maxError, or lie in a triangle over an
 /// open hole, the worst of each triangle is inserted (insertVertices: constrained edges are never
@@ -51,15 +51,14 @@ struct ConstrainedRefinement {
 /// constraint figures of `report`; calls `progress` (which may throw Cancelled) before every check.
 ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
                                             std::span<const Point2> positions, TinMesh refined,
-                                            const BuildOptions& options, ConstraintAreas areas,
-                                            const std::string& crsWkt, BuildReport& report,
-                                            const ProgressCallback& progress);
+                                            const BuildOptions& options, ConstraintSources sources,
+                                            BuildReport& report, const ProgressCallback& progress);
 
-/// Sets the cells of `grid` inside an erase or replace polygon of `areas` to no data, before
+/// Sets the cells of `grid` inside an erase or replace polygon of `sources` to no data, before
 /// the refiner runs: it spends no point where the output has none, or is flat. Cells lie at
 /// `positions`, or at their centres when it is empty. Returns how many valid cells a replace
 /// polygon held.
 std::size_t leaveOutAreaCells(HeightGrid& grid, std::span<const Point2> positions,
-                              const ConstraintAreas& areas);
+                              const ConstraintSources& sources);
 
 } // namespace terratin::detail

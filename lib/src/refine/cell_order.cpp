@@ -39,7 +39,8 @@ std::vector<std::uint32_t> orderOfKeys(const std::vector<std::uint32_t>& keys) {
 
 TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex> vertices,
                            std::span<const VertexRange> ranges, std::int64_t width,
-                           unsigned threads, std::vector<TriId>* slotOfTriangle) {
+                           unsigned threads, std::vector<TriId>* slotOfTriangle,
+                           std::size_t spareVertices) {
     // The vertices in use, one range after the other, and their cells.
     std::size_t vertexCount = 0;
     for (const VertexRange& range : ranges)
@@ -68,6 +69,7 @@ TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex>
         idEnd = std::max(idEnd, range.end);
     const std::unique_ptr<std::uint32_t[]> rankOf(new std::uint32_t[idEnd]);
     TinMesh out;
+    reserveRoom(out, vertexCount, spareVertices);
     out.vertices.resize(vertexCount);
     out.sourceIndex.resize(vertexCount);
     parallelFor(vertexCount, threads, [&](unsigned, std::size_t begin, std::size_t end) {

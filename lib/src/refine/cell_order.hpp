@@ -28,9 +28,11 @@ struct VertexRange {
 
 /// The triangles of `mesh` with the vertices of `ranges` (every vertex a triangle uses lies
 /// in one), in raster order, sourceIndex = cell index (row * width + col). On up to
-/// `threads` threads. With `slotOfTriangle`, sets it to the slot of each triangle.
+/// `threads` threads. With `slotOfTriangle`, sets it to the slot of each triangle. The arrays
+/// have room for `spareVertices` more vertices (reserveRoom).
 TinMesh extractInCellOrder(const RefineMesh& mesh, std::span<const RefineVertex> vertices,
                            std::span<const VertexRange> ranges, std::int64_t width,
-                           unsigned threads, std::vector<TriId>* slotOfTriangle = nullptr);
+                           unsigned threads, std::vector<TriId>* slotOfTriangle = nullptr,
+                           std::size_t spareVertices = 0);
 
 } // namespace terratin::detail

@@ -550,13 +550,14 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
     }
 }
 
-TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle) const {
+TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle,
+                                          std::size_t spareVertices) const {
     std::vector<VertexRange> ranges{{0, static_cast<VertexId>(m_hullPoints)}};
     for (const Strip& own : m_strips)
         ranges.push_back({own.firstVertex, own.nextVertex});
     return detail::extractInCellOrder(
         *m_mesh, std::span<const RefineVertex>(m_vertices.data(), m_vertices.size()), ranges,
-        m_grid->width, m_workers->size(), slotOfTriangle);
+        m_grid->width, m_workers->size(), slotOfTriangle, spareVertices);
 }
 
 } // namespace terratin::detail

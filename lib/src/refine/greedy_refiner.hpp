@@ -53,8 +53,10 @@ public:
 
     /// The Delaunay triangulation of the chosen cells as a TinMesh (vertices at the cells'
     /// positions, sourceIndex = cell index) in raster order (cell_order.hpp); with
-    /// `slotOfTriangle`, also the mesh slot of each of its triangles.
-    [[nodiscard]] TinMesh extractInCellOrder(std::vector<TriId>* slotOfTriangle = nullptr) const;
+    /// `slotOfTriangle`, also the mesh slot of each of its triangles; with room for
+    /// `spareVertices` more vertices (reserveRoom).
+    [[nodiscard]] TinMesh extractInCellOrder(std::vector<TriId>* slotOfTriangle = nullptr,
+                                             std::size_t spareVertices = 0) const;
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }

@@ -88,7 +88,7 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     result.meshBytes = refiner.meshBytes();
     result.insertSeconds = lap(phase);
 
-    result.mesh = refiner.extractInCellOrder();
+    result.mesh = refiner.extractInCellOrder(nullptr, options.spareVertices);
     if (options.validate) {
         const MeshValidation validation = validateDelaunay(result.mesh);
         if (!validation.ok())
@@ -101,8 +101,11 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     // walks that locate cells need the triangles over holes).
     std::vector<std::uint8_t> drop(result.mesh.triangleCount(), 0);
     TinMesh whole;
-    if (options.keepHoleTriangles && result.openHoleCells > 0)
-        whole = result.mesh;
+    if (options.keepHoleTriangles && result.openHoleCells > 0) {
+        // The whole TIN is kept aside with its arrays' room (a copy has none).
+        whole = std::move(result.mesh);
+        result.mesh = whole;
+    }
     if (result.openHoleCells > 0)
         drop = positions.empty()
                    ? detail::trianglesOverOpenHoles(result.mesh, view, threads)

@@ -229,6 +229,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     HugePageArray<Point2>().swap(prepared.local);
     result.seconds.order = lap(phase);
 
+    reserveRoom(result.mesh, count, options.spareVertices);
     const bool historyFree = result.method == TriangulationMethod::Strips ||
                              (result.method == TriangulationMethod::Sequential && walk);
     if (historyFree)

@@ -553,6 +553,39 @@ TEST(InsertConstraints, Throws_WhenPolylineTrianglesDoNotMatchThePolylines) {
     EXPECT_NO_THROW((void)insertConstraints(mesh, constraints));
 }
 
+TEST(InsertConstraints, CopiesNoArray_WhenTheMeshHasRoomForTheNewVertices) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 2000, 4);
+    TriangulationOptions roomy;
+    roomy.spareVertices = 500;
+    TinMesh mesh = triangulate(points, roomy).mesh;
+    const TinMesh plain = delaunayOf(points);
+    EXPECT_EQ(mesh.triangles, plain.triangles); // the room changes nothing else
+    EXPECT_GE(mesh.vertices.capacity(), mesh.vertexCount() + 500);
+    EXPECT_GE(mesh.triangles.capacity(), 3 * (mesh.triangleCount() + 2 * 500));
+    // Crossing polylines zigzagging over the middle: new vertices and crossings.
+    ConstraintSet constraints;
+    for (int k = 0; k < 10; ++k) {
+        std::vector<Point3> line;
+        for (int j = 0; j < 10; ++j) {
+            const double along = 0.2 + 0.06 * j;
+            const double across = 0.25 + 0.05 * k + (j % 2 == 0 ? 0.0 : 0.03);
+            line.push_back(k % 2 == 0 ? Point3{along, across, 0.0} : Point3{across, along, 0.0});
+        }
+        constraints.polylines.push_back(line);
+    }
+    const Point3* vertices = mesh.vertices.data();
+    const std::uint32_t* triangles = mesh.triangles.data();
+    const std::int32_t* neighbours = mesh.neighbours.data();
+    const ConstrainedTin tin = insertConstraints(std::move(mesh), constraints);
+    EXPECT_GT(tin.addedPoints, 90U);
+    EXPECT_GT(tin.intersections, 0U);
+    EXPECT_LE(tin.addedPoints + tin.intersections, 500U);
+    EXPECT_EQ(tin.mesh.vertices.data(), vertices);
+    EXPECT_EQ(tin.mesh.triangles.data(), triangles);
+    EXPECT_EQ(tin.mesh.neighbours.data(), neighbours);
+    test::expectConstrainedDelaunay(tin, plain, constraints);
+}
+
 TEST(InsertConstraints, NoConstraintsLeavesTheMesh) {
     const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Gauss, 300, 2));
     const ConstrainedTin tin = constrainAndCheck(mesh, {});

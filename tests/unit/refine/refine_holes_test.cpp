@@ -91,5 +91,21 @@ TEST(RefineHoles, NoVertexIsANodataCell) {
         EXPECT_FALSE(std::isnan(grid.z[cell]));
 }
 
+TEST(RefineHoles, SpareVerticesLeaveRoom_InTheTinKeptWithItsHoleTriangles) {
+    const HeightGrid grid = terrainWithHoles();
+    RefineOptions kept = options(0.5);
+    kept.keepHoleTriangles = true;
+    const RefineResult plain = refine(grid, kept);
+    kept.spareVertices = 300;
+    const RefineResult roomy = refine(grid, kept);
+    EXPECT_EQ(roomy.mesh.vertices, plain.mesh.vertices); // the room changes nothing else
+    EXPECT_EQ(roomy.mesh.triangles, plain.mesh.triangles);
+    EXPECT_GT(roomy.droppedTriangles, 0U); // measured without them, returned with them
+    EXPECT_GE(roomy.mesh.vertices.capacity(), roomy.mesh.vertexCount() + 300);
+    EXPECT_GE(roomy.mesh.sourceIndex.capacity(), roomy.mesh.vertexCount() + 300);
+    EXPECT_GE(roomy.mesh.triangles.capacity(), 3 * (roomy.mesh.triangleCount() + 2 * 300));
+    EXPECT_GE(roomy.mesh.neighbours.capacity(), 3 * (roomy.mesh.triangleCount() + 2 * 300));
+}
+
 } // namespace
 } // namespace terratin

@@ -61,6 +61,9 @@ struct RefineOptions {
     /// valid cells), for callers that change it before cutting the holes; the figures are
     /// measured as without. droppedTriangles still counts the triangles over holes.
     bool keepHoleTriangles = false;
+    /// Room left in the TIN's arrays for this many more vertices (TriangulationOptions::
+    /// spareVertices), for callers that insert more.
+    std::size_t spareVertices = 0;
     /// Run validateDelaunay on the TIN before the triangles over holes are dropped and throw
     /// terratin::Error when it is not exactly Delaunay.
     bool validate = false;

@@ -36,4 +36,15 @@ struct TinMesh {
     [[nodiscard]] std::size_t vertexCount() const { return vertices.size(); }
 };
 
+/// Reserves, before `mesh` is filled, its arrays for `vertices` vertices and `spare` more,
+/// with their triangles (fewer than two per vertex): inserting the spare ones later then copies
+/// no array. The memory is only address space until it is written.
+inline void reserveRoom(TinMesh& mesh, std::size_t vertices, std::size_t spare) {
+    const std::size_t room = vertices + spare;
+    mesh.vertices.reserve(room);
+    mesh.sourceIndex.reserve(room);
+    mesh.triangles.reserve(6 * room);
+    mesh.neighbours.reserve(6 * room);
+}
+
 } // namespace terratin

@@ -84,6 +84,10 @@ struct TriangulationOptions {
     /// Batch method: searchers finish queued locations instead of waiting on a full queue
     /// (the improvement in the paper's footnote).
     bool searchersHelpWhenQueueFull = false;
+    /// Room left in the mesh's arrays for this many more vertices, and two triangles each, to
+    /// be inserted later (insertConstraints, insertVertices): a full array grows by a copy of
+    /// all of it. The room is address space until it is used.
+    std::size_t spareVertices = 0;
 };
 
 /// Wall-clock seconds of the triangulation's phases.
