@@ -12,7 +12,8 @@ ratio measures the triangulation. Run from the source tree after the release bui
         ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif
 
 With --baseline OTHER_TERRATIN (a build of another commit), each round runs both binaries in
-turn, so that a change is measured against its baseline under the same load.
+turn (every other round in reverse order), so that a change is measured against its baseline
+under the same load.
 
 docs/benchmarks.md holds the measurement, with its date, commit and machine.
 """
@@ -90,17 +91,19 @@ def main():
         binaries = [arguments.terratin] + ([arguments.baseline] if arguments.baseline else [])
         seconds = {(binary, side): {"total": [], "triangulate": []}
                    for binary in binaries for side in sides}
+        runs = [(binary, side) for binary in binaries for side in sides]
         for round_number in range(1, arguments.rounds + 1):
-            for binary in binaries:
-                for side, options in sides.items():
-                    report = run(binary, arguments.dem, output, options)
-                    seconds[binary, side]["total"].append(report["timings"]["total"])
-                    seconds[binary, side]["triangulate"].append(report["timings"]["triangulate"])
-                    if side == "breaklines" and round_number == 1:
-                        constraints = report["constraints"]
-                        print(f"{binary}: breaklines: {constraints}, vertices "
-                              f"{report['counts']['vertices']}, triangles "
-                              f"{report['counts']['triangles']}")
+            # Every other round in reverse: the first run of a round is often slower on this VM,
+            # and a fixed order would charge that to one binary.
+            for binary, side in runs if round_number % 2 == 1 else reversed(runs):
+                report = run(binary, arguments.dem, output, sides[side])
+                seconds[binary, side]["total"].append(report["timings"]["total"])
+                seconds[binary, side]["triangulate"].append(report["timings"]["triangulate"])
+                if side == "breaklines" and round_number == 1:
+                    constraints = report["constraints"]
+                    print(f"{binary}: breaklines: {constraints}, vertices "
+                          f"{report['counts']['vertices']}, triangles "
+                          f"{report['counts']['triangles']}")
         print(f"{arguments.lines} lines x {arguments.segments} segments, "
               f"options '{arguments.options}', medians of {arguments.rounds} interleaved rounds:")
         print("| binary | phase | without s | with breaklines s | with / without |")

@@ -244,14 +244,17 @@ private:
                 m_holeTriangle[i] =
                     locator.locateNearFrom(position(m_cells.openHoleCells[i]), m_holeTriangle[i])
                         .value_or(kNoTriangle);
-        // The measured cells, each block with a fresh copy of the locator.
+        // The measured cells, each block with a fresh copy of the locator (made when the block
+        // first needs it: most blocks of a late check have nothing to locate).
         const std::size_t count = m_cells.measuredCells.size();
         std::vector<std::vector<std::size_t>> relocated((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
-            TinLocator blockLocator = *m_locator;
+            std::optional<TinLocator> blockLocator;
             for (std::size_t i = begin; i < end; ++i)
                 if (stale(m_cellTriangle[i], changed)) {
-                    measureAt(i, blockLocator);
+                    if (!blockLocator)
+                        blockLocator.emplace(*m_locator);
+                    measureAt(i, *blockLocator);
                     relocated[block].push_back(i);
                 }
         });
