@@ -28,6 +28,8 @@
 
 #include "terratin/geometry/predicates.hpp"
 
+#include "lattice_incircle.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cfloat>
@@ -430,6 +432,9 @@ bool axisParallelRectangle(const Point2& a, const Point2& b, const Point2& c, co
     // zero from rounding); a rectangle's corners are exactly cocircular.
     if (axisParallelRectangle(a, b, c, d))
         return 0.0;
+    // Other cocircular cell centres (a cavity's larger triangles in a grid) are lattice points.
+    if (const std::optional<double> sign = latticeIncircle(a, b, c, d))
+        return *sign;
     const double adx = a.x - d.x;
     const double bdx = b.x - d.x;
     const double cdx = c.x - d.x;
