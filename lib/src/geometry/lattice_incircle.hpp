@@ -26,10 +26,11 @@ __extension__ using LatticeInt128 = __int128;
 inline constexpr int kLatticeBits = 29;
 
 /// A nonzero finite double as odd * 2^exponent (odd: the significand without its trailing
-/// zeros, signed); nullopt for a subnormal, an infinity or a NaN.
+/// zeros, signed, `width` bits long); nullopt for a subnormal, an infinity or a NaN.
 struct OddTimesPowerOfTwo {
     std::int64_t odd = 0;
     int exponent = 0;
+    int width = 0;
 };
 inline std::optional<OddTimesPowerOfTwo> splitDouble(double value) {
     const auto bits = std::bit_cast<std::uint64_t>(value);
@@ -40,7 +41,7 @@ inline std::optional<OddTimesPowerOfTwo> splitDouble(double value) {
         (bits & ((std::uint64_t{1} << 52U) - 1U)) | (std::uint64_t{1} << 52U);
     const int zeros = std::countr_zero(significand);
     const auto odd = static_cast<std::int64_t>(significand >> static_cast<unsigned>(zeros));
-    return OddTimesPowerOfTwo{(bits >> 63U) != 0 ? -odd : odd, biased - 1075 + zeros};
+    return OddTimesPowerOfTwo{(bits >> 63U) != 0 ? -odd : odd, biased - 1075 + zeros, 53 - zeros};
 }
 
 /// The coordinates (a.x, a.y, ..., d.y) as integers times one power of two, each below
@@ -54,8 +55,7 @@ inline std::optional<std::array<std::int64_t, 8>> onLattice(const std::array<dou
             continue;
         const std::optional<OddTimesPowerOfTwo> part = splitDouble(values[i]);
         // A point measured rather than gridded uses its whole significand: no lattice.
-        if (!part || std::bit_width(static_cast<std::uint64_t>(
-                         part->odd < 0 ? -part->odd : part->odd)) > kLatticeBits)
+        if (!part || part->width > kLatticeBits)
             return std::nullopt;
         parts[i] = *part;
         unit = any ? std::min(unit, part->exponent) : part->exponent;
@@ -66,9 +66,7 @@ inline std::optional<std::array<std::int64_t, 8>> onLattice(const std::array<dou
         if (parts[i].odd == 0)
             continue;
         const int shift = parts[i].exponent - unit;
-        const auto magnitude =
-            static_cast<std::uint64_t>(parts[i].odd < 0 ? -parts[i].odd : parts[i].odd);
-        if (shift >= kLatticeBits || std::bit_width(magnitude) + shift > kLatticeBits)
+        if (parts[i].width + shift > kLatticeBits)
             return std::nullopt;
         integers[i] = parts[i].odd * (std::int64_t{1} << static_cast<unsigned>(shift));
     }
