@@ -21,8 +21,8 @@ namespace terratin::predicates::detail {
 __extension__ using LatticeInt128 = __int128;
 
 /// The largest magnitude, in bits, of a coordinate on the lattice. Differences then stay below
-/// 2^30, each lift and each 2 x 2 minor below 2^61, each lifted term below 2^122 and their sum
-/// below 2^124: no 128-bit product or sum overflows.
+/// 2^30, each lift and each 2 x 2 minor below 2^61 (64-bit integers), each lifted term below
+/// 2^122 and their sum below 2^124 (128-bit integers): nothing overflows.
 inline constexpr int kLatticeBits = 29;
 
 /// A nonzero finite double as odd * 2^exponent (odd: the significand without its trailing
@@ -82,15 +82,18 @@ inline std::optional<double> latticeIncircle(const Point2& a, const Point2& b, c
     if (!lattice)
         return std::nullopt;
     const std::array<std::int64_t, 8>& v = *lattice;
-    const LatticeInt128 adx = v[0] - v[6];
-    const LatticeInt128 ady = v[1] - v[7];
-    const LatticeInt128 bdx = v[2] - v[6];
-    const LatticeInt128 bdy = v[3] - v[7];
-    const LatticeInt128 cdx = v[4] - v[6];
-    const LatticeInt128 cdy = v[5] - v[7];
-    const LatticeInt128 det = (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
-                              (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
-                              (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+    const std::int64_t adx = v[0] - v[6];
+    const std::int64_t ady = v[1] - v[7];
+    const std::int64_t bdx = v[2] - v[6];
+    const std::int64_t bdy = v[3] - v[7];
+    const std::int64_t cdx = v[4] - v[6];
+    const std::int64_t cdy = v[5] - v[7];
+    const auto lifted = [](std::int64_t lift, std::int64_t minor) {
+        return static_cast<LatticeInt128>(lift) * minor;
+    };
+    const LatticeInt128 det = lifted(adx * adx + ady * ady, bdx * cdy - cdx * bdy) +
+                              lifted(bdx * bdx + bdy * bdy, cdx * ady - adx * cdy) +
+                              lifted(cdx * cdx + cdy * cdy, adx * bdy - bdx * ady);
     return det > 0 ? 1.0 : (det < 0 ? -1.0 : 0.0);
 }
 
