@@ -1,13 +1,12 @@
 #pragma once
 /// @file
-/// incircle on a lattice: when the eight coordinates of the four points are all small integer
-/// multiples of one power of two, the determinant is computed exactly in 128-bit integers, far
-/// sooner than by the expansions of the adaptive stages (predicates.cpp). A DEM's cell centres
-/// are such points, in the triangulator's local frame as in map coordinates, and the exactly
-/// cocircular ones among them (four centres on one circle) reach the adaptive stages on every
-/// test. Internal to the predicates.
-
-#include "terratin/geometry/point.hpp"
+/// incircle on a lattice: when the six coordinate differences of the four points (b - d and the
+/// like) are exact and all small integer multiples of one power of two, the determinant is
+/// computed exactly in integers, far sooner than by the expansions of the adaptive stages
+/// (predicates.cpp). A DEM's cell centres are such points wherever the grid's origin lies (the
+/// centres x0 + (i + 1/2) dx of a binade differ by exact multiples of dx when dx is a whole or
+/// binary-fraction map unit), and the exactly cocircular ones among them (four centres on one
+/// circle) reach the adaptive stages on every test. Internal to the predicates.
 
 #include <algorithm>
 #include <array>
@@ -20,10 +19,10 @@ namespace terratin::predicates::detail {
 
 __extension__ using LatticeInt128 = __int128;
 
-/// The largest magnitude, in bits, of a coordinate on the lattice. Differences then stay below
-/// 2^30, each lift and each 2 x 2 minor below 2^61 (64-bit integers), each lifted term below
-/// 2^122 and their sum below 2^124 (128-bit integers): nothing overflows.
-inline constexpr int kLatticeBits = 29;
+/// The largest magnitude, in bits, of a difference on the lattice: each lift and each 2 x 2
+/// minor then stays below 2^61 (64-bit integers), each lifted term below 2^122 and their sum
+/// below 2^124 (128-bit integers): nothing overflows.
+inline constexpr int kLatticeBits = 30;
 
 /// A nonzero finite double as odd * 2^exponent (odd: the significand without its trailing
 /// zeros, signed, `width` bits long); nullopt for a subnormal, an infinity or a NaN.
@@ -44,10 +43,10 @@ inline std::optional<OddTimesPowerOfTwo> splitDouble(double value) {
     return OddTimesPowerOfTwo{(bits >> 63U) != 0 ? -odd : odd, biased - 1075 + zeros, 53 - zeros};
 }
 
-/// The coordinates (a.x, a.y, ..., d.y) as integers times one power of two, each below
-/// 2^kLatticeBits in magnitude; nullopt when they are not.
-inline std::optional<std::array<std::int64_t, 8>> onLattice(const std::array<double, 8>& values) {
-    std::array<OddTimesPowerOfTwo, 8> parts{};
+/// The values as integers times one power of two, each below 2^kLatticeBits in magnitude;
+/// nullopt when they are not.
+inline std::optional<std::array<std::int64_t, 6>> onLattice(const std::array<double, 6>& values) {
+    std::array<OddTimesPowerOfTwo, 6> parts{};
     int unit = 0;
     bool any = false;
     for (std::size_t i = 0; i < values.size(); ++i) {
@@ -61,7 +60,7 @@ inline std::optional<std::array<std::int64_t, 8>> onLattice(const std::array<dou
         unit = any ? std::min(unit, part->exponent) : part->exponent;
         any = true;
     }
-    std::array<std::int64_t, 8> integers{};
+    std::array<std::int64_t, 6> integers{};
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (parts[i].odd == 0)
             continue;
@@ -73,27 +72,22 @@ inline std::optional<std::array<std::int64_t, 8>> onLattice(const std::array<dou
     return integers;
 }
 
-/// The sign of incircle(a, b, c, d) (+1, -1 or 0, as a double) when the points lie on a lattice
-/// (onLattice), else nullopt.
-inline std::optional<double> latticeIncircle(const Point2& a, const Point2& b, const Point2& c,
-                                             const Point2& d) {
-    const std::optional<std::array<std::int64_t, 8>> lattice =
-        onLattice({a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y});
+/// The sign of incircle (+1, -1 or 0, as a double) from the exact differences adx = a.x - d.x,
+/// ady, bdx, bdy, cdx and cdy when they lie on a lattice (onLattice), else nullopt. The caller
+/// checks that the differences are exact.
+inline std::optional<double> latticeIncircle(double adx, double ady, double bdx, double bdy,
+                                             double cdx, double cdy) {
+    const std::optional<std::array<std::int64_t, 6>> lattice =
+        onLattice({adx, ady, bdx, bdy, cdx, cdy});
     if (!lattice)
         return std::nullopt;
-    const std::array<std::int64_t, 8>& v = *lattice;
-    const std::int64_t adx = v[0] - v[6];
-    const std::int64_t ady = v[1] - v[7];
-    const std::int64_t bdx = v[2] - v[6];
-    const std::int64_t bdy = v[3] - v[7];
-    const std::int64_t cdx = v[4] - v[6];
-    const std::int64_t cdy = v[5] - v[7];
+    const auto [ax, ay, bx, by, cx, cy] = *lattice;
     const auto lifted = [](std::int64_t lift, std::int64_t minor) {
         return static_cast<LatticeInt128>(lift) * minor;
     };
-    const LatticeInt128 det = lifted(adx * adx + ady * ady, bdx * cdy - cdx * bdy) +
-                              lifted(bdx * bdx + bdy * bdy, cdx * ady - adx * cdy) +
-                              lifted(cdx * cdx + cdy * cdy, adx * bdy - bdx * ady);
+    const LatticeInt128 det = lifted(ax * ax + ay * ay, bx * cy - cx * by) +
+                              lifted(bx * bx + by * by, cx * ay - ax * cy) +
+                              lifted(cx * cx + cy * cy, ax * by - bx * ay);
     return det > 0 ? 1.0 : (det < 0 ? -1.0 : 0.0);
 }
 

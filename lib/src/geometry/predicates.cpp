@@ -432,15 +432,25 @@ bool axisParallelRectangle(const Point2& a, const Point2& b, const Point2& c, co
     // zero from rounding); a rectangle's corners are exactly cocircular.
     if (axisParallelRectangle(a, b, c, d))
         return 0.0;
-    // Other cocircular cell centres (a cavity's larger triangles in a grid) are lattice points.
-    if (const std::optional<double> sign = latticeIncircle(a, b, c, d))
-        return *sign;
     const double adx = a.x - d.x;
     const double bdx = b.x - d.x;
     const double cdx = c.x - d.x;
     const double ady = a.y - d.y;
     const double bdy = b.y - d.y;
     const double cdy = c.y - d.y;
+    const double adxTail = twoDiffTail(a.x, d.x, adx);
+    const double bdxTail = twoDiffTail(b.x, d.x, bdx);
+    const double cdxTail = twoDiffTail(c.x, d.x, cdx);
+    const double adyTail = twoDiffTail(a.y, d.y, ady);
+    const double bdyTail = twoDiffTail(b.y, d.y, bdy);
+    const double cdyTail = twoDiffTail(c.y, d.y, cdy);
+    const bool exactDifferences = adxTail == 0.0 && bdxTail == 0.0 && cdxTail == 0.0 &&
+                                  adyTail == 0.0 && bdyTail == 0.0 && cdyTail == 0.0;
+    // Other cocircular cell centres (a cavity's larger triangles in a grid) differ by lattice
+    // steps.
+    if (exactDifferences)
+        if (const std::optional<double> sign = latticeIncircle(adx, ady, bdx, bdy, cdx, cdy))
+            return *sign;
 
     // Stage B.
     const Expansion<4> bc = twoTwoDifference(exactProduct(bdx, cdy), exactProduct(cdx, bdy));
@@ -454,15 +464,8 @@ bool axisParallelRectangle(const Point2& a, const Point2& b, const Point2& c, co
         return det;
     }
 
-    const double adxTail = twoDiffTail(a.x, d.x, adx);
-    const double bdxTail = twoDiffTail(b.x, d.x, bdx);
-    const double cdxTail = twoDiffTail(c.x, d.x, cdx);
-    const double adyTail = twoDiffTail(a.y, d.y, ady);
-    const double bdyTail = twoDiffTail(b.y, d.y, bdy);
-    const double cdyTail = twoDiffTail(c.y, d.y, cdy);
-    if (adxTail == 0.0 && bdxTail == 0.0 && cdxTail == 0.0 && adyTail == 0.0 && bdyTail == 0.0 &&
-        cdyTail == 0.0) {
-        // Exact differences: stage B's expansion is the exact determinant (see orient2d).
+    if (exactDifferences) {
+        // Stage B's expansion is the exact determinant (see orient2d).
         return exactRounded.mostSignificant();
     }
 
