@@ -12,6 +12,7 @@
 #include "terratin/gdal_error.hpp"
 
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
 #include "temporary_directory.hpp"
@@ -377,6 +378,82 @@ TEST(BreaklinesPipeline, AnEmptyLayerGivesANotice_AndALayerInAnotherCrsIsReproje
     ASSERT_EQ(added.size(), 2U);
     EXPECT_NEAR(added[0].x, 455501.3, 1e-3);
     EXPECT_TRUE(hasEdge(tin, added[0], added[1]));
+}
+
+/// A 40 x 30 GeoTIFF (10 m cells, EPSG:32633) holding saddle(col, row) = 100 + col + 2 row +
+/// col row / 4, bilinear in the cell numbers and exact in float32; cell (row 20, col 30) has no
+/// data.
+double saddle(double col, double row) {
+    return 100.0 + col + 2.0 * row + col * row / 4.0;
+}
+constexpr double kSaddleX0 = 500000.0;
+constexpr double kSaddleY0 = 4000000.0;
+Point2 saddlePlace(double col, double row) {
+    return {kSaddleX0 + (col + 0.5) * 10.0, kSaddleY0 - (row + 0.5) * 10.0};
+}
+
+void writeSaddleDem(const fs::path& path) {
+    constexpr int kWidth = 40;
+    constexpr int kHeight = 30;
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
+    std::unique_ptr<GDALDataset> dem(
+        driver->Create(path.c_str(), kWidth, kHeight, 1, GDT_Float32, nullptr));
+    ASSERT_NE(dem, nullptr);
+    double transform[6] = {kSaddleX0, 10.0, 0.0, kSaddleY0, 0.0, -10.0};
+    dem->SetGeoTransform(transform);
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32633);
+    dem->SetSpatialRef(&utm);
+    std::vector<float> z(static_cast<std::size_t>(kWidth * kHeight));
+    for (int row = 0; row < kHeight; ++row)
+        for (int col = 0; col < kWidth; ++col)
+            z[static_cast<std::size_t>(row * kWidth + col)] = static_cast<float>(saddle(col, row));
+    z[20 * kWidth + 30] = -9999.0F;
+    GDALRasterBand* band = dem->GetRasterBand(1);
+    band->SetNoDataValue(-9999.0);
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, kWidth, kHeight, z.data(), kWidth, kHeight,
+                             GDT_Float32, 0, 0),
+              CE_None);
+}
+
+// Regression (the wording): a 2D breakline's vertices took the TIN's z, linear in its
+// triangle; on a DEM they take the DEM's, bilinear in the four cells around them, at full
+// resolution and simplified alike. Next to a cell without data, the TIN's surface still fills in.
+TEST(BreaklinesPipeline, BreaklineVerticesTakeTheDemBilinearly_AtFullResolutionAndSimplified) {
+    TemporaryDirectory directory;
+    const fs::path dem = directory.path() / "saddle.tif";
+    writeSaddleDem(dem);
+    const std::vector<std::pair<double, double>> cells{{10.3, 7.6}, {20.7, 12.2}, {33.1, 25.45}};
+    std::vector<Point2> places;
+    for (const auto& [col, row] : cells)
+        places.push_back(saddlePlace(col, row));
+    const Point2 byTheHole = saddlePlace(29.6, 19.3); // cell (20, 30) is one of its four
+    places.push_back(byTheHole);
+    const fs::path lines = directory.path() / "lines.gpkg";
+    writeLines(lines, {test::lineWkt(places)});
+
+    for (const bool simplified : {false, true}) {
+        BuildOptions options = optionsFor(lines, directory.path() / "tin.ply");
+        options.inputs = {dem.string()};
+        options.overwrite = true;
+        if (simplified) {
+            options.refine.emplace();
+            options.refine->maxError = 2.0;
+        }
+        const BuildReport report = runBuild(options);
+        EXPECT_TRUE(report.validated);
+        const ReadTin tin = readTin(directory.path() / "tin.ply");
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            EXPECT_NEAR(tin.mesh.vertices[tin.vertexAt.at({places[i].x, places[i].y})].z,
+                        saddle(cells[i].first, cells[i].second), 1e-6)
+                << "point " << i << (simplified ? ", simplified" : "");
+        const double nearHole = tin.mesh.vertices[tin.vertexAt.at({byTheHole.x, byTheHole.y})].z;
+        EXPECT_TRUE(std::isfinite(nearHole));
+        EXPECT_GT(nearHole, saddle(29.0, 19.0));
+        EXPECT_LT(nearHole, saddle(30.0, 20.0));
+    }
 }
 
 } // namespace

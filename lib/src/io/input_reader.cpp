@@ -166,6 +166,8 @@ PointCloud readInput(const std::string& path, const InputReadOptions& options,
         cloud.points = std::move(raster.points);
         cloud.cellIndex = std::move(raster.cellIndex);
         cloud.rasterWidth = static_cast<std::uint64_t>(raster.width);
+        cloud.rasterHeight = static_cast<std::uint64_t>(raster.height);
+        cloud.rasterGeoTransform = raster.geoTransform.c;
         cloud.crsWkt = std::move(raster.crsWkt);
         cloud.recordsRead =
             static_cast<std::uint64_t>(raster.width) * static_cast<std::uint64_t>(raster.height);

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -73,13 +74,22 @@ void checkLineZ(const io::LineLayer& layer, const BuildOptions& options) {
                 "' has no z");
 }
 
-std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, BreaklineZ zFrom,
-                     unsigned threads, ConstraintSet& constraints) {
-    if (zFrom == BreaklineZ::Surface)
-        for (std::vector<Point3>& line : layer.lines)
-            for (Point3& point : line)
-                point.z = std::nan("");
-    // Inside the hull after clipping, with the surface's z where the line has none; the
+/// Gives the points of `layer` that take the surface's z (all under BreaklineZ::Surface, those
+/// without one under Auto) `dem`'s bilinear elevation, NaN where it has none or there is no
+/// `dem`.
+void takeSurfaceZ(io::LineLayer& layer, const HeightGrid* dem, BreaklineZ zFrom) {
+    if (zFrom == BreaklineZ::Line)
+        return;
+    for (std::vector<Point3>& line : layer.lines)
+        for (Point3& point : line)
+            if (zFrom == BreaklineZ::Surface || std::isnan(point.z))
+                point.z = dem != nullptr ? bilinearElevation(*dem, {point.x, point.y})
+                                         : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, unsigned threads,
+                     ConstraintSet& constraints) {
+    // Inside the hull after clipping, with the TIN's z where a point still has none; the
     // triangles found spare insertConstraints a second search.
     std::vector<std::vector<TinLocator::LocatedPolyline>> located =
         locator.clipToSurface(layer.lines, threads);
@@ -182,7 +192,7 @@ std::size_t ConstraintSources::spareVertices() const {
 }
 
 ConstraintSources readConstraintSources(const BuildOptions& options, const std::string& crsWkt,
-                                        BuildReport& report) {
+                                        const HeightGrid* dem, BuildReport& report) {
     ConstraintSources sources;
     if (!options.clip.empty())
         sources.clip = readInCrs(options.clip, "clip", options, crsWkt, report);
@@ -190,10 +200,15 @@ ConstraintSources readConstraintSources(const BuildOptions& options, const std::
         sources.erase = readInCrs(options.erase, "erase", options, crsWkt, report);
     if (!options.replace.empty())
         sources.replace = readInCrs(options.replace, "replace", options, crsWkt, report);
+    for (std::optional<io::LineLayer>* area : {&sources.clip, &sources.erase})
+        if (*area)
+            takeSurfaceZ(**area, dem, BreaklineZ::Surface);
     for (const std::string& source : options.breaklines) {
-        sources.breaklines.push_back(readInCrs(source, "breaklines", options, crsWkt, report));
+        io::LineLayer& layer = sources.breaklines.emplace_back(
+            readInCrs(source, "breaklines", options, crsWkt, report));
         if (options.breaklineZ == BreaklineZ::Line)
-            checkLineZ(sources.breaklines.back(), options);
+            checkLineZ(layer, options);
+        takeSurfaceZ(layer, dem, options.breaklineZ);
     }
     return sources;
 }
@@ -220,8 +235,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
         }
         const std::size_t firstBreakline = constraints.polylines.size();
         for (io::LineLayer& layer : sources.breaklines) {
-            const std::size_t clipped = addLines(layer, locator, options.breaklineZ,
-                                                 options.triangulation.threads, constraints);
+            const std::size_t clipped =
+                addLines(layer, locator, options.triangulation.threads, constraints);
             notifyClipped(options, report, layer.source, clipped, layer.lines.size());
             report.clippedBreaklines += clipped;
         }
@@ -231,8 +246,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
         for (std::optional<io::LineLayer>* area : {&build.clip, &build.erase})
             if (*area)
                 notifyClipped(options, report, (*area)->source,
-                              addLines(**area, locator, BreaklineZ::Surface,
-                                       options.triangulation.threads, constraints),
+                              addLines(**area, locator, options.triangulation.threads, constraints),
                               (*area)->lines.size());
         if (replaceAreas)
             flattenPointsInside(std::span(constraints.polylines).subspan(firstBreakline),

@@ -5,6 +5,7 @@
 /// as constraints (docs/cli.md, --breaklines, --clip, --erase).
 
 #include "terratin/constrain/constrained_tin.hpp"
+#include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/ogr_line_reader.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 
@@ -47,18 +48,22 @@ struct ConstraintSources {
 };
 /// Reads the sources of `options`' constraints and reprojects them from their layer's CRS into
 /// `crsWkt` (a layer without one is taken to be in `crsWkt`, with a notice; so is a source
-/// without features). Throws what io::readOgrLines and io::readOgrPolygons throw, and
-/// InvalidInputError for a line without z under BreaklineZ::Line.
+/// without features). The vertices that take the surface's z (breaklines per
+/// options.breaklineZ, clip and erase rings) get `dem`'s bilinear elevation where it has one
+/// (bilinearElevation), else NaN, for the TIN's to fill (addConstraints); `dem` is the only
+/// input raster when the TIN's points are its cell centres, else null. Throws what
+/// io::readOgrLines and io::readOgrPolygons throw, and InvalidInputError for a line without z
+/// under BreaklineZ::Line.
 ConstraintSources readConstraintSources(const BuildOptions& options, const std::string& crsWkt,
-                                        BuildReport& report);
+                                        const HeightGrid* dem, BuildReport& report);
 
 /// `mesh` (the Delaunay TIN of the inputs, in the sources' CRS) with every line and ring of
 /// `sources` inserted: a constrained Delaunay TIN. Lines and rings are clipped to the mesh's
-/// convex hull (with a notice); breakline vertices get z per options.breaklineZ, clip and erase
-/// ring vertices the surface's. Replace areas are flat: the vertices inside one are left out
-/// (those on the convex hull stay, at its level) and every constraint vertex on or inside one
-/// takes its level (options.replaceZField, else the lowest surface elevation on its boundary).
-/// Fills report.breaklines, clippedBreaklines, constraintVertices, constraintCrossings,
+/// convex hull (with a notice); a vertex still without z (readConstraintSources) takes the
+/// mesh's surface, linear in the triangle holding it. Replace areas are flat: the vertices inside
+/// one are left out (those on the convex hull stay, at its level) and every constraint vertex on or
+/// inside one takes its level (options.replaceZField, else the lowest surface elevation on its
+/// boundary). Fills report.breaklines, clippedBreaklines, constraintVertices, constraintCrossings,
 /// replacePolygons and replacedPoints. Throws what insertConstraints throws, and
 /// InvalidInputError for a replace polygon outside the data without a level.
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, BuildReport& report,

@@ -357,15 +357,16 @@ std::vector<BuildOptionSpec> makeTable() {
          "the layer of a breaklines source that names none (default: its only layer)",
          [](BuildOptions& o, const std::string& t, const std::string&) { o.breaklinesLayer = t; }},
         {"breakline_z", "breakline-z", 0, Kind::Text, false, "FROM", "",
-         "elevation of breakline vertices: line (the line's z) or surface (the TIN of the "
-         "inputs); default: the line's z when it has one, else the surface",
+         "elevation of breakline vertices: line (the line's z) or surface (a DEM's, "
+         "bilinear; else the TIN of the inputs); default: the line's z when it has one, else "
+         "the surface",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              o.breaklineZ = parseChoice<BreaklineZ>(
                  t, n, {{"line", BreaklineZ::Line}, {"surface", BreaklineZ::Surface}});
          }},
         {"clip", "clip", 0, Kind::Text, false, "FILE", "",
          "clip area: an OGR polygon layer (FILE or FILE|layername=NAME); triangles outside "
-         "are removed, its boundary becomes TIN edges (full-resolution TINs)",
+         "are removed, its boundary becomes TIN edges",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              if (t.empty())
                  refuse(n + " needs a file name");

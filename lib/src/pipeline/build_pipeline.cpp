@@ -231,7 +231,10 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     detail::ConstraintSources sources;
     std::size_t replacedCells = 0;
     if (constrained) {
-        sources = detail::readConstraintSources(options, placement.targetWkt, report);
+        // A projected (geographic) DEM's cells are no longer on its grid: no bilinear z then.
+        sources = detail::readConstraintSources(
+            options, placement.targetWkt, placement.positions.empty() ? &raster.grid : nullptr,
+            report);
         replacedCells = detail::leaveOutAreaCells(raster.grid, placement.positions, sources);
         refineOptions.spareVertices = sources.spareVertices();
     }
@@ -354,7 +357,9 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     std::optional<detail::ConstraintSources> sources;
     TriangulationOptions triangulationOptions = options.triangulation;
     if (hasConstraints(options)) {
-        sources = detail::readConstraintSources(options, gathered.crsWkt, report);
+        const std::optional<HeightGrid> dem = detail::cellSurface(gathered);
+        sources =
+            detail::readConstraintSources(options, gathered.crsWkt, dem ? &*dem : nullptr, report);
         triangulationOptions.spareVertices = sources->spareVertices();
     }
     TriangulationResult triangulation =

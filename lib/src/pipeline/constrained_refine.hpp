@@ -43,7 +43,7 @@ struct ConstrainedRefinement {
 /// `refined` (the refiner's TIN of `grid` with its triangles over holes, RefineOptions::
 /// keepHoleTriangles; vertices at `positions` or at the cell centres when `positions` is empty;
 /// the cells of erase and replace areas left out, leaveOutAreaCells) with the constraints of
-/// `sources` inserted (addConstraints, with z from that TIN's surface), then every
+/// `sources` inserted (addConstraints; z still missing from that TIN's surface), then every
 /// valid cell outside the erase and replace areas and inside the clip area measured against the
 /// constrained TIN: while cells are over options.refine->maxError, or lie in a triangle over an
 /// open hole, the worst of each triangle is inserted (insertVertices: constrained edges are never

@@ -239,6 +239,8 @@ GatheredInputs mergeInputs(std::vector<ReadInput>& inputs, double zFactor) {
         gathered.points = std::move(cloud.points);
         gathered.rasterWidth = cloud.rasterWidth;
         gathered.cellIndex = std::move(cloud.cellIndex);
+        gathered.rasterHeight = cloud.rasterHeight;
+        gathered.rasterGeoTransform = cloud.rasterGeoTransform;
     } else {
         gathered.points.reserve(gathered.offsets.back());
         for (ReadInput& input : inputs) {
@@ -303,9 +305,24 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
 
     GatheredInputs gathered = mergeInputs(inputs, options.zFactor);
     gathered.crsWkt = target;
+    if (report.reprojected)
+        gathered.rasterHeight = 0; // the points are no longer at the cells' centres
     if (progress)
         progress(1.0, "read");
     return gathered;
+}
+
+std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered) {
+    if (gathered.rasterWidth == 0 || gathered.rasterHeight == 0)
+        return std::nullopt;
+    HeightGrid grid;
+    grid.width = static_cast<int>(gathered.rasterWidth);
+    grid.height = static_cast<int>(gathered.rasterHeight);
+    grid.geoTransform = gathered.rasterGeoTransform;
+    grid.z.assign(grid.cellCount(), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t i = 0; i < gathered.cellIndex.size(); ++i)
+        grid.storeElevations(gathered.cellIndex[i], std::span(&gathered.points[i].z, 1));
+    return grid;
 }
 
 void countDuplicatesPerInput(const std::vector<std::size_t>& offsets,

@@ -3,11 +3,14 @@
 /// The read stage of runBuild: every input read, brought into one CRS, scaled and merged.
 /// Internal to terratin::io.
 
+#include "terratin/geometry/height_grid.hpp"
 #include "terratin/geometry/point.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 #include "terratin/progress.hpp"
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,7 +29,16 @@ struct GatheredInputs {
     /// (for the nodes layer's row / col); 0 and empty otherwise.
     std::uint64_t rasterWidth = 0;
     std::vector<std::uint64_t> cellIndex;
+    /// When the only input is a raster and its points are its cell centres (not reprojected):
+    /// its height and geotransform (cellSurface); 0 otherwise.
+    std::uint64_t rasterHeight = 0;
+    std::array<double, 6> rasterGeoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
 };
+
+/// The only input raster's cells as a grid (its points' z, rounded to float32 as the refiner's
+/// grid holds them; NaN where no point is), when `gathered` has one in place (rasterHeight);
+/// nullopt otherwise. O(cells).
+std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered);
 
 /// Reads, reprojects and merges options.inputs; fills report.inputs (all but
 /// duplicates), the CRS fields, rasterCells, skippedCells, filteredOut, points, notices and

@@ -67,6 +67,13 @@ struct HeightGrid {
     void storeElevations(std::size_t firstCell, std::span<const double> elevations);
 };
 
+/// The bilinear interpolation of `grid`'s elevations at `p` (CRS units): the four cells whose
+/// centres surround p, weighted by p's fractional column and row (the geotransform inverted;
+/// rotated grids too). NaN unless all four have data and p lies inside or on the quadrilateral
+/// of their centres, decided exactly (orient2d): a point given an elevation lies inside the
+/// convex hull of the valid cells' centres.
+double bilinearElevation(const HeightGrid& grid, Point2 p);
+
 /// Largest magnitude of a cell-centre coordinate accepted from a geotransform, in CRS units.
 /// No terrestrial CRS comes near it (the largest, in US survey feet, span about 1.3e8), and above
 /// 2^53 ≈ 9e15 a double no longer holds whole units: a geotransform that reaches further is

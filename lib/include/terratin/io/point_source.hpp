@@ -6,6 +6,7 @@
 
 #include "terratin/geometry/point.hpp"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -33,8 +34,11 @@ struct PointCloud {
     std::vector<Point3> points;
     /// Rasters only: row * width + col of each point (strictly increasing); empty otherwise.
     std::vector<std::uint64_t> cellIndex;
-    /// Rasters only: the width in cells; 0 otherwise.
+    /// Rasters only: the width and height in cells and the geotransform that placed the
+    /// points (io::GeoTransform::cellCentre); 0 otherwise.
     std::uint64_t rasterWidth = 0;
+    std::uint64_t rasterHeight = 0;
+    std::array<double, 6> rasterGeoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
     /// The input's CRS as WKT, empty when the file declares none.
     std::string crsWkt;
     /// Records the file holds: LAS point records, text data lines, OGR features, raster cells.

@@ -26,7 +26,9 @@ enum class BreaklineZ {
     Auto,
     /// The line's z; a line without z is an error.
     Line,
-    /// The surface's: the TIN of the inputs, linear in the triangle holding the vertex.
+    /// The surface's: a DEM at its own cell centres bilinear in the four cells around the vertex,
+    /// else (and where one of them has no data) the TIN of the inputs, linear in the triangle
+    /// holding the vertex.
     Surface,
 };
 
