@@ -225,6 +225,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     refineOptions.validate = options.validate;
     const bool constrained = hasConstraints(options);
     refineOptions.keepHoleTriangles = constrained;
+    refineOptions.measure = !constrained; // refineWithConstraints measures every cell
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.
     const double refineShare = constrained ? 0.8 * kTriangulateShare : kTriangulateShare;
     const ProgressCallback refineProgress = phaseProgress(progress, kReadShare, refineShare);

@@ -99,6 +99,19 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     }
     // Holes are decided on the whole triangulation; with positions, so are the errors (the
     // walks that locate cells need the triangles over holes).
+    const auto trianglesOverHoles = [&] {
+        return positions.empty()
+                   ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
+                   : detail::trianglesOverOpenHolesAt(result.mesh, view, positions, threads);
+    };
+    if (!options.measure) {
+        if (!options.keepHoleTriangles && result.openHoleCells > 0)
+            result.droppedTriangles = dropTriangles(result.mesh, trianglesOverHoles());
+        result.extractSeconds = lap(phase);
+        if (progress)
+            progress(1.0, "refined");
+        return result;
+    }
     std::vector<std::uint8_t> drop(result.mesh.triangleCount(), 0);
     TinMesh whole;
     if (options.keepHoleTriangles && result.openHoleCells > 0) {
@@ -107,9 +120,7 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
         result.mesh = whole;
     }
     if (result.openHoleCells > 0)
-        drop = positions.empty()
-                   ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
-                   : detail::trianglesOverOpenHolesAt(result.mesh, view, positions, threads);
+        drop = trianglesOverHoles();
     result.extractSeconds = lap(phase);
     detail::ErrorMeasure measure;
     if (!positions.empty())

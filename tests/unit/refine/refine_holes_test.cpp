@@ -107,5 +107,25 @@ TEST(RefineHoles, SpareVerticesLeaveRoom_InTheTinKeptWithItsHoleTriangles) {
     EXPECT_GE(roomy.mesh.neighbours.capacity(), 3 * (roomy.mesh.triangleCount() + 2 * 300));
 }
 
+TEST(RefineHoles, WithoutTheLastMeasure_TheSameTin_AndNoFigures) {
+    const HeightGrid grid = terrainWithHoles();
+    for (const bool keepHoleTriangles : {true, false}) {
+        RefineOptions measured = options(0.5);
+        measured.keepHoleTriangles = keepHoleTriangles;
+        RefineOptions unmeasured = measured;
+        unmeasured.measure = false;
+        const RefineResult a = refine(grid, measured);
+        const RefineResult b = refine(grid, unmeasured);
+        EXPECT_EQ(b.mesh.vertices, a.mesh.vertices);
+        EXPECT_EQ(b.mesh.triangles, a.mesh.triangles);
+        EXPECT_EQ(b.mesh.neighbours, a.mesh.neighbours);
+        EXPECT_GT(a.coveredCells, 0U);
+        EXPECT_EQ(b.coveredCells, 0U);
+        EXPECT_EQ(b.maxError, 0.0);
+        // Without their triangles over holes, both dropped the same ones.
+        EXPECT_EQ(b.droppedTriangles, keepHoleTriangles ? 0U : a.droppedTriangles);
+    }
+}
+
 } // namespace
 } // namespace terratin

@@ -61,6 +61,11 @@ struct RefineOptions {
     /// valid cells), for callers that change it before cutting the holes; the figures are
     /// measured as without. droppedTriangles still counts the triangles over holes.
     bool keepHoleTriangles = false;
+    /// Measure the TIN over every valid cell at the end (maxError, rmse, coveredCells,
+    /// uncoveredCells, droppedTriangles; a cell over maxError is an error). False skips that
+    /// pass, leaving those figures at 0, for callers that change the TIN and measure what they
+    /// make of it (the simplified constrained build, with keepHoleTriangles).
+    bool measure = true;
     /// Room left in the TIN's arrays for this many more vertices (TriangulationOptions::
     /// spareVertices), for callers that insert more.
     std::size_t spareVertices = 0;
