@@ -213,8 +213,10 @@ private:
         return overHole;
     }
 
+    /// Whether a cell in triangle `t` must be located again. A cell outside the hull
+    /// (kNoTriangle) stays outside: the insertions keep the hull.
     static bool stale(std::uint32_t t, const std::vector<std::uint8_t>& changed) {
-        return changed.empty() || t == kNoTriangle || changed[t] != 0;
+        return changed.empty() || (t != kNoTriangle && changed[t] != 0);
     }
 
     /// Calls visit(block, begin, end) for the fixed blocks of kCellBlock of [0, count), on the
