@@ -134,7 +134,8 @@ public:
                      const ConstrainedBuild& build, const RefineOptions& refineOptions,
                      unsigned threads)
         : m_grid(&grid), m_positions(positions), m_build(&build),
-          m_maxError(refineOptions.maxError), m_arena(static_cast<int>(std::max(threads, 1U))) {
+          m_maxError(refineOptions.maxError), m_threads(std::max(threads, 1U)),
+          m_arena(static_cast<int>(m_threads)) {
         if (build.clip)
             m_clip.emplace(*build.clip);
         if (build.erase)
@@ -238,7 +239,7 @@ private:
         // the cells of changed triangles walk from their old triangle, whose slot now holds a
         // triangle near it.
         if (!m_locator)
-            m_locator.emplace(m_build->tin.mesh);
+            m_locator.emplace(m_build->tin.mesh, m_threads);
         TinLocator locator = *m_locator;
         for (std::size_t i = 0; i < m_cells.openHoleCells.size(); ++i)
             if (stale(m_holeTriangle[i], changed))
@@ -328,6 +329,7 @@ private:
     std::span<const Point2> m_positions;
     const ConstrainedBuild* m_build;
     std::optional<double> m_maxError;
+    unsigned m_threads;
     tbb::task_arena m_arena;
     std::optional<PolygonSet> m_clip;
     std::optional<PolygonSet> m_erase;
