@@ -62,9 +62,10 @@ struct RefineOptions {
     /// measured as without. droppedTriangles still counts the triangles over holes.
     bool keepHoleTriangles = false;
     /// Measure the TIN over every valid cell at the end (maxError, rmse, coveredCells,
-    /// uncoveredCells, droppedTriangles; a cell over maxError is an error). False skips that
-    /// pass, leaving those figures at 0, for callers that change the TIN and measure what they
-    /// make of it (the simplified constrained build, with keepHoleTriangles).
+    /// uncoveredCells, validCells; a cell over maxError is an error). False skips that pass,
+    /// leaving those figures at 0 (and droppedTriangles with keepHoleTriangles; without it the
+    /// triangles over holes are still dropped and counted), for callers that change the TIN
+    /// and measure what they make of it (the simplified constrained build).
     bool measure = true;
     /// Room left in the TIN's arrays for this many more vertices (TriangulationOptions::
     /// spareVertices), for callers that insert more.
