@@ -77,6 +77,9 @@ case "${1:-}" in
     # The geometry and triangulation tests, parallel methods included, under ThreadSanitizer.
     build_preset tsan
     ctest --preset tsan
+    # The simplified constrained build's parallel check, which lives in the I/O library.
+    build_preset tsan-pipeline
+    ctest --preset tsan-pipeline
     ;;
   tidy)
     install_missing_packages clang-tidy

@@ -1,15 +1,14 @@
 #include "constrained_refine.hpp"
 
+#include "../triangulate/parallel_for.hpp"
 #include "constraint_areas.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
 #include "terratin/geometry/predicates.hpp"
 #include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -134,8 +133,7 @@ public:
                      const ConstrainedBuild& build, const RefineOptions& refineOptions,
                      unsigned threads)
         : m_grid(&grid), m_positions(positions), m_build(&build),
-          m_maxError(refineOptions.maxError), m_threads(std::max(threads, 1U)),
-          m_arena(static_cast<int>(m_threads)) {
+          m_maxError(refineOptions.maxError), m_threads(std::max(threads, 1U)) {
         if (build.clip)
             m_clip.emplace(*build.clip);
         if (build.erase)
@@ -220,15 +218,18 @@ private:
         return changed.empty() || (t != kNoTriangle && changed[t] != 0);
     }
 
-    /// Calls visit(block, begin, end) for the fixed blocks of kCellBlock of [0, count), on the
-    /// threads.
+    /// Calls visit(block, begin, end) for the fixed blocks of kCellBlock of [0, count), the
+    /// threads taking them in turn. Plain threads, joined before it returns (as the
+    /// triangulators' loops): ThreadSanitizer sees what they write, which it cannot through
+    /// an uninstrumented task pool.
     template <class Visit> void forEachBlock(std::size_t count, Visit&& visit) {
         const std::size_t blocks = (count + kCellBlock - 1) / kCellBlock;
-        m_arena.execute([&] {
-            tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
-                visit(block, block * kCellBlock, std::min(count, (block + 1) * kCellBlock));
+        std::atomic<std::size_t> next{0};
+        runOnThreads(
+            static_cast<unsigned>(std::clamp<std::size_t>(blocks, 1, m_threads)), [&](unsigned) {
+                for (std::size_t block = next++; block < blocks; block = next++)
+                    visit(block, block * kCellBlock, std::min(count, (block + 1) * kCellBlock));
             });
-        });
     }
 
     /// Locates again the cells (measured ones, and open holes' ones) of changed triangles; the
@@ -330,7 +331,6 @@ private:
     const ConstrainedBuild* m_build;
     std::optional<double> m_maxError;
     unsigned m_threads;
-    tbb::task_arena m_arena;
     std::optional<PolygonSet> m_clip;
     std::optional<PolygonSet> m_erase;
     std::optional<PolygonSet> m_replace;
