@@ -8,7 +8,6 @@
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -219,17 +218,14 @@ private:
     }
 
     /// Calls visit(block, begin, end) for the fixed blocks of kCellBlock of [0, count), the
-    /// threads taking them in turn. Plain threads, joined before it returns (as the
-    /// triangulators' loops): ThreadSanitizer sees what they write, which it cannot through
-    /// an uninstrumented task pool.
+    /// threads taking them in turn. Plain threads, joined before it returns (parallelForChunks,
+    /// as the triangulators' loops): ThreadSanitizer sees what they write, which it cannot
+    /// through an uninstrumented task pool.
     template <class Visit> void forEachBlock(std::size_t count, Visit&& visit) {
-        const std::size_t blocks = (count + kCellBlock - 1) / kCellBlock;
-        std::atomic<std::size_t> next{0};
-        runOnThreads(
-            static_cast<unsigned>(std::clamp<std::size_t>(blocks, 1, m_threads)), [&](unsigned) {
-                for (std::size_t block = next++; block < blocks; block = next++)
-                    visit(block, block * kCellBlock, std::min(count, (block + 1) * kCellBlock));
-            });
+        parallelForChunks(count, m_threads, kCellBlock,
+                          [&](unsigned, std::size_t begin, std::size_t end) {
+                              visit(begin / kCellBlock, begin, end);
+                          });
     }
 
     /// Locates again the cells (measured ones, and open holes' ones) of changed triangles; the
