@@ -56,6 +56,19 @@ def test_same_tin_and_counts_as_the_command_line(terratin_cli, tmp_path):
     assert numpy.array_equal(ply_corners(tmp_path / "python.ply"), ply_corners(tmp_path / "cli.ply"))
 
 
+def test_tiles_give_the_command_lines_tin(terratin_cli, tmp_path):
+    # Issue 25: tile_size is the CLI's --tile-size, seam-free tiles within the bound.
+    report = terratin.build(SAMPLE, tmp_path / "python.ply", max_error=0.5, tile_size=64)
+    expected = cli_report(
+        terratin_cli, [SAMPLE], tmp_path / "cli.ply", "--max-error", "0.5", "--tile-size", "64"
+    )
+    assert report["counts"] == expected["counts"]
+    assert report["refine"]["achieved_max_error"] <= 0.5
+    assert numpy.array_equal(ply_corners(tmp_path / "python.ply"), ply_corners(tmp_path / "cli.ply"))
+    with pytest.raises(terratin.InvalidInputError, match="tile size must be 2"):
+        terratin.build(SAMPLE, tmp_path / "bad.ply", max_error=0.5, tile_size=1)
+
+
 def test_options_of_every_kind_reach_the_build(tmp_path):
     # Text with a List option (columns), a Repeatable one given as a list (inputs), a Flag
     # (overwrite), a Count (threads) and a Number (z_factor).

@@ -375,6 +375,31 @@ case "$case_name" in
     expect_one_error_line "z-factor"
     [ ! -e tin.gpkg ] || fail "output written despite a refused combination"
     ;;
+  refine_tiles)
+    # Issue 25: a simplified TIN built tile by tile, each tile exactly Delaunay (--validate),
+    # within the bound over every cell, about as many points as untiled.
+    run 0 build "$sample" -o whole.ply --max-error 0.5 --json --quiet
+    whole=$(report_count vertices)
+    run 0 build "$sample" -o tiles.gpkg --max-error 0.5 --tile-size 64 --validate --json --quiet
+    report_at_most achieved_max_error 0.5
+    tiled=$(report_count vertices)
+    [ -n "$tiled" ] && [ "$tiled" -gt 0 ] || fail "no vertices reported"
+    awk -v a="$tiled" -v b="$whole" 'BEGIN { exit !(a <= 1.05 * b) }' ||
+      fail "$tiled vertices in tiles, against $whole untiled"
+    [ "$(feature_count tiles.gpkg)" -gt 0 ] || fail "no triangles written"
+    run 2 build "$sample" -o bad.gpkg --max-error 1 --tile-size 1
+    expect_one_error_line "tile size"
+    run 2 build "$sample" -o bad.gpkg --tile-size 64
+    expect_one_error_line "maximum error"
+    rotated_sample rotated.tif
+    run 1 build rotated.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
+    expect_one_error_line "north-up"
+    gdalwarp -q -t_srs EPSG:4326 small.tif geo.tif || fail "gdalwarp failed"
+    run 1 build geo.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
+    expect_one_error_line "tile-size"
+    [ ! -e bad.gpkg ] || fail "output written despite an error"
+    expect_no_leftovers
+    ;;
   refine_reprojected)
     # A geographic DEM is simplified in its UTM zone, --t_srs in the CRS asked for.
     small_sample

@@ -30,7 +30,8 @@ Point2 fractionalCell(const HeightGrid& grid, Point2 p) {
     const double det = c[1] * c[5] - c[2] * c[4];
     const double dx = p.x - c[0];
     const double dy = p.y - c[3];
-    return {(c[5] * dx - c[2] * dy) / det - 0.5, (c[1] * dy - c[4] * dx) / det - 0.5};
+    return {(c[5] * dx - c[2] * dy) / det - 0.5 - static_cast<double>(grid.firstColumn),
+            (c[1] * dy - c[4] * dx) / det - 0.5 - static_cast<double>(grid.firstRow)};
 }
 
 /// The first of two neighbouring indices whose span holds `at`, within 0 .. count - 1; -1 when

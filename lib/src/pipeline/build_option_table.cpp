@@ -282,6 +282,12 @@ std::vector<BuildOptionSpec> makeTable() {
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              refineOf(o).maxHole = parseCount<std::size_t>(t, n);
          }},
+        {"tile_size", "tile-size", 0, Kind::Count, false, "CELLS", "",
+         "simplify in tiles of CELLS cells a side, 2 to " + std::to_string(kMaxTileSize) +
+             ", sharing their border cells: one TIN without cracks (needs --max-error)",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             refineOf(o).tileSize = parseCount<std::size_t>(t, n);
+         }},
         {"fill_holes", "fill-holes", 0, Kind::Flag, false, "", "",
          "simplify: triangulate across every nodata region", applyFillHoles},
         {"max_edge", "max-edge", 0, Kind::Number, false, "L", "",

@@ -192,6 +192,22 @@ TinMesh takeConstrainedMesh(detail::ConstrainedRefinement corrected, const Build
 }
 
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
+// What tiles do not take yet, said with the options' names before the refinement starts.
+void checkTilesFit(const BuildOptions& options, const detail::RefinePlacement& placement,
+                   bool constrained) {
+    if (options.refine->tileSize == 0)
+        return;
+    const OptionSpelling spelling = options.optionSpelling;
+    if (constrained)
+        throw InvalidInputError(optionName("tile_size", spelling) +
+                                " does not combine with breaklines, clip, erase or replace "
+                                "polygons yet");
+    if (!placement.positions.empty())
+        throw InvalidInputError(optionName("tile_size", spelling) +
+                                " needs a DEM in a projected CRS; warp this geographic one first "
+                                "(gdalwarp -t_srs)");
+}
+
 BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
                            const ProgressCallback& progress, BuildReport report,
                            const Stopwatch& totalTime) {
@@ -218,12 +234,13 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
         detail::placeRefinedCells(options, raster.grid, raster.crsWkt, report);
     describeCrs(placement.targetWkt, report);
 
+    const bool constrained = hasConstraints(options);
+    checkTilesFit(options, placement, constrained);
     const Stopwatch refineTime;
     RefineOptions refineOptions = *options.refine;
     if (refineOptions.threads == 0)
         refineOptions.threads = options.triangulation.threads;
     refineOptions.validate = options.validate;
-    const bool constrained = hasConstraints(options);
     refineOptions.keepHoleTriangles = constrained;
     refineOptions.measure = !constrained; // refineWithConstraints measures every cell
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.

@@ -223,6 +223,7 @@ void GreedyRefiner::startFromHull() {
     }
     m_mesh->startFromHull(hullVertices, 0);
     m_triangles = hull.size() - 2;
+    insertSeedCells();
 
     // Candidates of the first triangles, scanned in parallel: they cover every valid cell.
     const std::vector<TriId> leaves = m_mesh->slotsInUse();
@@ -237,6 +238,29 @@ void GreedyRefiner::startFromHull() {
         for (const Candidate& candidate : list)
             route(candidate);
     m_firstPriority = std::max(highestPriority(), 0.0);
+}
+
+void GreedyRefiner::insertSeedCells() {
+    // In the order given, each walk starting from the last insertion's triangles: a tile's
+    // border cells come side by side.
+    if (m_seedCells.empty())
+        return;
+    RefineMesh::InsertScratch scratch;
+    TriId start = m_mesh->slotsInUse().front();
+    for (const std::uint32_t cell : m_seedCells) {
+        if ((m_flags[cell] & kCellVertex) != 0)
+            continue; // a corner of the hull
+        Strip& own = m_strips[stripOfCell(cell)];
+        setVertex(own.nextVertex, cell);
+        const int added =
+            m_mesh->tryInsert(own.nextVertex, start, StripRange::all(), own.region, scratch);
+        if (added == 0)
+            throw Error("Refiner: seed cell " + std::to_string(cell) + " could not be inserted");
+        ++own.nextVertex;
+        m_flags[cell] |= kCellVertex;
+        m_triangles += static_cast<std::size_t>(added);
+        start = scratch.fan.front();
+    }
 }
 
 void GreedyRefiner::route(const Candidate& candidate) {

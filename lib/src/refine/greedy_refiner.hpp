@@ -48,6 +48,10 @@ public:
     GreedyRefiner(const HeightGrid& grid, std::span<const Point2> positions, CellFlags& flags,
                   const RefineOptions& options, RoundWorkers& workers);
 
+    /// Cells to make vertices right after the hull, before any candidate is chosen (a tile's
+    /// border vertices, tile_refine.hpp): valid cells inside or on the hull. Call before run().
+    void setSeedCells(std::vector<std::uint32_t> cells) { m_seedCells = std::move(cells); }
+
     /// Runs to the target or a limit. Throws Cancelled when `progress` returns false.
     void run(const ProgressCallback& progress);
 
@@ -103,6 +107,7 @@ private:
     /// Cuts the columns into strips and reserves their vertex ids and slots.
     void planStrips();
     void startFromHull();
+    void insertSeedCells();
     /// Where `cell` lies in the TIN.
     [[nodiscard]] Point2 position(std::uint32_t cell) const {
         return m_positions.empty() ? m_grid->cellCentre(cell) : m_positions[cell];
@@ -204,6 +209,7 @@ private:
     double m_threshold = -1.0;
     /// Strip of each column; the strips.
     std::vector<std::uint8_t> m_columnStrip;
+    std::vector<std::uint32_t> m_seedCells;
     std::vector<Strip> m_strips;
     /// The state of the task of each pair of strips (k, k + 1).
     std::vector<TaskState> m_pairTasks;

@@ -33,9 +33,10 @@ namespace terratin::detail {
 
 /// Per-cell flags beside the grid: one byte per cell.
 enum CellFlag : std::uint8_t {
-    kCellNoData = 1,  ///< no elevation: never a vertex, never measured
-    kCellVertex = 2,  ///< already a vertex of the TIN (its error is 0)
-    kCellOpenHole = 4 ///< nodata cell of a hole larger than maxHole: no triangle may cover it
+    kCellNoData = 1,   ///< no elevation: never a vertex, never measured
+    kCellVertex = 2,   ///< already a vertex of the TIN (its error is 0)
+    kCellOpenHole = 4, ///< nodata cell of a hole larger than maxHole: no triangle may cover it
+    kCellFrozen = 8    ///< a tile's border cell: never a candidate (tile_refine.hpp decides them)
 };
 
 /// Read-only view of what the scans need.

@@ -6,6 +6,8 @@
 #include "located_check.hpp"
 #include "round_workers.hpp"
 
+#include "../tile/tile_refine.hpp"
+
 #include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
@@ -63,6 +65,12 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
 RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                       const RefineOptions& options, const ProgressCallback& progress) {
     checkInput(grid, positions, options);
+    if (options.tileSize > 0) {
+        if (!positions.empty())
+            throw InvalidInputError("Refiner: tiles need the grid's own cell centres (a "
+                                    "geographic or reprojected DEM: warp it first, gdalwarp)");
+        return detail::refineInTiles(grid, options, progress);
+    }
     RefineResult result;
     Clock::time_point phase = Clock::now();
     const unsigned threads = options.threads != 0
@@ -154,6 +162,23 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     return result;
 }
 
+void checkTileOptions(const RefineOptions& options) {
+    if (options.tileSize == 0)
+        return;
+    if (options.tileSize < 2 || options.tileSize > kMaxTileSize)
+        throw InvalidInputError("Refiner: the tile size must be 2 to " +
+                                std::to_string(kMaxTileSize) + " cells (got " +
+                                std::to_string(options.tileSize) + ")");
+    if (!options.maxError)
+        throw InvalidInputError("Refiner: tiles need a maximum error, which decides the "
+                                "vertices of their borders");
+    if (options.maxPoints || options.maxTriangles)
+        throw InvalidInputError("Refiner: tiles take no point or triangle limit yet; give a "
+                                "maximum error alone");
+    if (options.spareVertices > 0)
+        throw InvalidInputError("Refiner: tiles leave no room for more vertices");
+}
+
 } // namespace
 
 void checkRefineOptions(const RefineOptions& options) {
@@ -173,6 +198,7 @@ void checkRefineOptions(const RefineOptions& options) {
     if (options.threads > kMaxThreads)
         throw InvalidInputError("Refiner: the thread count must be 0 (all) to " +
                                 std::to_string(kMaxThreads) + got(options.threads));
+    checkTileOptions(options);
 }
 
 const char* toString(RefineStop stop) {
@@ -207,6 +233,9 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     // The path for reprojected grids locates every cell exactly at its position, so the
     // rotated grid takes it with the centres as positions (16 bytes per cell).
     const std::array<double, 6>& c = grid.geoTransform;
+    if (options.tileSize > 0 && (c[2] != 0.0 || c[4] != 0.0))
+        throw InvalidInputError("Refiner: tiles need a north-up grid (the geotransform is "
+                                "rotated); warp the DEM first (gdalwarp)");
     if ((c[2] != 0.0 || c[4] != 0.0) && grid.width > 0 && grid.height > 0 &&
         static_cast<std::uint64_t>(grid.cellCount()) <= kMaxRefineCells) {
         checkRefineOptions(options);

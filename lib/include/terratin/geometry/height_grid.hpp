@@ -28,18 +28,25 @@ struct HeightGrid {
     int width = 0;
     int height = 0;
     /// GDAL's affine geotransform: x = c[0] + col*c[1] + row*c[2], y = c[3] + col*c[4] +
-    /// row*c[5], (col, row) in pixels from the corner of the first stored cell. CRS units.
+    /// row*c[5], (col, row) in pixels from the raster's corner (the first stored cell's, unless
+    /// the grid is a window: firstRow). CRS units.
     std::array<double, 6> geoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
     /// width * height elevations, row-major; NaN = no data. On huge pages: the refiner reads
     /// them a triangle's rows at a time, all over the raster.
     std::vector<float, HugePageAllocator<float>> z;
+    /// Where this grid's first cell lies in the raster the geotransform describes: 0, 0 for a
+    /// whole raster; a tile's first row and column for a window of it (issue 25), so that a
+    /// cell has bit for bit the centre it has in the whole raster, whichever tile holds it.
+    int firstRow = 0;
+    int firstColumn = 0;
 
-    /// Georeferenced centre of cell (row, col): the transform at (col + 0.5, row + 0.5),
-    /// evaluated as (c[0] + px*c[1]) + py*c[2] and (c[3] + px*c[4]) + py*c[5], bit-identical
-    /// to io::GeoTransform::cellCentre and to the points of io::readRasterPoints.
+    /// Georeferenced centre of cell (row, col): the transform at (px, py) = (firstColumn + col +
+    /// 0.5, firstRow + row + 0.5), evaluated as (c[0] + px*c[1]) + py*c[2] and (c[3] + px*c[4]) +
+    /// py*c[5], bit-identical to io::GeoTransform::cellCentre and to the points of
+    /// io::readRasterPoints.
     [[nodiscard]] Point2 cellCentre(std::int64_t row, std::int64_t col) const {
-        const double px = static_cast<double>(col) + 0.5;
-        const double py = static_cast<double>(row) + 0.5;
+        const double px = static_cast<double>(col + firstColumn) + 0.5;
+        const double py = static_cast<double>(row + firstRow) + 0.5;
         const std::array<double, 6>& c = geoTransform;
         return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5]};
     }
@@ -49,8 +56,8 @@ struct HeightGrid {
     }
     /// Georeferenced centre of the raster's extent (pixel (width / 2, height / 2)).
     [[nodiscard]] Point2 extentCentre() const {
-        const double px = 0.5 * static_cast<double>(width);
-        const double py = 0.5 * static_cast<double>(height);
+        const double px = static_cast<double>(firstColumn) + 0.5 * static_cast<double>(width);
+        const double py = static_cast<double>(firstRow) + 0.5 * static_cast<double>(height);
         const std::array<double, 6>& c = geoTransform;
         return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5]};
     }

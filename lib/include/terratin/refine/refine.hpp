@@ -29,6 +29,9 @@ namespace terratin {
 /// a few for itself. Also the largest point limit and hole size that mean anything.
 inline constexpr std::uint64_t kMaxRefineCells = (std::uint64_t{1} << 32U) - 5;
 
+/// Largest RefineOptions::tileSize: a tile's side fits the grid's int dimensions.
+inline constexpr std::size_t kMaxTileSize = (std::size_t{1} << 31U) - 2;
+
 /// How much to simplify. With no limit at all every valid cell becomes a vertex.
 /// checkRefineOptions states the ranges.
 struct RefineOptions {
@@ -71,8 +74,15 @@ struct RefineOptions {
     /// spareVertices), for callers that insert more.
     std::size_t spareVertices = 0;
     /// Run validateDelaunay on the TIN before the triangles over holes are dropped and throw
-    /// terratin::Error when it is not exactly Delaunay.
+    /// terratin::Error when it is not exactly Delaunay (with tiles: each tile's TIN).
     bool validate = false;
+    /// Refine in tiles of this many cell intervals along each axis, 2 to kMaxTileSize, that
+    /// share their border cells (issue 25); 0 = the whole grid at once. The tiles' TINs join
+    /// without cracks: each border's vertices are chosen from its cells alone, within
+    /// maxError (docs/algorithms.md, "Tiles"), and each tile's TIN is exactly Delaunay, the
+    /// whole only within tiles. Needs maxError and a north-up grid without positions; takes no
+    /// point or triangle limit and no spareVertices.
+    std::size_t tileSize = 0;
 };
 
 /// Why refinement stopped.

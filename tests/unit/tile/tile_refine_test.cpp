@@ -1,0 +1,240 @@
+// Refinement in tiles (issue 25): the joined TIN is conforming (no crack, no T-junction, no
+// overlap), each tile side carries exactly the vertices chosen from its own cells, every valid
+// cell is within the bound (checked by a scan that shares no code with the refiner), and the
+// TIN does not depend on the thread count.
+
+#include "border_profile.hpp"
+#include "tile_grid.hpp"
+#include "tile_refine.hpp"
+
+#include "../refine/refine_test_grids.hpp"
+#include "mesh_invariants.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/geometry/predicates.hpp"
+#include "terratin/refine/refine.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace terratin {
+namespace {
+
+constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
+
+RefineOptions tiled(double maxError, std::size_t tileSize, unsigned threads = 1) {
+    RefineOptions options = test::validatedOptions(maxError, threads);
+    options.tileSize = tileSize;
+    return options;
+}
+
+Point2 xy(const Point3& p) {
+    return {p.x, p.y};
+}
+
+/// What the conformity check counted.
+struct EdgeCount {
+    std::size_t interior = 0;
+    std::size_t boundary = 0;
+};
+
+/// EXPECTs a conforming TIN: counter-clockwise triangles, no directed edge twice (two
+/// triangles on one side of an edge: an overlap), and each edge with triangles on both sides
+/// linked as neighbours both ways (else a crack or a T-junction would leave both open).
+EdgeCount expectConforming(const TinMesh& mesh) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> directed;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const std::uint32_t* v = &mesh.triangles[3 * t];
+        EXPECT_GT(predicates::orient2d(xy(mesh.vertices[v[0]]), xy(mesh.vertices[v[1]]),
+                                       xy(mesh.vertices[v[2]])),
+                  0.0)
+            << "triangle " << t << " is not counter-clockwise";
+        for (std::size_t e = 0; e < 3; ++e) {
+            const bool added = directed.emplace(std::pair{v[e], v[(e + 1) % 3]}, t).second;
+            EXPECT_TRUE(added) << "two triangles on one side of edge " << v[e] << "-"
+                               << v[(e + 1) % 3];
+        }
+    }
+    EdgeCount count;
+    for (const auto& [edge, t] : directed) {
+        const auto twin = directed.find({edge.second, edge.first});
+        const std::size_t e = static_cast<std::size_t>(
+            std::find(&mesh.triangles[3 * t], &mesh.triangles[3 * t + 3], edge.first) -
+            &mesh.triangles[3 * t]);
+        const std::int32_t neighbour = mesh.neighbours[3 * t + e];
+        if (twin == directed.end()) {
+            EXPECT_EQ(neighbour, kNoNeighbour) << "triangle " << t << " names a neighbour it lacks";
+            ++count.boundary;
+        } else {
+            EXPECT_EQ(neighbour, static_cast<std::int32_t>(twin->second))
+                << "triangles " << t << " and " << twin->second << " share an edge unlinked";
+            ++count.interior;
+        }
+    }
+    count.interior /= 2;
+    return count;
+}
+
+double areaSum(const TinMesh& mesh) {
+    double area = 0.0;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
+        const Point3& b = mesh.vertices[mesh.triangles[3 * t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[3 * t + 2]];
+        area += 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+    }
+    return area;
+}
+
+/// The vertex cells of `mesh` (sourceIndex) in the cells `line` of a grid, as indices into
+/// `line`.
+std::vector<std::uint32_t> verticesAlong(const TinMesh& mesh,
+                                         const std::vector<std::size_t>& line) {
+    const std::set<std::uint32_t> cells(mesh.sourceIndex.begin(), mesh.sourceIndex.end());
+    std::vector<std::uint32_t> found;
+    for (std::size_t k = 0; k < line.size(); ++k)
+        if (cells.count(static_cast<std::uint32_t>(line[k])) != 0)
+            found.push_back(static_cast<std::uint32_t>(k));
+    return found;
+}
+
+/// EXPECTs that every tile side of the cut carries exactly the vertices keptBorderCells
+/// chooses from that side's cells alone (within the refiner's tolerance for sides), and no
+/// other.
+void expectSidesFromTheirCells(const TinMesh& mesh, const HeightGrid& grid, std::size_t tileSize,
+                               double maxError) {
+    const auto width = static_cast<std::size_t>(grid.width);
+    const detail::TileGrid tiles(width, static_cast<std::size_t>(grid.height), tileSize);
+    const double tolerance = detail::sideTolerance(grid, maxError);
+    EXPECT_LT(tolerance, maxError);
+    EXPECT_GT(tolerance, maxError - 1e-6);
+    for (std::size_t ty = 0; ty < tiles.tileRows(); ++ty)
+        for (std::size_t tx = 0; tx < tiles.tileColumns(); ++tx) {
+            const detail::CellRange rows = tiles.rowsOf(ty);
+            const detail::CellRange columns = tiles.columnsOf(tx);
+            std::vector<std::vector<std::size_t>> sides(4);
+            for (std::size_t c = columns.first; c <= columns.last; ++c) {
+                sides[0].push_back(rows.first * width + c);
+                sides[1].push_back(rows.last * width + c);
+            }
+            for (std::size_t r = rows.first; r <= rows.last; ++r) {
+                sides[2].push_back(r * width + columns.first);
+                sides[3].push_back(r * width + columns.last);
+            }
+            for (const std::vector<std::size_t>& side : sides) {
+                std::vector<float> z;
+                for (const std::size_t cell : side)
+                    z.push_back(grid.z[cell]);
+                EXPECT_EQ(verticesAlong(mesh, side), detail::keptBorderCells(z, tolerance))
+                    << "the side from cell " << side.front() << " to " << side.back();
+            }
+        }
+}
+
+TEST(TiledRefine, OneConformingTin_SidesFromTheirCells_WithinTheBound) {
+    const HeightGrid grid = test::roughTerrain(97, 83, 7);
+    const double maxError = 2.0;
+    for (const std::size_t tileSize : {16, 40}) {
+        SCOPED_TRACE("tile size " + std::to_string(tileSize));
+        const RefineResult result = refine(grid, tiled(maxError, tileSize));
+        const TinMesh& mesh = result.mesh;
+        const EdgeCount edges = expectConforming(mesh);
+        // A disc: V - E + F = 1, its boundary the rectangle of the cell centres.
+        EXPECT_EQ(mesh.vertexCount() + mesh.triangleCount(), 1 + edges.interior + edges.boundary);
+        EXPECT_DOUBLE_EQ(areaSum(mesh), 96.0 * 82.0);
+        expectSidesFromTheirCells(mesh, grid, tileSize, maxError);
+        test::expectWithinError(mesh, grid, maxError);
+        EXPECT_LE(result.maxError, maxError);
+        EXPECT_EQ(result.coveredCells, grid.cellCount());
+        EXPECT_EQ(result.uncoveredCells, 0U);
+        EXPECT_TRUE(result.validated);
+        // Simplified: far fewer vertices than cells, and vertices in cell order.
+        EXPECT_LT(mesh.vertexCount(), grid.cellCount() / 3);
+        EXPECT_TRUE(std::is_sorted(mesh.sourceIndex.begin(), mesh.sourceIndex.end()));
+    }
+}
+
+TEST(TiledRefine, TheSameTinForOneThreadAndTwo) {
+    const HeightGrid grid = test::roughTerrain(120, 90, 11);
+    const RefineResult one = refine(grid, tiled(1.5, 32, 1));
+    const RefineResult two = refine(grid, tiled(1.5, 32, 2));
+    // Vertices in cell order; the triangles' order follows the threads, as untiled.
+    EXPECT_EQ(one.mesh.vertices, two.mesh.vertices);
+    EXPECT_EQ(one.mesh.sourceIndex, two.mesh.sourceIndex);
+    test::expectSameTriangles(one.mesh, two.mesh);
+    EXPECT_EQ(one.maxError, two.maxError);
+}
+
+TEST(TiledRefine, NoDataAcrossSides_AnEmptyTile_AndALastTileOneCellWide) {
+    // Tiles of 20: columns 0-20, 20-40, 40-41 (the last one cell beyond its side); rows 0-20,
+    // 20-40, 40-45. Discs of no data (open holes) across the side at column 20 and the one at
+    // row 20, the tile of rows 0-20 and columns 0-20 all no data, its sides too, and single
+    // nodata cells (filled).
+    const HeightGrid grid = test::makeGrid(42, 46, [](int row, int col) {
+        const auto inDisc = [&](double centreRow, double centreColumn) {
+            return (row - centreRow) * (row - centreRow) +
+                       (col - centreColumn) * (col - centreColumn) <
+                   30.0;
+        };
+        if (inDisc(29.5, 20.0) || inDisc(20.0, 30.5) || (row <= 20 && col <= 20))
+            return kNoData;
+        if ((row * 7 + col * 3) % 97 == 0)
+            return kNoData;
+        return 100.0 + 10.0 * std::sin(row * 0.3) * std::cos(col * 0.25) + 0.1 * (row % 3);
+    });
+    const double maxError = 0.5;
+    for (const unsigned threads : {1U, 2U}) {
+        SCOPED_TRACE("threads " + std::to_string(threads));
+        const RefineResult result = refine(grid, tiled(maxError, 20, threads));
+        expectConforming(result.mesh);
+        expectSidesFromTheirCells(result.mesh, grid, 20, maxError);
+        const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, 1);
+        EXPECT_LE(check.maxError, maxError + 1e-6);
+        EXPECT_EQ(check.uncoveredValid, 0U);
+        EXPECT_EQ(check.coveredOpenHoleCells, 0U);
+        EXPECT_GT(result.openHoleCells, 0U);
+        EXPECT_EQ(result.uncoveredCells, 0U);
+    }
+}
+
+TEST(TiledRefine, ATileWhoseCellsSpanNoArea_AddsNoTriangle) {
+    // The last tile (columns 20-21) has data only on its shared side, column 20.
+    const HeightGrid grid = test::makeGrid(22, 15, [](int row, int col) {
+        return col == 21 ? kNoData : 50.0 + 0.5 * row * col + (row % 2);
+    });
+    const RefineResult result = refine(grid, tiled(0.25, 20));
+    expectConforming(result.mesh);
+    const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, 1);
+    EXPECT_LE(check.maxError, 0.25 + 1e-6);
+    EXPECT_EQ(check.uncoveredValid, 0U);
+}
+
+TEST(TiledRefine, RefusesWhatTilesCannotDo) {
+    const HeightGrid grid = test::roughTerrain(30, 30, 3);
+    EXPECT_THROW(refine(grid, tiled(1.0, 1)), InvalidInputError);
+    RefineOptions noError = tiled(1.0, 16);
+    noError.maxError.reset();
+    noError.maxPoints = 100;
+    EXPECT_THROW(refine(grid, noError), InvalidInputError);
+    RefineOptions withLimit = tiled(1.0, 16);
+    withLimit.maxTriangles = 100;
+    EXPECT_THROW(refine(grid, withLimit), InvalidInputError);
+    HeightGrid rotated = grid;
+    rotated.geoTransform[2] = 0.1;
+    EXPECT_THROW(refine(rotated, tiled(1.0, 16)), InvalidInputError);
+    std::vector<Point2> positions(grid.cellCount());
+    for (std::size_t cell = 0; cell < positions.size(); ++cell)
+        positions[cell] = grid.cellCentre(static_cast<std::uint64_t>(cell));
+    EXPECT_THROW(refine(grid, positions, tiled(1.0, 16)), InvalidInputError);
+}
+
+} // namespace
+} // namespace terratin
