@@ -242,7 +242,7 @@ void GreedyRefiner::startFromHull() {
 
 void GreedyRefiner::insertSeedCells() {
     // In the order given, each walk starting from the last insertion's triangles: a tile's
-    // border cells come side by side.
+    // border cells come side by side. Before any scan, which then sees them all.
     if (m_seedCells.empty())
         return;
     RefineMesh::InsertScratch scratch;

@@ -11,78 +11,66 @@ namespace terratin::detail {
 namespace {
 
 std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
-    const std::uint32_t low = std::min(a, b);
-    const std::uint32_t high = std::max(a, b);
-    return (std::uint64_t{low} << 32U) | high;
+    return (std::uint64_t{std::min(a, b)} << 32U) | std::max(a, b);
 }
 
 } // namespace
 
-void TileMeshMerger::add(const TinMesh& tile, std::size_t tileWidth, std::size_t firstRow,
-                         std::size_t firstColumn) {
-    const auto gridCell = [&](std::uint32_t tileCell) {
-        const std::size_t row = firstRow + tileCell / tileWidth;
-        const std::size_t column = firstColumn + tileCell % tileWidth;
-        return static_cast<std::uint32_t>(row * m_gridWidth + column);
-    };
-    for (std::size_t v = 0; v < tile.vertexCount(); ++v)
-        m_vertices.push_back({gridCell(tile.sourceIndex[v]), tile.vertices[v]});
+std::uint32_t TileMeshMerger::vertexOf(const TinMesh& tile, std::uint32_t v,
+                                       const TilePlace& place) {
+    const std::size_t row = tile.sourceIndex[v] / place.width;
+    const std::size_t column = tile.sourceIndex[v] % place.width;
+    const auto cell = static_cast<std::uint32_t>((place.firstRow + row) * m_gridWidth +
+                                                 place.firstColumn + column);
+    const auto next = static_cast<std::uint32_t>(m_merged.vertices.size());
+    const bool onSide =
+        row == 0 || column == 0 || row + 1 == place.height || column + 1 == place.width;
+    if (onSide) {
+        const auto [found, added] = m_sideVertices.emplace(cell, next);
+        if (!added) {
+            if (!(m_merged.vertices[found->second] == tile.vertices[v]))
+                throw Error("Tiles: cell " + std::to_string(cell) +
+                            " lies at two positions in two tiles");
+            return found->second;
+        }
+    }
+    m_merged.vertices.push_back(tile.vertices[v]);
+    m_merged.sourceIndex.push_back(cell);
+    return next;
+}
 
-    const std::size_t base = m_cornerCells.size() / 3;
+void TileMeshMerger::add(const TinMesh& tile, const TilePlace& place) {
+    std::vector<std::uint32_t> merged(tile.vertexCount());
+    for (std::size_t v = 0; v < tile.vertexCount(); ++v)
+        merged[v] = vertexOf(tile, static_cast<std::uint32_t>(v), place);
+
+    const std::size_t base = m_merged.triangleCount();
     if (base + tile.triangleCount() >
         static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
         throw Error("Tiles: more than 2^31 - 1 triangles in all");
-    for (std::size_t t = 0; t < tile.triangleCount(); ++t)
-        for (std::size_t e = 0; e < 3; ++e) {
-            const std::size_t i = 3 * t + e;
-            m_cornerCells.push_back(gridCell(tile.sourceIndex[tile.triangles[i]]));
-            const std::int32_t n = tile.neighbours[i];
-            m_neighbours.push_back(n == kNoNeighbour ? kNoNeighbour
-                                                     : n + static_cast<std::int32_t>(base));
-        }
-    for (std::size_t t = base; t < m_cornerCells.size() / 3; ++t)
+    for (std::size_t i = 0; i < tile.triangles.size(); ++i) {
+        m_merged.triangles.push_back(merged[tile.triangles[i]]);
+        const std::int32_t n = tile.neighbours[i];
+        m_merged.neighbours.push_back(n == kNoNeighbour ? kNoNeighbour
+                                                        : n + static_cast<std::int32_t>(base));
+    }
+    for (std::size_t t = base; t < m_merged.triangleCount(); ++t)
         for (std::uint8_t e = 0; e < 3; ++e) {
-            if (m_neighbours[3 * t + e] != kNoNeighbour)
+            if (m_merged.neighbours[3 * t + e] != kNoNeighbour)
                 continue;
-            const std::uint32_t a = m_cornerCells[3 * t + e];
-            const std::uint32_t b = m_cornerCells[3 * t + (e + 1U) % 3U];
+            const std::uint32_t a = m_merged.triangles[3 * t + e];
+            const std::uint32_t b = m_merged.triangles[3 * t + (e + 1U) % 3U];
             m_openEdges.push_back({edgeKey(a, b), static_cast<std::uint32_t>(t), e, a < b});
         }
 }
 
 TinMesh TileMeshMerger::finish() {
-    std::sort(m_vertices.begin(), m_vertices.end(),
-              [](const CellVertex& a, const CellVertex& b) { return a.cell < b.cell; });
-    TinMesh merged;
-    std::vector<std::uint32_t> cells;
-    for (std::size_t i = 0; i < m_vertices.size(); ++i) {
-        const CellVertex& vertex = m_vertices[i];
-        if (!cells.empty() && cells.back() == vertex.cell) {
-            const Point3& kept = merged.vertices[merged.vertices.size() - 1];
-            if (!(kept == vertex.position))
-                throw Error("Tiles: cell " + std::to_string(vertex.cell) +
-                            " lies at two positions in two tiles");
-            continue;
-        }
-        cells.push_back(vertex.cell);
-        merged.vertices.push_back(vertex.position);
-        merged.sourceIndex.push_back(vertex.cell);
-    }
-    m_vertices = {};
-
-    merged.triangles.resize(m_cornerCells.size());
-    for (std::size_t i = 0; i < m_cornerCells.size(); ++i)
-        merged.triangles[i] = static_cast<std::uint32_t>(
-            std::lower_bound(cells.begin(), cells.end(), m_cornerCells[i]) - cells.begin());
-    merged.neighbours.resize(m_neighbours.size());
-    std::copy(m_neighbours.begin(), m_neighbours.end(), merged.neighbours.begin());
-    joinOpenEdges(merged);
-    m_cornerCells = {};
-    m_neighbours = {};
-    return merged;
+    joinOpenEdges();
+    m_sideVertices = {};
+    return std::move(m_merged);
 }
 
-void TileMeshMerger::joinOpenEdges(TinMesh& merged) {
+void TileMeshMerger::joinOpenEdges() {
     std::sort(m_openEdges.begin(), m_openEdges.end(),
               [](const OpenEdge& a, const OpenEdge& b) { return a.key < b.key; });
     for (std::size_t i = 0; i < m_openEdges.size();) {
@@ -90,16 +78,16 @@ void TileMeshMerger::joinOpenEdges(TinMesh& merged) {
         while (end < m_openEdges.size() && m_openEdges[end].key == m_openEdges[i].key)
             ++end;
         if (end - i > 2 || (end - i == 2 && m_openEdges[i].forward == m_openEdges[i + 1].forward))
-            throw Error("Tiles: the edge between cells " +
+            throw Error("Tiles: the edge between vertices " +
                         std::to_string(m_openEdges[i].key >> 32U) + " and " +
                         std::to_string(m_openEdges[i].key & 0xFFFFFFFFU) +
                         " has triangles of two tiles on one side");
         if (end - i == 2) {
             const OpenEdge& a = m_openEdges[i];
             const OpenEdge& b = m_openEdges[i + 1];
-            merged.neighbours[3 * std::size_t{a.triangle} + a.edge] =
+            m_merged.neighbours[3 * std::size_t{a.triangle} + a.edge] =
                 static_cast<std::int32_t>(b.triangle);
-            merged.neighbours[3 * std::size_t{b.triangle} + b.edge] =
+            m_merged.neighbours[3 * std::size_t{b.triangle} + b.edge] =
                 static_cast<std::int32_t>(a.triangle);
         }
         i = end;

@@ -8,47 +8,51 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace terratin::detail {
+
+/// Where a tile lies in the grid, in cells.
+struct TilePlace {
+    std::size_t firstRow = 0;
+    std::size_t firstColumn = 0;
+    std::size_t width = 0;
+    std::size_t height = 0;
+};
 
 class TileMeshMerger {
 public:
     /// `gridWidth`: the whole grid's width in cells, which numbers the cells of the merged TIN.
     explicit TileMeshMerger(std::size_t gridWidth) : m_gridWidth(gridWidth) {}
 
-    /// Adds a tile's TIN, whose sourceIndex numbers the cells of a window `tileWidth` cells
-    /// wide starting at (firstRow, firstColumn) of the grid.
-    void add(const TinMesh& tile, std::size_t tileWidth, std::size_t firstRow,
-             std::size_t firstColumn);
+    /// Adds a tile's TIN, whose sourceIndex numbers the cells of the tile at `place`. Its
+    /// vertices follow those of the tiles added before, less the ones on its sides that a tile
+    /// added before has already given; its triangles follow theirs.
+    void add(const TinMesh& tile, const TilePlace& place);
 
-    /// The merged TIN: vertices in cell order (sourceIndex = the grid's cell index), triangles
-    /// tile after tile, each tile's in its own order; each edge on a shared border joins the
-    /// two triangles on it. Throws Error when the tiles do not fit together: a cell with two
-    /// positions, an edge with more than two triangles, or two on the same side of it.
+    /// The merged TIN (sourceIndex = the grid's cell index), each edge on a shared side joining
+    /// the two triangles on it. Throws Error when the tiles do not fit together: a cell with
+    /// two positions, an edge with more than two triangles, or two on the same side of it.
     [[nodiscard]] TinMesh finish();
 
 private:
-    struct CellVertex {
-        std::uint32_t cell;
-        Point3 position;
-    };
-    /// A triangle edge with no neighbour in its own tile, to be matched across tiles.
+    /// A triangle edge on a tile's side, to be matched across tiles.
     struct OpenEdge {
-        std::uint64_t key; // the two corner cells, smaller first
+        std::uint64_t key; // the two vertices, smaller first
         std::uint32_t triangle;
         std::uint8_t edge;
-        bool forward; // whether the edge runs from the smaller cell to the larger
+        bool forward; // whether the edge runs from the smaller vertex to the larger
     };
 
-    void joinOpenEdges(TinMesh& merged);
+    /// The merged vertex of the tile's vertex v.
+    std::uint32_t vertexOf(const TinMesh& tile, std::uint32_t v, const TilePlace& place);
+    void joinOpenEdges();
 
     std::size_t m_gridWidth;
-    std::vector<CellVertex> m_vertices;
-    /// Corner cells (the grid's cell indices), three per triangle; and neighbours, with
-    /// kNoNeighbour where a border may hold one.
-    std::vector<std::uint32_t> m_cornerCells;
-    std::vector<std::int32_t> m_neighbours;
+    TinMesh m_merged;
+    /// The merged vertex of each side cell met so far, by the grid's cell index.
+    std::unordered_map<std::uint32_t, std::uint32_t> m_sideVertices;
     std::vector<OpenEdge> m_openEdges;
 };
 

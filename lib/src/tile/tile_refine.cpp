@@ -261,8 +261,8 @@ RefineResult refineInTiles(const HeightGrid& grid, const RefineOptions& options,
             const TileRefinement tile =
                 refineTile(grid, flags, window, tolerance, tileOptions, workers, tileProgress);
             if (tile.mesh.triangleCount() > 0)
-                merger.add(tile.mesh, window.columns.count(), window.rows.first,
-                           window.columns.first);
+                merger.add(tile.mesh, {window.rows.first, window.columns.first,
+                                       window.columns.count(), window.rows.count()});
             addFigures(tile, result);
         }
     result.validated = options.validate;
