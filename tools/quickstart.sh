@@ -20,6 +20,7 @@ readonly packages=(
   python3-qgis  # tests/qgis: the outputs opened in QGIS, headless
   clang-format  # the test command checks the C++ files against .clang-format
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
+  openmpi-bin libopenmpi-dev  # tiles shared among MPI ranks (mpirun), and their test
 )
 
 # Only for 'fuzz': clang and its libFuzzer runtime.

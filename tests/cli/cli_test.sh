@@ -400,6 +400,47 @@ case "$case_name" in
     [ ! -e bad.gpkg ] || fail "output written despite an error"
     expect_no_leftovers
     ;;
+  mpi_tiles)
+    # Issue 25: mpirun shares the tiles among ranks; rank 0 coordinates and writes. The TIN is
+    # the one process's for 1 and 2 ranks that refine: the same vertices in the same order, the
+    # same triangles (their order within a tile follows the threads a rank runs, as in one
+    # process; mpirun may bind a rank to one core).
+    command -v mpirun >/dev/null || { echo "skip [$case_name]: no mpirun"; exit 77; }
+    mpi=(mpirun --allow-run-as-root --oversubscribe)
+    cp "$sample" dem.tif
+    # Each face's three vertex numbers in increasing order, the faces sorted (POSIX awk).
+    triangles_of() {
+      awk '$1 == "f" { a = $2 + 0; b = $3 + 0; c = $4 + 0
+             if (a > b) { t = a; a = b; b = t }
+             if (b > c) { t = b; b = c; c = t }
+             if (a > b) { t = a; a = b; b = t }
+             print a, b, c }' "$1" | sort
+    }
+    run 0 build dem.tif -o one.obj --max-error 0.5 --tile-size 40 --quiet
+    for ranks in 2 3; do
+      "${mpi[@]}" -np "$ranks" "$terratin" build dem.tif -o "ranks$ranks.obj" --max-error 0.5 \
+        --tile-size 40 --json --quiet >out.txt 2>err.txt || fail "mpirun -np $ranks failed"
+      cmp -s <(grep '^v ' one.obj) <(grep '^v ' "ranks$ranks.obj") ||
+        fail "-np $ranks: not the one process's vertices"
+      cmp -s <(triangles_of one.obj) <(triangles_of "ranks$ranks.obj") ||
+        fail "-np $ranks: not the one process's triangles"
+      [ "$(grep -c '"input"' out.txt)" -eq 1 ] || fail "-np $ranks: not one report"
+    done
+    # Failures: one terratin line (mpirun adds its own notice after it), no output left.
+    "${mpi[@]}" -np 3 "$terratin" build dem.tif -o bad.ply --max-error 0.5 --quiet \
+      >out.txt 2>err.txt && fail "ranks without --tile-size succeeded"
+    [ "$(grep -c '^terratin: ' err.txt)" -eq 1 ] || fail "not one error line"
+    grep -q 'tile-size' err.txt || fail "the error does not name --tile-size"
+    # A rank whose working directory lacks the DEM (no shared filesystem) fails the run.
+    mkdir elsewhere
+    "${mpi[@]}" -np 2 "$terratin" build dem.tif -o bad.ply --max-error 0.5 --tile-size 40 --quiet \
+      : -np 1 -wdir "$work/elsewhere" "$terratin" build dem.tif -o bad.ply --max-error 0.5 \
+      --tile-size 40 --quiet >out.txt 2>err.txt && fail "a failing rank did not fail the run"
+    [ "$(grep -c '^terratin: ' err.txt)" -eq 1 ] || fail "not one error line for a failing rank"
+    grep -q '^terratin: rank 2: .*dem.tif' err.txt || fail "the error does not name the rank"
+    [ ! -e bad.ply ] || fail "output written despite a failure"
+    expect_no_leftovers
+    ;;
   refine_reprojected)
     # A geographic DEM is simplified in its UTM zone, --t_srs in the CRS asked for.
     small_sample

@@ -2,14 +2,16 @@
 """A DEM simplified whole against the same DEM simplified in tiles, side by side (issue 25).
 
 Runs, --rounds times, `terratin build DEM -o tin.ply --max-error E` and the same with
-`--tile-size T` for each T given, in turn (the order rotating from round to round, so that
-each configuration meets every load), and prints per configuration the medians of the JSON
-report's refine and total seconds, the peak resident memory of the process, and the points,
-triangles and achieved error (the same every round). Run from the source tree after the
-release build:
+`--tile-size T` for each T given, and with --ranks N, `mpirun -np N` of the first tile size
+(rank 0 coordinates, the others refine with --rank-threads threads each), in turn (the order
+rotating from round to round, so that each configuration meets every load), and prints per
+configuration the medians of the JSON report's refine and total seconds, the peak resident
+memory of the largest process, and the points, triangles and achieved error (the same every
+round). Run from the source tree after the release build:
 
     /usr/bin/python3 tools/bench/tiles_bench.py build/release/tools/terratin \\
-        ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif --max-error 1 --tiles 256 1024
+        ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif --max-error 1 --tiles 256 1024 \\
+        --ranks 2 3 --rank-threads 1
 
 docs/benchmarks.md holds the measurement, with its date, commit and machine.
 """
@@ -23,12 +25,18 @@ import tempfile
 from pathlib import Path
 
 
-def run_once(terratin, dem, output, max_error, tile_size, threads):
-    """One build: its JSON report and the peak resident memory of the process, in MiB."""
+MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "--bind-to", "none"]
+
+
+def run_once(terratin, dem, output, max_error, configuration, threads):
+    """One build: its JSON report and the peak resident memory of the largest process, MiB."""
+    tile_size, ranks = configuration
     command = [str(terratin), "build", str(dem), "-o", str(output), "--overwrite", "--json",
                "--quiet", "--max-error", str(max_error), "--threads", str(threads)]
     if tile_size:
         command += ["--tile-size", str(tile_size)]
+    if ranks:
+        command = MPIRUN + ["-np", str(ranks)] + command
     with tempfile.TemporaryFile() as stdout:
         process = subprocess.Popen(command, stdout=stdout, stderr=subprocess.PIPE)
         _, status, usage = os.wait4(process.pid, 0)
@@ -48,9 +56,11 @@ def main():
     parser.add_argument("--tiles", type=int, nargs="+", default=[256, 1024])
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--ranks", type=int, nargs="*", default=[])
+    parser.add_argument("--rank-threads", type=int, default=1)
     args = parser.parse_args()
 
-    configurations = [0] + args.tiles
+    configurations = [(0, 0)] + [(t, 0) for t in args.tiles] + [(args.tiles[0], n) for n in args.ranks]
     seconds = {c: {"refine": [], "total": []} for c in configurations}
     memory = {c: [] for c in configurations}
     figures = {}
@@ -58,27 +68,31 @@ def main():
         output = Path(work) / "tin.ply"
         for round_index in range(args.rounds):
             shift = round_index % len(configurations)
-            for tile_size in configurations[shift:] + configurations[:shift]:
+            for configuration in configurations[shift:] + configurations[:shift]:
+                threads = args.rank_threads if configuration[1] else args.threads
                 report, peak = run_once(args.terratin, args.dem, output, args.max_error,
-                                        tile_size, args.threads)
-                seconds[tile_size]["refine"].append(report["timings"]["triangulate"])
-                seconds[tile_size]["total"].append(report["timings"]["total"])
-                memory[tile_size].append(peak)
-                figures[tile_size] = (report["counts"]["vertices"],
+                                        configuration, threads)
+                seconds[configuration]["refine"].append(report["timings"]["triangulate"])
+                seconds[configuration]["total"].append(report["timings"]["total"])
+                memory[configuration].append(peak)
+                figures[configuration] = (report["counts"]["vertices"],
                                       report["counts"]["triangles"],
                                       report["refine"]["achieved_max_error"])
 
-    whole = statistics.median(seconds[0]["total"])
+    whole = statistics.median(seconds[(0, 0)]["total"])
     print(f"{args.dem.name}, --max-error {args.max_error}, {args.rounds} rounds, medians")
-    print("| tiles | points | triangles | max error | refine s | total s | total / untiled "
-          "| peak RSS MiB |")
-    print("|---|---|---|---|---|---|---|---|")
-    for tile_size in configurations:
-        points, triangles, achieved = figures[tile_size]
-        total = statistics.median(seconds[tile_size]["total"])
-        print(f"| {tile_size or 'none'} | {points:,} | {triangles:,} | {achieved:.3f} "
-              f"| {statistics.median(seconds[tile_size]['refine']):.3f} | {total:.3f} "
-              f"| {total / whole:.2f} | {statistics.median(memory[tile_size]):.0f} |")
+    print("| tiles | processes | points | triangles | max error | refine s | total s "
+          "| total / untiled | peak RSS MiB |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for configuration in configurations:
+        tile_size, ranks = configuration
+        points, triangles, achieved = figures[configuration]
+        total = statistics.median(seconds[configuration]["total"])
+        processes = f"mpirun -np {ranks}, {args.rank_threads} thread(s) a rank" if ranks else "1"
+        print(f"| {tile_size or 'none'} | {processes} | {points:,} | {triangles:,} "
+              f"| {achieved:.3f} | {statistics.median(seconds[configuration]['refine']):.3f} "
+              f"| {total:.3f} | {total / whole:.2f} "
+              f"| {statistics.median(memory[configuration]):.0f} |")
 
 
 if __name__ == "__main__":

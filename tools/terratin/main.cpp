@@ -2,6 +2,10 @@
 
 #include "cancel_signals.hpp"
 #include "cli_options.hpp"
+#include "mpi_launch.hpp"
+#if defined(TERRATIN_WITH_MPI)
+#include "mpi_tiles.hpp"
+#endif
 #include "progress_printer.hpp"
 
 #include "terratin/error.hpp"
@@ -12,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,8 +50,16 @@ bool writeReport(const std::string& text) {
     return false;
 }
 
-int runBuildCommand(const terratin::cli::Command& command) {
+// `onFailure` runs before the error is printed (rank 0 of an MPI run releases the others).
+int runBuildCommand(const terratin::cli::Command& command,
+                    const std::function<void()>& onFailure = {}) {
     terratin::cli::ProgressPrinter printer(stderr, terratin::cli::cancelledBySignal());
+    const auto fail = [&](const std::string& message) {
+        if (onFailure)
+            onFailure();
+        printer.fail();
+        printError(message);
+    };
     try {
         // Even a quiet run needs the callback: it is how Ctrl-C reaches the pipeline.
         terratin::ProgressCallback progress =
@@ -71,38 +84,76 @@ int runBuildCommand(const terratin::cli::Command& command) {
             command.json ? terratin::toJson(report) : (command.quiet ? std::string() : summary);
         return writeReport(result) ? kExitOk : kExitError;
     } catch (const terratin::Error& error) {
-        printer.fail();
-        printError(error.what());
+        fail(error.what());
     } catch (const std::bad_alloc&) {
-        printer.fail();
-        printError("out of memory");
+        fail("out of memory");
     } catch (const std::exception& error) {
-        printer.fail();
-        printError(std::string("unexpected error: ") + error.what());
+        fail(std::string("unexpected error: ") + error.what());
     }
     return kExitError;
 }
+
+#if defined(TERRATIN_WITH_MPI)
+// A rank other than 0: reads the DEM and refines the tiles rank 0 hands it; prints nothing
+// (rank 0 reports for the run, a failure here included).
+int serveTiles(const terratin::cli::Command& command, terratin::cli::MpiTiles& tiles) {
+    try {
+        const terratin::ProgressCallback keepGoing = [](double, std::string_view) {
+            return !terratin::cli::cancelledBySignal().load();
+        };
+        terratin::runBuild(command.build, keepGoing);
+        return kExitOk;
+    } catch (const std::exception& error) {
+        tiles.abandon(error.what());
+    }
+    return kExitError;
+}
+
+int runDistributedBuild(terratin::cli::Command command, int& argc, char**& argv) {
+    const terratin::cli::MpiSession session(argc, argv);
+    terratin::cli::MpiTiles tiles(session);
+    command.build.tileDistribution = &tiles;
+    if (!tiles.coordinates())
+        return serveTiles(command, tiles);
+    return runBuildCommand(command, [&tiles] { tiles.releaseAll(); });
+}
+#else
+int runDistributedBuild(const terratin::cli::Command&, int&, char**&) {
+    if (terratin::cli::mpiLaunch().rank == 0)
+        printError("started by mpirun as " + std::to_string(terratin::cli::mpiLaunch().size) +
+                   " processes, but this terratin was built without MPI (install "
+                   "libopenmpi-dev and build again)");
+    return kExitError;
+}
+#endif
 
 } // namespace
 
 int main(int argc, char** argv) {
     terratin::cli::installCancelSignals();
+    // Under mpirun every rank parses the same command line; rank 0 alone speaks.
+    const terratin::cli::MpiLaunch launch = terratin::cli::mpiLaunch();
+    const bool speaks = launch.rank == 0;
     terratin::cli::Command command;
     try {
         command = terratin::cli::parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
     } catch (const terratin::cli::UsageError& error) {
-        printError(error.what());
+        if (speaks)
+            printError(error.what());
         return kExitUsage;
     }
     switch (command.kind) {
     case terratin::cli::Command::Kind::Help:
-        std::printf("%s", command.helpText.c_str());
+        if (speaks)
+            std::printf("%s", command.helpText.c_str());
         return kExitOk;
     case terratin::cli::Command::Kind::Version:
-        std::printf("terratin %s\n", terratin::version());
+        if (speaks)
+            std::printf("terratin %s\n", terratin::version());
         return kExitOk;
     case terratin::cli::Command::Kind::Build:
-        return runBuildCommand(command);
+        return launch.size > 1 ? runDistributedBuild(command, argc, argv)
+                               : runBuildCommand(command);
     }
     return kExitUsage;
 }

@@ -12,6 +12,7 @@
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
 #include "terratin/refine/mesh_filter.hpp"
+#include "terratin/refine/tile_distribution.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
@@ -241,6 +242,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     if (refineOptions.threads == 0)
         refineOptions.threads = options.triangulation.threads;
     refineOptions.validate = options.validate;
+    refineOptions.distribution = options.tileDistribution;
     refineOptions.keepHoleTriangles = constrained;
     refineOptions.measure = !constrained; // refineWithConstraints measures every cell
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.
@@ -260,6 +262,10 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
         placement.positions.empty()
             ? refine(raster.grid, refineOptions, refineProgress)
             : refine(raster.grid, placement.positions, refineOptions, refineProgress);
+    if (options.tileDistribution != nullptr && !options.tileDistribution->coordinates()) {
+        report.servedTiles = true;
+        return report;
+    }
     report.refined = true;
     report.targetMaxError = refineOptions.maxError;
     report.achievedMaxError = result.maxError;
@@ -362,6 +368,10 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     }
     report.output = options.output.string();
     report.format = formatName(format);
+    if (options.tileDistribution != nullptr && (!options.refine || options.refine->tileSize == 0))
+        throw InvalidInputError("Build: several processes share the work only by tiles: give " +
+                                optionName("max_error", options.optionSpelling) + " and " +
+                                optionName("tile_size", options.optionSpelling));
     if (options.refine)
         return runRefineBuild(options, writeOptions, progress, std::move(report), totalTime);
 

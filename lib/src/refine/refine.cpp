@@ -179,6 +179,11 @@ void checkTileOptions(const RefineOptions& options) {
         throw InvalidInputError("Refiner: tiles leave no room for more vertices");
 }
 
+void checkDistribution(const RefineOptions& options) {
+    if (options.distribution != nullptr && options.tileSize == 0)
+        throw InvalidInputError("Refiner: processes share tiles: give a tile size");
+}
+
 } // namespace
 
 void checkRefineOptions(const RefineOptions& options) {
@@ -199,6 +204,7 @@ void checkRefineOptions(const RefineOptions& options) {
         throw InvalidInputError("Refiner: the thread count must be 0 (all) to " +
                                 std::to_string(kMaxThreads) + got(options.threads));
     checkTileOptions(options);
+    checkDistribution(options);
 }
 
 const char* toString(RefineStop stop) {

@@ -3,6 +3,7 @@
 #include "border_profile.hpp"
 #include "tile_grid.hpp"
 #include "tile_mesh_merge.hpp"
+#include "tile_refinement.hpp"
 
 #include "../refine/cell_flags.hpp"
 #include "../refine/error_check.hpp"
@@ -11,11 +12,13 @@
 
 #include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"
+#include "terratin/refine/tile_distribution.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,20 +30,6 @@ namespace {
 struct TileWindow {
     CellRange rows;
     CellRange columns;
-};
-
-/// What one tile's refinement gives the whole.
-struct TileRefinement {
-    TinMesh mesh;
-    double maxError = 0.0;
-    std::size_t droppedTriangles = 0;
-    std::size_t hullPoints = 0;
-    std::size_t strips = 0;
-    std::size_t levels = 0;
-    std::size_t deferredCandidates = 0;
-    std::size_t pairInsertions = 0;
-    std::size_t sharedInsertions = 0;
-    std::size_t meshBytes = 0;
 };
 
 HeightGrid windowOf(const HeightGrid& grid, const TileWindow& window) {
@@ -225,6 +214,83 @@ void measureJoined(const HeightGrid& grid, CellFlags flags, RefineResult& result
     result.uncoveredCells = result.validCells - std::min(result.validCells, result.coveredCells);
 }
 
+/// What every tile needs, decided once for the whole grid.
+struct TileJob {
+    const HeightGrid* grid;
+    CellFlags flags;
+    double tolerance;
+    TileGrid tiles;
+    RefineOptions options;
+
+    [[nodiscard]] TileWindow window(std::size_t tile) const {
+        return {tiles.rowsOf(tile / tiles.tileColumns()),
+                tiles.columnsOf(tile % tiles.tileColumns())};
+    }
+};
+
+/// Joins tiles in tile order, whatever order they are refined in.
+class TileJoin {
+public:
+    TileJoin(const TileJob& job, RefineResult& result)
+        : m_job(&job), m_result(&result), m_merger(static_cast<std::size_t>(job.grid->width)) {}
+
+    void take(std::size_t tile, TileRefinement refinement) {
+        m_waiting.emplace(tile, std::move(refinement));
+        for (auto next = m_waiting.find(m_joined); next != m_waiting.end();
+             next = m_waiting.find(m_joined)) {
+            const TileWindow window = m_job->window(m_joined);
+            if (next->second.mesh.triangleCount() > 0)
+                m_merger.add(next->second.mesh, {window.rows.first, window.columns.first,
+                                                 window.columns.count(), window.rows.count()});
+            addFigures(next->second, *m_result);
+            m_waiting.erase(next);
+            ++m_joined;
+        }
+    }
+    [[nodiscard]] std::size_t joined() const { return m_joined; }
+    [[nodiscard]] TinMesh finish() { return m_merger.finish(); }
+
+private:
+    const TileJob* m_job;
+    RefineResult* m_result;
+    TileMeshMerger m_merger;
+    std::map<std::size_t, TileRefinement> m_waiting;
+    std::size_t m_joined = 0;
+};
+
+/// Every tile refined here, one after the other, each on all the threads.
+void refineEveryTile(const TileJob& job, RoundWorkers& workers, TileJoin& join,
+                     const ProgressCallback& progress) {
+    const std::size_t count = job.tiles.tileCount();
+    for (std::size_t tile = 0; tile < count; ++tile) {
+        ProgressCallback tileProgress;
+        if (progress)
+            tileProgress = [&progress, tile, count](double fraction, std::string_view message) {
+                return progress(0.9 * (static_cast<double>(tile) + fraction) /
+                                    static_cast<double>(count),
+                                message);
+            };
+        join.take(tile, refineTile(*job.grid, job.flags, job.window(tile), job.tolerance,
+                                   job.options, workers, tileProgress));
+    }
+}
+
+/// The tiles refined by the other processes of `distribution`, joined here.
+void gatherEveryTile(const TileJob& job, TileDistribution& distribution, TileJoin& join,
+                     const ProgressCallback& progress) {
+    const std::size_t count = job.tiles.tileCount();
+    distribution.gather(
+        count,
+        [&join](std::size_t tile, std::vector<std::byte> bytes) {
+            join.take(tile, unpackTile(bytes));
+        },
+        [&] {
+            return !progress ||
+                   progress(0.9 * static_cast<double>(join.joined()) / static_cast<double>(count),
+                            "refining tiles");
+        });
+}
+
 } // namespace
 
 RefineResult refineInTiles(const HeightGrid& grid, const RefineOptions& options,
@@ -235,43 +301,37 @@ RefineResult refineInTiles(const HeightGrid& grid, const RefineOptions& options,
     result.threads = options.threads != 0
                          ? options.threads
                          : std::clamp(std::thread::hardware_concurrency(), 1U, kMaxThreads);
-    const double maxError = *options.maxError;
-    const CellFlags flags =
-        makeCellFlags(grid, options.maxHole, options.fillHoles, result.openHoleCells);
-    const double tolerance = sideTolerance(grid, maxError);
-    const TileGrid tiles(static_cast<std::size_t>(grid.width),
-                         static_cast<std::size_t>(grid.height), options.tileSize);
-    RefineOptions tileOptions = options;
-    tileOptions.tileSize = 0;
-    tileOptions.threads = result.threads;
+    TileJob job{&grid,
+                makeCellFlags(grid, options.maxHole, options.fillHoles, result.openHoleCells),
+                sideTolerance(grid, *options.maxError),
+                TileGrid(static_cast<std::size_t>(grid.width),
+                         static_cast<std::size_t>(grid.height), options.tileSize),
+                options};
+    job.options.tileSize = 0;
+    job.options.threads = result.threads;
+    job.options.distribution = nullptr;
     RoundWorkers workers(result.threads);
-    TileMeshMerger merger(static_cast<std::size_t>(grid.width));
-    const double tileCount = static_cast<double>(tiles.tileCount());
-    std::size_t done = 0;
-    for (std::size_t tileRow = 0; tileRow < tiles.tileRows(); ++tileRow)
-        for (std::size_t tileColumn = 0; tileColumn < tiles.tileColumns(); ++tileColumn, ++done) {
-            const TileWindow window{tiles.rowsOf(tileRow), tiles.columnsOf(tileColumn)};
-            ProgressCallback tileProgress;
-            if (progress)
-                tileProgress = [&progress, done, tileCount](double fraction,
-                                                            std::string_view message) {
-                    return progress(0.9 * (static_cast<double>(done) + fraction) / tileCount,
-                                    message);
-                };
-            const TileRefinement tile =
-                refineTile(grid, flags, window, tolerance, tileOptions, workers, tileProgress);
-            if (tile.mesh.triangleCount() > 0)
-                merger.add(tile.mesh, {window.rows.first, window.columns.first,
-                                       window.columns.count(), window.rows.count()});
-            addFigures(tile, result);
-        }
+    TileDistribution* const distribution = options.distribution;
+    if (distribution != nullptr && !distribution->coordinates()) {
+        distribution->serve([&](std::size_t tile) {
+            return packTile(refineTile(grid, job.flags, job.window(tile), job.tolerance,
+                                       job.options, workers, progress));
+        });
+        return result; // the coordinator has the TIN
+    }
+    TileJoin join(job, result);
+    if (distribution != nullptr)
+        gatherEveryTile(job, *distribution, join, progress);
+    else
+        refineEveryTile(job, workers, join, progress);
     result.validated = options.validate;
     result.insertSeconds = std::chrono::duration<double>(Clock::now() - start).count();
-    result.mesh = merger.finish();
-    if (result.maxError > maxError)
+    result.mesh = join.finish();
+    if (result.maxError > *options.maxError)
         throw Error("Refiner: check failed: a covered cell is " + std::to_string(result.maxError) +
-                    " from the TIN, more than the maximum error " + std::to_string(maxError));
-    measureJoined(grid, flags, result);
+                    " from the TIN, more than the maximum error " +
+                    std::to_string(*options.maxError));
+    measureJoined(grid, job.flags, result);
     result.checkSeconds =
         std::chrono::duration<double>(Clock::now() - start).count() - result.insertSeconds;
     if (progress)

@@ -13,15 +13,21 @@
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/refine/tile_distribution.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <functional>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <set>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -222,6 +228,98 @@ TEST(TiledRefine, ATileWhoseCellsSpanNoArea_AddsNoTriangle) {
     EXPECT_EQ(check.uncoveredValid, 0U);
 }
 
+/// Tiles shared by threads of this process through a queue, a stand-in for MPI ranks: the
+/// coordinator queues the tiles in reverse order, so that their TINs come back out of order.
+class ThreadTiles {
+public:
+    class Side final : public TileDistribution {
+    public:
+        Side(ThreadTiles& shared, bool coordinates)
+            : m_shared(&shared), m_coordinates(coordinates) {}
+        [[nodiscard]] bool coordinates() const override { return m_coordinates; }
+        void gather(std::size_t tileCount,
+                    const std::function<void(std::size_t, std::vector<std::byte>)>& take,
+                    const std::function<bool()>&) override {
+            std::unique_lock lock(m_shared->m_mutex);
+            for (std::size_t tile = tileCount; tile-- > 0;)
+                m_shared->m_tiles.push_back(tile);
+            m_shared->m_changed.notify_all();
+            for (std::size_t taken = 0; taken < tileCount; ++taken) {
+                m_shared->m_changed.wait(lock, [&] { return !m_shared->m_results.empty(); });
+                auto [tile, bytes] = std::move(m_shared->m_results.front());
+                m_shared->m_results.pop_front();
+                m_shared->m_order.push_back(tile);
+                take(tile, std::move(bytes));
+            }
+            m_shared->m_stop = true;
+            m_shared->m_changed.notify_all();
+        }
+        void serve(const std::function<std::vector<std::byte>(std::size_t)>& refine) override {
+            std::unique_lock lock(m_shared->m_mutex);
+            for (;;) {
+                m_shared->m_changed.wait(
+                    lock, [&] { return m_shared->m_stop || !m_shared->m_tiles.empty(); });
+                if (m_shared->m_tiles.empty())
+                    return;
+                const std::size_t tile = m_shared->m_tiles.front();
+                m_shared->m_tiles.pop_front();
+                lock.unlock();
+                std::vector<std::byte> bytes = refine(tile);
+                lock.lock();
+                m_shared->m_results.emplace_back(tile, std::move(bytes));
+                m_shared->m_changed.notify_all();
+            }
+        }
+
+    private:
+        ThreadTiles* m_shared;
+        bool m_coordinates;
+    };
+
+    /// The tiles in the order their TINs came back.
+    [[nodiscard]] const std::vector<std::size_t>& order() const { return m_order; }
+
+private:
+    std::mutex m_mutex;
+    std::condition_variable m_changed;
+    std::deque<std::size_t> m_tiles;
+    std::deque<std::pair<std::size_t, std::vector<std::byte>>> m_results;
+    std::vector<std::size_t> m_order;
+    bool m_stop = false;
+};
+
+TEST(TiledRefine, TilesRefinedElsewhere_OutOfOrder_GiveTheOneProcessTin) {
+    const HeightGrid grid = test::roughTerrain(90, 70, 5);
+    const RefineResult alone = refine(grid, tiled(1.0, 20, 1));
+
+    ThreadTiles shared;
+    ThreadTiles::Side coordinator(shared, true);
+    std::vector<ThreadTiles::Side> others(2, ThreadTiles::Side(shared, false));
+    std::vector<RefineResult> served(others.size());
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < others.size(); ++k)
+        threads.emplace_back([&, k] {
+            RefineOptions options = tiled(1.0, 20, 1);
+            options.distribution = &others[k];
+            served[k] = refine(grid, options);
+        });
+    RefineOptions options = tiled(1.0, 20, 1);
+    options.distribution = &coordinator;
+    const RefineResult joined = refine(grid, options);
+    for (std::thread& thread : threads)
+        thread.join();
+
+    EXPECT_FALSE(std::is_sorted(shared.order().begin(), shared.order().end()));
+    EXPECT_EQ(joined.mesh.vertices, alone.mesh.vertices);
+    EXPECT_EQ(joined.mesh.sourceIndex, alone.mesh.sourceIndex);
+    EXPECT_EQ(joined.mesh.triangles, alone.mesh.triangles);
+    EXPECT_EQ(joined.mesh.neighbours, alone.mesh.neighbours);
+    EXPECT_EQ(joined.maxError, alone.maxError);
+    EXPECT_EQ(joined.rmse, alone.rmse);
+    for (const RefineResult& result : served)
+        EXPECT_EQ(result.mesh.triangleCount(), 0U); // the coordinator has the TIN
+}
+
 TEST(TiledRefine, RefusesWhatTilesCannotDo) {
     const HeightGrid grid = test::roughTerrain(30, 30, 3);
     EXPECT_THROW(refine(grid, tiled(1.0, 1)), InvalidInputError);
@@ -239,6 +337,12 @@ TEST(TiledRefine, RefusesWhatTilesCannotDo) {
     for (std::size_t cell = 0; cell < positions.size(); ++cell)
         positions[cell] = grid.cellCentre(static_cast<std::uint64_t>(cell));
     EXPECT_THROW(refine(grid, positions, tiled(1.0, 16)), InvalidInputError);
+    ThreadTiles shared;
+    ThreadTiles::Side coordinator(shared, true);
+    RefineOptions untiled = tiled(1.0, 16);
+    untiled.tileSize = 0;
+    untiled.distribution = &coordinator;
+    EXPECT_THROW(refine(grid, untiled), InvalidInputError);
 }
 
 } // namespace

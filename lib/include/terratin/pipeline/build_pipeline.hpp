@@ -102,6 +102,10 @@ struct BuildOptions {
     /// those of the readers and writers it calls; parseBuildOptions sets it to the spelling of
     /// its caller.
     OptionSpelling optionSpelling = OptionSpelling::Keyword;
+    /// Processes that share the tiles of a tiled simplification (RefineOptions::distribution:
+    /// terratin's MPI ranks); needs refine with a tile size. Only the coordinating process
+    /// writes; the others return a report with servedTiles set and write nothing.
+    TileDistribution* tileDistribution = nullptr;
 
     /// Terrain simplification (--max-error, --max-points, --max-triangles, --max-hole,
     /// --fill-holes): when set, the raster is read as a HeightGrid and refined instead of
@@ -187,6 +191,9 @@ struct BuildReport {
     /// Set when BuildOptions::refine was: what the refinement achieved, measured over every
     /// valid cell after the build (z units).
     bool refined = false;
+    /// This process refined tiles for another (BuildOptions::tileDistribution) and wrote
+    /// nothing; the other fields are unset.
+    bool servedTiles = false;
     std::optional<double> targetMaxError;
     double achievedMaxError = 0.0;
     double rmse = 0.0;

@@ -25,6 +25,8 @@
 
 namespace terratin {
 
+class TileDistribution; // tile_distribution.hpp
+
 /// Most cells a grid may have for refine(): vertex ids are 32-bit and the triangulation needs
 /// a few for itself. Also the largest point limit and hole size that mean anything.
 inline constexpr std::uint64_t kMaxRefineCells = (std::uint64_t{1} << 32U) - 5;
@@ -83,6 +85,11 @@ struct RefineOptions {
     /// whole only within tiles. Needs maxError and a north-up grid without positions; takes no
     /// point or triangle limit and no spareVertices.
     std::size_t tileSize = 0;
+    /// With tiles: the processes that share them (terratin's MPI ranks; the caller's, alive for
+    /// the call); nullptr: this process refines every tile. The TIN is the same either way. In
+    /// a process that does not coordinate, refine() refines what it is handed and returns no
+    /// TIN.
+    TileDistribution* distribution = nullptr;
 };
 
 /// Why refinement stopped.

@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// One tile's refined TIN and figures, and their bytes for another process (issue 25's MPI
+/// ranks, refine/tile_distribution.hpp).
+
+#include "terratin/triangulate/tin_mesh.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace terratin::detail {
+
+/// What one tile's refinement gives the whole (tile_refine.hpp).
+struct TileRefinement {
+    /// sourceIndex = the tile's own cell index; no triangle when the tile's valid cells span
+    /// no area.
+    TinMesh mesh;
+    double maxError = 0.0;
+    std::size_t droppedTriangles = 0;
+    std::size_t hullPoints = 0;
+    std::size_t strips = 0;
+    std::size_t levels = 0;
+    std::size_t deferredCandidates = 0;
+    std::size_t pairInsertions = 0;
+    std::size_t sharedInsertions = 0;
+    std::size_t meshBytes = 0;
+};
+
+/// The bytes of `tile`, for unpackTile in a process of the same build.
+std::vector<std::byte> packTile(const TileRefinement& tile);
+
+/// The tile packTile packed. Throws Error when `bytes` are not whole (a truncated message).
+TileRefinement unpackTile(const std::vector<std::byte>& bytes);
+
+} // namespace terratin::detail

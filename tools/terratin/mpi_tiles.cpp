@@ -1,0 +1,183 @@
+#include "mpi_tiles.hpp"
+
+#include "terratin/error.hpp"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <thread>
+
+namespace terratin::cli {
+
+namespace {
+
+enum Tag : int {
+    kRequest = 1, // a rank asks for its first tile
+    kResult = 2,  // a tile's number, then its packed TIN
+    kFailure = 3, // a message
+    kTile = 10,   // rank 0: refine this tile
+    kStop = 11,   // rank 0: no more work
+};
+
+constexpr int kCoordinator = 0;
+
+/// A message: its tag, sender and bytes.
+struct Message {
+    int tag = 0;
+    int source = 0;
+    std::vector<std::byte> bytes;
+};
+
+void send(const std::vector<std::byte>& bytes, int tag, int to) {
+    if (bytes.size() > static_cast<std::size_t>(INT_MAX))
+        throw Error("MPI: a message of " + std::to_string(bytes.size()) +
+                    " bytes is too large; give a smaller --tile-size");
+    MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
+}
+
+Message receive(const MPI_Status& probed) {
+    int count = 0;
+    MPI_Get_count(&probed, MPI_BYTE, &count);
+    Message message{probed.MPI_TAG, probed.MPI_SOURCE,
+                    std::vector<std::byte>(static_cast<std::size_t>(count))};
+    MPI_Recv(message.bytes.data(), count, MPI_BYTE, probed.MPI_SOURCE, probed.MPI_TAG,
+             MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    return message;
+}
+
+/// The next message from any rank; keepGoing is asked every millisecond while none is there.
+Message receiveAny(const std::function<bool()>& keepGoing, bool& cancelled) {
+    for (;;) {
+        int arrived = 0;
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+        if (arrived != 0)
+            return receive(status);
+        if (!cancelled && !keepGoing())
+            cancelled = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+}
+
+std::vector<std::byte> numberBytes(std::uint64_t number) {
+    std::vector<std::byte> bytes(sizeof number);
+    std::memcpy(bytes.data(), &number, sizeof number);
+    return bytes;
+}
+
+std::uint64_t numberOf(const std::vector<std::byte>& bytes) {
+    std::uint64_t number = 0;
+    if (bytes.size() < sizeof number)
+        throw Error("MPI: a message without its tile number");
+    std::memcpy(&number, bytes.data(), sizeof number);
+    return number;
+}
+
+std::vector<std::byte> textBytes(const std::string& text) {
+    std::vector<std::byte> bytes(text.size());
+    std::memcpy(bytes.data(), text.data(), text.size());
+    return bytes;
+}
+
+std::string textOf(const std::vector<std::byte>& bytes) {
+    return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+} // namespace
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &m_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &m_size);
+}
+
+MpiSession::~MpiSession() {
+    MPI_Finalize();
+}
+
+void MpiTiles::gather(std::size_t tileCount,
+                      const std::function<void(std::size_t, std::vector<std::byte>)>& take,
+                      const std::function<bool()>& keepGoing) {
+    m_stopped.assign(static_cast<std::size_t>(m_size), false);
+    m_stopped[kCoordinator] = true;
+    std::size_t handedOut = 0;
+    std::optional<std::string> failure;
+    bool cancelled = false;
+    for (int working = m_size - 1; working > 0;) {
+        Message message = receiveAny(keepGoing, cancelled);
+        if (message.tag == kResult && !failure && !cancelled) {
+            const std::uint64_t tile = numberOf(message.bytes);
+            message.bytes.erase(message.bytes.begin(), message.bytes.begin() + sizeof tile);
+            try {
+                take(tile, std::move(message.bytes));
+            } catch (const Error& error) {
+                failure = error.what();
+            }
+        } else if (message.tag == kFailure && !failure) {
+            failure = "rank " + std::to_string(message.source) + ": " + textOf(message.bytes);
+        }
+        if (!failure && !cancelled && handedOut < tileCount) {
+            send(numberBytes(handedOut++), kTile, message.source);
+        } else {
+            send({}, kStop, message.source);
+            m_stopped[static_cast<std::size_t>(message.source)] = true;
+            --working;
+        }
+    }
+    if (failure)
+        throw Error(*failure);
+    if (cancelled)
+        throw Cancelled("Tiles: cancelled");
+    if (handedOut < tileCount)
+        throw Error("MPI: no rank to refine the tiles");
+}
+
+void MpiTiles::serve(const std::function<std::vector<std::byte>(std::size_t)>& refine) {
+    m_served = true;
+    send({}, kRequest, kCoordinator);
+    for (;;) {
+        MPI_Status status;
+        MPI_Probe(kCoordinator, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+        const Message message = receive(status);
+        if (message.tag == kStop)
+            return;
+        const std::uint64_t tile = numberOf(message.bytes);
+        std::vector<std::byte> reply;
+        int tag = kResult;
+        try {
+            reply = numberBytes(tile);
+            const std::vector<std::byte> tin = refine(tile);
+            reply.insert(reply.end(), tin.begin(), tin.end());
+        } catch (const std::exception& error) {
+            reply = textBytes(error.what());
+            tag = kFailure;
+        }
+        send(reply, tag, kCoordinator);
+    }
+}
+
+void MpiTiles::releaseAll() {
+    if (m_rank != kCoordinator)
+        return;
+    m_stopped.resize(static_cast<std::size_t>(m_size), false);
+    for (int rank = 1; rank < m_size; ++rank)
+        if (!m_stopped[static_cast<std::size_t>(rank)]) {
+            send({}, kStop, rank);
+            m_stopped[static_cast<std::size_t>(rank)] = true;
+        }
+}
+
+void MpiTiles::abandon(const std::string& message) {
+    if (m_rank == kCoordinator || m_served)
+        return;
+    m_served = true;
+    send(textBytes(message), kFailure, kCoordinator);
+    MPI_Recv(nullptr, 0, MPI_BYTE, kCoordinator, kStop, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+}
+
+} // namespace terratin::cli
