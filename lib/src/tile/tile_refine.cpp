@@ -32,6 +32,20 @@ struct TileWindow {
     CellRange columns;
 };
 
+/// The window's cells of a row-major array of `gridWidth` columns, row-major in the window.
+template <class Array>
+Array windowCells(const Array& cells, std::size_t gridWidth, const TileWindow& window) {
+    Array copy(window.rows.count() * window.columns.count());
+    for (std::size_t row = 0; row < window.rows.count(); ++row) {
+        const auto from =
+            cells.begin() + static_cast<std::ptrdiff_t>((window.rows.first + row) * gridWidth +
+                                                        window.columns.first);
+        std::copy(from, from + static_cast<std::ptrdiff_t>(window.columns.count()),
+                  copy.begin() + static_cast<std::ptrdiff_t>(row * window.columns.count()));
+    }
+    return copy;
+}
+
 HeightGrid windowOf(const HeightGrid& grid, const TileWindow& window) {
     HeightGrid tile;
     tile.width = static_cast<int>(window.columns.count());
@@ -39,23 +53,7 @@ HeightGrid windowOf(const HeightGrid& grid, const TileWindow& window) {
     tile.geoTransform = grid.geoTransform;
     tile.firstRow = grid.firstRow + static_cast<int>(window.rows.first);
     tile.firstColumn = grid.firstColumn + static_cast<int>(window.columns.first);
-    tile.z.resize(tile.cellCount());
-    const auto gridWidth = static_cast<std::size_t>(grid.width);
-    for (std::size_t row = 0; row < window.rows.count(); ++row) {
-        const float* from = grid.z.data() + (window.rows.first + row) * gridWidth;
-        std::copy(from + window.columns.first, from + window.columns.last + 1,
-                  tile.z.begin() + static_cast<std::ptrdiff_t>(row * window.columns.count()));
-    }
-    return tile;
-}
-
-CellFlags flagsOf(const CellFlags& flags, std::size_t gridWidth, const TileWindow& window) {
-    CellFlags tile(window.rows.count() * window.columns.count());
-    for (std::size_t row = 0; row < window.rows.count(); ++row) {
-        const std::uint8_t* from = flags.data() + (window.rows.first + row) * gridWidth;
-        std::copy(from + window.columns.first, from + window.columns.last + 1,
-                  tile.begin() + static_cast<std::ptrdiff_t>(row * window.columns.count()));
-    }
+    tile.z = windowCells(grid.z, static_cast<std::size_t>(grid.width), window);
     return tile;
 }
 
@@ -145,6 +143,21 @@ double sideTolerance(const HeightGrid& grid, double maxError) {
 
 namespace {
 
+/// Drops the tile's triangles over open holes and measures its largest error over every valid
+/// cell, the sides' included, in the pixel coordinates the tile's scans used.
+void dropHolesAndMeasure(const HeightGrid& tileGrid, CellFlags& tileFlags, unsigned threads,
+                         TileRefinement& tile) {
+    for (std::uint8_t& flag : tileFlags)
+        flag &= static_cast<std::uint8_t>(~kCellFrozen);
+    const GridView view{tileGrid.width, tileGrid.height, tileGrid.z.data(), tileFlags.data()};
+    const bool anyOpenHole = std::any_of(tileFlags.begin(), tileFlags.end(),
+                                         [](std::uint8_t f) { return (f & kCellOpenHole) != 0; });
+    if (anyOpenHole)
+        tile.droppedTriangles =
+            dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, threads));
+    tile.maxError = measureErrors(tile.mesh, view, threads).maxError;
+}
+
 TileRefinement refineTile(const HeightGrid& grid, const CellFlags& flags, const TileWindow& window,
                           double tolerance, const RefineOptions& options, RoundWorkers& workers,
                           const ProgressCallback& progress) {
@@ -152,7 +165,7 @@ TileRefinement refineTile(const HeightGrid& grid, const CellFlags& flags, const 
     const HeightGrid tileGrid = windowOf(grid, window);
     if (!validCellsSpanArea(tileGrid))
         return tile;
-    CellFlags tileFlags = flagsOf(flags, static_cast<std::size_t>(grid.width), window);
+    CellFlags tileFlags = windowCells(flags, static_cast<std::size_t>(grid.width), window);
     std::vector<std::uint32_t> seeds = seedTheSides(grid, window, tolerance, tileFlags);
 
     GreedyRefiner refiner(tileGrid, {}, tileFlags, options, workers);
@@ -174,16 +187,7 @@ TileRefinement refineTile(const HeightGrid& grid, const CellFlags& flags, const 
                                                      : validation.problems.front()));
     }
 
-    // The sides' cells are measured like the others, in the coordinates the scans used.
-    for (std::uint8_t& flag : tileFlags)
-        flag &= static_cast<std::uint8_t>(~kCellFrozen);
-    const GridView view{tileGrid.width, tileGrid.height, tileGrid.z.data(), tileFlags.data()};
-    const bool anyOpenHole = std::any_of(tileFlags.begin(), tileFlags.end(),
-                                         [](std::uint8_t f) { return (f & kCellOpenHole) != 0; });
-    if (anyOpenHole)
-        tile.droppedTriangles =
-            dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, workers.size()));
-    tile.maxError = measureErrors(tile.mesh, view, workers.size()).maxError;
+    dropHolesAndMeasure(tileGrid, tileFlags, workers.size(), tile);
     return tile;
 }
 
