@@ -14,8 +14,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -94,6 +96,49 @@ TEST(RefineDem, GridReaderMatchesPointReader_CellByCell) {
         }
         EXPECT_EQ(raster.crsWkt, points.crsWkt);
     }
+}
+
+// Issue 25: a raster read a window at a time holds bit for bit readHeightGrid's cells, and the
+// tiles refined from its windows are the tiles refined from the whole grid.
+TEST(RefineDem, RasterWindowsHoldTheGridsCells_AndGiveItsTiledTin) {
+    const std::string path = std::string(TERRATIN_SAMPLE_DEMS) + "/ridges_utm.tif";
+    const io::HeightGridRaster raster = io::readHeightGrid(path, {});
+    const HeightGrid& grid = raster.grid;
+    io::RasterCells cells(path, {});
+    ASSERT_EQ(cells.width(), grid.width);
+    ASSERT_EQ(cells.height(), grid.height);
+    EXPECT_EQ(cells.geoTransform(), grid.geoTransform);
+    EXPECT_EQ(cells.crsWkt(), raster.crsWkt);
+    for (const auto& [top, left, rows, columns] : {std::array{0, 0, 1, 1},
+                                                   {0, 0, grid.height, grid.width},
+                                                   {17, 250, 100, 70},
+                                                   {grid.height - 3, grid.width - 5, 3, 5}}) {
+        const HeightGrid window = cells.window(top, rows, left, columns);
+        ASSERT_EQ(window.firstRow, top);
+        ASSERT_EQ(window.firstColumn, left);
+        for (int row = 0; row < rows; ++row)
+            for (int col = 0; col < columns; ++col) {
+                const float z = grid.z[static_cast<std::size_t>(top + row) * grid.width +
+                                       static_cast<std::size_t>(left + col)];
+                const float got = window.z[static_cast<std::size_t>(row * columns + col)];
+                ASSERT_TRUE(std::isnan(z) ? std::isnan(got) : got == z)
+                    << "row " << top + row << ", column " << left + col;
+                ASSERT_EQ(window.cellCentre(row, col), grid.cellCentre(top + row, left + col));
+            }
+    }
+    EXPECT_THROW(static_cast<void>(cells.window(0, 1, grid.width, 1)), std::out_of_range);
+
+    RefineOptions options = test::validatedOptions(0.5, 1);
+    options.tileSize = 50;
+    options.maxHole = 3;
+    const RefineResult whole = refine(grid, options);
+    const RefineResult windows = refineTiles(cells, options);
+    EXPECT_EQ(windows.mesh.vertices, whole.mesh.vertices);
+    EXPECT_EQ(windows.mesh.triangles, whole.mesh.triangles);
+    EXPECT_EQ(windows.mesh.neighbours, whole.mesh.neighbours);
+    EXPECT_EQ(windows.openHoleCells, whole.openHoleCells);
+    EXPECT_EQ(windows.coveredCells, whole.coveredCells);
+    EXPECT_GT(windows.openHoleCells, 0U);
 }
 
 TEST(RefineDem, EveryValidCellWithinMaxError_AndHolesWhereTheNodataIs) {

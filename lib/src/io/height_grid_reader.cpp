@@ -8,6 +8,8 @@
 
 #include "terratin/error.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <new>
 #include <string_view>
 
@@ -47,6 +49,48 @@ HeightGridRaster readHeightGrid(const std::string& path, const RasterReadOptions
                                 " cells are nodata, masked out or NaN");
     result.skippedCells = cellCount - valid;
     return result;
+}
+
+RasterCells::RasterCells(const std::string& path, const RasterReadOptions& options)
+    : m_reader(std::make_unique<detail::RasterBandReader>(path, options.band, kStage)) {}
+
+RasterCells::~RasterCells() = default;
+
+int RasterCells::width() const {
+    return static_cast<int>(m_reader->width());
+}
+
+int RasterCells::height() const {
+    return static_cast<int>(m_reader->height());
+}
+
+std::array<double, 6> RasterCells::geoTransform() const {
+    return m_reader->geoTransform();
+}
+
+const std::string& RasterCells::crsWkt() const {
+    return m_reader->crsWkt();
+}
+
+HeightGrid RasterCells::window(int firstRow, int rows, int firstColumn, int columns) {
+    HeightGrid window;
+    window.width = columns;
+    window.height = rows;
+    window.geoTransform = m_reader->geoTransform();
+    window.firstRow = firstRow;
+    window.firstColumn = firstColumn;
+    window.z.resize(window.cellCount());
+    window.storeElevations(0, m_reader->readWindow({firstRow, rows, firstColumn, columns}));
+    const auto infinite =
+        std::find_if(window.z.begin(), window.z.end(), [](float z) { return std::isinf(z); });
+    if (infinite != window.z.end()) {
+        const auto cell = static_cast<int>(infinite - window.z.begin());
+        throw InvalidInputError(std::string(kStage) + ": cell (row " +
+                                std::to_string(firstRow + cell / columns) + ", column " +
+                                std::to_string(firstColumn + cell % columns) + ") of " +
+                                m_reader->quotedPath() + " has an infinite elevation");
+    }
+    return window;
 }
 
 } // namespace terratin::io

@@ -163,25 +163,68 @@ RasterBandReader::RasterBandReader(const std::string& path, int band, std::strin
 
 RasterBandReader::~RasterBandReader() = default;
 
-std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
-                                           const ProgressCallback& progress) {
+RasterBandReader::BandRules RasterBandReader::bandRules() const {
     GDALRasterBandH band = m_dataset->band;
+    BandRules rules;
     int hasScale = 0;
     int hasOffset = 0;
     const double scale = GDALGetRasterScale(band, &hasScale);
     const double offset = GDALGetRasterOffset(band, &hasOffset);
-    const bool applyScaleOffset = hasScale != 0 || hasOffset != 0;
-    const double zScale = hasScale != 0 ? scale : 1.0;
-    const double zOffset = hasOffset != 0 ? offset : 0.0;
-
+    rules.applyScaleOffset = hasScale != 0 || hasOffset != 0;
+    rules.scale = hasScale != 0 ? scale : 1.0;
+    rules.offset = hasOffset != 0 ? offset : 0.0;
     // GMF_ALL_VALID needs no mask read; anything else (nodata, per-dataset mask, alpha) is read
     // from GDAL's mask band, where 0 means "not valid".
-    const bool allValid = (GDALGetMaskFlags(band) & GMF_ALL_VALID) != 0;
-    GDALRasterBandH maskBand = allValid ? nullptr : GDALGetMaskBand(band);
-    if (!allValid && maskBand == nullptr)
+    rules.allValid = (GDALGetMaskFlags(band) & GMF_ALL_VALID) != 0;
+    rules.mask = rules.allValid ? nullptr : GDALGetMaskBand(band);
+    if (!rules.allValid && rules.mask == nullptr)
         throwGdalError(m_stage, "cannot get the mask of band " + std::to_string(m_band) + " of",
                        m_path);
+    return rules;
+}
 
+std::uint64_t RasterBandReader::readCells(const BandRules& rules, const CellBox& box,
+                                          std::vector<double>& values,
+                                          std::vector<std::uint8_t>& mask) const {
+    const std::string cellsText = "rows " + std::to_string(box.firstRow) + ".." +
+                                  std::to_string(box.firstRow + box.rows - 1) + " of band " +
+                                  std::to_string(m_band) + " of";
+    const auto xOff = static_cast<int>(box.firstColumn);
+    const auto yOff = static_cast<int>(box.firstRow);
+    const auto xSize = static_cast<int>(box.columns);
+    const auto ySize = static_cast<int>(box.rows);
+    if (GDALRasterIO(m_dataset->band, GF_Read, xOff, yOff, xSize, ySize, values.data(), xSize,
+                     ySize, GDT_Float64, 0, 0) != CE_None)
+        throwGdalError(m_stage, "cannot read " + cellsText, m_path);
+    if (!rules.allValid && GDALRasterIO(rules.mask, GF_Read, xOff, yOff, xSize, ySize, mask.data(),
+                                        xSize, ySize, GDT_Byte, 0, 0) != CE_None)
+        throwGdalError(m_stage, "cannot read the mask of " + cellsText, m_path);
+
+    constexpr double kInvalid = std::numeric_limits<double>::quiet_NaN();
+    std::uint64_t valid = 0;
+    const auto count = static_cast<std::size_t>(box.rows * box.columns);
+    for (std::size_t i = 0; i < count; ++i) {
+        double& z = values[i];
+        if ((!rules.allValid && mask[i] == 0) || std::isnan(z)) {
+            z = kInvalid;
+            continue;
+        }
+        if (rules.applyScaleOffset)
+            z = z * rules.scale + rules.offset;
+        ++valid;
+    }
+    // Each block is read once: keeping it in GDAL's cache (up to 5% of RAM by default) would
+    // only take memory from the points being built.
+    GDALFlushRasterCache(m_dataset->band);
+    if (rules.mask != nullptr)
+        GDALFlushRasterCache(rules.mask);
+    return valid;
+}
+
+std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
+                                           const ProgressCallback& progress) {
+    GDALRasterBandH band = m_dataset->band;
+    const BandRules rules = bandRules();
     int blockXSize = 0;
     int blockYSize = 0;
     GDALGetBlockSize(band, &blockXSize, &blockYSize);
@@ -201,10 +244,10 @@ std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
     const std::uint64_t stripCells = static_cast<std::uint64_t>(stripRows * m_width);
     try {
         values.resize(static_cast<std::size_t>(stripCells));
-        if (!allValid)
+        if (!rules.allValid)
             mask.assign(values.size(), 0);
     } catch (const std::bad_alloc&) {
-        throw outOfMemory(stripCells * (allValid ? 8 : 9));
+        throw outOfMemory(stripCells * (rules.allValid ? 8 : 9));
     }
     // What GDAL allocates to read one strip: the blocks that cover it, in the band's own type,
     // and the mask's (one byte a cell), plus its working memory. Blocks may be wider than the
@@ -213,53 +256,37 @@ std::uint64_t RasterBandReader::readStrips(const StripVisitor& visit,
         blockXSize > 0 ? (m_width + blockXSize - 1) / blockXSize * blockXSize : m_width;
     const auto cellBytes =
         static_cast<std::uint64_t>(GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band))) +
-        (allValid ? 0 : 1);
+        (rules.allValid ? 0 : 1);
     const std::uint64_t gdalStripBytes =
         static_cast<std::uint64_t>(stripRows * blockColumns) * cellBytes + kGdalWorkingBytes;
 
-    constexpr double kInvalid = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t valid = 0;
     for (std::int64_t row0 = 0; row0 < m_height; row0 += stripRows) {
         const std::int64_t rows = std::min(stripRows, m_height - row0);
-        const auto xSize = static_cast<int>(m_width);
-        const auto ySize = static_cast<int>(rows);
-        const auto yOff = static_cast<int>(row0);
-        const std::string rowsText = "rows " + std::to_string(row0) + ".." +
-                                     std::to_string(row0 + rows - 1) + " of band " +
-                                     std::to_string(m_band) + " of";
         if (gdalStripBytes > std::numeric_limits<std::size_t>::max() ||
             !canAllocate(static_cast<std::size_t>(gdalStripBytes)))
             throw outOfMemory(gdalStripBytes);
-        if (GDALRasterIO(band, GF_Read, 0, yOff, xSize, ySize, values.data(), xSize, ySize,
-                         GDT_Float64, 0, 0) != CE_None)
-            throwGdalError(m_stage, "cannot read " + rowsText, m_path);
-        if (!allValid && GDALRasterIO(maskBand, GF_Read, 0, yOff, xSize, ySize, mask.data(), xSize,
-                                      ySize, GDT_Byte, 0, 0) != CE_None)
-            throwGdalError(m_stage, "cannot read the mask of " + rowsText, m_path);
-
-        const std::size_t count = static_cast<std::size_t>(rows * m_width);
-        for (std::size_t i = 0; i < count; ++i) {
-            double& z = values[i];
-            if ((!allValid && mask[i] == 0) || std::isnan(z)) {
-                z = kInvalid;
-                continue;
-            }
-            if (applyScaleOffset)
-                z = z * zScale + zOffset;
-            ++valid;
-        }
-        // Each block is read once: keeping it in GDAL's cache (up to 5% of RAM by default)
-        // would only take memory from the points being built.
-        GDALFlushRasterCache(band);
-        if (maskBand != nullptr)
-            GDALFlushRasterCache(maskBand);
-        visit(row0, std::span<const double>(values.data(), count));
+        valid += readCells(rules, {row0, rows, 0, m_width}, values, mask);
+        visit(row0,
+              std::span<const double>(values.data(), static_cast<std::size_t>(rows * m_width)));
 
         if (progress && !progress(static_cast<double>(row0 + rows) / static_cast<double>(m_height),
                                   "reading raster"))
             throw Cancelled(m_stage + ": cancelled while reading " + quotedPath());
     }
     return valid;
+}
+
+std::vector<double> RasterBandReader::readWindow(const CellBox& box) {
+    if (box.firstRow < 0 || box.firstColumn < 0 || box.rows < 1 || box.columns < 1 ||
+        box.firstRow + box.rows > m_height || box.firstColumn + box.columns > m_width)
+        throw std::out_of_range("RasterBandReader: a window outside the raster");
+    const BandRules rules = bandRules();
+    const auto count = static_cast<std::size_t>(box.rows * box.columns);
+    std::vector<double> values(count);
+    std::vector<std::uint8_t> mask(rules.allValid ? 0 : count);
+    readCells(rules, box, values, mask);
+    return values;
 }
 
 } // namespace terratin::io::detail

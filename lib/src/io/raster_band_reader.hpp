@@ -18,6 +18,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace terratin::io::detail {
 
@@ -49,10 +50,36 @@ public:
     /// Cancelled when `progress` returns false. Returns the number of valid cells.
     std::uint64_t readStrips(const StripVisitor& visit, const ProgressCallback& progress);
 
+    /// A window of cells: rows firstRow .. firstRow + rows - 1, likewise for columns.
+    struct CellBox {
+        std::int64_t firstRow = 0;
+        std::int64_t rows = 0;
+        std::int64_t firstColumn = 0;
+        std::int64_t columns = 0;
+    };
+
+    /// The window's elevations, row-major, NaN where invalid, by the rules of readStrips.
+    /// Throws IoError when GDAL cannot read it, std::out_of_range for a window outside the
+    /// raster.
+    std::vector<double> readWindow(const CellBox& box);
+
     /// "'path'", for messages.
     [[nodiscard]] std::string quotedPath() const { return "'" + m_path + "'"; }
 
 private:
+    /// How the band's raw values become elevations.
+    struct BandRules {
+        bool allValid = true;
+        void* mask = nullptr; // GDALRasterBandH, without gdal.h here
+        bool applyScaleOffset = false;
+        double scale = 1.0;
+        double offset = 0.0;
+    };
+    [[nodiscard]] BandRules bandRules() const;
+    /// Reads `box` into values (and mask) and turns them into elevations; returns the valid.
+    std::uint64_t readCells(const BandRules& rules, const CellBox& box, std::vector<double>& values,
+                            std::vector<std::uint8_t>& mask) const;
+
     struct Dataset;
     std::unique_ptr<Dataset> m_dataset;
     std::string m_path;

@@ -193,40 +193,128 @@ TinMesh takeConstrainedMesh(detail::ConstrainedRefinement corrected, const Build
 }
 
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
-// What tiles do not take yet, said with the options' names before the refinement starts.
-void checkTilesFit(const BuildOptions& options, const detail::RefinePlacement& placement,
-                   bool constrained) {
-    if (options.refine->tileSize == 0)
-        return;
+// The refiner works on one raster's grid; scaling z would change what E means.
+void checkOneRasterInput(const BuildOptions& options) {
     const OptionSpelling spelling = options.optionSpelling;
-    if (constrained)
-        throw InvalidInputError(optionName("tile_size", spelling) +
-                                " does not combine with breaklines, clip, erase or replace "
-                                "polygons yet");
-    if (!placement.positions.empty())
-        throw InvalidInputError(optionName("tile_size", spelling) +
-                                " needs a DEM in a projected CRS; warp this geographic one first "
-                                "(gdalwarp -t_srs)");
-}
-
-BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
-                           const ProgressCallback& progress, BuildReport report,
-                           const Stopwatch& totalTime) {
-    // The refiner works on one raster's grid; scaling z would change what E means.
-    const OptionSpelling spelling = options.optionSpelling;
-    const std::vector<std::string>& paths = options.inputs;
-    if (paths.size() != 1)
+    if (options.inputs.size() != 1)
         throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
                                 "...) takes exactly one raster input");
     if (options.zFactor != 1.0)
         throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
                                 "...) does not combine with " + optionName("z_factor", spelling) +
                                 "; scale the DEM first (gdal_calc)");
+}
+
+RefineOptions refineOptionsOf(const BuildOptions& options) {
+    RefineOptions refineOptions = *options.refine;
+    if (refineOptions.threads == 0)
+        refineOptions.threads = options.triangulation.threads;
+    refineOptions.validate = options.validate;
+    refineOptions.distribution = options.tileDistribution;
+    return refineOptions;
+}
+
+void reportRefinement(const RefineResult& result, const RefineOptions& refineOptions,
+                      BuildReport& report) {
+    report.refined = true;
+    report.targetMaxError = refineOptions.maxError;
+    report.achievedMaxError = result.maxError;
+    report.rmse = result.rmse;
+    report.refineStop = toString(result.stop);
+    report.openHoleCells = result.openHoleCells;
+    report.holeTriangles = result.droppedTriangles;
+    report.uncoveredCells = result.uncoveredCells;
+    report.validated = result.validated;
+    report.method = "refine";
+    report.threads = result.threads;
+    report.meshBytesPerPoint =
+        static_cast<double>(result.meshBytes) /
+        static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
+}
+
+/// The simplified TIN, its long edges dropped, written in `targetWkt`; the report finished.
+BuildReport writeRefinedTin(TinMesh mesh, int gridWidth, const std::string& targetWkt,
+                            const BuildOptions& options, io::TinWriteOptions writeOptions,
+                            const ProgressCallback& progress, BuildReport report,
+                            const Stopwatch& refineTime, const Stopwatch& totalTime) {
+    report.points = mesh.vertexCount();
+    report.vertices = mesh.vertexCount();
+    if (options.maxEdge) {
+        const std::vector<std::uint8_t> drop = longEdgeTriangles(mesh, *options.maxEdge);
+        keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, drop);
+        report.longEdgeTriangles = dropTriangles(mesh, drop);
+    }
+    report.triangles = mesh.triangleCount();
+    report.timings.triangulate = refineTime.seconds();
+
+    const Stopwatch writeTime;
+    writeOptions.crsWkt = targetWkt;
+    if (options.nodes) // the refiner's sourceIndex is the cell index
+        writeOptions.vertexCells =
+            vertexCells(mesh, static_cast<std::uint64_t>(gridWidth),
+                        [](std::uint32_t cell) { return std::uint64_t{cell}; });
+    const io::TinWriteResult written =
+        io::writeTin(mesh, options.output, writeOptions,
+                     phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
+    return finishReport(std::move(report), written, writeTime, totalTime, progress);
+}
+
+// Tiles (--tile-size): the raster read a tile's window at a time, never whole. What tiles do not
+// take yet is refused with the options' names before anything is read.
+BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
+                          const ProgressCallback& progress, BuildReport report,
+                          const Stopwatch& totalTime) {
+    checkOneRasterInput(options);
+    const std::string tileSize = optionName("tile_size", options.optionSpelling);
+    if (hasConstraints(options))
+        throw InvalidInputError(tileSize +
+                                " does not combine with breaklines, clip, erase or replace "
+                                "polygons yet");
+    io::RasterReadOptions readOptions;
+    readOptions.band = options.band;
+    io::RasterCells cells(options.inputs.front(), readOptions);
+    HeightGrid extent; // the raster's shape, without its cells
+    extent.width = cells.width();
+    extent.height = cells.height();
+    extent.geoTransform = cells.geoTransform();
+    const detail::RefineCrs crs =
+        detail::chooseRefineCrs(options, extent.extentCentre(), cells.crsWkt(), report);
+    if (crs.movesCells())
+        throw InvalidInputError(tileSize +
+                                " needs the DEM in the TIN's CRS; warp it first (gdalwarp "
+                                "-t_srs): it is geographic, or " +
+                                optionName("t_srs", options.optionSpelling) + " asks for another");
+    describeCrs(crs.target, report);
+    report.rasterCells = extent.cellCount();
+
+    // Reading is part of the refinement: each tile reads its own cells.
+    const Stopwatch refineTime;
+    const RefineOptions refineOptions = refineOptionsOf(options);
+    RefineResult result = refineTiles(cells, refineOptions,
+                                      phaseProgress(progress, 0.0, kReadShare + kTriangulateShare));
+    if (options.tileDistribution != nullptr && !options.tileDistribution->coordinates()) {
+        report.servedTiles = true;
+        return report;
+    }
+    report.skippedCells = report.rasterCells - result.validCells;
+    reportRefinement(result, refineOptions, report);
+    return writeRefinedTin(std::move(result.mesh), extent.width, crs.target, options,
+                           std::move(writeOptions), progress, std::move(report), refineTime,
+                           totalTime);
+}
+
+BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
+                           const ProgressCallback& progress, BuildReport report,
+                           const Stopwatch& totalTime) {
+    if (options.refine->tileSize > 0)
+        return runTiledBuild(options, std::move(writeOptions), progress, std::move(report),
+                             totalTime);
+    checkOneRasterInput(options);
     const Stopwatch readTime;
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
-    io::HeightGridRaster raster =
-        io::readHeightGrid(paths.front(), readOptions, phaseProgress(progress, 0.0, kReadShare));
+    io::HeightGridRaster raster = io::readHeightGrid(options.inputs.front(), readOptions,
+                                                     phaseProgress(progress, 0.0, kReadShare));
     report.rasterCells = raster.grid.cellCount();
     report.skippedCells = raster.skippedCells;
     report.timings.read = readTime.seconds();
@@ -236,13 +324,8 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     describeCrs(placement.targetWkt, report);
 
     const bool constrained = hasConstraints(options);
-    checkTilesFit(options, placement, constrained);
     const Stopwatch refineTime;
-    RefineOptions refineOptions = *options.refine;
-    if (refineOptions.threads == 0)
-        refineOptions.threads = options.triangulation.threads;
-    refineOptions.validate = options.validate;
-    refineOptions.distribution = options.tileDistribution;
+    RefineOptions refineOptions = refineOptionsOf(options);
     refineOptions.keepHoleTriangles = constrained;
     refineOptions.measure = !constrained; // refineWithConstraints measures every cell
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.
@@ -262,24 +345,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
         placement.positions.empty()
             ? refine(raster.grid, refineOptions, refineProgress)
             : refine(raster.grid, placement.positions, refineOptions, refineProgress);
-    if (options.tileDistribution != nullptr && !options.tileDistribution->coordinates()) {
-        report.servedTiles = true;
-        return report;
-    }
-    report.refined = true;
-    report.targetMaxError = refineOptions.maxError;
-    report.achievedMaxError = result.maxError;
-    report.rmse = result.rmse;
-    report.refineStop = toString(result.stop);
-    report.openHoleCells = result.openHoleCells;
-    report.holeTriangles = result.droppedTriangles;
-    report.uncoveredCells = result.uncoveredCells;
-    report.validated = result.validated;
-    report.method = "refine";
-    report.threads = result.threads;
-    report.meshBytesPerPoint =
-        static_cast<double>(result.meshBytes) /
-        static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
+    reportRefinement(result, refineOptions, report);
     TinMesh mesh = std::move(result.mesh);
     if (constrained) {
         detail::ConstrainedRefinement corrected = detail::refineWithConstraints(
@@ -290,26 +356,9 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     }
     const int gridWidth = raster.grid.width;
     raster.grid = {}; // the mesh holds its own vertices
-    report.points = mesh.vertexCount();
-    report.vertices = mesh.vertexCount();
-    if (options.maxEdge) {
-        const std::vector<std::uint8_t> drop = longEdgeTriangles(mesh, *options.maxEdge);
-        keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, drop);
-        report.longEdgeTriangles = dropTriangles(mesh, drop);
-    }
-    report.triangles = mesh.triangleCount();
-    report.timings.triangulate = refineTime.seconds();
-
-    const Stopwatch writeTime;
-    writeOptions.crsWkt = placement.targetWkt;
-    if (options.nodes) // the refiner's sourceIndex is the cell index
-        writeOptions.vertexCells =
-            vertexCells(mesh, static_cast<std::uint64_t>(gridWidth),
-                        [](std::uint32_t cell) { return std::uint64_t{cell}; });
-    const io::TinWriteResult written =
-        io::writeTin(mesh, options.output, writeOptions,
-                     phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
-    return finishReport(std::move(report), written, writeTime, totalTime, progress);
+    return writeRefinedTin(std::move(mesh), gridWidth, placement.targetWkt, options,
+                           std::move(writeOptions), progress, std::move(report), refineTime,
+                           totalTime);
 }
 
 } // namespace

@@ -11,33 +11,45 @@
 
 namespace terratin::detail {
 
-RefinePlacement placeRefinedCells(const BuildOptions& options, const HeightGrid& grid,
-                                  const std::string& rasterWkt, BuildReport& report) {
-    const auto start = std::chrono::steady_clock::now();
+bool RefineCrs::movesCells() const {
+    return !crs::sameCrs(source, target);
+}
+
+RefineCrs chooseRefineCrs(const BuildOptions& options, Point2 centre, const std::string& rasterWkt,
+                          BuildReport& report) {
     const std::string sourceOption = optionName("s_srs", options.optionSpelling);
     const std::string targetOption = optionName("t_srs", options.optionSpelling);
-    const std::string source = options.sourceSrs.empty()
-                                   ? rasterWkt
-                                   : crs::crsFromUserInput(options.sourceSrs, sourceOption);
+    RefineCrs chosen;
+    chosen.source = options.sourceSrs.empty()
+                        ? rasterWkt
+                        : crs::crsFromUserInput(options.sourceSrs, sourceOption);
     const std::string requested = options.targetSrs.empty()
                                       ? std::string()
                                       : crs::crsFromUserInput(options.targetSrs, targetOption);
-    if (source.empty() && !requested.empty())
+    if (chosen.source.empty() && !requested.empty())
         throw CrsError("CRS: '" + report.input + "' has no CRS and " + targetOption +
                        " asks to reproject it; give its CRS with " + sourceOption);
-    const crs::CrsDescription sourceDescription = crs::describeCrs(source);
+    const crs::CrsDescription sourceDescription = crs::describeCrs(chosen.source);
     report.sourceCrsName = sourceDescription.name;
     report.sourceCrsCode = sourceDescription.code;
 
-    RefinePlacement placement;
-    placement.targetWkt = requested.empty() ? source : requested;
+    chosen.target = requested.empty() ? chosen.source : requested;
     if (requested.empty() && !options.keepGeographic && sourceDescription.geographic)
-        placement.targetWkt = zoneOfCentre(options, report, source, grid.extentCentre());
+        chosen.target = zoneOfCentre(options, report, chosen.source, centre);
     if (!requested.empty() && crs::describeCrs(requested).geographic)
         notify(options, report,
                targetOption + " is geographic: the TIN is triangulated in degrees");
-    if (!crs::sameCrs(source, placement.targetWkt)) {
-        placement.positions = crs::projectCellCentres(grid, source, placement.targetWkt);
+    return chosen;
+}
+
+RefinePlacement placeRefinedCells(const BuildOptions& options, const HeightGrid& grid,
+                                  const std::string& rasterWkt, BuildReport& report) {
+    const auto start = std::chrono::steady_clock::now();
+    const RefineCrs chosen = chooseRefineCrs(options, grid.extentCentre(), rasterWkt, report);
+    RefinePlacement placement;
+    placement.targetWkt = chosen.target;
+    if (chosen.movesCells()) {
+        placement.positions = crs::projectCellCentres(grid, chosen.source, chosen.target);
         report.reprojected = true;
     }
     report.timings.reproject =

@@ -26,6 +26,19 @@ struct RefinePlacement {
     std::vector<Point2> positions;
 };
 
+/// The CRS a simplified TIN comes from and the one it is built in.
+struct RefineCrs {
+    std::string source;
+    std::string target;
+    /// Whether the cells must be reprojected from source to target.
+    [[nodiscard]] bool movesCells() const;
+};
+
+/// placeRefinedCells' decision of the target CRS, for a raster whose extent is centred on
+/// `centre`, without moving any cell. Fills the report's source CRS fields, zone and notices.
+RefineCrs chooseRefineCrs(const BuildOptions& options, Point2 centre, const std::string& rasterWkt,
+                          BuildReport& report);
+
 /// Decides the target CRS and reprojects the cell centres (x, y only, in parallel) when it is
 /// not the source. Fills the report's source and target CRS fields, zone, reprojected,
 /// notices and timings.reproject. Throws CrsError (an unreadable CRS, a raster without CRS

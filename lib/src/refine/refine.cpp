@@ -9,6 +9,7 @@
 #include "../tile/tile_refine.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/refine/cell_source.hpp"
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 
@@ -69,7 +70,8 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
         if (!positions.empty())
             throw InvalidInputError("Refiner: tiles need the grid's own cell centres (a "
                                     "geographic or reprojected DEM: warp it first, gdalwarp)");
-        return detail::refineInTiles(grid, options, progress);
+        GridCells cells(grid);
+        return detail::refineInTiles(cells, options, progress);
     }
     RefineResult result;
     Clock::time_point phase = Clock::now();
@@ -251,6 +253,24 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
         return refineAt(grid, centres, options, progress);
     }
     return refineAt(grid, {}, options, progress);
+}
+
+RefineResult refineTiles(CellSource& cells, const RefineOptions& options,
+                         const ProgressCallback& progress) {
+    checkRefineOptions(options);
+    if (options.tileSize == 0)
+        throw InvalidInputError("Refiner: refineTiles needs a tile size");
+    const std::array<double, 6> c = cells.geoTransform();
+    if (c[2] != 0.0 || c[4] != 0.0)
+        throw InvalidInputError("Refiner: tiles need a north-up grid (the geotransform is "
+                                "rotated); warp the DEM first (gdalwarp)");
+    if (cells.width() <= 0 || cells.height() <= 0)
+        throw InvalidInputError("Refiner: the grid is empty");
+    if (static_cast<std::uint64_t>(cells.width()) * static_cast<std::uint64_t>(cells.height()) >
+        std::uint64_t{0xFFFFFFFFU})
+        throw InvalidInputError("Refiner: tiles number the cells of at most 2^32 - 1 cells; "
+                                "split the raster");
+    return detail::refineInTiles(cells, options, progress);
 }
 
 RefineResult refine(const HeightGrid& grid, std::span<const Point2> positions,

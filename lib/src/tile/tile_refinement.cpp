@@ -62,9 +62,11 @@ private:
 /// Every field of a TileRefinement, in one order for both directions.
 template <class Visitor, class Tile> void visitTile(Visitor& visitor, Tile& tile) {
     visitor.value(tile.maxError);
+    visitor.value(tile.sumSquares);
     for (auto* count :
-         {&tile.droppedTriangles, &tile.hullPoints, &tile.strips, &tile.levels,
-          &tile.deferredCandidates, &tile.pairInsertions, &tile.sharedInsertions, &tile.meshBytes})
+         {&tile.validCells, &tile.openHoleCells, &tile.coveredCells, &tile.droppedTriangles,
+          &tile.hullPoints, &tile.strips, &tile.levels, &tile.deferredCandidates,
+          &tile.pairInsertions, &tile.sharedInsertions, &tile.meshBytes})
         visitor.value(*count);
     visitor.array(tile.mesh.vertices);
     visitor.array(tile.mesh.sourceIndex);

@@ -15,7 +15,15 @@ struct TileRefinement {
     /// sourceIndex = the tile's own cell index; no triangle when the tile's valid cells span
     /// no area.
     TinMesh mesh;
+    /// Largest error over every valid cell of the tile, its sides' included.
     double maxError = 0.0;
+    /// Over the cells the tile owns (its top and left sides, and its bottom and right ones only
+    /// on the grid's edge, so that each cell of the grid has one owner): valid cells, open hole
+    /// cells, valid cells inside a kept triangle, and the sum of their squared errors.
+    std::size_t validCells = 0;
+    std::size_t openHoleCells = 0;
+    std::size_t coveredCells = 0;
+    double sumSquares = 0.0;
     std::size_t droppedTriangles = 0;
     std::size_t hullPoints = 0;
     std::size_t strips = 0;

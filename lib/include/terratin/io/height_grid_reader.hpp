@@ -7,8 +7,11 @@
 #include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/progress.hpp"
+#include "terratin/refine/cell_source.hpp"
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace terratin::io {
@@ -31,5 +34,32 @@ struct HeightGridRaster {
 /// O(cells) time; 4 bytes per cell plus one strip of 9 bytes per cell.
 HeightGridRaster readHeightGrid(const std::string& path, const RasterReadOptions& options,
                                 const ProgressCallback& progress = {});
+
+namespace detail {
+class RasterBandReader;
+}
+
+/// Band `options.band` of the raster at `path`, read a window at a time (issue 25's tiles):
+/// only the cells asked for are held. Validity and elevations as readHeightGrid's, so a window
+/// holds bit for bit the cells readHeightGrid would. Opening throws as readHeightGrid does;
+/// window() throws IoError when GDAL cannot read the cells, InvalidInputError for an infinite
+/// elevation. GDAL's block cache is emptied after each window.
+class RasterCells final : public CellSource {
+public:
+    RasterCells(const std::string& path, const RasterReadOptions& options);
+    ~RasterCells() override;
+    RasterCells(const RasterCells&) = delete;
+    RasterCells& operator=(const RasterCells&) = delete;
+
+    [[nodiscard]] int width() const override;
+    [[nodiscard]] int height() const override;
+    [[nodiscard]] std::array<double, 6> geoTransform() const override;
+    /// As HeightGridRaster::crsWkt.
+    [[nodiscard]] const std::string& crsWkt() const;
+    [[nodiscard]] HeightGrid window(int firstRow, int rows, int firstColumn, int columns) override;
+
+private:
+    std::unique_ptr<detail::RasterBandReader> m_reader;
+};
 
 } // namespace terratin::io

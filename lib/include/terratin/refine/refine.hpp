@@ -25,6 +25,7 @@
 
 namespace terratin {
 
+class CellSource;       // cell_source.hpp
 class TileDistribution; // tile_distribution.hpp
 
 /// Most cells a grid may have for refine(): vertex ids are 32-bit and the triangulation needs
@@ -178,6 +179,16 @@ void checkRefineOptions(const RefineOptions& options);
 /// scans; memory: the grid, one byte per cell of flags, and O(points) for the triangulation.
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress = {});
+
+/// refine() in tiles (options.tileSize > 0) over cells read a window at a time: the whole
+/// grid is never held, only one tile's cells with a margin of options.maxHole cells around them
+/// (none with fillHoles), which decides the tile's holes as the whole grid would, and the
+/// joined TIN. The same TIN as refine() of the whole grid with the same options. Same
+/// exceptions as refine(), and those of `cells`; InvalidInputError when the grid has 2^32 cells
+/// or more (the TIN's sourceIndex numbers them in 32 bits). Memory: the TIN, and per tile its
+/// cells with their margin (5 bytes a cell) and its refinement.
+RefineResult refineTiles(CellSource& cells, const RefineOptions& options,
+                         const ProgressCallback& progress = {});
 
 /// refine() with the TIN in other coordinates than the grid's: the vertex of cell c lies at
 /// `positions[c]` (x, y; one entry per cell, nodata cells included, row-major), typically the

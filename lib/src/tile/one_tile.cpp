@@ -1,0 +1,238 @@
+#include "one_tile.hpp"
+
+#include "border_profile.hpp"
+
+#include "../refine/cell_flags.hpp"
+#include "../refine/error_check.hpp"
+#include "../refine/greedy_refiner.hpp"
+#include "../refine/round_workers.hpp"
+
+#include "terratin/error.hpp"
+#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace terratin::detail {
+
+namespace {
+
+/// A rectangle of cells, in the grid's rows and columns (both ends included).
+struct CellWindow {
+    CellRange rows;
+    CellRange columns;
+
+    [[nodiscard]] std::size_t width() const { return columns.count(); }
+    [[nodiscard]] std::size_t height() const { return rows.count(); }
+};
+
+/// `inner` grown by `margin` cells on every side, within a grid of width x height cells.
+CellWindow grown(const CellWindow& inner, std::size_t margin, std::size_t width,
+                 std::size_t height) {
+    const auto grow = [margin](CellRange range, std::size_t cells) {
+        return CellRange{range.first - std::min(range.first, margin),
+                         std::min(range.last + margin, cells - 1)};
+    };
+    return {grow(inner.rows, height), grow(inner.columns, width)};
+}
+
+/// The cells of `inner` out of a row-major array over `outer`, row-major over `inner`.
+template <class Array>
+Array cellsWithin(const Array& cells, const CellWindow& outer, const CellWindow& inner) {
+    Array copy(inner.width() * inner.height());
+    for (std::size_t row = 0; row < inner.height(); ++row) {
+        const std::size_t from = (inner.rows.first - outer.rows.first + row) * outer.width() +
+                                 (inner.columns.first - outer.columns.first);
+        std::copy_n(cells.begin() + static_cast<std::ptrdiff_t>(from), inner.width(),
+                    copy.begin() + static_cast<std::ptrdiff_t>(row * inner.width()));
+    }
+    return copy;
+}
+
+/// The grid of `inner` out of `grid`, which holds `outer`.
+HeightGrid gridWithin(const HeightGrid& grid, const CellWindow& outer, const CellWindow& inner) {
+    HeightGrid within;
+    within.width = static_cast<int>(inner.width());
+    within.height = static_cast<int>(inner.height());
+    within.geoTransform = grid.geoTransform;
+    within.firstRow = grid.firstRow + static_cast<int>(inner.rows.first - outer.rows.first);
+    within.firstColumn =
+        grid.firstColumn + static_cast<int>(inner.columns.first - outer.columns.first);
+    within.z = cellsWithin(grid.z, outer, inner);
+    return within;
+}
+
+/// Whether the valid cells of `grid` span an area (three of them not on one line), which the
+/// refiner needs. Exact: pixel coordinates are integers.
+bool validCellsSpanArea(const HeightGrid& grid) {
+    const auto width = static_cast<std::int64_t>(grid.width);
+    std::int64_t first = -1;
+    std::int64_t second = -1;
+    for (std::int64_t cell = 0; cell < static_cast<std::int64_t>(grid.cellCount()); ++cell) {
+        if (!grid.isValid(static_cast<std::size_t>(cell)))
+            continue;
+        if (first < 0) {
+            first = cell;
+        } else if (second < 0) {
+            second = cell;
+        } else {
+            const std::int64_t ac = cell % width - first % width;
+            const std::int64_t ar = cell / width - first / width;
+            const std::int64_t bc = second % width - first % width;
+            const std::int64_t br = second / width - first / width;
+            if (bc * ar != br * ac)
+                return true;
+        }
+    }
+    return false;
+}
+
+/// The cells of the four sides of a width x height tile (row-major tile indices), each in
+/// increasing row or column order, as the tile on the other side reads them too.
+std::vector<std::vector<std::uint32_t>> sidesOf(std::size_t width, std::size_t height) {
+    std::vector<std::vector<std::uint32_t>> sides(4);
+    for (std::size_t column = 0; column < width; ++column) {
+        sides[0].push_back(static_cast<std::uint32_t>(column));
+        sides[1].push_back(static_cast<std::uint32_t>((height - 1) * width + column));
+    }
+    for (std::size_t row = 0; row < height; ++row) {
+        sides[2].push_back(static_cast<std::uint32_t>(row * width));
+        sides[3].push_back(static_cast<std::uint32_t>(row * width + width - 1));
+    }
+    return sides;
+}
+
+/// Freezes every cell on the tile's sides in `flags` and returns the cells the sides keep
+/// (the refiner's seeds), side after side.
+std::vector<std::uint32_t> seedTheSides(const HeightGrid& tile, double maxError, CellFlags& flags) {
+    std::vector<std::uint32_t> seeds;
+    std::vector<float> elevations;
+    for (const std::vector<std::uint32_t>& side :
+         sidesOf(static_cast<std::size_t>(tile.width), static_cast<std::size_t>(tile.height))) {
+        elevations.clear();
+        for (const std::uint32_t cell : side)
+            elevations.push_back(tile.z[cell]);
+        for (const std::uint32_t k :
+             keptBorderCells(elevations, sideTolerance(elevations, maxError)))
+            seeds.push_back(side[k]);
+        for (const std::uint32_t cell : side)
+            flags[cell] |= kCellFrozen;
+    }
+    return seeds;
+}
+
+void copyFigures(const GreedyRefiner& refiner, TileRefinement& tile) {
+    tile.hullPoints = refiner.hullPoints();
+    tile.strips = refiner.strips();
+    tile.levels = refiner.levels();
+    tile.deferredCandidates = refiner.deferred();
+    tile.pairInsertions = refiner.pairInsertions();
+    tile.sharedInsertions = refiner.sharedInsertions();
+    tile.meshBytes = refiner.meshBytes();
+}
+
+/// Which cells of the tile it does not own: its bottom side and its right one, unless they are
+/// the grid's (tile_refinement.hpp).
+struct Unowned {
+    bool bottom = false;
+    bool right = false;
+
+    [[nodiscard]] bool operator()(std::size_t cell, std::size_t width, std::size_t height) const {
+        return (bottom && cell / width == height - 1) || (right && cell % width == width - 1);
+    }
+};
+
+/// Counts the owned valid and open hole cells of the tile.
+void countCells(const CellFlags& flags, std::size_t width, std::size_t height, Unowned unowned,
+                TileRefinement& tile) {
+    for (std::size_t cell = 0; cell < flags.size(); ++cell) {
+        if (unowned(cell, width, height))
+            continue;
+        tile.validCells += (flags[cell] & kCellNoData) == 0 ? 1U : 0U;
+        tile.openHoleCells += (flags[cell] & kCellOpenHole) != 0 ? 1U : 0U;
+    }
+}
+
+/// Drops the tile's triangles over open holes; measures its largest error over every valid
+/// cell, the sides' included, in the pixel coordinates its scans used; and the covered cells it
+/// owns with their squared errors.
+void dropHolesAndMeasure(const HeightGrid& grid, CellFlags& flags, Unowned unowned,
+                         unsigned threads, TileRefinement& tile) {
+    for (std::uint8_t& flag : flags)
+        flag &= static_cast<std::uint8_t>(~kCellFrozen);
+    const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
+    if (std::any_of(flags.begin(), flags.end(),
+                    [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
+        tile.droppedTriangles =
+            dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, threads));
+    tile.maxError = measureErrors(tile.mesh, view, threads).maxError;
+
+    const auto width = static_cast<std::size_t>(grid.width);
+    const auto height = static_cast<std::size_t>(grid.height);
+    std::size_t unownedVertices = 0;
+    for (const std::uint32_t cell : tile.mesh.sourceIndex)
+        unownedVertices += unowned(cell, width, height) ? 1U : 0U;
+    for (std::size_t cell = 0; cell < flags.size(); ++cell)
+        if (unowned(cell, width, height))
+            flags[cell] |= kCellFrozen; // not counted here: the neighbour owns them
+    const ErrorMeasure owned = measureErrors(tile.mesh, view, threads);
+    tile.coveredCells = owned.coveredCells - unownedVertices;
+    tile.sumSquares = owned.sumSquares;
+}
+
+} // namespace
+
+double sideTolerance(std::span<const float> side, double maxError) {
+    double largest = 0.0;
+    for (const float z : side)
+        if (!std::isnan(z))
+            largest = std::max(largest, std::abs(double{z}));
+    return std::max(0.0, maxError - (1e-7 * (largest + maxError) + 1e-6));
+}
+
+TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
+                             const RefineOptions& options, RoundWorkers& workers,
+                             const ProgressCallback& progress) {
+    const std::size_t tileRow = tile / tiles.tileColumns();
+    const std::size_t tileColumn = tile % tiles.tileColumns();
+    const CellWindow inner{tiles.rowsOf(tileRow), tiles.columnsOf(tileColumn)};
+    const CellWindow outer =
+        grown(inner, options.fillHoles ? 0 : options.maxHole,
+              static_cast<std::size_t>(cells.width()), static_cast<std::size_t>(cells.height()));
+    const HeightGrid margin =
+        cells.window(static_cast<int>(outer.rows.first), static_cast<int>(outer.height()),
+                     static_cast<int>(outer.columns.first), static_cast<int>(outer.width()));
+    // A nodata region of more than maxHole cells has that many within maxHole cells of any of
+    // its cells: the margin decides the tile's cells as the whole grid would.
+    std::size_t ignored = 0;
+    CellFlags flags = cellsWithin(
+        makeCellFlags(margin, options.maxHole, options.fillHoles, ignored), outer, inner);
+    const HeightGrid grid = gridWithin(margin, outer, inner);
+
+    TileRefinement result;
+    const Unowned unowned{tileRow + 1 < tiles.tileRows(), tileColumn + 1 < tiles.tileColumns()};
+    countCells(flags, inner.width(), inner.height(), unowned, result);
+    if (!validCellsSpanArea(grid))
+        return result;
+    std::vector<std::uint32_t> seeds = seedTheSides(grid, *options.maxError, flags);
+
+    GreedyRefiner refiner(grid, {}, flags, options, workers);
+    refiner.setSeedCells(std::move(seeds));
+    refiner.run(progress);
+    copyFigures(refiner, result);
+    result.mesh = refiner.extractInCellOrder();
+    if (options.validate) {
+        const MeshValidation validation = validateDelaunay(result.mesh);
+        if (!validation.ok())
+            throw Error("Refiner: a tile's TIN is not an exact Delaunay triangulation: " +
+                        (validation.problems.empty() ? std::string("unknown problem")
+                                                     : validation.problems.front()));
+    }
+    dropHolesAndMeasure(grid, flags, unowned, workers.size(), result);
+    return result;
+}
+
+} // namespace terratin::detail
