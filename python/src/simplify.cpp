@@ -56,6 +56,7 @@ struct SimplifyLimits {
     bool fillHoles = false;
     std::int64_t threads = 0;
     bool validate = false;
+    std::int64_t tileSize = 0;
 };
 
 RefineOptions refineOptions(const SimplifyLimits& limits) {
@@ -69,6 +70,7 @@ RefineOptions refineOptions(const SimplifyLimits& limits) {
     options.fillHoles = limits.fillHoles;
     options.threads = threadsOption(kFunction, limits.threads);
     options.validate = limits.validate;
+    options.tileSize = countOption(kFunction, "tile_size", limits.tileSize);
     checkRefineOptions(options);
     return options;
 }
@@ -100,15 +102,15 @@ void bindSimplify(py::module_& module) {
            std::optional<double> maxError, std::optional<std::int64_t> maxPoints,
            std::optional<std::int64_t> maxTriangles, std::int64_t maxHole, bool fillHoles,
            std::optional<double> maxEdge, std::int64_t threads, bool validate,
-           const py::object& progress) {
-            const SimplifyLimits limits{maxError,  maxPoints, maxTriangles, maxHole,
-                                        fillHoles, threads,   validate};
+           std::int64_t tileSize, const py::object& progress) {
+            const SimplifyLimits limits{maxError, maxPoints, maxTriangles, maxHole,
+                                        fillHoles, threads,  validate,     tileSize};
             return simplifyArray(z, geoTransform, nodata, limits, maxEdge, progress);
         },
         "z"_a, "geotransform"_a, "nodata"_a = py::none(), "max_error"_a = py::none(),
         "max_points"_a = py::none(), py::kw_only(), "max_triangles"_a = py::none(),
         "max_hole"_a = 1, "fill_holes"_a = false, "max_edge"_a = py::none(), "threads"_a = 0,
-        "validate"_a = false, "progress"_a = py::none(),
+        "validate"_a = false, "tile_size"_a = 0, "progress"_a = py::none(),
         "Error-bounded TIN of a DEM; see terratin.simplify.");
 }
 

@@ -125,6 +125,7 @@ def simplify(
     max_edge=None,
     threads=0,
     validate=False,
+    tile_size=0,
     progress=None,
 ):
     """Error-bounded TIN of a DEM: the CLI's `terratin build DEM --max-error E ...` TIN.
@@ -141,7 +142,8 @@ def simplify(
     max_hole: nodata regions (8-connected) of more than this many cells stay open;
         fill_holes: cover every one. max_edge: drop triangles with an edge longer than this
         (CRS units). threads: 0 = all (the TIN does not depend on it). validate: check the
-        result is exactly Delaunay (Error otherwise).
+        result is exactly Delaunay (Error otherwise; with tiles, each tile). tile_size: refine
+        in seam-free tiles of this many cells a side (the CLI's --tile-size; needs max_error).
     progress: as for triangulate().
 
     Returns (vertices, triangles) as triangulate() does; vertices are exact cell centres
@@ -164,5 +166,6 @@ def simplify(
         max_edge=max_edge,
         threads=threads,
         validate=validate,
+        tile_size=tile_size,
         progress=progress,
     )

@@ -85,6 +85,10 @@ OPTIONS = {
         {"max_hole": 40, "max_triangles": 400},
         ["--max-hole", "40", "--max-triangles", "400"],
     ),
+    "seam-free tiles": (
+        {"max_error": 1.0, "tile_size": 16, "max_hole": 3},
+        ["--max-error", "1", "--tile-size", "16", "--max-hole", "3"],
+    ),
 }
 
 

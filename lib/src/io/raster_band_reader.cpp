@@ -186,9 +186,13 @@ RasterBandReader::BandRules RasterBandReader::bandRules() const {
 std::uint64_t RasterBandReader::readCells(const BandRules& rules, const CellBox& box,
                                           std::vector<double>& values,
                                           std::vector<std::uint8_t>& mask) const {
+    const std::string columnsText = box.columns == m_width
+                                        ? std::string()
+                                        : ", columns " + std::to_string(box.firstColumn) + ".." +
+                                              std::to_string(box.firstColumn + box.columns - 1);
     const std::string cellsText = "rows " + std::to_string(box.firstRow) + ".." +
-                                  std::to_string(box.firstRow + box.rows - 1) + " of band " +
-                                  std::to_string(m_band) + " of";
+                                  std::to_string(box.firstRow + box.rows - 1) + columnsText +
+                                  " of band " + std::to_string(m_band) + " of";
     const auto xOff = static_cast<int>(box.firstColumn);
     const auto yOff = static_cast<int>(box.firstRow);
     const auto xSize = static_cast<int>(box.columns);
