@@ -103,8 +103,8 @@ void bindSimplify(py::module_& module) {
            std::optional<std::int64_t> maxTriangles, std::int64_t maxHole, bool fillHoles,
            std::optional<double> maxEdge, std::int64_t threads, bool validate,
            std::int64_t tileSize, const py::object& progress) {
-            const SimplifyLimits limits{maxError, maxPoints, maxTriangles, maxHole,
-                                        fillHoles, threads,  validate,     tileSize};
+            const SimplifyLimits limits{maxError,  maxPoints, maxTriangles, maxHole,
+                                        fillHoles, threads,   validate,     tileSize};
             return simplifyArray(z, geoTransform, nodata, limits, maxEdge, progress);
         },
         "z"_a, "geotransform"_a, "nodata"_a = py::none(), "max_error"_a = py::none(),

@@ -400,6 +400,45 @@ case "$case_name" in
     [ ! -e bad.gpkg ] || fail "output written despite an error"
     expect_no_leftovers
     ;;
+  tiles_dir)
+    # Issue 25: --tiles-dir writes each tile's TIN as its own file and an index of footprints;
+    # the tiles hold the joined TIN's triangles, no more, no fewer.
+    run 0 build "$sample" -o joined.ply --max-error 0.5 --tile-size 64 --json --quiet
+    joined=$(report_count triangles)
+    run 0 build "$sample" --tiles-dir tiles -f ply --max-error 0.5 --tile-size 64 --json --quiet
+    [ "$(report_count triangles)" = "$joined" ] || fail "the tiles hold other triangles"
+    tiles=$(find tiles -name 'tile_*.ply' | wc -l)
+    [ "$tiles" -gt 1 ] || fail "$tiles tile files"
+    [ "$(feature_count_of tiles/tiles.gpkg tiles)" = "$tiles" ] || fail "the index is not the tiles"
+    indexed=$(ogrinfo -ro tiles/tiles.gpkg -sql 'SELECT SUM(triangles) AS t FROM tiles' |
+      sed -n 's/.*t (Integer[0-9]*) = //p')
+    [ "$indexed" = "$joined" ] || fail "the index counts $indexed triangles, not $joined"
+    ogrinfo -ro -so tiles/tiles.gpkg tiles | grep -q 'EPSG.*32633' || fail "index not in EPSG:32633"
+    # An existing tile is not replaced without --overwrite, and the run writes nothing.
+    touch before_refusal
+    run 1 build "$sample" --tiles-dir tiles -f ply --max-error 0.5 --tile-size 64 --quiet
+    expect_one_error_line "overwrite"
+    [ -z "$(find tiles -newer before_refusal)" ] || fail "a file was written despite the refusal"
+    run 0 build "$sample" --tiles-dir tiles -f ply --max-error 0.5 --tile-size 64 --quiet --overwrite
+    run 2 build "$sample" --tiles-dir tiles -o x.ply --max-error 0.5 --tile-size 64
+    expect_one_error_line "tiles-dir"
+    run 1 build "$sample" --tiles-dir none --max-error 0.5 --quiet
+    expect_one_error_line "tile-size"
+    [ ! -e none ] || fail "a directory was made for a refused run"
+    # Cancelled once the first tiles are written: every file and the directory it made go.
+    need_shared gdalraster__lf_elev_220_mt_hood_utm.tif
+    "$terratin" build "$shared/gdalraster__lf_elev_220_mt_hood_utm.tif" --tiles-dir cut \
+      --max-error 0.1 --tile-size 32 --quiet >out.txt 2>err.txt &
+    pid=$!
+    for _ in $(seq 1 600); do
+      [ -n "$(find cut -name 'tile_*' 2>/dev/null | head -1)" ] && break
+      sleep 0.05
+    done
+    kill -INT "$pid"
+    wait "$pid" && fail "the cancelled run succeeded"
+    [ ! -e cut ] || fail "files of a cancelled run were left: $(ls cut | head -3)"
+    expect_no_leftovers
+    ;;
   mpi_tiles)
     # Issue 25: mpirun shares the tiles among ranks; rank 0 coordinates and writes. The TIN is
     # the one process's for 1 and 2 ranks that refine: the same vertices in the same order, the

@@ -82,6 +82,26 @@ std::string_view tinFormatName(TinFormat format) {
     return "unknown";
 }
 
+std::string_view tinFormatExtension(TinFormat format) {
+    switch (format) {
+    case TinFormat::GeoPackage:
+        return ".gpkg";
+    case TinFormat::Shapefile:
+        return ".shp";
+    case TinFormat::FlatGeobuf:
+        return ".fgb";
+    case TinFormat::TwoDm:
+        return ".2dm";
+    case TinFormat::Ply:
+        return ".ply";
+    case TinFormat::Obj:
+        return ".obj";
+    case TinFormat::LandXml:
+        return ".xml";
+    }
+    return "";
+}
+
 bool isOgrFormat(TinFormat format) {
     return format == TinFormat::GeoPackage || format == TinFormat::Shapefile ||
            format == TinFormat::FlatGeobuf;

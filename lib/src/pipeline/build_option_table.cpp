@@ -288,6 +288,10 @@ std::vector<BuildOptionSpec> makeTable() {
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              refineOf(o).tileSize = parseCount<std::size_t>(t, n);
          }},
+        {"tiles_dir", "tiles-dir", 0, Kind::Text, false, "DIR", "",
+         "instead of -o, with --tile-size: each tile's TIN in its own file in DIR "
+         "(tile_ROW_COLUMN.EXT, -f or gpkg) and DIR/tiles.gpkg, their footprints; never joined",
+         [](BuildOptions& o, const std::string& t, const std::string&) { o.tilesDir = t; }},
         {"fill_holes", "fill-holes", 0, Kind::Flag, false, "", "",
          "simplify: triangulate across every nodata region", applyFillHoles},
         {"max_edge", "max-edge", 0, Kind::Number, false, "L", "",
@@ -530,9 +534,12 @@ BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpe
     // What is missing first: a usage line is more use than a complaint about one value.
     if (!given(values, "inputs", spelling))
         refuse("missing " + name("inputs"));
-    if (!given(values, "output", spelling))
+    const bool tiles = given(values, "tiles_dir", spelling);
+    if (!given(values, "output", spelling) && !tiles)
         refuse(spelling == OptionSpelling::CommandLine ? std::string("missing -o OUTPUT")
                                                        : "missing " + name("output"));
+    if (given(values, "output", spelling) && tiles)
+        refuse(name("tiles_dir") + " takes the place of " + name("output") + ": give one");
     BuildOptions options;
     options.optionSpelling = spelling;
     for (const OptionValue& value : values)
@@ -540,7 +547,8 @@ BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpe
     if (options.keepGeographic && !options.targetSrs.empty())
         refuse(name("keep_geographic") + " and " + name("t_srs") + " contradict each other");
     if (!options.format)
-        options.format = io::tinFormatFromPath(options.output, optionNamer(spelling));
+        options.format = tiles ? io::TinFormat::GeoPackage
+                               : io::tinFormatFromPath(options.output, optionNamer(spelling));
     checkBuildOptions(options);
     return options;
 }

@@ -15,6 +15,7 @@
 #include "terratin/refine/tile_distribution.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
+#include "tile_files.hpp"
 
 #include <ogr_spatialref.h>
 
@@ -22,6 +23,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -259,6 +261,21 @@ BuildReport writeRefinedTin(TinMesh mesh, int gridWidth, const std::string& targ
     return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
 
+// --tiles-dir: the tiles are written as they came; the index last, which keeps them all.
+BuildReport commitTileFiles(detail::TileFiles& files, BuildReport report,
+                            const Stopwatch& refineTime, const Stopwatch& totalTime,
+                            const ProgressCallback& progress) {
+    report.points = files.points();
+    report.vertices = files.points();
+    report.triangles = files.triangles();
+    report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
+    const Stopwatch writeTime;
+    files.commit();
+    io::TinWriteResult written;
+    written.features = files.features();
+    return finishReport(std::move(report), written, writeTime, totalTime, progress);
+}
+
 // Tiles (--tile-size): the raster read a tile's window at a time, never whole. What tiles do not
 // take yet is refused with the options' names before anything is read.
 BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
@@ -289,15 +306,27 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
 
     // Reading is part of the refinement: each tile reads its own cells.
     const Stopwatch refineTime;
-    const RefineOptions refineOptions = refineOptionsOf(options);
+    RefineOptions refineOptions = refineOptionsOf(options);
+    const bool coordinates =
+        options.tileDistribution == nullptr || options.tileDistribution->coordinates();
+    std::optional<detail::TileFiles> files;
+    if (!options.tilesDir.empty() && coordinates) {
+        writeOptions.crsWkt = crs.target;
+        files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions);
+        refineOptions.tileSink = [&files](std::size_t tile, TinMesh tin) {
+            files->write(tile, tin);
+        };
+    }
     RefineResult result = refineTiles(cells, refineOptions,
                                       phaseProgress(progress, 0.0, kReadShare + kTriangulateShare));
-    if (options.tileDistribution != nullptr && !options.tileDistribution->coordinates()) {
+    if (!coordinates) {
         report.servedTiles = true;
         return report;
     }
     report.skippedCells = report.rasterCells - result.validCells;
     reportRefinement(result, refineOptions, report);
+    if (files)
+        return commitTileFiles(*files, std::move(report), refineTime, totalTime, progress);
     return writeRefinedTin(std::move(result.mesh), extent.width, crs.target, options,
                            std::move(writeOptions), progress, std::move(report), refineTime,
                            totalTime);
@@ -402,12 +431,20 @@ namespace {
 
 BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
     const Stopwatch totalTime;
+    const bool tilesDir = !options.tilesDir.empty();
     const io::TinFormat format =
         options.format ? *options.format
+        : tilesDir     ? io::TinFormat::GeoPackage
                        : io::tinFormatFromPath(options.output, optionNamer(options.optionSpelling));
     io::TinWriteOptions writeOptions = tinWriteOptions(options, format);
-    io::checkTinWriteOptions(writeOptions);           // contradictory options fail before reading
-    io::checkTinOutput(options.output, writeOptions); // an output that would be refused, too
+    io::checkTinWriteOptions(writeOptions); // contradictory options fail before reading
+    if (tilesDir && (!options.refine || options.refine->tileSize == 0))
+        throw InvalidInputError("Build: " + optionName("tiles_dir", options.optionSpelling) +
+                                " writes tiles: give " +
+                                optionName("max_error", options.optionSpelling) + " and " +
+                                optionName("tile_size", options.optionSpelling));
+    if (!tilesDir)
+        io::checkTinOutput(options.output, writeOptions); // an output that would be refused too
 
     BuildReport report;
     {
@@ -415,7 +452,7 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
         for (std::size_t i = 0; i < paths.size(); ++i)
             report.input += (i > 0 ? ", " : "") + paths[i];
     }
-    report.output = options.output.string();
+    report.output = (tilesDir ? options.tilesDir : options.output).string();
     report.format = formatName(format);
     if (options.tileDistribution != nullptr && (!options.refine || options.refine->tileSize == 0))
         throw InvalidInputError("Build: several processes share the work only by tiles: give " +

@@ -61,7 +61,7 @@ public:
         for (auto next = m_waiting.find(m_joined); next != m_waiting.end();
              next = m_waiting.find(m_joined)) {
             if (next->second.mesh.triangleCount() > 0)
-                m_merger.add(next->second.mesh, m_job->place(m_joined));
+                pass(next->second.mesh, m_job->place(m_joined));
             addFigures(next->second, *m_result);
             m_sumSquares += next->second.sumSquares;
             m_waiting.erase(next);
@@ -73,6 +73,19 @@ public:
     [[nodiscard]] TinMesh finish() { return m_merger.finish(); }
 
 private:
+    /// To the caller's sink, numbered by the grid's cells, or into the joined TIN.
+    void pass(TinMesh& tile, const TilePlace& place) {
+        if (!m_job->options.tileSink) {
+            m_merger.add(tile, place);
+            return;
+        }
+        const auto gridWidth = static_cast<std::size_t>(m_job->cells->width());
+        for (std::uint32_t& cell : tile.sourceIndex)
+            cell = static_cast<std::uint32_t>((place.firstRow + cell / place.width) * gridWidth +
+                                              place.firstColumn + cell % place.width);
+        m_job->options.tileSink(m_joined, std::move(tile));
+    }
+
     const TileJob* m_job;
     RefineResult* m_result;
     TileMeshMerger m_merger;
@@ -131,6 +144,7 @@ RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
     job.options.tileSize = 0;
     job.options.threads = result.threads;
     job.options.distribution = nullptr;
+
     RoundWorkers workers(result.threads);
     TileDistribution* const distribution = options.distribution;
     if (distribution != nullptr && !distribution->coordinates()) {

@@ -111,7 +111,7 @@ TEST(BuildOptionTable, NamesAreUniqueAndEveryOptionIsDocumented) {
     }
     // The inputs and every option of `terratin build --help` but the CLI's own (quiet, json,
     // help).
-    EXPECT_EQ(keywords.size(), 45U);
+    EXPECT_EQ(keywords.size(), 46U);
 }
 
 TEST(BuildOptionTable, DefaultTextParsesToTheDefault) {

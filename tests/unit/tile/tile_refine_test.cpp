@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
@@ -347,6 +348,34 @@ TEST(TiledRefine, TilesRefinedElsewhere_OutOfOrder_GiveTheOneProcessTin) {
     EXPECT_EQ(joined.rmse, alone.rmse);
     for (const RefineResult& result : served)
         EXPECT_EQ(result.mesh.triangleCount(), 0U); // the coordinator has the TIN
+}
+
+TEST(TiledRefine, ASinkGetsEveryTileInOrder_TheJoinedTinsTriangles) {
+    const HeightGrid grid = test::roughTerrain(70, 50, 4);
+    const RefineResult joined = refine(grid, tiled(1.0, 20));
+    std::vector<std::size_t> order;
+    std::vector<std::array<Point2, 3>> triangles;
+    RefineOptions options = tiled(1.0, 20);
+    options.tileSink = [&](std::size_t tile, TinMesh tin) {
+        order.push_back(tile);
+        for (std::size_t v = 0; v < tin.vertexCount(); ++v) // the grid's cells, not the tile's
+            ASSERT_EQ(xy(tin.vertices[v]), grid.cellCentre(std::uint64_t{tin.sourceIndex[v]}));
+        for (std::size_t t = 0; t < tin.triangleCount(); ++t)
+            triangles.push_back({xy(tin.vertices[tin.triangles[3 * t]]),
+                                 xy(tin.vertices[tin.triangles[3 * t + 1]]),
+                                 xy(tin.vertices[tin.triangles[3 * t + 2]])});
+    };
+    const RefineResult sunk = refine(grid, options);
+    EXPECT_EQ(sunk.mesh.triangleCount(), 0U);
+    EXPECT_EQ(order, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11})); // 4 x 3
+    std::vector<std::array<Point2, 3>> expected;
+    for (std::size_t t = 0; t < joined.mesh.triangleCount(); ++t)
+        expected.push_back({xy(joined.mesh.vertices[joined.mesh.triangles[3 * t]]),
+                            xy(joined.mesh.vertices[joined.mesh.triangles[3 * t + 1]]),
+                            xy(joined.mesh.vertices[joined.mesh.triangles[3 * t + 2]])});
+    EXPECT_EQ(triangles, expected); // tile after tile, as the join keeps them
+    EXPECT_EQ(sunk.maxError, joined.maxError);
+    EXPECT_EQ(sunk.coveredCells, joined.coveredCells);
 }
 
 TEST(TileRefinement, PackedAndUnpacked_TheSame_ACutMessageRefused) {

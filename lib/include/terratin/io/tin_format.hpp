@@ -36,6 +36,10 @@ TinFormat tinFormatFromPath(const std::filesystem::path& path, const OptionNamer
 /// "LandXML" (the GDAL driver name for the OGR formats).
 std::string_view tinFormatName(TinFormat format);
 
+/// The file extension of a format, with its dot: ".gpkg", ".shp", ".fgb", ".2dm", ".ply",
+/// ".obj", ".xml".
+std::string_view tinFormatExtension(TinFormat format);
+
 /// True for the formats written through OGR (GeoPackage, Shapefile, FlatGeobuf).
 bool isOgrFormat(TinFormat format);
 

@@ -38,6 +38,10 @@ struct BuildOptions {
     /// point layers; see io::detectInputKind.
     std::vector<std::string> inputs;
     std::filesystem::path output;
+    /// Instead of `output`, with a tiled simplification: the directory that gets each tile's
+    /// TIN as its own file, tile_ROW_COLUMN.EXT in `format` (default GeoPackage), and
+    /// tiles.gpkg, the index of the tiles' footprints; the TIN is never joined (issue 25).
+    std::filesystem::path tilesDir;
     /// Output format; when unset it follows the output's extension (.gpkg .shp .fgb .2dm .ply
     /// .obj .xml .landxml).
     std::optional<io::TinFormat> format;

@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -91,6 +92,12 @@ struct RefineOptions {
     /// a process that does not coordinate, refine() refines what it is handed and returns no
     /// TIN.
     TileDistribution* distribution = nullptr;
+    /// With tiles: when set, receives each tile's TIN in tile order (a tile number, row-major
+    /// among the tiles, and its TIN with sourceIndex = the grid's cell index; tiles without a
+    /// triangle are skipped) instead of having them joined; the result then holds no TIN, only
+    /// the figures. A tile's TIN shares its side vertices with its neighbours' (equal
+    /// positions).
+    std::function<void(std::size_t tile, TinMesh tin)> tileSink;
 };
 
 /// Why refinement stopped.

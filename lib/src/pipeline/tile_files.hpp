@@ -1,0 +1,63 @@
+#pragma once
+/// @file
+/// `--tiles-dir` (issue 25): each tile's TIN written to its own file as it is done, never
+/// joined, and an index of the tiles' footprints. Internal to the build pipeline.
+
+#include "terratin/geometry/height_grid.hpp"
+#include "terratin/io/tile_index.hpp"
+#include "terratin/io/tin_writer.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace terratin::detail {
+
+/// The files of one tiled build in a directory: `tile_ROW_COLUMN.EXT` (the format of
+/// `writeOptions`, zero-padded numbers), and `tiles.gpkg`, the index. Until commit(), every
+/// file it wrote is removed again on destruction (and the directory, if it made it), so a run
+/// that fails leaves nothing behind.
+class TileFiles {
+public:
+    /// Checks, before anything is refined, that every file the tiles of a grid shaped like
+    /// `extent`, cut in tiles of `tileSize`, may write can be written (an existing one only with
+    /// writeOptions.overwrite), and makes the directory when it is missing. Throws IoError,
+    /// InvalidInputError.
+    TileFiles(std::filesystem::path directory, const HeightGrid& extent, std::size_t tileSize,
+              io::TinWriteOptions writeOptions);
+    TileFiles(const TileFiles&) = delete;
+    TileFiles& operator=(const TileFiles&) = delete;
+    ~TileFiles();
+
+    /// Writes tile `tile` (row-major among the tiles), whose sourceIndex is the grid's cell.
+    void write(std::size_t tile, const TinMesh& tin);
+    /// Writes the index of the tiles written, then keeps every file.
+    void commit();
+
+    [[nodiscard]] std::size_t points() const { return m_points; }
+    [[nodiscard]] std::size_t triangles() const { return m_triangles; }
+    [[nodiscard]] std::uint64_t features() const { return m_features; }
+    [[nodiscard]] std::filesystem::path indexPath() const { return m_directory / "tiles.gpkg"; }
+
+private:
+    [[nodiscard]] std::string fileName(std::size_t tileRow, std::size_t tileColumn) const;
+    void removeWritten() noexcept;
+
+    std::filesystem::path m_directory;
+    HeightGrid m_extent;
+    std::size_t m_tileSize;
+    std::size_t m_tileRows;
+    std::size_t m_tileColumns;
+    int m_digits;
+    io::TinWriteOptions m_writeOptions;
+    bool m_madeDirectory = false;
+    bool m_committed = false;
+    std::vector<io::TileIndexEntry> m_entries;
+    std::size_t m_points = 0;
+    std::size_t m_triangles = 0;
+    std::uint64_t m_features = 0;
+};
+
+} // namespace terratin::detail
