@@ -1,7 +1,5 @@
 #include "tile_files.hpp"
 
-#include "../tile/tile_grid.hpp"
-
 #include "terratin/error.hpp"
 #include "terratin/io/tin_format.hpp"
 
@@ -55,13 +53,11 @@ std::array<std::array<double, 2>, 4> footprint(const HeightGrid& extent, CellRan
 
 TileFiles::TileFiles(fs::path directory, const HeightGrid& extent, std::size_t tileSize,
                      io::TinWriteOptions writeOptions)
-    : m_directory(std::move(directory)), m_extent(extent), m_tileSize(tileSize),
+    : m_directory(std::move(directory)), m_extent(extent),
+      m_tiles(static_cast<std::size_t>(extent.width), static_cast<std::size_t>(extent.height),
+              tileSize),
+      m_digits(digitsOf(std::max(m_tiles.tileRows(), m_tiles.tileColumns()) - 1)),
       m_writeOptions(std::move(writeOptions)) {
-    const TileGrid tiles(static_cast<std::size_t>(extent.width),
-                         static_cast<std::size_t>(extent.height), tileSize);
-    m_tileRows = tiles.tileRows();
-    m_tileColumns = tiles.tileColumns();
-    m_digits = digitsOf(std::max(m_tileRows, m_tileColumns) - 1);
     std::error_code error;
     if (!fs::exists(m_directory, error)) {
         if (!fs::create_directories(m_directory, error))
@@ -71,9 +67,18 @@ TileFiles::TileFiles(fs::path directory, const HeightGrid& extent, std::size_t t
     } else if (!fs::is_directory(m_directory, error)) {
         throw IoError("Tiles: '" + m_directory.string() + "' is not a directory");
     }
-    // Every file this run may write, refused now rather than after hours of refinement.
-    for (std::size_t row = 0; row < m_tileRows; ++row)
-        for (std::size_t column = 0; column < m_tileColumns; ++column)
+    try {
+        checkEveryFile();
+    } catch (...) {
+        removeWritten(); // the directory, if made here
+        throw;
+    }
+}
+
+void TileFiles::checkEveryFile() const {
+    // Refused now rather than after hours of refinement.
+    for (std::size_t row = 0; row < m_tiles.tileRows(); ++row)
+        for (std::size_t column = 0; column < m_tiles.tileColumns(); ++column)
             io::checkTinOutput(m_directory / fileName(row, column), m_writeOptions);
     io::TinWriteOptions indexOptions;
     indexOptions.format = io::TinFormat::GeoPackage;
@@ -93,8 +98,8 @@ std::string TileFiles::fileName(std::size_t tileRow, std::size_t tileColumn) con
 }
 
 void TileFiles::write(std::size_t tile, const TinMesh& tin) {
-    const std::size_t tileRow = tile / m_tileColumns;
-    const std::size_t tileColumn = tile % m_tileColumns;
+    const std::size_t tileRow = tile / m_tiles.tileColumns();
+    const std::size_t tileColumn = tile % m_tiles.tileColumns();
     const std::string name = fileName(tileRow, tileColumn);
     io::TinWriteOptions options = m_writeOptions;
     if (options.nodes) { // sourceIndex is the grid's cell
@@ -105,13 +110,11 @@ void TileFiles::write(std::size_t tile, const TinMesh& tin) {
                                       static_cast<std::int64_t>(tin.sourceIndex[v] % width)};
     }
     // Recorded first: a write that fails half-way is taken back with the others.
-    const TileGrid tiles(static_cast<std::size_t>(m_extent.width),
-                         static_cast<std::size_t>(m_extent.height), m_tileSize);
-    m_entries.push_back({name, static_cast<std::int64_t>(tileRow),
-                         static_cast<std::int64_t>(tileColumn),
-                         static_cast<std::int64_t>(tin.vertexCount()),
-                         static_cast<std::int64_t>(tin.triangleCount()),
-                         footprint(m_extent, tiles.rowsOf(tileRow), tiles.columnsOf(tileColumn))});
+    m_entries.push_back(
+        {name, static_cast<std::int64_t>(tileRow), static_cast<std::int64_t>(tileColumn),
+         static_cast<std::int64_t>(tin.vertexCount()),
+         static_cast<std::int64_t>(tin.triangleCount()),
+         footprint(m_extent, m_tiles.rowsOf(tileRow), m_tiles.columnsOf(tileColumn))});
     m_features += io::writeTin(tin, m_directory / name, options).features;
     m_points += tin.vertexCount();
     m_triangles += tin.triangleCount();

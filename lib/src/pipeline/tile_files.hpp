@@ -3,6 +3,8 @@
 /// `--tiles-dir` (issue 25): each tile's TIN written to its own file as it is done, never
 /// joined, and an index of the tiles' footprints. Internal to the build pipeline.
 
+#include "../tile/tile_grid.hpp"
+
 #include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/tile_index.hpp"
 #include "terratin/io/tin_writer.hpp"
@@ -43,13 +45,12 @@ public:
 
 private:
     [[nodiscard]] std::string fileName(std::size_t tileRow, std::size_t tileColumn) const;
+    void checkEveryFile() const;
     void removeWritten() noexcept;
 
     std::filesystem::path m_directory;
     HeightGrid m_extent;
-    std::size_t m_tileSize;
-    std::size_t m_tileRows;
-    std::size_t m_tileColumns;
+    TileGrid m_tiles;
     int m_digits;
     io::TinWriteOptions m_writeOptions;
     bool m_madeDirectory = false;

@@ -8,6 +8,7 @@
 #include "valid_hull.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/triangulate/mesh_validation.hpp"
 
 #include <algorithm>
 #include <array>
@@ -582,6 +583,14 @@ TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle,
     return detail::extractInCellOrder(
         *m_mesh, std::span<const RefineVertex>(m_vertices.data(), m_vertices.size()), ranges,
         m_grid->width, m_workers->size(), slotOfTriangle, spareVertices);
+}
+
+void checkExactlyDelaunay(const TinMesh& mesh, const std::string& which) {
+    const MeshValidation validation = validateDelaunay(mesh);
+    if (!validation.ok())
+        throw Error("Refiner: " + which + " is not an exact Delaunay triangulation: " +
+                    (validation.problems.empty() ? std::string("unknown problem")
+                                                 : validation.problems.front()));
 }
 
 } // namespace terratin::detail

@@ -37,6 +37,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace terratin::detail {
@@ -232,5 +233,21 @@ private:
     std::atomic<bool> m_cancelled{false};
     RefineStop m_stop = RefineStop::ErrorReached;
 };
+
+/// The refiner's counts into `figures`, a RefineResult or a tile's TileRefinement (the same
+/// field names).
+template <class Figures> void copyRefinerCounts(const GreedyRefiner& refiner, Figures& figures) {
+    figures.hullPoints = refiner.hullPoints();
+    figures.strips = refiner.strips();
+    figures.levels = refiner.levels();
+    figures.deferredCandidates = refiner.deferred();
+    figures.pairInsertions = refiner.pairInsertions();
+    figures.sharedInsertions = refiner.sharedInsertions();
+    figures.meshBytes = refiner.meshBytes();
+}
+
+/// RefineOptions::validate's check: throws terratin::Error naming `which` ("the TIN", "a
+/// tile's TIN") and the first problem when `mesh` is not exactly Delaunay.
+void checkExactlyDelaunay(const TinMesh& mesh, const std::string& which);
 
 } // namespace terratin::detail

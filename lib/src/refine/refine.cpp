@@ -11,7 +11,6 @@
 #include "terratin/error.hpp"
 #include "terratin/refine/cell_source.hpp"
 #include "terratin/refine/mesh_filter.hpp"
-#include "terratin/triangulate/mesh_validation.hpp"
 
 #include <algorithm>
 #include <array>
@@ -88,23 +87,13 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     detail::GreedyRefiner refiner(grid, positions, flags, options, workers);
     refiner.run(progress);
     result.stop = refiner.stop();
-    result.hullPoints = refiner.hullPoints();
-    result.strips = refiner.strips();
-    result.levels = refiner.levels();
-    result.deferredCandidates = refiner.deferred();
-    result.pairInsertions = refiner.pairInsertions();
-    result.sharedInsertions = refiner.sharedInsertions();
+    detail::copyRefinerCounts(refiner, result);
     result.completionPasses = refiner.completionPasses();
-    result.meshBytes = refiner.meshBytes();
     result.insertSeconds = lap(phase);
 
     result.mesh = refiner.extractInCellOrder(nullptr, options.spareVertices);
     if (options.validate) {
-        const MeshValidation validation = validateDelaunay(result.mesh);
-        if (!validation.ok())
-            throw Error("Refiner: the TIN is not an exact Delaunay triangulation: " +
-                        (validation.problems.empty() ? std::string("unknown problem")
-                                                     : validation.problems.front()));
+        detail::checkExactlyDelaunay(result.mesh, "the TIN");
         result.validated = true;
     }
     // Holes are decided on the whole triangulation; with positions, so are the errors (the

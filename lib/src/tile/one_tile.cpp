@@ -7,13 +7,10 @@
 #include "../refine/greedy_refiner.hpp"
 #include "../refine/round_workers.hpp"
 
-#include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"
-#include "terratin/triangulate/mesh_validation.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <vector>
 
 namespace terratin::detail {
@@ -124,16 +121,6 @@ std::vector<std::uint32_t> seedTheSides(const HeightGrid& tile, double maxError,
     return seeds;
 }
 
-void copyFigures(const GreedyRefiner& refiner, TileRefinement& tile) {
-    tile.hullPoints = refiner.hullPoints();
-    tile.strips = refiner.strips();
-    tile.levels = refiner.levels();
-    tile.deferredCandidates = refiner.deferred();
-    tile.pairInsertions = refiner.pairInsertions();
-    tile.sharedInsertions = refiner.sharedInsertions();
-    tile.meshBytes = refiner.meshBytes();
-}
-
 /// Which cells of the tile it does not own: its bottom side and its right one, unless they are
 /// the grid's (tile_refinement.hpp).
 struct Unowned {
@@ -222,15 +209,10 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     GreedyRefiner refiner(grid, {}, flags, options, workers);
     refiner.setSeedCells(std::move(seeds));
     refiner.run(progress);
-    copyFigures(refiner, result);
+    copyRefinerCounts(refiner, result);
     result.mesh = refiner.extractInCellOrder();
-    if (options.validate) {
-        const MeshValidation validation = validateDelaunay(result.mesh);
-        if (!validation.ok())
-            throw Error("Refiner: a tile's TIN is not an exact Delaunay triangulation: " +
-                        (validation.problems.empty() ? std::string("unknown problem")
-                                                     : validation.problems.front()));
-    }
+    if (options.validate)
+        checkExactlyDelaunay(result.mesh, "a tile's TIN");
     dropHolesAndMeasure(grid, flags, unowned, workers.size(), result);
     return result;
 }

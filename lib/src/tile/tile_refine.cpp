@@ -60,6 +60,13 @@ public:
         m_waiting.emplace(tile, std::move(refinement));
         for (auto next = m_waiting.find(m_joined); next != m_waiting.end();
              next = m_waiting.find(m_joined)) {
+            // The guarantee, checked before the tile goes anywhere.
+            if (next->second.maxError > *m_job->options.maxError)
+                throw Error("Refiner: check failed: a covered cell of tile " +
+                            std::to_string(m_joined) + " is " +
+                            std::to_string(next->second.maxError) +
+                            " from the TIN, more than the maximum error " +
+                            std::to_string(*m_job->options.maxError));
             if (next->second.mesh.triangleCount() > 0)
                 pass(next->second.mesh, m_job->place(m_joined));
             addFigures(next->second, *m_result);
@@ -163,10 +170,6 @@ RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
     result.insertSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (result.validCells == 0)
         throw InvalidInputError("Refiner: the grid has no valid cell");
-    if (result.maxError > *options.maxError)
-        throw Error("Refiner: check failed: a covered cell is " + std::to_string(result.maxError) +
-                    " from the TIN, more than the maximum error " +
-                    std::to_string(*options.maxError));
     result.rmse = result.coveredCells > 0
                       ? std::sqrt(join.sumSquares() / static_cast<double>(result.coveredCells))
                       : 0.0;
