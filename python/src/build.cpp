@@ -93,7 +93,9 @@ std::vector<OptionValue> optionValues(const py::handle& inputs, const py::handle
                                       const py::kwargs& options) {
     std::vector<OptionValue> values;
     addInputs(values, inputs);
-    values.push_back({"output", pathText(output, "output")});
+    // tiles_dir takes the place of the output (--tiles-dir instead of -o).
+    if (!(output.is_none() && options.contains("tiles_dir")))
+        values.push_back({"output", pathText(output, "output")});
     for (const auto& [name, value] : options)
         addOption(values, py::str(name), value);
     return values;

@@ -49,7 +49,8 @@ def build(inputs, output, *, progress=None, **options):
 
     inputs: a path (str, bytes or os.PathLike) or a list of them: DEM rasters, LAS/LAZ, text
         or OGR point files, as the command line takes them.
-    output: the TIN file; its extension chooses the format unless format= is given.
+    output: the TIN file; its extension chooses the format unless format= is given. None
+        with tiles_dir= (the command line's --tiles-dir instead of -o).
     options: the command line's build options by keyword, the long name with "_" for "-":
         max_error=2.0, max_points=100000, method="strips", threads=0, t_srs="EPSG:32633",
         attributes="basic", qgis_style=True, overwrite=True, classes=[2, 9], columns=[1, 2, 3]

@@ -69,6 +69,17 @@ def test_tiles_give_the_command_lines_tin(terratin_cli, tmp_path):
         terratin.build(SAMPLE, tmp_path / "bad.ply", max_error=0.5, tile_size=1)
 
 
+def test_tiles_dir_takes_the_place_of_the_output(tmp_path):
+    joined = terratin.build(SAMPLE, tmp_path / "joined.ply", max_error=0.5, tile_size=64)
+    report = terratin.build(SAMPLE, None, max_error=0.5, tile_size=64, tiles_dir=tmp_path / "t")
+    assert report["counts"]["triangles"] == joined["counts"]["triangles"]
+    tiles = list((tmp_path / "t").glob("tile_*.gpkg"))
+    assert len(tiles) > 1
+    assert feature_count(tmp_path / "t" / "tiles.gpkg") == len(tiles)
+    with pytest.raises(terratin.InvalidInputError, match="output must be a path"):
+        terratin.build(SAMPLE, None, max_error=0.5, tile_size=64)
+
+
 def test_options_of_every_kind_reach_the_build(tmp_path):
     # Text with a List option (columns), a Repeatable one given as a list (inputs), a Flag
     # (overwrite), a Count (threads) and a Number (z_factor).
