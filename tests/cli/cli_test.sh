@@ -420,6 +420,13 @@ case "$case_name" in
     expect_one_error_line "overwrite"
     [ -z "$(find tiles -newer before_refusal)" ] || fail "a file was written despite the refusal"
     run 0 build "$sample" --tiles-dir tiles -f ply --max-error 0.5 --tile-size 64 --quiet --overwrite
+    # --max-edge drops the same triangles from the tiles as from the joined TIN.
+    run 0 build "$sample" -o joined.ply --max-error 0.5 --tile-size 64 --max-edge 100 --json \
+      --quiet --overwrite
+    joined=$(report_count triangles)
+    run 0 build "$sample" --tiles-dir edges --max-error 0.5 --tile-size 64 --max-edge 100 --json \
+      --quiet
+    [ "$(report_count triangles)" = "$joined" ] || fail "--max-edge: other triangles in the tiles"
     run 2 build "$sample" --tiles-dir tiles -o x.ply --max-error 0.5 --tile-size 64
     expect_one_error_line "tiles-dir"
     run 1 build "$sample" --tiles-dir none --max-error 0.5 --quiet

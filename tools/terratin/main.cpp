@@ -119,8 +119,9 @@ int runDistributedBuild(terratin::cli::Command command, int& argc, char**& argv)
 }
 #else
 int runDistributedBuild(const terratin::cli::Command&, int&, char**&) {
-    if (terratin::cli::mpiLaunch().rank == 0)
-        printError("started by mpirun as " + std::to_string(terratin::cli::mpiLaunch().size) +
+    const terratin::cli::MpiLaunch launch = terratin::cli::mpiLaunch();
+    if (launch.rank == 0)
+        printError("started by mpirun as " + std::to_string(launch.size) +
                    " processes, but this terratin was built without MPI (install "
                    "libopenmpi-dev and build again)");
     return kExitError;

@@ -313,8 +313,16 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     if (!options.tilesDir.empty() && coordinates) {
         writeOptions.crsWkt = crs.target;
         files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions);
-        refineOptions.tileSink = [&files](std::size_t tile, TinMesh tin) {
-            files->write(tile, tin);
+        refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
+            if (options.maxEdge)
+                report.longEdgeTriangles += dropLongEdgeTriangles(tin, *options.maxEdge);
+            if (tin.triangleCount() == 0)
+                return; // every triangle too long: no file
+            files->write(tile, tin,
+                         options.nodes
+                             ? vertexCells(tin, static_cast<std::uint64_t>(extent.width),
+                                           [](std::uint32_t cell) { return std::uint64_t{cell}; })
+                             : std::vector<io::RasterCell>{});
         };
     }
     RefineResult result = refineTiles(cells, refineOptions,

@@ -97,18 +97,13 @@ std::string TileFiles::fileName(std::size_t tileRow, std::size_t tileColumn) con
            std::string(io::tinFormatExtension(m_writeOptions.format));
 }
 
-void TileFiles::write(std::size_t tile, const TinMesh& tin) {
+void TileFiles::write(std::size_t tile, const TinMesh& tin,
+                      std::vector<io::RasterCell> vertexCells) {
     const std::size_t tileRow = tile / m_tiles.tileColumns();
     const std::size_t tileColumn = tile % m_tiles.tileColumns();
     const std::string name = fileName(tileRow, tileColumn);
     io::TinWriteOptions options = m_writeOptions;
-    if (options.nodes) { // sourceIndex is the grid's cell
-        const auto width = static_cast<std::uint64_t>(m_extent.width);
-        options.vertexCells.resize(tin.vertexCount());
-        for (std::size_t v = 0; v < tin.vertexCount(); ++v)
-            options.vertexCells[v] = {static_cast<std::int64_t>(tin.sourceIndex[v] / width),
-                                      static_cast<std::int64_t>(tin.sourceIndex[v] % width)};
-    }
+    options.vertexCells = std::move(vertexCells);
     // Recorded first: a write that fails half-way is taken back with the others.
     m_entries.push_back(
         {name, static_cast<std::int64_t>(tileRow), static_cast<std::int64_t>(tileColumn),

@@ -33,8 +33,9 @@ public:
     TileFiles& operator=(const TileFiles&) = delete;
     ~TileFiles();
 
-    /// Writes tile `tile` (row-major among the tiles), whose sourceIndex is the grid's cell.
-    void write(std::size_t tile, const TinMesh& tin);
+    /// Writes tile `tile` (row-major among the tiles); `vertexCells` as TinWriteOptions'
+    /// (empty without a nodes layer).
+    void write(std::size_t tile, const TinMesh& tin, std::vector<io::RasterCell> vertexCells);
     /// Writes the index of the tiles written, then keeps every file.
     void commit();
 

@@ -65,13 +65,9 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
 RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                       const RefineOptions& options, const ProgressCallback& progress) {
     checkInput(grid, positions, options);
-    if (options.tileSize > 0) {
-        if (!positions.empty())
-            throw InvalidInputError("Refiner: tiles need the grid's own cell centres (a "
-                                    "geographic or reprojected DEM: warp it first, gdalwarp)");
-        GridCells cells(grid);
-        return detail::refineInTiles(cells, options, progress);
-    }
+    if (options.tileSize > 0)
+        throw InvalidInputError("Refiner: tiles need the grid's own cell centres (a "
+                                "geographic or reprojected DEM: warp it first, gdalwarp)");
     RefineResult result;
     Clock::time_point phase = Clock::now();
     const unsigned threads = options.threads != 0
@@ -229,10 +225,12 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     // sliver beside it (issue 22, D6: "a point outside the hull", then cells left unchecked).
     // The path for reprojected grids locates every cell exactly at its position, so the
     // rotated grid takes it with the centres as positions (16 bytes per cell).
+    if (options.tileSize > 0) {
+        checkInput(grid, {}, options);
+        GridCells cells(grid);
+        return refineTiles(cells, options, progress);
+    }
     const std::array<double, 6>& c = grid.geoTransform;
-    if (options.tileSize > 0 && (c[2] != 0.0 || c[4] != 0.0))
-        throw InvalidInputError("Refiner: tiles need a north-up grid (the geotransform is "
-                                "rotated); warp the DEM first (gdalwarp)");
     if ((c[2] != 0.0 || c[4] != 0.0) && grid.width > 0 && grid.height > 0 &&
         static_cast<std::uint64_t>(grid.cellCount()) <= kMaxRefineCells) {
         checkRefineOptions(options);
