@@ -13,8 +13,17 @@
 #include "writer_support.hpp"
 
 #include <cstdint>
+#include <string>
 
 namespace terratin::io::detail {
+
+/// The header of a file of `vertexCount` vertices and `triangleCount` faces; InvalidInputError
+/// when the vertices do not fit a PLY int index (2^31 - 1).
+std::string plyHeader(const MeshFileInfo& info, std::uint64_t vertexCount,
+                      std::uint64_t triangleCount);
+/// One vertex record, and one face record of vertices a, b, c.
+void putPlyVertex(BufferedFile& file, const Point3& p);
+void putPlyFace(BufferedFile& file, std::uint32_t a, std::uint32_t b, std::uint32_t c);
 
 /// Writes the whole file; returns vertices + triangles. Throws IoError, Cancelled, and
 /// InvalidInputError for a mesh with more vertices than a PLY int index holds (2^31 - 1).

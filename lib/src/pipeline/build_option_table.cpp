@@ -53,6 +53,33 @@ template <class Count> Count parseCount(const std::string& text, const std::stri
     return count;
 }
 
+// "2G", "512M", "1.5GiB", "1000000": a number of bytes with K, M, G or T, powers of 1024.
+std::uint64_t parseByteSize(const std::string& text, const std::string& name) {
+    const auto refuseSize = [&] {
+        refuse(name + " takes a size such as 2G or 512M (got '" + text + "')");
+    };
+    const std::size_t unitAt = std::min(text.find_first_not_of("0123456789.+eE"), text.size());
+    std::string unit = lowercase(text.substr(unitAt));
+    if (unit.size() > 1 && unit.back() == 'b')
+        unit.pop_back(); // "GB", "GiB"
+    if (unit.size() == 2 && unit.back() == 'i')
+        unit.pop_back();
+    double power = 0.0;
+    if (!unit.empty()) {
+        const std::size_t at = std::string_view("kmgt").find(unit);
+        if (unit.size() != 1 || at == std::string_view::npos)
+            refuseSize();
+        power = static_cast<double>(at + 1);
+    }
+    double number = 0.0;
+    if (!readWhole(std::string_view(text).substr(0, unitAt), number))
+        refuseSize();
+    const double bytes = number * std::pow(1024.0, power);
+    if (!(bytes >= 1.0) || bytes > 0x1p62)
+        refuseSize();
+    return static_cast<std::uint64_t>(bytes);
+}
+
 bool parseFlag(const std::string& text, const std::string& name) {
     const std::string key = lowercase(text);
     if (key == "true")
@@ -287,6 +314,14 @@ std::vector<BuildOptionSpec> makeTable() {
              ", sharing their border cells: one TIN without cracks (needs --max-error)",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              refineOf(o).tileSize = parseCount<std::size_t>(t, n);
+         }},
+        {"memory_limit", "memory-limit", 0, Kind::Text, false, "SIZE", "",
+         "simplify in tiles within SIZE of memory (2G, 512M: K M G T are powers of 1024): the "
+         "tile size follows from it, the TIN is written tile by tile to a GeoPackage or PLY "
+         "(needs --max-error)",
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             o.memoryLimit = parseByteSize(t, n);
+             refineOf(o); // tiles are a simplification's
          }},
         {"tiles_dir", "tiles-dir", 0, Kind::Text, false, "DIR", "",
          "instead of -o, with --tile-size: each tile's TIN in its own file in DIR "

@@ -15,6 +15,8 @@
 #include "terratin/refine/tile_distribution.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
+#include "memory_budget.hpp"
+#include "streamed_tin.hpp"
 #include "tile_files.hpp"
 
 #include <ogr_spatialref.h>
@@ -276,6 +278,28 @@ BuildReport commitTileFiles(detail::TileFiles& files, BuildReport report,
     return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
 
+// --memory-limit: the tiles went to the output as they came; its end (the spatial index) now.
+BuildReport finishStreamedTin(detail::StreamedTin& tin, const std::uint64_t writerBytes,
+                              const BuildOptions& options, BuildReport report,
+                              const Stopwatch& refineTime, const Stopwatch& totalTime,
+                              const ProgressCallback& progress) {
+    report.points = tin.points();
+    report.vertices = tin.points();
+    report.triangles = tin.triangles();
+    report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
+    if (tin.heldBytes() > writerBytes)
+        detail::notify(options, report,
+                  "the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +
+                      " MiB of boxes, more than the share of " +
+                      optionName("memory_limit", options.optionSpelling) +
+                      " set aside for it; give a larger limit or " +
+                      optionName("no_spatial_index", options.optionSpelling));
+    const Stopwatch writeTime;
+    const io::TinWriteResult written = tin.finish(phaseProgress(
+        progress, kReadShare + kTriangulateShare, kWriteShare));
+    return finishReport(std::move(report), written, writeTime, totalTime, progress);
+}
+
 // Tiles (--tile-size): the raster read a tile's window at a time, never whole. What tiles do not
 // take yet is refused with the options' names before anything is read.
 BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions writeOptions,
@@ -309,20 +333,40 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     RefineOptions refineOptions = refineOptionsOf(options);
     const bool coordinates =
         options.tileDistribution == nullptr || options.tileDistribution->coordinates();
+    std::optional<detail::MemoryBudget> budget;
+    std::optional<detail::GdalCacheCap> gdalCache;
+    if (options.memoryLimit) {
+        budget = detail::memoryBudget(
+            *options.memoryLimit, refineOptions.fillHoles ? 0 : refineOptions.maxHole,
+            refineOptions.tileSize, optionNamer(options.optionSpelling));
+        gdalCache.emplace(budget->gdalCacheBytes);
+    }
+    writeOptions.crsWkt = crs.target;
+    const auto keptTriangles = [&](TinMesh& tin) {
+        if (options.maxEdge)
+            report.longEdgeTriangles += dropLongEdgeTriangles(tin, *options.maxEdge);
+        return tin.triangleCount() > 0;
+    };
     std::optional<detail::TileFiles> files;
+    std::optional<detail::StreamedTin> streamed;
     if (!options.tilesDir.empty() && coordinates) {
-        writeOptions.crsWkt = crs.target;
         files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions);
         refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
-            if (options.maxEdge)
-                report.longEdgeTriangles += dropLongEdgeTriangles(tin, *options.maxEdge);
-            if (tin.triangleCount() == 0)
+            if (!keptTriangles(tin))
                 return; // every triangle too long: no file
             files->write(tile, tin,
                          options.nodes
                              ? vertexCells(tin, static_cast<std::uint64_t>(extent.width),
                                            [](std::uint32_t cell) { return std::uint64_t{cell}; })
                              : std::vector<io::RasterCell>{});
+        };
+    } else if (options.memoryLimit && coordinates) {
+        streamed.emplace(options.output, writeOptions, extent.width, extent.height,
+                         refineOptions.tileSize,
+                         optionName("memory_limit", options.optionSpelling));
+        refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
+            keptTriangles(tin); // a tile's vertices stay, as in the joined TIN
+            streamed->write(tile, tin);
         };
     }
     RefineResult result = refineTiles(cells, refineOptions,
@@ -335,6 +379,9 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     reportRefinement(result, refineOptions, report);
     if (files)
         return commitTileFiles(*files, std::move(report), refineTime, totalTime, progress);
+    if (streamed)
+        return finishStreamedTin(*streamed, budget->writerBytes, options, std::move(report),
+                                 refineTime, totalTime, progress);
     return writeRefinedTin(std::move(result.mesh), extent.width, crs.target, options,
                            std::move(writeOptions), progress, std::move(report), refineTime,
                            totalTime);
@@ -438,6 +485,22 @@ void checkBuildOptions(const BuildOptions& options) {
 namespace {
 
 BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
+    if (options.memoryLimit) {
+        if (!options.refine || !options.refine->maxError)
+            throw InvalidInputError("Build: " +
+                                    optionName("memory_limit", options.optionSpelling) +
+                                    " simplifies in tiles: give " +
+                                    optionName("max_error", options.optionSpelling));
+        if (options.refine->tileSize == 0) { // the largest tiles that fit
+            BuildOptions sized = options;
+            const RefineOptions& refine = *options.refine;
+            sized.refine->tileSize =
+                detail::memoryBudget(*options.memoryLimit, refine.fillHoles ? 0 : refine.maxHole,
+                                     0, optionNamer(options.optionSpelling))
+                    .tileSize;
+            return runBuildStages(sized, progress);
+        }
+    }
     const Stopwatch totalTime;
     const bool tilesDir = !options.tilesDir.empty();
     const io::TinFormat format =
@@ -453,6 +516,9 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
                                 optionName("tile_size", options.optionSpelling));
     if (!tilesDir)
         io::checkTinOutput(options.output, writeOptions); // an output that would be refused too
+    if (options.memoryLimit && !tilesDir)
+        io::detail::checkTinStreamOptions(writeOptions,
+                                          optionName("memory_limit", options.optionSpelling));
 
     BuildReport report;
     {

@@ -17,6 +17,14 @@ struct CellRange {
     friend bool operator==(const CellRange&, const CellRange&) = default;
 };
 
+/// Where a tile lies in the grid, in cells.
+struct TilePlace {
+    std::size_t firstRow = 0;
+    std::size_t firstColumn = 0;
+    std::size_t width = 0;
+    std::size_t height = 0;
+};
+
 /// The tiles of a grid of `width` x `height` cells: tile column k spans the cells
 /// k * tileSize .. min((k + 1) * tileSize, width - 1), and likewise for rows, so neighbouring
 /// tiles share one column (or row) of cells and the last tile holds what is left (as little as
@@ -34,6 +42,12 @@ public:
     }
     [[nodiscard]] CellRange rowsOf(std::size_t tileRow) const {
         return rangeAlong(m_height, tileRow);
+    }
+    /// Where tile `tile` lies, the tiles numbered row by row.
+    [[nodiscard]] TilePlace placeOf(std::size_t tile) const {
+        const CellRange rows = rowsOf(tile / tileColumns());
+        const CellRange columns = columnsOf(tile % tileColumns());
+        return {rows.first, columns.first, columns.count(), rows.count()};
     }
 
 private:

@@ -22,21 +22,16 @@ std::uint32_t TileMeshMerger::vertexOf(const TinMesh& tile, std::uint32_t v,
     const std::size_t column = tile.sourceIndex[v] % place.width;
     const auto cell = static_cast<std::uint32_t>((place.firstRow + row) * m_gridWidth +
                                                  place.firstColumn + column);
-    const auto next = static_cast<std::uint32_t>(m_merged.vertices.size());
-    const bool onSide =
-        row == 0 || column == 0 || row + 1 == place.height || column + 1 == place.width;
-    if (onSide) {
-        const auto [found, added] = m_sideVertices.emplace(cell, next);
-        if (!added) {
-            if (!(m_merged.vertices[found->second] == tile.vertices[v]))
-                throw Error("Tiles: cell " + std::to_string(cell) +
-                            " lies at two positions in two tiles");
-            return found->second;
-        }
+    const JoinedVertexNumbers::Number number = m_numbers.number(cell, place);
+    if (!number.isNew) {
+        if (!(m_merged.vertices[number.number] == tile.vertices[v]))
+            throw Error("Tiles: cell " + std::to_string(cell) +
+                        " lies at two positions in two tiles");
+        return number.number;
     }
     m_merged.vertices.push_back(tile.vertices[v]);
     m_merged.sourceIndex.push_back(cell);
-    return next;
+    return number.number;
 }
 
 void TileMeshMerger::add(const TinMesh& tile, const TilePlace& place) {
@@ -66,7 +61,7 @@ void TileMeshMerger::add(const TinMesh& tile, const TilePlace& place) {
 
 TinMesh TileMeshMerger::finish() {
     joinOpenEdges();
-    m_sideVertices = {};
+    m_numbers = JoinedVertexNumbers(m_gridWidth);
     return std::move(m_merged);
 }
 

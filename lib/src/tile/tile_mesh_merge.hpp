@@ -4,27 +4,21 @@
 /// tiles): a border vertex is one vertex, and two triangles of neighbouring tiles on the same
 /// border edge become neighbours.
 
+#include "joined_vertex_numbers.hpp"
+#include "tile_grid.hpp"
+
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace terratin::detail {
 
-/// Where a tile lies in the grid, in cells.
-struct TilePlace {
-    std::size_t firstRow = 0;
-    std::size_t firstColumn = 0;
-    std::size_t width = 0;
-    std::size_t height = 0;
-};
-
 class TileMeshMerger {
 public:
     /// `gridWidth`: the whole grid's width in cells, which numbers the cells of the merged TIN.
-    explicit TileMeshMerger(std::size_t gridWidth) : m_gridWidth(gridWidth) {}
+    explicit TileMeshMerger(std::size_t gridWidth) : m_gridWidth(gridWidth), m_numbers(gridWidth) {}
 
     /// Adds a tile's TIN, whose sourceIndex numbers the cells of the tile at `place`. Its
     /// vertices follow those of the tiles added before, less the ones on its sides that a tile
@@ -51,8 +45,7 @@ private:
 
     std::size_t m_gridWidth;
     TinMesh m_merged;
-    /// The merged vertex of each side cell met so far, by the grid's cell index.
-    std::unordered_map<std::uint32_t, std::uint32_t> m_sideVertices;
+    JoinedVertexNumbers m_numbers;
     std::vector<OpenEdge> m_openEdges;
 };
 

@@ -43,11 +43,7 @@ struct TileJob {
     TileGrid tiles;
     RefineOptions options;
 
-    [[nodiscard]] TilePlace place(std::size_t tile) const {
-        const CellRange rows = tiles.rowsOf(tile / tiles.tileColumns());
-        const CellRange columns = tiles.columnsOf(tile % tiles.tileColumns());
-        return {rows.first, columns.first, columns.count(), rows.count()};
-    }
+    [[nodiscard]] TilePlace place(std::size_t tile) const { return tiles.placeOf(tile); }
 };
 
 /// Joins tiles in tile order, whatever order they are refined in.

@@ -42,6 +42,11 @@ struct BuildOptions {
     /// TIN as its own file, tile_ROW_COLUMN.EXT in `format` (default GeoPackage), and
     /// tiles.gpkg, the index of the tiles' footprints; the TIN is never joined (issue 25).
     std::filesystem::path tilesDir;
+    /// Bytes of memory a tiled simplification stays under (--memory-limit; issue 25): the tile
+    /// size follows from it unless refine->tileSize is given (refused when that size would
+    /// not fit), and `output` is written tile by tile, a GeoPackage or a PLY, the TIN never
+    /// held whole. Needs refine->maxError. With tileDistribution, each process's limit.
+    std::optional<std::uint64_t> memoryLimit;
     /// Output format; when unset it follows the output's extension (.gpkg .shp .fgb .2dm .ply
     /// .obj .xml .landxml).
     std::optional<io::TinFormat> format;

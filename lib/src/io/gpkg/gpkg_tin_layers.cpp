@@ -100,7 +100,8 @@ struct EdgeChunk {
 } // namespace
 
 void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& table,
-                        const TinMesh& mesh, AttributeSet attributes, const RowProgress& progress) {
+                        const TinMesh& mesh, AttributeSet attributes, std::int64_t firstFid,
+                        const RowProgress& progress) {
     const auto columns = attributeColumns(attributes);
     std::vector<std::string> names = columnNames(table, {});
     for (const auto& column : columns)
@@ -125,7 +126,7 @@ void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& ta
         const std::size_t end = chunkRange(k, rows).second;
         progress(begin);
         insert.insert(end - begin, [&](SqliteStatement& statement, int p, std::size_t row) {
-            statement.bindInteger(p, static_cast<std::int64_t>(begin + row) + 1);
+            statement.bindInteger(p, static_cast<std::int64_t>(begin + row) + firstFid);
             statement.bindBlob(p + 1, blobOf<kGpkgTriangleBytes>(chunk.blobs, row));
             for (std::size_t i = 0; i < columns.size(); ++i)
                 statement.bindReal(p + 2 + static_cast<int>(i),
@@ -136,7 +137,7 @@ void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& ta
 }
 
 void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
-                    const TinMesh& mesh, std::span<const RasterCell> cells,
+                    const TinMesh& mesh, std::span<const RasterCell> cells, std::int64_t firstFid,
                     const RowProgress& progress) {
     const bool withCells = !cells.empty();
     BatchedInsert insert(connection, table.table(),
@@ -159,7 +160,7 @@ void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
         progress(begin);
         insert.insert(end - begin, [&](SqliteStatement& statement, int p, std::size_t row) {
             const std::size_t v = begin + row;
-            const auto id = static_cast<std::int64_t>(v) + 1;
+            const auto id = static_cast<std::int64_t>(v) + firstFid;
             statement.bindInteger(p, id);
             statement.bindBlob(p + 1, blobOf<kGpkgPointBytes>(blobs, row));
             statement.bindInteger(p + 2, id);

@@ -3,7 +3,8 @@
 /// The rows and the index boxes of terratin's three GeoPackage layers, written straight into
 /// the tables OGR created: triangles (Polygon Z with attribute columns), nodes (Point Z) and
 /// edges (LineString Z). Feature ids are 1-based in mesh order, so that the edge layer's
-/// tri_left / tri_right and the node ids refer to them.
+/// tri_left / tri_right and the node ids refer to them; a TIN written piece by piece
+/// (tin_stream.hpp) continues the numbers of the pieces before.
 
 #include "gpkg_feature_table.hpp"
 #include "packed_rtree.hpp"
@@ -23,13 +24,16 @@ namespace terratin::io::detail {
 /// progress(rows done in this layer): called before each chunk; may throw to cancel.
 using RowProgress = std::function<void(std::uint64_t)>;
 
-/// Inserts one row per triangle: fid, geometry and the columns of `attributes`.
+/// Inserts one row per triangle: fid (firstFid for the mesh's first triangle, then one after
+/// another), geometry and the columns of `attributes`.
 void insertTriangleRows(SqliteConnection& connection, const GpkgFeatureTable& table,
-                        const TinMesh& mesh, AttributeSet attributes, const RowProgress& progress);
+                        const TinMesh& mesh, AttributeSet attributes, std::int64_t firstFid,
+                        const RowProgress& progress);
 
-/// Inserts one row per vertex: fid, geometry, id, and row / col when `cells` is not empty.
+/// Inserts one row per vertex: fid (from firstFid on), geometry, id = fid, and row / col when
+/// `cells` is not empty.
 void insertNodeRows(SqliteConnection& connection, const GpkgFeatureTable& table,
-                    const TinMesh& mesh, std::span<const RasterCell> cells,
+                    const TinMesh& mesh, std::span<const RasterCell> cells, std::int64_t firstFid,
                     const RowProgress& progress);
 
 /// Inserts one row per edge: fid, geometry, node_from, node_to, tri_left, tri_right (NULL on

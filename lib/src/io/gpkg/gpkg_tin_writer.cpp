@@ -48,17 +48,6 @@ OGRSpatialReference outputCrs(const std::string& wkt, const fs::path& output) {
     return undefined;
 }
 
-struct LayerNames {
-    std::string triangles;
-    std::string nodes; // empty: no node layer
-    std::string edges; // empty: no edge layer
-};
-
-LayerNames layerNamesFor(const TinWriteOptions& options) {
-    return {options.layerName, options.nodes ? nodeLayerName(options.layerName) : "",
-            options.edges ? edgeLayerName(options.layerName) : ""};
-}
-
 /// Opens the copy of an existing GeoPackage for update; refuses anything else.
 GDALDatasetUniquePtr openGeoPackageForUpdate(const fs::path& path, const fs::path& output) {
     const char* const drivers[] = {"GPKG", nullptr};
@@ -145,40 +134,6 @@ int pageBytesFor(std::uint64_t features) {
     return features >= kLargeTableFeatures ? kLargePageBytes : kDefaultPageBytes;
 }
 
-/// OGR's part: the file (or the copy being extended), its layers, fields and CRS.
-void createLayers(const fs::path& temporary, bool appending, std::uint64_t features,
-                  const LayerNames& names, const TinWriteOptions& options, const fs::path& output) {
-    OGRSpatialReference srs = outputCrs(options.crsWkt, output);
-    GDALDatasetUniquePtr dataset =
-        appending ? openGeoPackageForUpdate(temporary, output)
-                  : createGeoPackage(temporary, pageBytesFor(features), output);
-    if (appending)
-        for (const std::string* name : {&names.triangles, &names.nodes, &names.edges})
-            if (!name->empty())
-                makeRoomForLayer(*dataset, *name, options, output);
-
-    std::vector<std::pair<const char*, OGRFieldType>> triangleFields;
-    for (const auto& column : attributeColumns(options.attributes))
-        triangleFields.emplace_back(column.name, OFTReal);
-    createLayer(*dataset, names.triangles, wkbPolygon25D, srs, triangleFields, output);
-    if (!names.nodes.empty()) {
-        std::vector<std::pair<const char*, OGRFieldType>> nodeFields{{"id", OFTInteger64}};
-        if (!options.vertexCells.empty())
-            nodeFields.insert(nodeFields.end(), {{"row", OFTInteger64}, {"col", OFTInteger64}});
-        createLayer(*dataset, names.nodes, wkbPoint25D, srs, nodeFields, output);
-    }
-    if (!names.edges.empty())
-        createLayer(*dataset, names.edges, wkbLineString25D, srs,
-                    {{"node_from", OFTInteger64},
-                     {"node_to", OFTInteger64},
-                     {"tri_left", OFTInteger64},
-                     {"tri_right", OFTInteger64},
-                     {"length", OFTReal},
-                     {"constrained", OFTInteger}},
-                    output);
-    closeDataset(dataset, output);
-}
-
 /// One layer's rows and index, in writing order.
 struct LayerJob {
     std::string name;
@@ -189,19 +144,19 @@ struct LayerJob {
 };
 
 std::vector<LayerJob> layerJobs(const TinMesh& mesh, const TinWriteOptions& options,
-                                const LayerNames& names) {
+                                const GpkgLayerNames& names) {
     std::vector<LayerJob> jobs;
     jobs.push_back(
         {names.triangles, mesh.triangleCount(), "Writing triangles",
          [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
-             insertTriangleRows(db, table, mesh, options.attributes, progress);
+             insertTriangleRows(db, table, mesh, options.attributes, 1, progress);
          },
          [&] { return triangleBoxes(mesh); }});
     if (!names.nodes.empty())
         jobs.push_back(
             {names.nodes, mesh.vertexCount(), "Writing nodes",
              [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
-                 insertNodeRows(db, table, mesh, options.vertexCells, progress);
+                 insertNodeRows(db, table, mesh, options.vertexCells, 1, progress);
              },
              [&] { return nodeBoxes(mesh); }});
     if (!names.edges.empty())
@@ -212,14 +167,6 @@ std::vector<LayerJob> layerJobs(const TinMesh& mesh, const TinWriteOptions& opti
              },
              [&] { return edgeBoxes(mesh); }});
     return jobs;
-}
-
-/// Fast settings for a file nobody else sees until it is renamed: no rollback journal (a
-/// failed write deletes the temporary file instead), no fsync per commit, one lock for the run.
-void configureForBulkWriting(SqliteConnection& db) {
-    db.execute("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; "
-               "PRAGMA locking_mode = EXCLUSIVE; PRAGMA cache_size = -" +
-               std::to_string(kPageCacheKiB));
 }
 
 /// SQLite's part: every layer's rows, then every layer's spatial index, in one transaction.
@@ -267,10 +214,65 @@ TinWriteResult fillTables(const fs::path& temporary, const fs::path& output, con
 
 } // namespace
 
+GpkgLayerNames gpkgLayerNames(const TinWriteOptions& options) {
+    return {options.layerName, options.nodes ? nodeLayerName(options.layerName) : "",
+            options.edges ? edgeLayerName(options.layerName) : "", !options.vertexCells.empty()};
+}
+
+void createGpkgTinLayers(const fs::path& temporary, bool appending, std::uint64_t features,
+                         const GpkgLayerNames& names, const TinWriteOptions& options,
+                         const fs::path& output) {
+    OGRSpatialReference srs = outputCrs(options.crsWkt, output);
+    GDALDatasetUniquePtr dataset =
+        appending ? openGeoPackageForUpdate(temporary, output)
+                  : createGeoPackage(temporary, pageBytesFor(features), output);
+    if (appending)
+        for (const std::string* name : {&names.triangles, &names.nodes, &names.edges})
+            if (!name->empty())
+                makeRoomForLayer(*dataset, *name, options, output);
+
+    std::vector<std::pair<const char*, OGRFieldType>> triangleFields;
+    for (const auto& column : attributeColumns(options.attributes))
+        triangleFields.emplace_back(column.name, OFTReal);
+    createLayer(*dataset, names.triangles, wkbPolygon25D, srs, triangleFields, output);
+    if (!names.nodes.empty()) {
+        std::vector<std::pair<const char*, OGRFieldType>> nodeFields{{"id", OFTInteger64}};
+        if (names.nodeCells)
+            nodeFields.insert(nodeFields.end(), {{"row", OFTInteger64}, {"col", OFTInteger64}});
+        createLayer(*dataset, names.nodes, wkbPoint25D, srs, nodeFields, output);
+    }
+    if (!names.edges.empty())
+        createLayer(*dataset, names.edges, wkbLineString25D, srs,
+                    {{"node_from", OFTInteger64},
+                     {"node_to", OFTInteger64},
+                     {"tri_left", OFTInteger64},
+                     {"tri_right", OFTInteger64},
+                     {"length", OFTReal},
+                     {"constrained", OFTInteger}},
+                    output);
+    closeDataset(dataset, output);
+}
+
+void configureForBulkWriting(SqliteConnection& db) {
+    db.execute("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; "
+               "PRAGMA locking_mode = EXCLUSIVE; PRAGMA cache_size = -" +
+               std::to_string(kPageCacheKiB));
+}
+
+
+void removeStaleJournals(const fs::path& output, bool replacing) {
+    if (!replacing && !existingFiles({output}).empty())
+        return;
+    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+        std::error_code error;
+        fs::remove(output.string() + suffix, error);
+    }
+}
+
 TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
                                   const TinWriteOptions& options,
                                   const ProgressCallback& progress) {
-    const LayerNames names = layerNamesFor(options);
+    const GpkgLayerNames names = gpkgLayerNames(options);
     const std::vector<LayerJob> jobs = layerJobs(mesh, options, names);
     std::uint64_t features = 0;
     for (const auto& job : jobs)
@@ -295,21 +297,14 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
             throw IoError(std::string(kOgrStage) + ": cannot copy " + quoted(output) +
                           " to add layers to it: " + error.message());
     }
-    createLayers(temporary, appending, features, names, options, output);
+    createGpkgTinLayers(temporary, appending, features, names, options, output);
 
     TinWriteResult result = fillTables(temporary, output, mesh, jobs, options.spatialIndex, ticker);
     // The last chance to cancel: a signal that came while SQLite committed and closed must
     // still leave the old output in place.
     ticker.report(work, "Finishing GeoPackage");
 
-    // A journal or WAL left by an earlier SQLite session on the old output would be replayed
-    // into the new file under the same name and corrupt it: remove them before the rename,
-    // unless the output appeared during the run (the rename refuses it, and they are its own).
-    if (appending || options.overwrite || existingFiles({output}).empty())
-        for (const char* suffix : {"-wal", "-shm", "-journal"}) {
-            std::error_code error;
-            fs::remove(output.string() + suffix, error);
-        }
+    removeStaleJournals(output, appending || options.overwrite);
     temporaries.commit(temporary, output);
     result.features = features;
     return result;

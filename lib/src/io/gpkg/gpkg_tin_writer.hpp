@@ -9,9 +9,13 @@
 /// into place when complete; with appendLayer the existing GeoPackage is copied under the
 /// temporary name first and the copy extended, so a failure leaves the original as it was.
 
+#include "sqlite_connection.hpp"
+
 #include "terratin/io/tin_writer.hpp"
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
 
 namespace terratin::io::detail {
 
@@ -20,5 +24,33 @@ namespace terratin::io::detail {
 /// existing layer without overwrite), Cancelled.
 TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const std::filesystem::path& output,
                                   const TinWriteOptions& options, const ProgressCallback& progress);
+
+/// The layers a TIN writes into a GeoPackage.
+struct GpkgLayerNames {
+    std::string triangles;
+    std::string nodes; // empty: no node layer
+    std::string edges; // empty: no edge layer
+    /// Whether the node layer has row and col columns (the vertices' raster cells).
+    bool nodeCells = false;
+};
+
+/// The layers `options` asks for.
+GpkgLayerNames gpkgLayerNames(const TinWriteOptions& options);
+
+/// OGR's part: the file `temporary` (or, `appending`, the copy of the output being extended),
+/// its layers, their fields and CRS, no row; SQLite pages sized for `features` rows in all.
+void createGpkgTinLayers(const std::filesystem::path& temporary, bool appending,
+                         std::uint64_t features, const GpkgLayerNames& names,
+                         const TinWriteOptions& options, const std::filesystem::path& output);
+
+/// Fast settings for a file nobody else sees until it is renamed: no rollback journal (a
+/// failed write deletes the temporary file instead), no fsync per commit, one lock for the run.
+void configureForBulkWriting(SqliteConnection& db);
+
+/// Before the rename: a journal or WAL left by an earlier SQLite session on the old output
+/// would be replayed into the new file under the same name and corrupt it. Removes them when
+/// the output is `replacing` an old one, or there is none; not when the output appeared during
+/// the run (the rename refuses it, and they are its own).
+void removeStaleJournals(const std::filesystem::path& output, bool replacing);
 
 } // namespace terratin::io::detail
