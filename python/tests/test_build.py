@@ -80,6 +80,22 @@ def test_tiles_dir_takes_the_place_of_the_output(tmp_path):
         terratin.build(SAMPLE, None, max_error=0.5, tile_size=64)
 
 
+def test_memory_limit_writes_the_tiled_tin_tile_by_tile(tmp_path):
+    # Issue 25: memory_limit is --memory-limit: the joined TIN's file, written as tiles come
+    # (one thread, so that a tile's triangles come in one order).
+    joined = terratin.build(SAMPLE, tmp_path / "joined.ply", max_error=0.5, tile_size=64, threads=1)
+    streamed = terratin.build(
+        SAMPLE, tmp_path / "streamed.ply", max_error=0.5, tile_size=64, threads=1, memory_limit="1G"
+    )
+    assert streamed["counts"] == joined["counts"]
+    assert (tmp_path / "streamed.ply").read_bytes() == (tmp_path / "joined.ply").read_bytes()
+    sized = terratin.build(SAMPLE, tmp_path / "sized.gpkg", max_error=0.5, memory_limit=512 << 20)
+    assert any(notice.startswith("tiles of ") for notice in sized["notices"])
+    assert feature_count(tmp_path / "sized.gpkg") == sized["counts"]["triangles"]
+    with pytest.raises(terratin.InvalidInputError, match="memory_limit takes a size"):
+        terratin.build(SAMPLE, tmp_path / "bad.ply", max_error=0.5, memory_limit="2X")
+
+
 def test_options_of_every_kind_reach_the_build(tmp_path):
     # Text with a List option (columns), a Repeatable one given as a list (inputs), a Flag
     # (overwrite), a Count (threads) and a Number (z_factor).

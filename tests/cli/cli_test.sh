@@ -446,6 +446,66 @@ case "$case_name" in
     [ ! -e cut ] || fail "files of a cancelled run were left: $(ls cut | head -3)"
     expect_no_leftovers
     ;;
+  memory_limit)
+    # Issue 25: --memory-limit writes the TIN tile by tile into one file, the same TIN as joined
+    # (one thread: a tile's triangles then come in one order).
+    run 0 build "$sample" -o joined.ply --max-error 0.5 --tile-size 64 --threads 1 --quiet
+    run 0 build "$sample" -o streamed.ply --max-error 0.5 --tile-size 64 --threads 1 \
+      --memory-limit 1G --quiet
+    cmp -s joined.ply streamed.ply || fail "the PLY written tile by tile is not the joined one"
+    run 0 build "$sample" -o joined.gpkg --max-error 0.5 --tile-size 64 --threads 1 --nodes --quiet
+    run 0 build "$sample" -o streamed.gpkg --max-error 0.5 --tile-size 64 --threads 1 --nodes \
+      --memory-limit 1G --quiet
+    for layer in tin nodes; do
+      rows="SELECT * FROM $layer ORDER BY fid"
+      [ "$(sqlite3 joined.gpkg "$rows" | md5sum)" = "$(sqlite3 streamed.gpkg "$rows" | md5sum)" ] ||
+        fail "the $layer rows written tile by tile are not the joined ones"
+      check=$(sqlite3 streamed.gpkg "SELECT rtreecheck('rtree_${layer}_geom')")
+      [ "$check" = ok ] || fail "rtreecheck of $layer: $check"
+    done
+    validator=/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py
+    /usr/bin/python3 "$validator" streamed.gpkg >validate.txt 2>&1 ||
+      fail "validate_gpkg.py: $(cat validate.txt)"
+    # Without --tile-size the tiles are sized to the limit, and the run says how.
+    run 0 build "$sample" -o sized.gpkg --max-error 0.5 --memory-limit 512M --json --quiet
+    grep -q '"tiles of [0-9]* cells a side within --memory-limit"' out.txt ||
+      fail "no notice of the tile size"
+    # Bad values and what cannot be written tile by tile: one line, nothing written.
+    for bad in 2X 0 -1G 1.5Q ""; do
+      run 2 build "$sample" -o bad.gpkg --max-error 1 --memory-limit "$bad"
+      expect_one_error_line "memory-limit"
+    done
+    run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 100M --quiet
+    expect_one_error_line "or more"
+    run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 200M --tile-size 4000 --quiet
+    expect_one_error_line "tiles of 4000 cells need"
+    run 1 build "$sample" -o bad.gpkg --memory-limit 1G --quiet
+    expect_one_error_line "max-error"
+    run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 1G --edges --quiet
+    expect_one_error_line "edges"
+    run 1 build "$sample" -o bad.obj --max-error 1 --memory-limit 1G --quiet
+    expect_one_error_line "GeoPackage or a PLY"
+    [ -z "$(ls bad.* 2>/dev/null)" ] || fail "output written despite an error"
+    # An existing output stays as it was without --overwrite.
+    cp streamed.ply before.ply
+    run 1 build "$sample" -o streamed.ply --max-error 2 --memory-limit 1G --quiet
+    expect_one_error_line "overwrite"
+    cmp -s before.ply streamed.ply || fail "an existing output was changed"
+    # Cancelled while tiles are being written: no output, no temporary left.
+    need_shared gdalraster__lf_elev_220_mt_hood_utm.tif
+    "$terratin" build "$shared/gdalraster__lf_elev_220_mt_hood_utm.tif" -o cut.gpkg \
+      --max-error 0.1 --tile-size 32 --memory-limit 1G --quiet >out.txt 2>err.txt &
+    pid=$!
+    for _ in $(seq 1 600); do
+      [ -n "$(find . -name '.cut*tmp*' 2>/dev/null | head -1)" ] && break
+      sleep 0.05
+    done
+    sleep 0.5
+    kill -INT "$pid"
+    wait "$pid" && fail "the cancelled run succeeded"
+    [ ! -e cut.gpkg ] || fail "a cancelled run left its output"
+    expect_no_leftovers
+    ;;
   mpi_tiles)
     # Issue 25: mpirun shares the tiles among ranks; rank 0 coordinates and writes. The TIN is
     # the one process's for 1 and 2 ranks that refine: the same vertices in the same order, the

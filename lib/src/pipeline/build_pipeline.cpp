@@ -218,8 +218,9 @@ RefineOptions refineOptionsOf(const BuildOptions& options) {
     return refineOptions;
 }
 
+/// `points`: the TIN's, which result.mesh holds unless the tiles went to a sink.
 void reportRefinement(const RefineResult& result, const RefineOptions& refineOptions,
-                      BuildReport& report) {
+                      std::size_t points, BuildReport& report) {
     report.refined = true;
     report.targetMaxError = refineOptions.maxError;
     report.achievedMaxError = result.maxError;
@@ -233,7 +234,7 @@ void reportRefinement(const RefineResult& result, const RefineOptions& refineOpt
     report.threads = result.threads;
     report.meshBytesPerPoint =
         static_cast<double>(result.meshBytes) /
-        static_cast<double>(std::max<std::size_t>(result.mesh.vertexCount(), 1));
+        static_cast<double>(std::max<std::size_t>(points, 1));
 }
 
 /// The simplified TIN, its long edges dropped, written in `targetWkt`; the report finished.
@@ -340,6 +341,9 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
             *options.memoryLimit, refineOptions.fillHoles ? 0 : refineOptions.maxHole,
             refineOptions.tileSize, optionNamer(options.optionSpelling));
         gdalCache.emplace(budget->gdalCacheBytes);
+        detail::notify(options, report,
+                       "tiles of " + std::to_string(budget->tileSize) + " cells a side within " +
+                           optionName("memory_limit", options.optionSpelling));
     }
     writeOptions.crsWkt = crs.target;
     const auto keptTriangles = [&](TinMesh& tin) {
@@ -376,7 +380,11 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
         return report;
     }
     report.skippedCells = report.rasterCells - result.validCells;
-    reportRefinement(result, refineOptions, report);
+    reportRefinement(result, refineOptions,
+                     files      ? files->points()
+                     : streamed ? streamed->points()
+                                : result.mesh.vertexCount(),
+                     report);
     if (files)
         return commitTileFiles(*files, std::move(report), refineTime, totalTime, progress);
     if (streamed)
@@ -429,7 +437,7 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
         placement.positions.empty()
             ? refine(raster.grid, refineOptions, refineProgress)
             : refine(raster.grid, placement.positions, refineOptions, refineProgress);
-    reportRefinement(result, refineOptions, report);
+    reportRefinement(result, refineOptions, result.mesh.vertexCount(), report);
     TinMesh mesh = std::move(result.mesh);
     if (constrained) {
         detail::ConstrainedRefinement corrected = detail::refineWithConstraints(

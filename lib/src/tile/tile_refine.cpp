@@ -34,7 +34,7 @@ void addFigures(const TileRefinement& tile, RefineResult& result) {
     result.deferredCandidates += tile.deferredCandidates;
     result.pairInsertions += tile.pairInsertions;
     result.sharedInsertions += tile.sharedInsertions;
-    result.meshBytes = std::max(result.meshBytes, tile.meshBytes);
+    result.meshBytes += tile.meshBytes;
 }
 
 /// What every tile needs.

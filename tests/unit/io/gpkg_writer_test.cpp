@@ -10,6 +10,7 @@
 #include "gpkg_spatial_index.hpp"
 #include "mesh_readers.hpp"
 #include "ogr_test_support.hpp"
+#include "sqlite_query.hpp"
 #include "temporary_directory.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -34,6 +35,8 @@
 namespace terratin::io {
 namespace {
 
+using test::rtreeCheck;
+using test::sqliteText;
 using test::TemporaryDirectory;
 
 /// A Delaunay TIN of `count` uniform points spread over 30 km at UTM coordinates, where
@@ -53,25 +56,6 @@ TinWriteOptions geoPackageOptions() {
     options.format = TinFormat::GeoPackage;
     options.crsWkt = test::utm10nWkt();
     return options;
-}
-
-/// Runs one SQL query that returns one text value, with a plain SQLite connection.
-std::string sqliteText(const std::filesystem::path& path, const std::string& sql) {
-    sqlite3* db = nullptr;
-    EXPECT_EQ(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-    sqlite3_stmt* statement = nullptr;
-    std::string text = "<no row>";
-    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &statement, nullptr) != SQLITE_OK)
-        text = std::string("<error: ") + sqlite3_errmsg(db) + ">";
-    else if (sqlite3_step(statement) == SQLITE_ROW)
-        text = reinterpret_cast<const char*>(sqlite3_column_text(statement, 0));
-    sqlite3_finalize(statement);
-    sqlite3_close(db);
-    return text;
-}
-
-std::string rtreeCheck(const std::filesystem::path& path, const std::string& layer) {
-    return sqliteText(path, "SELECT rtreecheck('rtree_" + layer + "_geom')");
 }
 
 GDALDatasetUniquePtr openGeoPackage(const std::filesystem::path& path, bool update = false) {

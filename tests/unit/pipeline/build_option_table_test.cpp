@@ -111,7 +111,24 @@ TEST(BuildOptionTable, NamesAreUniqueAndEveryOptionIsDocumented) {
     }
     // The inputs and every option of `terratin build --help` but the CLI's own (quiet, json,
     // help).
-    EXPECT_EQ(keywords.size(), 46U);
+    EXPECT_EQ(keywords.size(), 47U);
+}
+
+std::uint64_t memoryLimitFrom(const std::string& text) {
+    BuildOptions options;
+    applyBuildOption(options, {"memory_limit", text}, OptionSpelling::Keyword);
+    return *options.memoryLimit;
+}
+
+TEST(ParseBuildOptions, ParsesMemoryLimits_InPowersOf1024) {
+    EXPECT_EQ(memoryLimitFrom("2G"), std::uint64_t{2} << 30U);
+    EXPECT_EQ(memoryLimitFrom("512m"), std::uint64_t{512} << 20U);
+    EXPECT_EQ(memoryLimitFrom("1.5GiB"), std::uint64_t{3} << 29U);
+    EXPECT_EQ(memoryLimitFrom("64KB"), std::uint64_t{64} << 10U);
+    EXPECT_EQ(memoryLimitFrom("1T"), std::uint64_t{1} << 40U);
+    EXPECT_EQ(memoryLimitFrom("1000000"), 1'000'000U);
+    for (const char* bad : {"", "G", "0", "-1G", "2X", "2GG", "1.5.2M", "0.1", "inf", "1e30G"})
+        EXPECT_THROW(memoryLimitFrom(bad), InvalidInputError) << bad;
 }
 
 TEST(BuildOptionTable, DefaultTextParsesToTheDefault) {

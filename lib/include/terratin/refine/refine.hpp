@@ -148,7 +148,7 @@ struct RefineResult {
     double insertSeconds = 0.0;
     double extractSeconds = 0.0;
     double checkSeconds = 0.0;
-    /// Bytes of the triangulation's triangles.
+    /// Bytes of the triangulation's triangles (with tiles, the sum over the tiles).
     std::size_t meshBytes = 0;
 };
 

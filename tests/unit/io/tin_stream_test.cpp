@@ -1,0 +1,199 @@
+// A TIN written piece by piece (issue 25's --memory-limit) is the TIN written whole: the same
+// PLY bytes, the same GeoPackage rows with a sound spatial index; what cannot be streamed is
+// refused before anything is written, and a stream never finished leaves no file.
+
+#include "gpkg_tin_stream.hpp"
+
+#include "mesh_readers.hpp"
+#include "ogr_test_support.hpp"
+#include "sqlite_query.hpp"
+#include "temporary_directory.hpp"
+#include "terratin/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace terratin::io {
+namespace {
+
+using detail::openTinStream;
+using detail::TinPiece;
+using test::TemporaryDirectory;
+
+/// A TIN cut into pieces by ranges of its triangles, each piece numbering its vertices in the
+/// order its triangles first use them, and the whole TIN numbered as the pieces give their
+/// vertices: what a stream of the pieces must write.
+struct CutTin {
+    std::vector<TinMesh> pieces;
+    std::vector<std::vector<std::uint32_t>> numbers;
+    std::vector<std::vector<RasterCell>> cells;
+    TinMesh whole;
+};
+
+CutTin cutTin(const TinMesh& tin, const std::vector<std::size_t>& firstTriangles, int width) {
+    CutTin cut;
+    std::map<std::uint32_t, std::uint32_t> wholeOf; // the tin's vertex -> the whole's
+    for (std::size_t p = 0; p < firstTriangles.size(); ++p) {
+        const std::size_t end =
+            p + 1 < firstTriangles.size() ? firstTriangles[p + 1] : tin.triangleCount();
+        TinMesh piece;
+        std::vector<std::uint32_t> numbers;
+        std::vector<RasterCell> cells;
+        std::map<std::uint32_t, std::uint32_t> local;
+        for (std::size_t i = 3 * firstTriangles[p]; i < 3 * end; ++i) {
+            const std::uint32_t v = tin.triangles[i];
+            auto [at, added] = local.emplace(v, static_cast<std::uint32_t>(piece.vertexCount()));
+            if (added) {
+                piece.vertices.push_back(tin.vertices[v]);
+                cells.push_back({static_cast<std::int64_t>(v) / width,
+                                 static_cast<std::int64_t>(v) % width});
+                const auto [number, isNew] =
+                    wholeOf.emplace(v, static_cast<std::uint32_t>(cut.whole.vertexCount()));
+                if (isNew)
+                    cut.whole.vertices.push_back(tin.vertices[v]);
+                numbers.push_back(number->second);
+            }
+            piece.triangles.push_back(at->second);
+            cut.whole.triangles.push_back(wholeOf.at(v));
+        }
+        cut.pieces.push_back(std::move(piece));
+        cut.numbers.push_back(std::move(numbers));
+        cut.cells.push_back(std::move(cells));
+    }
+    return cut;
+}
+
+void streamPieces(const CutTin& cut, const std::filesystem::path& output,
+                  const TinWriteOptions& options) {
+    auto writer = openTinStream(output, options, "--memory-limit");
+    for (std::size_t p = 0; p < cut.pieces.size(); ++p)
+        writer->append({&cut.pieces[p], cut.numbers[p], cut.cells[p]});
+    writer->finish({});
+}
+
+std::string bytesOf(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TinWriteOptions streamOptions(TinFormat format) {
+    TinWriteOptions options;
+    options.format = format;
+    options.crsWkt = test::utm10nWkt();
+    return options;
+}
+
+constexpr int kGrid = 9;
+const std::vector<std::size_t> kPieces{0, 40, 41, 90};
+
+TEST(TinStream, APlyWrittenPieceByPiece_IsThePlyOfTheWholeTin) {
+    const TemporaryDirectory directory;
+    const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    const TinWriteOptions options = streamOptions(TinFormat::Ply);
+    streamPieces(cut, directory / "streamed.ply", options);
+    writeTin(cut.whole, directory / "whole.ply", options);
+    EXPECT_EQ(bytesOf(directory / "streamed.ply"), bytesOf(directory / "whole.ply"));
+    test::expectSameMesh(test::readPly(directory / "streamed.ply"), cut.whole);
+    EXPECT_EQ(directory.entries(), (std::set<std::string>{"streamed.ply", "whole.ply"}));
+}
+
+TEST(TinStream, AGeoPackageWrittenPieceByPiece_HasTheWholeTinsRows_AndASoundIndex) {
+    const TemporaryDirectory directory;
+    const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    TinWriteOptions options = streamOptions(TinFormat::GeoPackage);
+    options.nodes = true;
+    streamPieces(cut, directory / "streamed.gpkg", options);
+    std::vector<RasterCell> wholeCells(cut.whole.vertexCount());
+    for (std::size_t p = 0; p < cut.pieces.size(); ++p)
+        for (std::size_t v = 0; v < cut.numbers[p].size(); ++v)
+            wholeCells[cut.numbers[p][v]] = cut.cells[p][v];
+    options.vertexCells = wholeCells;
+    writeTin(cut.whole, directory / "whole.gpkg", options);
+
+    for (const std::string layer : {"tin", "nodes"}) {
+        const std::string rows = "SELECT * FROM " + layer + " ORDER BY fid";
+        const std::string streamed = test::sqliteRows(directory / "streamed.gpkg", rows);
+        EXPECT_EQ(streamed, test::sqliteRows(directory / "whole.gpkg", rows)) << layer;
+        EXPECT_NE(streamed.find('\n'), std::string::npos) << layer;
+        EXPECT_EQ(test::rtreeCheck(directory / "streamed.gpkg", layer), "ok") << layer;
+        const std::string extent =
+            "SELECT min_x || ' ' || min_y || ' ' || max_x || ' ' || max_y FROM gpkg_contents "
+            "WHERE table_name = '" +
+            layer + "'";
+        EXPECT_EQ(test::sqliteText(directory / "streamed.gpkg", extent),
+                  test::sqliteText(directory / "whole.gpkg", extent));
+        const std::string count =
+            "SELECT feature_count FROM gpkg_ogr_contents WHERE table_name = '" + layer + "'";
+        EXPECT_EQ(test::sqliteText(directory / "streamed.gpkg", count),
+                  test::sqliteText(directory / "whole.gpkg", count));
+    }
+    // The same rows the whole index finds: the packed R-tree over the same boxes.
+    const std::string tree = "SELECT * FROM rtree_tin_geom ORDER BY id";
+    EXPECT_EQ(test::sqliteRows(directory / "streamed.gpkg", tree),
+              test::sqliteRows(directory / "whole.gpkg", tree));
+}
+
+TEST(TinStream, ANewVertexNumberedOutOfTurn_IsRefused_AndNothingIsLeft) {
+    const TemporaryDirectory directory;
+    CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    cut.numbers[1].back() += 1; // skips a number
+    for (const TinFormat format : {TinFormat::Ply, TinFormat::GeoPackage}) {
+        const std::filesystem::path output = directory / (format == TinFormat::Ply ? "t.ply"
+                                                                                    : "t.gpkg");
+        EXPECT_THROW(streamPieces(cut, output, streamOptions(format)), InvalidInputError);
+        EXPECT_TRUE(directory.entries().empty());
+    }
+}
+
+TEST(TinStream, AStreamNeverFinished_OrWithoutTriangles_LeavesNoFile) {
+    const TemporaryDirectory directory;
+    const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    for (const TinFormat format : {TinFormat::Ply, TinFormat::GeoPackage}) {
+        const std::filesystem::path output = directory / (format == TinFormat::Ply ? "t.ply"
+                                                                                    : "t.gpkg");
+        {
+            auto writer = openTinStream(output, streamOptions(format), "--memory-limit");
+            writer->append({&cut.pieces[0], cut.numbers[0], cut.cells[0]});
+        }
+        EXPECT_TRUE(directory.entries().empty());
+        auto empty = openTinStream(output, streamOptions(format), "--memory-limit");
+        EXPECT_THROW(empty->finish({}), InvalidInputError);
+        empty.reset();
+        EXPECT_TRUE(directory.entries().empty());
+    }
+}
+
+TEST(TinStream, WhatCannotBeWrittenPieceByPiece_IsRefusedBeforeAnyFile) {
+    const TemporaryDirectory directory;
+    const auto refusal = [&](TinWriteOptions options, const std::string& name) {
+        try {
+            openTinStream(directory / name, options, "--memory-limit");
+        } catch (const InvalidInputError& error) {
+            return std::string(error.what());
+        }
+        return std::string("<accepted>");
+    };
+    EXPECT_NE(refusal(streamOptions(TinFormat::Obj), "t.obj").find("GeoPackage or a PLY"),
+              std::string::npos);
+    TinWriteOptions edges = streamOptions(TinFormat::GeoPackage);
+    edges.edges = true;
+    EXPECT_NE(refusal(edges, "t.gpkg").find("without edges"), std::string::npos);
+    TinWriteOptions append = streamOptions(TinFormat::GeoPackage);
+    append.appendLayer = true;
+    EXPECT_NE(refusal(append, "t.gpkg").find("append_layer"), std::string::npos);
+    TinWriteOptions style = streamOptions(TinFormat::GeoPackage);
+    style.qgisStyle = true;
+    EXPECT_NE(refusal(style, "t.gpkg").find("qgis_style"), std::string::npos);
+    std::ofstream(directory / "old.ply") << "old";
+    EXPECT_NE(refusal(streamOptions(TinFormat::Ply), "old.ply").find("overwrite"),
+              std::string::npos);
+    EXPECT_EQ(directory.entries(), (std::set<std::string>{"old.ply"}));
+}
+
+} // namespace
+} // namespace terratin::io
