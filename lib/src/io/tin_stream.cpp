@@ -5,6 +5,7 @@
 #include "gpkg/gpkg_tin_stream.hpp"
 #include "ply_writer.hpp"
 #include "terratin/error.hpp"
+#include "terratin/gdal_error.hpp"
 #include "writer_support.hpp"
 
 #include <cerrno>
@@ -125,6 +126,7 @@ void checkTinStreamOptions(const TinWriteOptions& options, std::string_view piec
 std::unique_ptr<TinStreamWriter> openTinStream(const fs::path& output,
                                                const TinWriteOptions& options,
                                                std::string_view pieceBy) {
+    initialiseGdal();
     checkTinStreamOptions(options, pieceBy);
     checkTinOutput(output, options);
     if (options.format == TinFormat::Ply)
