@@ -389,8 +389,12 @@ case "$case_name" in
     [ "$(feature_count tiles.gpkg)" -gt 0 ] || fail "no triangles written"
     run 2 build "$sample" -o bad.gpkg --max-error 1 --tile-size 1
     expect_one_error_line "tile size"
-    run 2 build "$sample" -o bad.gpkg --tile-size 64
-    expect_one_error_line "maximum error"
+    # Tiles without --max-error are full resolution: every valid cell a vertex.
+    run 0 build "$sample" -o full.ply --tile-size 64 --validate --json --quiet
+    valid=$(( $(report_count raster_cells) - $(report_count skipped_cells) ))
+    [ "$(report_count vertices)" = "$valid" ] || fail "$(report_count vertices) vertices, $valid cells"
+    run 2 build "$sample" -o bad.gpkg --tile-size 64 --max-points 1000 --quiet
+    expect_one_error_line "point or triangle limit"
     rotated_sample rotated.tif
     run 1 build rotated.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
     expect_one_error_line "north-up"
@@ -479,8 +483,10 @@ case "$case_name" in
     expect_one_error_line "or more"
     run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 200M --tile-size 4000 --quiet
     expect_one_error_line "tiles of 4000 cells need"
-    run 1 build "$sample" -o bad.gpkg --memory-limit 1G --quiet
-    expect_one_error_line "max-error"
+    # Without --max-error, full resolution, written tile by tile too.
+    run 0 build "$sample" -o full_joined.ply --tile-size 64 --threads 1 --quiet
+    run 0 build "$sample" -o full_streamed.ply --tile-size 64 --threads 1 --memory-limit 1G --quiet
+    cmp -s full_joined.ply full_streamed.ply || fail "the full-resolution PLYs differ"
     run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 1G --edges --quiet
     expect_one_error_line "edges"
     run 1 build "$sample" -o bad.obj --max-error 1 --memory-limit 1G --quiet

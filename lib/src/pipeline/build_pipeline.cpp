@@ -470,10 +470,21 @@ io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat f
     return writeOptions;
 }
 
+namespace {
+
+// Tiles without a maximum error or a limit are full resolution: every valid cell a vertex.
+RefineOptions withEveryCellTiles(RefineOptions refine) {
+    if (refine.tileSize > 0 && !refine.maxError && !refine.maxPoints && !refine.maxTriangles)
+        refine.everyCell = true;
+    return refine;
+}
+
+} // namespace
+
 void checkBuildOptions(const BuildOptions& options) {
     checkTriangulationOptions(options.triangulation);
     if (options.refine)
-        checkRefineOptions(*options.refine);
+        checkRefineOptions(withEveryCellTiles(*options.refine));
     if (options.band < 1)
         throw InvalidInputError("Build: the raster band must be 1 or more (got " +
                                 std::to_string(options.band) + ")");
@@ -492,23 +503,27 @@ void checkBuildOptions(const BuildOptions& options) {
 
 namespace {
 
+// --memory-limit without --tile-size sizes the tiles, and tiles without a maximum error or a
+// limit are full resolution. Empty when there is nothing to plan.
+std::optional<BuildOptions> planTiles(const BuildOptions& options) {
+    RefineOptions refine = options.refine.value_or(RefineOptions{});
+    const bool sized = options.memoryLimit && refine.tileSize == 0;
+    if (sized)
+        refine.tileSize =
+            detail::memoryBudget(*options.memoryLimit, refine.fillHoles ? 0 : refine.maxHole, 0,
+                                 optionNamer(options.optionSpelling))
+                .tileSize;
+    refine = withEveryCellTiles(refine);
+    if (!sized && (!options.refine || refine.everyCell == options.refine->everyCell))
+        return std::nullopt;
+    BuildOptions planned = options;
+    planned.refine = refine;
+    return planned;
+}
+
 BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& progress) {
-    if (options.memoryLimit) {
-        if (!options.refine || !options.refine->maxError)
-            throw InvalidInputError("Build: " +
-                                    optionName("memory_limit", options.optionSpelling) +
-                                    " simplifies in tiles: give " +
-                                    optionName("max_error", options.optionSpelling));
-        if (options.refine->tileSize == 0) { // the largest tiles that fit
-            BuildOptions sized = options;
-            const RefineOptions& refine = *options.refine;
-            sized.refine->tileSize =
-                detail::memoryBudget(*options.memoryLimit, refine.fillHoles ? 0 : refine.maxHole,
-                                     0, optionNamer(options.optionSpelling))
-                    .tileSize;
-            return runBuildStages(sized, progress);
-        }
-    }
+    if (const std::optional<BuildOptions> planned = planTiles(options))
+        return runBuildStages(*planned, progress);
     const Stopwatch totalTime;
     const bool tilesDir = !options.tilesDir.empty();
     const io::TinFormat format =
@@ -520,8 +535,8 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     if (tilesDir && (!options.refine || options.refine->tileSize == 0))
         throw InvalidInputError("Build: " + optionName("tiles_dir", options.optionSpelling) +
                                 " writes tiles: give " +
-                                optionName("max_error", options.optionSpelling) + " and " +
-                                optionName("tile_size", options.optionSpelling));
+                                optionName("tile_size", options.optionSpelling) + " or " +
+                                optionName("memory_limit", options.optionSpelling));
     if (!tilesDir)
         io::checkTinOutput(options.output, writeOptions); // an output that would be refused too
     if (options.memoryLimit && !tilesDir)
@@ -538,8 +553,8 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     report.format = formatName(format);
     if (options.tileDistribution != nullptr && (!options.refine || options.refine->tileSize == 0))
         throw InvalidInputError("Build: several processes share the work only by tiles: give " +
-                                optionName("max_error", options.optionSpelling) + " and " +
-                                optionName("tile_size", options.optionSpelling));
+                                optionName("tile_size", options.optionSpelling) + " or " +
+                                optionName("memory_limit", options.optionSpelling));
     if (options.refine)
         return runRefineBuild(options, writeOptions, progress, std::move(report), totalTime);
 

@@ -150,18 +150,24 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
 }
 
 void checkTileOptions(const RefineOptions& options) {
+    if (options.everyCell && options.tileSize == 0)
+        throw InvalidInputError("Refiner: every cell a vertex is full resolution in tiles: give "
+                                "a tile size (without tiles, triangulate the cells)");
     if (options.tileSize == 0)
         return;
     if (options.tileSize < 2 || options.tileSize > kMaxTileSize)
         throw InvalidInputError("Refiner: the tile size must be 2 to " +
                                 std::to_string(kMaxTileSize) + " cells (got " +
                                 std::to_string(options.tileSize) + ")");
-    if (!options.maxError)
-        throw InvalidInputError("Refiner: tiles need a maximum error, which decides the "
-                                "vertices of their borders");
+    if (options.everyCell && (options.maxError || options.maxPoints || options.maxTriangles))
+        throw InvalidInputError("Refiner: tiles with every cell a vertex take no maximum error "
+                                "and no point or triangle limit");
     if (options.maxPoints || options.maxTriangles)
         throw InvalidInputError("Refiner: tiles take no point or triangle limit yet; give a "
                                 "maximum error alone");
+    if (!options.maxError && !options.everyCell)
+        throw InvalidInputError("Refiner: tiles need a maximum error, which decides the "
+                                "vertices of their borders, or every cell a vertex");
     if (options.spareVertices > 0)
         throw InvalidInputError("Refiner: tiles leave no room for more vertices");
 }

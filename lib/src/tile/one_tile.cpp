@@ -8,6 +8,7 @@
 #include "../refine/round_workers.hpp"
 
 #include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/triangulate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -170,6 +171,28 @@ void dropHolesAndMeasure(const HeightGrid& grid, CellFlags& flags, Unowned unown
     tile.sumSquares = owned.sumSquares;
 }
 
+/// Every valid cell of the tile a vertex: the tile's Delaunay TIN of them at their centres (as
+/// the refiner's TINs stand), sourceIndex = the tile's cell index; the cells flagged as
+/// vertices for the measure.
+TinMesh triangulateEveryCell(const HeightGrid& grid, CellFlags& flags, unsigned threads) {
+    std::vector<Point3> points;
+    std::vector<std::uint32_t> cellOf;
+    for (std::size_t cell = 0; cell < flags.size(); ++cell) {
+        if ((flags[cell] & kCellNoData) != 0)
+            continue;
+        const Point2 centre = grid.cellCentre(static_cast<std::uint64_t>(cell));
+        points.push_back({centre.x, centre.y, double{grid.z[cell]}});
+        cellOf.push_back(static_cast<std::uint32_t>(cell));
+        flags[cell] |= kCellVertex;
+    }
+    TriangulationOptions options;
+    options.threads = threads;
+    TinMesh mesh = triangulate(points, options).mesh;
+    for (std::uint32_t& source : mesh.sourceIndex)
+        source = cellOf[source];
+    return mesh;
+}
+
 } // namespace
 
 double sideTolerance(std::span<const float> side, double maxError) {
@@ -204,6 +227,13 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     countCells(flags, inner.width(), inner.height(), unowned, result);
     if (!validCellsSpanArea(grid))
         return result;
+    if (options.everyCell) {
+        result.mesh = triangulateEveryCell(grid, flags, workers.size());
+        if (options.validate)
+            checkExactlyDelaunay(result.mesh, "a tile's TIN");
+        dropHolesAndMeasure(grid, flags, unowned, workers.size(), result);
+        return result;
+    }
     std::vector<std::uint32_t> seeds = seedTheSides(grid, *options.maxError, flags);
 
     GreedyRefiner refiner(grid, {}, flags, options, workers);

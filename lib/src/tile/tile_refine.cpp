@@ -57,12 +57,13 @@ public:
         for (auto next = m_waiting.find(m_joined); next != m_waiting.end();
              next = m_waiting.find(m_joined)) {
             // The guarantee, checked before the tile goes anywhere.
-            if (next->second.maxError > *m_job->options.maxError)
+            const double bound = m_job->options.maxError.value_or(0.0); // every cell: 0
+            if (next->second.maxError > bound)
                 throw Error("Refiner: check failed: a covered cell of tile " +
                             std::to_string(m_joined) + " is " +
                             std::to_string(next->second.maxError) +
                             " from the TIN, more than the maximum error " +
-                            std::to_string(*m_job->options.maxError));
+                            std::to_string(bound));
             if (next->second.mesh.triangleCount() > 0)
                 pass(next->second.mesh, m_job->place(m_joined));
             addFigures(next->second, *m_result);

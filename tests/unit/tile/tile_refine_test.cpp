@@ -408,6 +408,61 @@ TEST(TileRefinement, PackedAndUnpacked_TheSame_ACutMessageRefused) {
     EXPECT_THROW(static_cast<void>(detail::unpackTile(longer)), Error);
 }
 
+RefineOptions everyCell(std::size_t tileSize, unsigned threads = 1) {
+    RefineOptions options = tiled(0.0, tileSize, threads);
+    options.maxError.reset();
+    options.everyCell = true;
+    return options;
+}
+
+TEST(TiledRefine, EveryCellInTiles_EachValidCellAVertex_OneConformingTin) {
+    // Full resolution in tiles (issue 25): every valid cell a vertex, each tile exactly
+    // Delaunay (validated), the tiles joined without cracks; nodata across sides, an open hole
+    // and filled single cells, a last tile one cell wide.
+    const HeightGrid grid = test::makeGrid(42, 46, [](int row, int col) {
+        if ((row - 29.5) * (row - 29.5) + (col - 20.0) * (col - 20.0) < 30.0)
+            return kNoData;
+        if ((row * 7 + col * 3) % 97 == 0)
+            return kNoData;
+        return 100.0 + 10.0 * std::sin(row * 0.3) * std::cos(col * 0.25) + 0.1 * (row % 3);
+    });
+    std::size_t validCells = 0;
+    for (std::size_t cell = 0; cell < grid.cellCount(); ++cell)
+        validCells += grid.isValid(cell) ? 1U : 0U;
+    for (const unsigned threads : {1U, 2U}) {
+        SCOPED_TRACE("threads " + std::to_string(threads));
+        const RefineResult result = refine(grid, everyCell(20, threads));
+        const TinMesh& mesh = result.mesh;
+        expectConforming(mesh);
+        EXPECT_TRUE(result.validated);
+        EXPECT_EQ(mesh.vertexCount(), validCells);
+        std::set<std::uint32_t> cells(mesh.sourceIndex.begin(), mesh.sourceIndex.end());
+        EXPECT_EQ(cells.size(), validCells);
+        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+            const Point2 centre = grid.cellCentre(std::uint64_t{mesh.sourceIndex[v]});
+            EXPECT_EQ(xy(mesh.vertices[v]), centre);
+            EXPECT_EQ(mesh.vertices[v].z, double{grid.z[mesh.sourceIndex[v]]});
+        }
+        const test::CoverageCheck check = test::checkCoverage(mesh, grid, 1);
+        EXPECT_EQ(check.maxError, 0.0);
+        EXPECT_EQ(check.uncoveredValid, 0U);
+        EXPECT_EQ(check.coveredOpenHoleCells, 0U);
+        EXPECT_EQ(result.maxError, 0.0);
+        EXPECT_GT(result.openHoleCells, 0U);
+    }
+}
+
+TEST(TiledRefine, EveryCellInTiles_TheSameTinAsOneTile_WhereTheGridIsFull) {
+    // A grid without nodata: its tiles' TINs together cover its rectangle with two triangles a
+    // cell, as the whole grid's Delaunay TIN does.
+    const HeightGrid grid = test::roughTerrain(37, 29, 5);
+    const RefineResult tiles = refine(grid, everyCell(8));
+    expectConforming(tiles.mesh);
+    EXPECT_EQ(tiles.mesh.vertexCount(), grid.cellCount());
+    EXPECT_EQ(tiles.mesh.triangleCount(), 2U * 36U * 28U);
+    EXPECT_DOUBLE_EQ(areaSum(tiles.mesh), 36.0 * 28.0);
+}
+
 TEST(TiledRefine, RefusesWhatTilesCannotDo) {
     const HeightGrid grid = test::roughTerrain(30, 30, 3);
     EXPECT_THROW(refine(grid, tiled(1.0, 1)), InvalidInputError);
@@ -431,6 +486,12 @@ TEST(TiledRefine, RefusesWhatTilesCannotDo) {
     untiled.tileSize = 0;
     untiled.distribution = &coordinator;
     EXPECT_THROW(refine(grid, untiled), InvalidInputError);
+    RefineOptions everyCellUntiled = everyCell(16);
+    everyCellUntiled.tileSize = 0;
+    EXPECT_THROW(refine(grid, everyCellUntiled), InvalidInputError);
+    RefineOptions everyCellWithError = everyCell(16);
+    everyCellWithError.maxError = 1.0;
+    EXPECT_THROW(refine(grid, everyCellWithError), InvalidInputError);
 }
 
 } // namespace

@@ -87,6 +87,11 @@ struct RefineOptions {
     /// whole only within tiles. Needs maxError and a north-up grid without positions; takes no
     /// point or triangle limit and no spareVertices.
     std::size_t tileSize = 0;
+    /// With tiles: full resolution, every valid cell a vertex. Each tile's cells are
+    /// triangulated at once (exactly Delaunay, triangulate()) instead of refined, its open holes
+    /// cut as a refined tile's; a side's cells are all vertices in both tiles, so the tiles join
+    /// without cracks. Takes no maxError, point or triangle limit.
+    bool everyCell = false;
     /// With tiles: the processes that share them (terratin's MPI ranks; the caller's, alive for
     /// the call); nullptr: this process refines every tile. The TIN is the same either way. In
     /// a process that does not coordinate, refine() refines what it is handed and returns no
