@@ -37,7 +37,8 @@ inline std::string sqliteRows(const std::filesystem::path& path, const std::stri
     while (statement != nullptr && sqlite3_step(statement) == SQLITE_ROW) {
         for (int c = 0; c < sqlite3_column_count(statement); ++c) {
             if (sqlite3_column_type(statement, c) == SQLITE_BLOB) {
-                const auto* bytes = static_cast<const unsigned char*>(sqlite3_column_blob(statement, c));
+                const auto* bytes =
+                    static_cast<const unsigned char*>(sqlite3_column_blob(statement, c));
                 for (int i = 0; i < sqlite3_column_bytes(statement, c); ++i) {
                     char hex[3];
                     std::snprintf(hex, sizeof hex, "%02x", bytes[i]);

@@ -28,8 +28,8 @@ void appendFileTo(BufferedFile& out, const fs::path& from, const fs::path& displ
     constexpr std::size_t kChunkBytes = 1 << 20;
     std::FILE* in = std::fopen(from.c_str(), "rb");
     if (in == nullptr)
-        throw IoError(std::string(kPlyStage) + ": cannot read back the part of " +
-                      quoted(display) + " written so far: " + std::strerror(errno));
+        throw IoError(std::string(kPlyStage) + ": cannot read back the part of " + quoted(display) +
+                      " written so far: " + std::strerror(errno));
     std::vector<char> chunk(kChunkBytes);
     std::size_t read = 0;
     while ((read = std::fread(chunk.data(), 1, chunk.size(), in)) > 0)
@@ -37,8 +37,8 @@ void appendFileTo(BufferedFile& out, const fs::path& from, const fs::path& displ
     const bool failed = std::ferror(in) != 0;
     std::fclose(in);
     if (failed)
-        throw IoError(std::string(kPlyStage) + ": cannot read back the part of " +
-                      quoted(display) + " written so far");
+        throw IoError(std::string(kPlyStage) + ": cannot read back the part of " + quoted(display) +
+                      " written so far");
 }
 
 /// A binary PLY written piece by piece: the vertices and the faces go to two temporaries as
@@ -59,7 +59,8 @@ public:
     }
 
     void append(const TinPiece& piece) override {
-        countPiece(piece, [&](std::size_t v) { putPlyVertex(*m_vertices, piece.mesh->vertices[v]); });
+        countPiece(piece,
+                   [&](std::size_t v) { putPlyVertex(*m_vertices, piece.mesh->vertices[v]); });
         const auto& corners = piece.mesh->triangles;
         for (std::size_t i = 0; i < corners.size(); i += 3)
             putPlyFace(*m_faces, piece.numbers[corners[i]], piece.numbers[corners[i + 1]],
@@ -123,9 +124,8 @@ void checkTinStreamOptions(const TinWriteOptions& options, std::string_view piec
     checkTinWriteOptions(options);
 }
 
-std::unique_ptr<TinStreamWriter> openTinStream(const fs::path& output,
-                                               const TinWriteOptions& options,
-                                               std::string_view pieceBy) {
+std::unique_ptr<TinStreamWriter>
+openTinStream(const fs::path& output, const TinWriteOptions& options, std::string_view pieceBy) {
     initialiseGdal();
     checkTinStreamOptions(options, pieceBy);
     checkTinOutput(output, options);

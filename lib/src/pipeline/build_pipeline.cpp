@@ -4,7 +4,9 @@
 #include "breaklines.hpp"
 #include "constrained_refine.hpp"
 #include "gather_inputs.hpp"
+#include "memory_budget.hpp"
 #include "refine_placement.hpp"
+#include "streamed_tin.hpp"
 #include "terratin/constrain/constrained_validation.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -15,8 +17,6 @@
 #include "terratin/refine/tile_distribution.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 #include "terratin/triangulate/triangulate.hpp"
-#include "memory_budget.hpp"
-#include "streamed_tin.hpp"
 #include "tile_files.hpp"
 
 #include <ogr_spatialref.h>
@@ -232,9 +232,8 @@ void reportRefinement(const RefineResult& result, const RefineOptions& refineOpt
     report.validated = result.validated;
     report.method = "refine";
     report.threads = result.threads;
-    report.meshBytesPerPoint =
-        static_cast<double>(result.meshBytes) /
-        static_cast<double>(std::max<std::size_t>(points, 1));
+    report.meshBytesPerPoint = static_cast<double>(result.meshBytes) /
+                               static_cast<double>(std::max<std::size_t>(points, 1));
 }
 
 /// The simplified TIN, its long edges dropped, written in `targetWkt`; the report finished.
@@ -290,14 +289,14 @@ BuildReport finishStreamedTin(detail::StreamedTin& tin, const std::uint64_t writ
     report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
     if (tin.heldBytes() > writerBytes)
         detail::notify(options, report,
-                  "the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +
-                      " MiB of boxes, more than the share of " +
-                      optionName("memory_limit", options.optionSpelling) +
-                      " set aside for it; give a larger limit or " +
-                      optionName("no_spatial_index", options.optionSpelling));
+                       "the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +
+                           " MiB of boxes, more than the share of " +
+                           optionName("memory_limit", options.optionSpelling) +
+                           " set aside for it; give a larger limit or " +
+                           optionName("no_spatial_index", options.optionSpelling));
     const Stopwatch writeTime;
-    const io::TinWriteResult written = tin.finish(phaseProgress(
-        progress, kReadShare + kTriangulateShare, kWriteShare));
+    const io::TinWriteResult written =
+        tin.finish(phaseProgress(progress, kReadShare + kTriangulateShare, kWriteShare));
     return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
 
@@ -337,13 +336,15 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     std::optional<detail::MemoryBudget> budget;
     std::optional<detail::GdalCacheCap> gdalCache;
     if (options.memoryLimit) {
-        budget = detail::memoryBudget(
-            *options.memoryLimit, refineOptions.fillHoles ? 0 : refineOptions.maxHole,
-            refineOptions.tileSize, optionNamer(options.optionSpelling));
+        budget = detail::memoryBudget(*options.memoryLimit,
+                                      refineOptions.fillHoles ? 0 : refineOptions.maxHole,
+                                      refineOptions.tileSize, optionNamer(options.optionSpelling));
         gdalCache.emplace(budget->gdalCacheBytes);
-        detail::notify(options, report,
-                       "tiles of " + std::to_string(budget->tileSize) + " cells a side within " +
-                           optionName("memory_limit", options.optionSpelling));
+        if (coordinates)
+            detail::notify(options, report,
+                           "tiles of " + std::to_string(budget->tileSize) +
+                               " cells a side within " +
+                               optionName("memory_limit", options.optionSpelling));
     }
     writeOptions.crsWkt = crs.target;
     const auto keptTriangles = [&](TinMesh& tin) {

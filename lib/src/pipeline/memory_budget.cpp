@@ -49,11 +49,11 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
     const std::string limitName = optionName("memory_limit");
     if (tileSize > 0) {
         if (tileBytes(tileSize, marginCells) > forTiles)
-            throw InvalidInputError(
-                "Build: tiles of " + std::to_string(tileSize) + " cells need " + limitName +
-                " " + mebibytes(limitFor(tileBytes(tileSize, marginCells))) +
-                " or more; give a larger limit, or leave out " + optionName("tile_size") +
-                " to have the tiles fit");
+            throw InvalidInputError("Build: tiles of " + std::to_string(tileSize) + " cells need " +
+                                    limitName + " " +
+                                    mebibytes(limitFor(tileBytes(tileSize, marginCells))) +
+                                    " or more; give a larger limit, or leave out " +
+                                    optionName("tile_size") + " to have the tiles fit");
         budget.tileSize = tileSize;
         return budget;
     }
@@ -62,12 +62,11 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
     const std::size_t grown = 1 + 2 * marginCells;
     budget.tileSize = std::min(side > grown ? side - grown : 0, kMaxTileSize);
     if (budget.tileSize < kLeastTileSize)
-        throw InvalidInputError("Build: " + limitName + " " + mebibytes(limitBytes) +
-                                " is too little for tiles of " + std::to_string(kLeastTileSize) +
-                                " cells with their margin of " + optionName("max_hole") +
-                                " cells; give " +
-                                mebibytes(limitFor(tileBytes(kLeastTileSize, marginCells))) +
-                                " or more");
+        throw InvalidInputError(
+            "Build: " + limitName + " " + mebibytes(limitBytes) + " is too little for tiles of " +
+            std::to_string(kLeastTileSize) + " cells with their margin of " +
+            optionName("max_hole") + " cells; give " +
+            mebibytes(limitFor(tileBytes(kLeastTileSize, marginCells))) + " or more");
     return budget;
 }
 

@@ -144,18 +144,23 @@ void countCells(const CellFlags& flags, std::size_t width, std::size_t height, U
     }
 }
 
-/// Drops the tile's triangles over open holes; measures its largest error over every valid
-/// cell, the sides' included, in the pixel coordinates its scans used; and the covered cells it
-/// owns with their squared errors.
-void dropHolesAndMeasure(const HeightGrid& grid, CellFlags& flags, Unowned unowned,
-                         unsigned threads, TileRefinement& tile) {
+/// Drops the tile's triangles over open holes (clearing the sides' kCellFrozen first).
+void dropHoles(const HeightGrid& grid, CellFlags& flags, unsigned threads, TileRefinement& tile) {
     for (std::uint8_t& flag : flags)
         flag &= static_cast<std::uint8_t>(~kCellFrozen);
+    if (std::none_of(flags.begin(), flags.end(),
+                     [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
+        return;
     const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
-    if (std::any_of(flags.begin(), flags.end(),
-                    [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
-        tile.droppedTriangles =
-            dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, threads));
+    tile.droppedTriangles =
+        dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, threads));
+}
+
+/// Measures the tile's largest error over every valid cell, the sides' included, in the pixel
+/// coordinates its scans used; and the covered cells it owns with their squared errors.
+void measure(const HeightGrid& grid, CellFlags& flags, Unowned unowned, unsigned threads,
+             TileRefinement& tile) {
+    const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
     tile.maxError = measureErrors(tile.mesh, view, threads).maxError;
 
     const auto width = static_cast<std::size_t>(grid.width);
@@ -169,6 +174,21 @@ void dropHolesAndMeasure(const HeightGrid& grid, CellFlags& flags, Unowned unown
     const ErrorMeasure owned = measureErrors(tile.mesh, view, threads);
     tile.coveredCells = owned.coveredCells - unownedVertices;
     tile.sumSquares = owned.sumSquares;
+}
+
+/// The measure of a tile whose every valid cell is a vertex: no error anywhere; a cell it owns
+/// is covered while a triangle keeps its vertex (the measure's rule for vertex cells).
+void measureEveryCell(const HeightGrid& grid, Unowned unowned, TileRefinement& tile) {
+    const auto width = static_cast<std::size_t>(grid.width);
+    const auto height = static_cast<std::size_t>(grid.height);
+    std::vector<std::uint8_t> used(tile.mesh.vertexCount(), 0);
+    for (const std::uint32_t v : tile.mesh.triangles)
+        used[v] = 1;
+    for (std::size_t v = 0; v < used.size(); ++v)
+        if (used[v] != 0 && !unowned(tile.mesh.sourceIndex[v], width, height))
+            ++tile.coveredCells;
+    tile.maxError = 0.0;
+    tile.sumSquares = 0.0;
 }
 
 /// Every valid cell of the tile a vertex: the tile's Delaunay TIN of them at their centres (as
@@ -231,7 +251,8 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
         result.mesh = triangulateEveryCell(grid, flags, workers.size());
         if (options.validate)
             checkExactlyDelaunay(result.mesh, "a tile's TIN");
-        dropHolesAndMeasure(grid, flags, unowned, workers.size(), result);
+        dropHoles(grid, flags, workers.size(), result);
+        measureEveryCell(grid, unowned, result);
         return result;
     }
     std::vector<std::uint32_t> seeds = seedTheSides(grid, *options.maxError, flags);
@@ -243,7 +264,8 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     result.mesh = refiner.extractInCellOrder();
     if (options.validate)
         checkExactlyDelaunay(result.mesh, "a tile's TIN");
-    dropHolesAndMeasure(grid, flags, unowned, workers.size(), result);
+    dropHoles(grid, flags, workers.size(), result);
+    measure(grid, flags, unowned, workers.size(), result);
     return result;
 }
 

@@ -62,8 +62,7 @@ public:
                 throw Error("Refiner: check failed: a covered cell of tile " +
                             std::to_string(m_joined) + " is " +
                             std::to_string(next->second.maxError) +
-                            " from the TIN, more than the maximum error " +
-                            std::to_string(bound));
+                            " from the TIN, more than the maximum error " + std::to_string(bound));
             if (next->second.mesh.triangleCount() > 0)
                 pass(next->second.mesh, m_job->place(m_joined));
             addFigures(next->second, *m_result);

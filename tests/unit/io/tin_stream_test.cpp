@@ -50,8 +50,8 @@ CutTin cutTin(const TinMesh& tin, const std::vector<std::size_t>& firstTriangles
             auto [at, added] = local.emplace(v, static_cast<std::uint32_t>(piece.vertexCount()));
             if (added) {
                 piece.vertices.push_back(tin.vertices[v]);
-                cells.push_back({static_cast<std::int64_t>(v) / width,
-                                 static_cast<std::int64_t>(v) % width});
+                cells.push_back(
+                    {static_cast<std::int64_t>(v) / width, static_cast<std::int64_t>(v) % width});
                 const auto [number, isNew] =
                     wholeOf.emplace(v, static_cast<std::uint32_t>(cut.whole.vertexCount()));
                 if (isNew)
@@ -143,8 +143,8 @@ TEST(TinStream, ANewVertexNumberedOutOfTurn_IsRefused_AndNothingIsLeft) {
     CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
     cut.numbers[1].back() += 1; // skips a number
     for (const TinFormat format : {TinFormat::Ply, TinFormat::GeoPackage}) {
-        const std::filesystem::path output = directory / (format == TinFormat::Ply ? "t.ply"
-                                                                                    : "t.gpkg");
+        const std::filesystem::path output =
+            directory / (format == TinFormat::Ply ? "t.ply" : "t.gpkg");
         EXPECT_THROW(streamPieces(cut, output, streamOptions(format)), InvalidInputError);
         EXPECT_TRUE(directory.entries().empty());
     }
@@ -154,8 +154,8 @@ TEST(TinStream, AStreamNeverFinished_OrWithoutTriangles_LeavesNoFile) {
     const TemporaryDirectory directory;
     const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
     for (const TinFormat format : {TinFormat::Ply, TinFormat::GeoPackage}) {
-        const std::filesystem::path output = directory / (format == TinFormat::Ply ? "t.ply"
-                                                                                    : "t.gpkg");
+        const std::filesystem::path output =
+            directory / (format == TinFormat::Ply ? "t.ply" : "t.gpkg");
         {
             auto writer = openTinStream(output, streamOptions(format), "--memory-limit");
             writer->append({&cut.pieces[0], cut.numbers[0], cut.cells[0]});

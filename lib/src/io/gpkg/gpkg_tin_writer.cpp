@@ -259,7 +259,6 @@ void configureForBulkWriting(SqliteConnection& db) {
                std::to_string(kPageCacheKiB));
 }
 
-
 void removeStaleJournals(const fs::path& output, bool replacing) {
     if (!replacing && !existingFiles({output}).empty())
         return;
