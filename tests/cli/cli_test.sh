@@ -538,6 +538,17 @@ case "$case_name" in
         fail "-np $ranks: not the one process's triangles"
       [ "$(grep -c '"input"' out.txt)" -eq 1 ] || fail "-np $ranks: not one report"
     done
+    # With --memory-limit rank 0 writes the tiles as they come back: the one process's file,
+    # simplified and at full resolution (one thread a rank: the triangles in one order).
+    for target in "--max-error 0.5" ""; do
+      # shellcheck disable=SC2086 # the target is zero or two words
+      run 0 build dem.tif -o one.ply --tile-size 40 --memory-limit 1G --threads 1 $target \
+        --overwrite --quiet
+      # shellcheck disable=SC2086
+      "${mpi[@]}" -np 3 "$terratin" build dem.tif -o ranks.ply --tile-size 40 --memory-limit 1G \
+        --threads 1 $target --overwrite --quiet >out.txt 2>err.txt || fail "mpirun failed"
+      cmp -s one.ply ranks.ply || fail "--memory-limit '$target': not the one process's file"
+    done
     # Failures: one terratin line (mpirun adds its own notice after it), no output left.
     "${mpi[@]}" -np 3 "$terratin" build dem.tif -o bad.ply --max-error 0.5 --quiet \
       >out.txt 2>err.txt && fail "ranks without --tile-size succeeded"
