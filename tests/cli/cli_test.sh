@@ -395,6 +395,16 @@ case "$case_name" in
     [ "$(report_count vertices)" = "$valid" ] || fail "$(report_count vertices) vertices, $valid cells"
     run 2 build "$sample" -o bad.gpkg --tile-size 64 --max-points 1000 --quiet
     expect_one_error_line "point or triangle limit"
+    # A point or triangle limit is shared among the tiles and holds for the whole TIN.
+    run 0 build "$sample" -o limited.ply --max-error 0.5 --tile-size 64 --max-points 3000 \
+      --json --quiet
+    [ "$(report_count vertices)" -le 3000 ] || fail "$(report_count vertices) points, limit 3000"
+    grep -q '"stop": "points"' out.txt || fail "the point limit did not stop the run"
+    run 0 build "$sample" -o limited.ply --max-error 0.5 --tile-size 64 --max-triangles 5000 \
+      --memory-limit 1G --json --quiet --overwrite
+    [ "$(report_count triangles)" -le 5000 ] || fail "$(report_count triangles) triangles"
+    run 1 build "$sample" -o bad.gpkg --max-error 0.01 --tile-size 16 --max-points 100 --quiet
+    expect_one_error_line "sides alone take"
     rotated_sample rotated.tif
     run 1 build rotated.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
     expect_one_error_line "north-up"

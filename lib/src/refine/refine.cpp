@@ -162,12 +162,10 @@ void checkTileOptions(const RefineOptions& options) {
     if (options.everyCell && (options.maxError || options.maxPoints || options.maxTriangles))
         throw InvalidInputError("Refiner: tiles with every cell a vertex take no maximum error "
                                 "and no point or triangle limit");
-    if (options.maxPoints || options.maxTriangles)
-        throw InvalidInputError("Refiner: tiles take no point or triangle limit yet; give a "
-                                "maximum error alone");
     if (!options.maxError && !options.everyCell)
         throw InvalidInputError("Refiner: tiles need a maximum error, which decides the "
-                                "vertices of their borders, or every cell a vertex");
+                                "vertices of their borders (with a point or triangle limit "
+                                "too), or every cell a vertex");
     if (options.spareVertices > 0)
         throw InvalidInputError("Refiner: tiles leave no room for more vertices");
 }

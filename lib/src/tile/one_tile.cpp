@@ -10,8 +10,11 @@
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
+#include "terratin/error.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace terratin::detail {
@@ -106,20 +109,11 @@ std::vector<std::vector<std::uint32_t>> sidesOf(std::size_t width, std::size_t h
 /// Freezes every cell on the tile's sides in `flags` and returns the cells the sides keep
 /// (the refiner's seeds), side after side.
 std::vector<std::uint32_t> seedTheSides(const HeightGrid& tile, double maxError, CellFlags& flags) {
-    std::vector<std::uint32_t> seeds;
-    std::vector<float> elevations;
     for (const std::vector<std::uint32_t>& side :
-         sidesOf(static_cast<std::size_t>(tile.width), static_cast<std::size_t>(tile.height))) {
-        elevations.clear();
-        for (const std::uint32_t cell : side)
-            elevations.push_back(tile.z[cell]);
-        for (const std::uint32_t k :
-             keptBorderCells(elevations, sideTolerance(elevations, maxError)))
-            seeds.push_back(side[k]);
+         sidesOf(static_cast<std::size_t>(tile.width), static_cast<std::size_t>(tile.height)))
         for (const std::uint32_t cell : side)
             flags[cell] |= kCellFrozen;
-    }
-    return seeds;
+    return keptSideCells(tile, maxError);
 }
 
 /// Which cells of the tile it does not own: its bottom side and its right one, unless they are
@@ -213,7 +207,40 @@ TinMesh triangulateEveryCell(const HeightGrid& grid, CellFlags& flags, unsigned 
     return mesh;
 }
 
+/// Refuses a tile whose sides and hull alone took more than its share of a point or triangle
+/// limit: the whole would pass the limit.
+void checkTheShares(const TinMesh& mesh, const RefineOptions& options, std::size_t tileRow,
+                    std::size_t tileColumn) {
+    const auto refuse = [&](const std::string& what, std::size_t share, std::size_t kept) {
+        throw InvalidInputError("Refiner: tile " + std::to_string(tileRow) + ", " +
+                                std::to_string(tileColumn) + " gets " + std::to_string(share) +
+                                " " + what + " of the limit, fewer than the " +
+                                std::to_string(kept) + " its hull and sides keep within the " +
+                                "maximum error; raise the limit or the maximum error, or make "
+                                "the tiles larger");
+    };
+    if (options.maxPoints && mesh.vertexCount() > *options.maxPoints)
+        refuse("points", *options.maxPoints, mesh.vertexCount());
+    if (options.maxTriangles && mesh.triangleCount() > *options.maxTriangles)
+        refuse("triangles", *options.maxTriangles, mesh.triangleCount());
+}
+
 } // namespace
+
+std::vector<std::uint32_t> keptSideCells(const HeightGrid& tile, double maxError) {
+    std::vector<std::uint32_t> kept;
+    std::vector<float> elevations;
+    for (const std::vector<std::uint32_t>& side :
+         sidesOf(static_cast<std::size_t>(tile.width), static_cast<std::size_t>(tile.height))) {
+        elevations.clear();
+        for (const std::uint32_t cell : side)
+            elevations.push_back(tile.z[cell]);
+        for (const std::uint32_t k :
+             keptBorderCells(elevations, sideTolerance(elevations, maxError)))
+            kept.push_back(side[k]);
+    }
+    return kept;
+}
 
 double sideTolerance(std::span<const float> side, double maxError) {
     double largest = 0.0;
@@ -259,9 +286,17 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
 
     GreedyRefiner refiner(grid, {}, flags, options, workers);
     refiner.setSeedCells(std::move(seeds));
-    refiner.run(progress);
+    try {
+        refiner.run(progress);
+    } catch (const InvalidInputError& error) { // a share of a limit below the hull's corners
+        throw InvalidInputError("Refiner: tile " + std::to_string(tileRow) + ", " +
+                                std::to_string(tileColumn) + ": " + error.what() +
+                                " (the tile's share of the limit)");
+    }
     copyRefinerCounts(refiner, result);
+    result.stop = refiner.stop();
     result.mesh = refiner.extractInCellOrder();
+    checkTheShares(result.mesh, options, tileRow, tileColumn);
     if (options.validate)
         checkExactlyDelaunay(result.mesh, "a tile's TIN");
     dropHoles(grid, flags, workers.size(), result);

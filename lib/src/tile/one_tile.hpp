@@ -12,7 +12,9 @@
 #include "terratin/refine/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 namespace terratin::detail {
 
@@ -24,8 +26,15 @@ class RoundWorkers;
 /// and a cell exactly at the target along the line must not come out above it.
 double sideTolerance(std::span<const float> side, double maxError);
 
+/// The cells of a tile's four sides that become vertices within `maxError` (chosen from each
+/// side's cells alone, with sideTolerance), side after side, as indices of `tile`'s cells; a
+/// corner kept by both its sides comes twice.
+std::vector<std::uint32_t> keptSideCells(const HeightGrid& tile, double maxError);
+
 /// Refines tile `tile` (row-major among tiles.tileCount()) of `cells` with `options` (maxError
-/// set; tileSize, threads and distribution ignored: the tile runs on `workers`).
+/// set, or everyCell; maxPoints and maxTriangles the tile's shares; tileSize, threads and
+/// distribution ignored: the tile runs on `workers`). Throws InvalidInputError when a share is
+/// below what the tile's hull and sides keep.
 TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
                              const RefineOptions& options, RoundWorkers& workers,
                              const ProgressCallback& progress);

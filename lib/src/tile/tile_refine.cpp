@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -24,6 +25,8 @@ namespace {
 
 void addFigures(const TileRefinement& tile, RefineResult& result) {
     result.maxError = std::max(result.maxError, tile.maxError);
+    if (result.stop == RefineStop::ErrorReached)
+        result.stop = tile.stop; // a tile stopped by its share of a limit
     result.validCells += tile.validCells;
     result.openHoleCells += tile.openHoleCells;
     result.coveredCells += tile.coveredCells;
@@ -42,9 +45,103 @@ struct TileJob {
     CellSource* cells;
     TileGrid tiles;
     RefineOptions options;
+    /// Each tile's share of options.maxPoints and maxTriangles (empty without them).
+    std::vector<std::size_t> pointShares;
+    std::vector<std::size_t> triangleShares;
 
     [[nodiscard]] TilePlace place(std::size_t tile) const { return tiles.placeOf(tile); }
+    [[nodiscard]] RefineOptions optionsOf(std::size_t tile) const {
+        RefineOptions tileOptions = options;
+        if (!pointShares.empty())
+            tileOptions.maxPoints = pointShares[tile];
+        if (!triangleShares.empty())
+            tileOptions.maxTriangles = triangleShares[tile];
+        return tileOptions;
+    }
 };
+
+/// What a limit's shares need to know of a tile, from its cells alone.
+struct TileTally {
+    /// Valid cells the tile owns (its top and left sides, its bottom and right ones only on
+    /// the grid's edge: each cell of the grid once).
+    std::uint64_t ownedCells = 0;
+    /// The vertices its sides keep within the maximum error, and those of them it owns.
+    std::uint64_t sideVertices = 0;
+    std::uint64_t ownedSideVertices = 0;
+};
+
+/// Every tile's tally, reading a tile's window at a time.
+std::vector<TileTally> tallyTiles(CellSource& cells, const TileGrid& tiles, double maxError) {
+    std::vector<TileTally> tallies(tiles.tileCount());
+    for (std::size_t tile = 0; tile < tallies.size(); ++tile) {
+        const TilePlace place = tiles.placeOf(tile);
+        const HeightGrid window =
+            cells.window(static_cast<int>(place.firstRow), static_cast<int>(place.height),
+                         static_cast<int>(place.firstColumn), static_cast<int>(place.width));
+        const bool ownsBottom = tile / tiles.tileColumns() + 1 == tiles.tileRows();
+        const bool ownsRight = tile % tiles.tileColumns() + 1 == tiles.tileColumns();
+        const auto owned = [&](std::size_t cell) {
+            return (ownsBottom || cell / place.width + 1 < place.height) &&
+                   (ownsRight || cell % place.width + 1 < place.width);
+        };
+        TileTally& tally = tallies[tile];
+        for (std::size_t cell = 0; cell < window.cellCount(); ++cell)
+            tally.ownedCells += window.isValid(cell) && owned(cell) ? 1U : 0U;
+        std::vector<std::uint32_t> kept = keptSideCells(window, maxError);
+        std::sort(kept.begin(), kept.end());
+        kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+        tally.sideVertices = kept.size();
+        for (const std::uint32_t cell : kept)
+            tally.ownedSideVertices += owned(cell) ? 1U : 0U;
+    }
+    return tallies;
+}
+
+/// floor(spare * part / whole), exactly in 64 bits (a grid has fewer than 2^32 cells).
+std::uint64_t shareOf(std::uint64_t spare, std::uint64_t part, std::uint64_t whole) {
+    return whole == 0 ? 0 : spare / whole * part + spare % whole * part / whole;
+}
+
+[[noreturn]] void refuseLimit(const std::string& what, std::uint64_t needed, std::uint64_t limit) {
+    throw InvalidInputError("Refiner: the tiles' sides alone take " + std::to_string(needed) +
+                            " " + what + " within the maximum error, more than the limit of " +
+                            std::to_string(limit) +
+                            "; raise the limit or the maximum error, or make the tiles larger");
+}
+
+/// The tiles' shares of a point or triangle limit, when there is one. Points: each tile keeps
+/// its sides' vertices, and what the sides leave of the limit goes to the tiles in proportion to
+/// the valid cells they own; the vertices each tile owns then add up to the limit at most.
+/// Triangles: a tile's sides' vertices alone make that many less 2 triangles; what those leave
+/// is shared the same way, and every triangle is one tile's.
+void shareTheLimits(TileJob& job) {
+    if (!job.options.maxPoints && !job.options.maxTriangles)
+        return;
+    const std::vector<TileTally> tallies =
+        tallyTiles(*job.cells, job.tiles, *job.options.maxError);
+    std::uint64_t cells = 0;
+    std::uint64_t sidePoints = 0;
+    std::uint64_t sideTriangles = 0;
+    for (const TileTally& tally : tallies) {
+        cells += tally.ownedCells;
+        sidePoints += tally.ownedSideVertices;
+        sideTriangles += std::max<std::uint64_t>(tally.sideVertices, 2) - 2;
+    }
+    if (const std::optional<std::size_t> limit = job.options.maxPoints) {
+        if (sidePoints > *limit)
+            refuseLimit("points", sidePoints, *limit);
+        for (const TileTally& tally : tallies)
+            job.pointShares.push_back(tally.sideVertices +
+                                      shareOf(*limit - sidePoints, tally.ownedCells, cells));
+    }
+    if (const std::optional<std::size_t> limit = job.options.maxTriangles) {
+        if (sideTriangles > *limit)
+            refuseLimit("triangles", sideTriangles, *limit);
+        for (const TileTally& tally : tallies)
+            job.triangleShares.push_back(std::max<std::uint64_t>(tally.sideVertices, 2) - 2 +
+                                         shareOf(*limit - sideTriangles, tally.ownedCells, cells));
+    }
+}
 
 /// Joins tiles in tile order, whatever order they are refined in.
 class TileJoin {
@@ -58,7 +155,7 @@ public:
              next = m_waiting.find(m_joined)) {
             // The guarantee, checked before the tile goes anywhere.
             const double bound = m_job->options.maxError.value_or(0.0); // every cell: 0
-            if (next->second.maxError > bound)
+            if (next->second.stop == RefineStop::ErrorReached && next->second.maxError > bound)
                 throw Error("Refiner: check failed: a covered cell of tile " +
                             std::to_string(m_joined) + " is " +
                             std::to_string(next->second.maxError) +
@@ -109,8 +206,8 @@ void refineEveryTile(const TileJob& job, RoundWorkers& workers, TileJoin& join,
                                     static_cast<double>(count),
                                 message);
             };
-        join.take(tile,
-                  refineOneTile(*job.cells, job.tiles, tile, job.options, workers, tileProgress));
+        join.take(tile, refineOneTile(*job.cells, job.tiles, tile, job.optionsOf(tile), workers,
+                                      tileProgress));
     }
 }
 
@@ -143,16 +240,21 @@ RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
     TileJob job{&cells,
                 TileGrid(static_cast<std::size_t>(cells.width()),
                          static_cast<std::size_t>(cells.height()), options.tileSize),
-                options};
+                options,
+                {},
+                {}};
     job.options.tileSize = 0;
     job.options.threads = result.threads;
     job.options.distribution = nullptr;
 
     RoundWorkers workers(result.threads);
     TileDistribution* const distribution = options.distribution;
+    if (distribution == nullptr || !distribution->coordinates())
+        shareTheLimits(job); // where tiles are refined
     if (distribution != nullptr && !distribution->coordinates()) {
         distribution->serve([&](std::size_t tile) {
-            return packTile(refineOneTile(cells, job.tiles, tile, job.options, workers, progress));
+            return packTile(
+                refineOneTile(cells, job.tiles, tile, job.optionsOf(tile), workers, progress));
         });
         return result; // the coordinator has the TIN
     }

@@ -62,6 +62,7 @@ private:
 /// Every field of a TileRefinement, in one order for both directions.
 template <class Visitor, class Tile> void visitTile(Visitor& visitor, Tile& tile) {
     visitor.value(tile.maxError);
+    visitor.value(tile.stop);
     visitor.value(tile.sumSquares);
     for (auto* count :
          {&tile.validCells, &tile.openHoleCells, &tile.coveredCells, &tile.droppedTriangles,

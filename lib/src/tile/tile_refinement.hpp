@@ -3,6 +3,7 @@
 /// One tile's refined TIN and figures, and their bytes for another process (issue 25's MPI
 /// ranks, refine/tile_distribution.hpp).
 
+#include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <cstddef>
@@ -17,6 +18,9 @@ struct TileRefinement {
     TinMesh mesh;
     /// Largest error over every valid cell of the tile, its sides' included.
     double maxError = 0.0;
+    /// What stopped the tile's refiner: the error reached, or the tile's share of a point or
+    /// triangle limit.
+    RefineStop stop = RefineStop::ErrorReached;
     /// Over the cells the tile owns (its top and left sides, and its bottom and right ones only
     /// on the grid's edge, so that each cell of the grid has one owner): valid cells, open hole
     /// cells, valid cells inside a kept triangle, and the sum of their squared errors.

@@ -408,6 +408,40 @@ TEST(TileRefinement, PackedAndUnpacked_TheSame_ACutMessageRefused) {
     EXPECT_THROW(static_cast<void>(detail::unpackTile(longer)), Error);
 }
 
+TEST(TiledRefine, APointOrTriangleLimit_SharedAmongTheTiles_HoldsForTheWhole) {
+    // A nodata block over the first tiles: the shares follow the valid cells each tile owns.
+    const HeightGrid rough = test::roughTerrain(97, 83, 7);
+    const HeightGrid grid = test::makeGrid(97, 83, [&](int row, int col) {
+        return row < 30 && col < 50 ? kNoData : double{rough.z[row * 97 + col]};
+    });
+    const RefineResult free = refine(grid, tiled(2.0, 40));
+    for (const bool points : {true, false}) {
+        SCOPED_TRACE(points ? "point limit" : "triangle limit");
+        RefineOptions options = tiled(2.0, 40);
+        const std::size_t limit =
+            (points ? free.mesh.vertexCount() : free.mesh.triangleCount()) * 2 / 3;
+        if (points)
+            options.maxPoints = limit;
+        else
+            options.maxTriangles = limit;
+        const RefineResult result = refine(grid, options);
+        const std::size_t count =
+            points ? result.mesh.vertexCount() : result.mesh.triangleCount();
+        EXPECT_LE(count, limit);
+        EXPECT_GT(count, limit / 2);
+        EXPECT_EQ(result.stop, points ? RefineStop::PointLimit : RefineStop::TriangleLimit);
+        expectConforming(result.mesh);
+        expectSidesFromTheirCells(result.mesh, grid, 40, 2.0);
+        const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, 1);
+        EXPECT_EQ(check.uncoveredValid, 0U);
+        EXPECT_GT(check.maxError, 2.0); // stopped by the limit before the error
+    }
+    // A share below what a tile's hull and sides keep: refused, not passed.
+    RefineOptions tooFew = tiled(2.0, 40);
+    tooFew.maxPoints = 40;
+    EXPECT_THROW(refine(grid, tooFew), InvalidInputError);
+}
+
 RefineOptions everyCell(std::size_t tileSize, unsigned threads = 1) {
     RefineOptions options = tiled(0.0, tileSize, threads);
     options.maxError.reset();
@@ -470,9 +504,6 @@ TEST(TiledRefine, RefusesWhatTilesCannotDo) {
     noError.maxError.reset();
     noError.maxPoints = 100;
     EXPECT_THROW(refine(grid, noError), InvalidInputError);
-    RefineOptions withLimit = tiled(1.0, 16);
-    withLimit.maxTriangles = 100;
-    EXPECT_THROW(refine(grid, withLimit), InvalidInputError);
     HeightGrid rotated = grid;
     rotated.geoTransform[2] = 0.1;
     EXPECT_THROW(refine(rotated, tiled(1.0, 16)), InvalidInputError);

@@ -84,8 +84,11 @@ struct RefineOptions {
     /// share their border cells (issue 25); 0 = the whole grid at once. The tiles' TINs join
     /// without cracks: each border's vertices are chosen from its cells alone, within
     /// maxError (docs/algorithms.md, "Tiles"), and each tile's TIN is exactly Delaunay, the
-    /// whole only within tiles. Needs maxError and a north-up grid without positions; takes no
-    /// point or triangle limit and no spareVertices.
+    /// whole only within tiles. Needs maxError (or everyCell) and a north-up grid without
+    /// positions; takes no spareVertices. A point or triangle limit is shared among the tiles
+    /// in proportion to the valid cells each owns (counted in a first pass over the cells), so
+    /// the whole keeps to it; a tile whose share is below what its hull and sides keep within
+    /// maxError fails the run.
     std::size_t tileSize = 0;
     /// With tiles: full resolution, every valid cell a vertex. Each tile's cells are
     /// triangulated at once (exactly Delaunay, triangulate()) instead of refined, its open holes
