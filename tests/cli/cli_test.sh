@@ -501,6 +501,9 @@ case "$case_name" in
     expect_one_error_line "edges"
     run 1 build "$sample" -o bad.obj --max-error 1 --memory-limit 1G --quiet
     expect_one_error_line "GeoPackage or a PLY"
+    printf '0 0 1\n1 0 2\n0 1 3\n' >points.xyz
+    run 1 build points.xyz -o bad.gpkg --memory-limit 1G --quiet
+    expect_one_error_line "takes a DEM raster"
     [ -z "$(ls bad.* 2>/dev/null)" ] || fail "output written despite an error"
     # An existing output stays as it was without --overwrite.
     cp streamed.ply before.ply

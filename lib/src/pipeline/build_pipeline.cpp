@@ -11,6 +11,7 @@
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
 #include "terratin/io/height_grid_reader.hpp"
+#include "terratin/io/input_reader.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
 #include "terratin/refine/mesh_filter.hpp"
@@ -198,11 +199,25 @@ TinMesh takeConstrainedMesh(detail::ConstrainedRefinement corrected, const Build
 
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
 // The refiner works on one raster's grid; scaling z would change what E means.
+// What takes a DEM alone, as its options name it: tiles, or a simplification.
+std::string demOnlyWork(const BuildOptions& options) {
+    const OptionSpelling spelling = options.optionSpelling;
+    if (options.memoryLimit)
+        return "Tiles (" + optionName("memory_limit", spelling) + ")";
+    if (options.refine && options.refine->tileSize > 0)
+        return "Tiles (" + optionName("tile_size", spelling) + ")";
+    return "Simplification (" + optionName("max_error", spelling) + "...)";
+}
+
 void checkOneRasterInput(const BuildOptions& options) {
     const OptionSpelling spelling = options.optionSpelling;
     if (options.inputs.size() != 1)
-        throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
-                                "...) takes exactly one raster input");
+        throw InvalidInputError(demOnlyWork(options) + " takes exactly one raster input");
+    if (io::detectInputKind(options.inputs.front()) != io::InputKind::Raster)
+        throw InvalidInputError(demOnlyWork(options) + " takes a DEM raster; '" +
+                                options.inputs.front() +
+                                "' is a point cloud or vector layer: triangulate it without " +
+                                "those options, or grid it first (gdal_grid)");
     if (options.zFactor != 1.0)
         throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
                                 "...) does not combine with " + optionName("z_factor", spelling) +
@@ -306,10 +321,9 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
                           const ProgressCallback& progress, BuildReport report,
                           const Stopwatch& totalTime) {
     checkOneRasterInput(options);
-    const std::string tileSize = optionName("tile_size", options.optionSpelling);
     if (hasConstraints(options))
-        throw InvalidInputError(tileSize +
-                                " does not combine with breaklines, clip, erase or replace "
+        throw InvalidInputError(demOnlyWork(options) +
+                                " do not combine with breaklines, clip, erase or replace "
                                 "polygons yet");
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
@@ -321,8 +335,8 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     const detail::RefineCrs crs =
         detail::chooseRefineCrs(options, extent.extentCentre(), cells.crsWkt(), report);
     if (crs.movesCells())
-        throw InvalidInputError(tileSize +
-                                " needs the DEM in the TIN's CRS; warp it first (gdalwarp "
+        throw InvalidInputError(demOnlyWork(options) +
+                                " need the DEM in the TIN's CRS; warp it first (gdalwarp "
                                 "-t_srs): it is geographic, or " +
                                 optionName("t_srs", options.optionSpelling) + " asks for another");
     describeCrs(crs.target, report);
