@@ -278,14 +278,20 @@ BuildReport writeRefinedTin(TinMesh mesh, int gridWidth, const std::string& targ
     return finishReport(std::move(report), written, writeTime, totalTime, progress);
 }
 
+// The counts of a TIN whose tiles went to files as they came, never joined.
+void reportTileCounts(std::uint64_t points, std::uint64_t triangles, const Stopwatch& refineTime,
+                      BuildReport& report) {
+    report.points = points;
+    report.vertices = points;
+    report.triangles = triangles;
+    report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
+}
+
 // --tiles-dir: the tiles are written as they came; the index last, which keeps them all.
 BuildReport commitTileFiles(detail::TileFiles& files, BuildReport report,
                             const Stopwatch& refineTime, const Stopwatch& totalTime,
                             const ProgressCallback& progress) {
-    report.points = files.points();
-    report.vertices = files.points();
-    report.triangles = files.triangles();
-    report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
+    reportTileCounts(files.points(), files.triangles(), refineTime, report);
     const Stopwatch writeTime;
     files.commit();
     io::TinWriteResult written;
@@ -298,10 +304,7 @@ BuildReport finishStreamedTin(detail::StreamedTin& tin, const std::uint64_t writ
                               const BuildOptions& options, BuildReport report,
                               const Stopwatch& refineTime, const Stopwatch& totalTime,
                               const ProgressCallback& progress) {
-    report.points = tin.points();
-    report.vertices = tin.points();
-    report.triangles = tin.triangles();
-    report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
+    reportTileCounts(tin.points(), tin.triangles(), refineTime, report);
     if (tin.heldBytes() > writerBytes)
         detail::notify(options, report,
                        "the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +

@@ -7,10 +7,9 @@
 #include "../refine/greedy_refiner.hpp"
 #include "../refine/round_workers.hpp"
 
+#include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"
 #include "terratin/triangulate/triangulate.hpp"
-
-#include "terratin/error.hpp"
 
 #include <algorithm>
 #include <cmath>

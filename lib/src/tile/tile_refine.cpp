@@ -103,8 +103,8 @@ std::uint64_t shareOf(std::uint64_t spare, std::uint64_t part, std::uint64_t who
 }
 
 [[noreturn]] void refuseLimit(const std::string& what, std::uint64_t needed, std::uint64_t limit) {
-    throw InvalidInputError("Refiner: the tiles' sides alone take " + std::to_string(needed) +
-                            " " + what + " within the maximum error, more than the limit of " +
+    throw InvalidInputError("Refiner: the tiles' sides alone take " + std::to_string(needed) + " " +
+                            what + " within the maximum error, more than the limit of " +
                             std::to_string(limit) +
                             "; raise the limit or the maximum error, or make the tiles larger");
 }
@@ -117,8 +117,7 @@ std::uint64_t shareOf(std::uint64_t spare, std::uint64_t part, std::uint64_t who
 void shareTheLimits(TileJob& job) {
     if (!job.options.maxPoints && !job.options.maxTriangles)
         return;
-    const std::vector<TileTally> tallies =
-        tallyTiles(*job.cells, job.tiles, *job.options.maxError);
+    const std::vector<TileTally> tallies = tallyTiles(*job.cells, job.tiles, *job.options.maxError);
     std::uint64_t cells = 0;
     std::uint64_t sidePoints = 0;
     std::uint64_t sideTriangles = 0;

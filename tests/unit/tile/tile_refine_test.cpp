@@ -425,8 +425,7 @@ TEST(TiledRefine, APointOrTriangleLimit_SharedAmongTheTiles_HoldsForTheWhole) {
         else
             options.maxTriangles = limit;
         const RefineResult result = refine(grid, options);
-        const std::size_t count =
-            points ? result.mesh.vertexCount() : result.mesh.triangleCount();
+        const std::size_t count = points ? result.mesh.vertexCount() : result.mesh.triangleCount();
         EXPECT_LE(count, limit);
         EXPECT_GT(count, limit / 2);
         EXPECT_EQ(result.stop, points ? RefineStop::PointLimit : RefineStop::TriangleLimit);
