@@ -199,13 +199,13 @@ TinMesh takeConstrainedMesh(detail::ConstrainedRefinement corrected, const Build
 
 // runBuild with BuildOptions::refine: the raster as a HeightGrid, refined, holes cut, written.
 // The refiner works on one raster's grid; scaling z would change what E means.
-// What takes a DEM alone, as its options name it: tiles, or a simplification.
+// What takes a DEM alone, as its options name it: tiling, or a simplification.
 std::string demOnlyWork(const BuildOptions& options) {
     const OptionSpelling spelling = options.optionSpelling;
     if (options.memoryLimit)
-        return "Tiles (" + optionName("memory_limit", spelling) + ")";
+        return "Tiling (" + optionName("memory_limit", spelling) + ")";
     if (options.refine && options.refine->tileSize > 0)
-        return "Tiles (" + optionName("tile_size", spelling) + ")";
+        return "Tiling (" + optionName("tile_size", spelling) + ")";
     return "Simplification (" + optionName("max_error", spelling) + "...)";
 }
 
@@ -213,15 +213,16 @@ void checkOneRasterInput(const BuildOptions& options) {
     const OptionSpelling spelling = options.optionSpelling;
     if (options.inputs.size() != 1)
         throw InvalidInputError(demOnlyWork(options) + " takes exactly one raster input");
+    if (options.zFactor != 1.0)
+        throw InvalidInputError(demOnlyWork(options) + " does not combine with " +
+                                optionName("z_factor", spelling) +
+                                "; scale the DEM first (gdal_calc)");
+    // The options first, then the file.
     if (io::detectInputKind(options.inputs.front()) != io::InputKind::Raster)
         throw InvalidInputError(demOnlyWork(options) + " takes a DEM raster; '" +
                                 options.inputs.front() +
                                 "' is a point cloud or vector layer: triangulate it without " +
                                 "those options, or grid it first (gdal_grid)");
-    if (options.zFactor != 1.0)
-        throw InvalidInputError("Simplification (" + optionName("max_error", spelling) +
-                                "...) does not combine with " + optionName("z_factor", spelling) +
-                                "; scale the DEM first (gdal_calc)");
 }
 
 RefineOptions refineOptionsOf(const BuildOptions& options) {
@@ -326,7 +327,7 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     checkOneRasterInput(options);
     if (hasConstraints(options))
         throw InvalidInputError(demOnlyWork(options) +
-                                " do not combine with breaklines, clip, erase or replace "
+                                " does not combine with breaklines, clip, erase or replace "
                                 "polygons yet");
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
@@ -339,7 +340,7 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
         detail::chooseRefineCrs(options, extent.extentCentre(), cells.crsWkt(), report);
     if (crs.movesCells())
         throw InvalidInputError(demOnlyWork(options) +
-                                " need the DEM in the TIN's CRS; warp it first (gdalwarp "
+                                " needs the DEM in the TIN's CRS; warp it first (gdalwarp "
                                 "-t_srs): it is geographic, or " +
                                 optionName("t_srs", options.optionSpelling) + " asks for another");
     describeCrs(crs.target, report);
