@@ -370,6 +370,12 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
             report.longEdgeTriangles += dropLongEdgeTriangles(tin, *options.maxEdge);
         return tin.triangleCount() > 0;
     };
+    // A tile's sourceIndex is the grid's cell index.
+    const auto cellsOfTile = [&](const TinMesh& tin) {
+        return options.nodes ? vertexCells(tin, static_cast<std::uint64_t>(extent.width),
+                                           [](std::uint32_t cell) { return std::uint64_t{cell}; })
+                             : std::vector<io::RasterCell>{};
+    };
     std::optional<detail::TileFiles> files;
     std::optional<detail::StreamedTin> streamed;
     if (!options.tilesDir.empty() && coordinates) {
@@ -377,11 +383,7 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
         refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
             if (!keptTriangles(tin))
                 return; // every triangle too long: no file
-            files->write(tile, tin,
-                         options.nodes
-                             ? vertexCells(tin, static_cast<std::uint64_t>(extent.width),
-                                           [](std::uint32_t cell) { return std::uint64_t{cell}; })
-                             : std::vector<io::RasterCell>{});
+            files->write(tile, tin, cellsOfTile(tin));
         };
     } else if (options.memoryLimit && coordinates) {
         streamed.emplace(options.output, writeOptions, extent.width, extent.height,
@@ -389,7 +391,7 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
                          optionName("memory_limit", options.optionSpelling));
         refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
             keptTriangles(tin); // a tile's vertices stay, as in the joined TIN
-            streamed->write(tile, tin);
+            streamed->write(tile, tin, cellsOfTile(tin));
         };
     }
     RefineResult result = refineTiles(cells, refineOptions,

@@ -8,20 +8,15 @@ StreamedTin::StreamedTin(const std::filesystem::path& output,
                          const io::TinWriteOptions& writeOptions, std::size_t width,
                          std::size_t height, std::size_t tileSize, std::string_view pieceBy)
     : m_writer(io::detail::openTinStream(output, writeOptions, pieceBy)),
-      m_tiles(width, height, tileSize), m_width(width), m_numbers(width),
-      m_withCells(writeOptions.nodes) {}
+      m_tiles(width, height, tileSize), m_numbers(width) {}
 
-void StreamedTin::write(std::size_t tile, const TinMesh& tin) {
+void StreamedTin::write(std::size_t tile, const TinMesh& tin,
+                        std::span<const io::RasterCell> vertexCells) {
     const TilePlace place = m_tiles.placeOf(tile);
     std::vector<std::uint32_t> numbers(tin.vertexCount());
     for (std::size_t v = 0; v < numbers.size(); ++v)
         numbers[v] = m_numbers.number(tin.sourceIndex[v], place).number;
-    std::vector<io::RasterCell> cells;
-    if (m_withCells)
-        for (const std::uint32_t cell : tin.sourceIndex)
-            cells.push_back({static_cast<std::int64_t>(cell / m_width),
-                             static_cast<std::int64_t>(cell % m_width)});
-    m_writer->append({&tin, numbers, cells});
+    m_writer->append({&tin, numbers, vertexCells});
 }
 
 io::TinWriteResult StreamedTin::finish(const ProgressCallback& progress) {

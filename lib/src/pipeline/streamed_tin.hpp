@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string_view>
 
 namespace terratin::detail {
@@ -25,15 +26,15 @@ class StreamedTin {
 public:
     /// Opens `output` for the tiles of a grid of `width` x `height` cells cut in tiles of
     /// `tileSize` (see io::detail::openTinStream for what is checked and refused; `pieceBy`
-    /// names the option that asked for it). writeOptions.nodes: the nodes layer gets each
-    /// vertex's raster cell.
+    /// names the option that asked for it).
     StreamedTin(const std::filesystem::path& output, const io::TinWriteOptions& writeOptions,
                 std::size_t width, std::size_t height, std::size_t tileSize,
                 std::string_view pieceBy);
 
     /// Writes tile `tile` (row-major among the tiles, each once, in order), whose sourceIndex
-    /// numbers the grid's cells.
-    void write(std::size_t tile, const TinMesh& tin);
+    /// numbers the grid's cells; `vertexCells` as TinWriteOptions' (empty without a nodes
+    /// layer).
+    void write(std::size_t tile, const TinMesh& tin, std::span<const io::RasterCell> vertexCells);
     /// Completes the file and puts it in place.
     io::TinWriteResult finish(const ProgressCallback& progress);
 
@@ -45,9 +46,7 @@ public:
 private:
     std::unique_ptr<io::detail::TinStreamWriter> m_writer;
     TileGrid m_tiles;
-    std::size_t m_width;
     JoinedVertexNumbers m_numbers;
-    bool m_withCells;
 };
 
 } // namespace terratin::detail

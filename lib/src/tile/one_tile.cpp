@@ -115,19 +115,8 @@ std::vector<std::uint32_t> seedTheSides(const HeightGrid& tile, double maxError,
     return keptSideCells(tile, maxError);
 }
 
-/// Which cells of the tile it does not own: its bottom side and its right one, unless they are
-/// the grid's (tile_refinement.hpp).
-struct Unowned {
-    bool bottom = false;
-    bool right = false;
-
-    [[nodiscard]] bool operator()(std::size_t cell, std::size_t width, std::size_t height) const {
-        return (bottom && cell / width == height - 1) || (right && cell % width == width - 1);
-    }
-};
-
 /// Counts the owned valid and open hole cells of the tile.
-void countCells(const CellFlags& flags, std::size_t width, std::size_t height, Unowned unowned,
+void countCells(const CellFlags& flags, std::size_t width, std::size_t height, UnownedSides unowned,
                 TileRefinement& tile) {
     for (std::size_t cell = 0; cell < flags.size(); ++cell) {
         if (unowned(cell, width, height))
@@ -151,7 +140,7 @@ void dropHoles(const HeightGrid& grid, CellFlags& flags, unsigned threads, TileR
 
 /// Measures the tile's largest error over every valid cell, the sides' included, in the pixel
 /// coordinates its scans used; and the covered cells it owns with their squared errors.
-void measure(const HeightGrid& grid, CellFlags& flags, Unowned unowned, unsigned threads,
+void measure(const HeightGrid& grid, CellFlags& flags, UnownedSides unowned, unsigned threads,
              TileRefinement& tile) {
     const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
     tile.maxError = measureErrors(tile.mesh, view, threads).maxError;
@@ -171,7 +160,7 @@ void measure(const HeightGrid& grid, CellFlags& flags, Unowned unowned, unsigned
 
 /// The measure of a tile whose every valid cell is a vertex: no error anywhere; a cell it owns
 /// is covered while a triangle keeps its vertex (the measure's rule for vertex cells).
-void measureEveryCell(const HeightGrid& grid, Unowned unowned, TileRefinement& tile) {
+void measureEveryCell(const HeightGrid& grid, UnownedSides unowned, TileRefinement& tile) {
     const auto width = static_cast<std::size_t>(grid.width);
     const auto height = static_cast<std::size_t>(grid.height);
     std::vector<std::uint8_t> used(tile.mesh.vertexCount(), 0);
@@ -269,7 +258,7 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     const HeightGrid grid = gridWithin(margin, outer, inner);
 
     TileRefinement result;
-    const Unowned unowned{tileRow + 1 < tiles.tileRows(), tileColumn + 1 < tiles.tileColumns()};
+    const UnownedSides unowned = tiles.unownedSidesOf(tile);
     countCells(flags, inner.width(), inner.height(), unowned, result);
     if (!validCellsSpanArea(grid))
         return result;

@@ -25,6 +25,19 @@ struct TilePlace {
     std::size_t height = 0;
 };
 
+/// The cells of a tile that belong to its neighbours, so that each cell of the grid has one
+/// owner: its bottom side and its right one belong to the tiles below and to the right, unless
+/// they are the grid's (tile_refinement.hpp).
+struct UnownedSides {
+    bool bottom = false;
+    bool right = false;
+
+    /// Whether cell `cell` of a width x height tile (row-major) is on an unowned side.
+    [[nodiscard]] bool operator()(std::size_t cell, std::size_t width, std::size_t height) const {
+        return (bottom && cell / width == height - 1) || (right && cell % width == width - 1);
+    }
+};
+
 /// The tiles of a grid of `width` x `height` cells: tile column k spans the cells
 /// k * tileSize .. min((k + 1) * tileSize, width - 1), and likewise for rows, so neighbouring
 /// tiles share one column (or row) of cells and the last tile holds what is left (as little as
@@ -48,6 +61,10 @@ public:
         const CellRange rows = rowsOf(tile / tileColumns());
         const CellRange columns = columnsOf(tile % tileColumns());
         return {rows.first, columns.first, columns.count(), rows.count()};
+    }
+    /// Which sides of tile `tile` its neighbours own.
+    [[nodiscard]] UnownedSides unownedSidesOf(std::size_t tile) const {
+        return {tile / tileColumns() + 1 < tileRows(), tile % tileColumns() + 1 < tileColumns()};
     }
 
 private:

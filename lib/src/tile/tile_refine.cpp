@@ -78,11 +78,9 @@ std::vector<TileTally> tallyTiles(CellSource& cells, const TileGrid& tiles, doub
         const HeightGrid window =
             cells.window(static_cast<int>(place.firstRow), static_cast<int>(place.height),
                          static_cast<int>(place.firstColumn), static_cast<int>(place.width));
-        const bool ownsBottom = tile / tiles.tileColumns() + 1 == tiles.tileRows();
-        const bool ownsRight = tile % tiles.tileColumns() + 1 == tiles.tileColumns();
+        const UnownedSides unowned = tiles.unownedSidesOf(tile);
         const auto owned = [&](std::size_t cell) {
-            return (ownsBottom || cell / place.width + 1 < place.height) &&
-                   (ownsRight || cell % place.width + 1 < place.width);
+            return !unowned(cell, place.width, place.height);
         };
         TileTally& tally = tallies[tile];
         for (std::size_t cell = 0; cell < window.cellCount(); ++cell)
