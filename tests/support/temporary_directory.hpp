@@ -35,9 +35,11 @@ public:
         return (m_path / name).string();
     }
     /// Names of the entries in the directory.
-    [[nodiscard]] std::set<std::string> entries() const {
+    [[nodiscard]] std::set<std::string> entries() const { return entriesOf(m_path); }
+    /// Names of the entries in `directory`.
+    [[nodiscard]] static std::set<std::string> entriesOf(const std::filesystem::path& directory) {
         std::set<std::string> names;
-        for (const auto& entry : std::filesystem::directory_iterator(m_path))
+        for (const auto& entry : std::filesystem::directory_iterator(directory))
             names.insert(entry.path().filename().string());
         return names;
     }

@@ -3,6 +3,7 @@
 #include "atomic_output.hpp"
 #include "buffered_file.hpp"
 #include "gpkg/gpkg_tin_stream.hpp"
+#include "ogr_tin_stream.hpp"
 #include "ply_writer.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -111,8 +112,8 @@ void checkTinStreamOptions(const TinWriteOptions& options, std::string_view piec
     const auto refuse = [&](const std::string& what) {
         throw InvalidInputError(std::string(pieceBy) + " writes the TIN tile by tile, " + what);
     };
-    if (options.format != TinFormat::GeoPackage && options.format != TinFormat::Ply)
-        refuse("to a GeoPackage or a PLY only (or one file a tile with " +
+    if (!isOgrFormat(options.format) && options.format != TinFormat::Ply)
+        refuse("to a GeoPackage, Shapefile, FlatGeobuf or PLY only (or one file a tile with " +
                options.optionName("tiles_dir") + ")");
     if (options.edges)
         refuse("without " + options.optionName("edges") +
@@ -129,9 +130,14 @@ openTinStream(const fs::path& output, const TinWriteOptions& options, std::strin
     initialiseGdal();
     checkTinStreamOptions(options, pieceBy);
     checkTinOutput(output, options);
-    if (options.format == TinFormat::Ply)
+    switch (options.format) {
+    case TinFormat::Ply:
         return std::make_unique<PlyStreamWriter>(output, options);
-    return openGpkgTinStream(output, options);
+    case TinFormat::GeoPackage:
+        return openGpkgTinStream(output, options);
+    default:
+        return openOgrTinStream(output, options);
+    }
 }
 
 } // namespace terratin::io::detail

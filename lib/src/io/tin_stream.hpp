@@ -2,8 +2,9 @@
 /// @file
 /// One TIN file written piece by piece, as the tiles of a tiled build are done (issue 25's
 /// bounded memory): each piece's vertices and triangles go to disk at once, and only what the
-/// file's end needs stays in memory (the GeoPackage's index boxes, the PLY's counts).
-/// GeoPackage and PLY; writeTin takes the whole TIN in every format.
+/// file's end needs stays in memory (the GeoPackage's index boxes, the PLY's counts,
+/// GDAL's FlatGeobuf index entries).
+/// GeoPackage, Shapefile, FlatGeobuf and PLY; writeTin takes the whole TIN in every format.
 
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
@@ -44,7 +45,8 @@ public:
     /// during the run, without overwrite).
     virtual TinWriteResult finish(const ProgressCallback& progress) = 0;
 
-    /// Bytes kept in memory until finish() (the GeoPackage's index boxes).
+    /// Bytes kept in memory until finish() (the GeoPackage's index boxes, the FlatGeobuf's
+    /// index entries).
     [[nodiscard]] virtual std::uint64_t heldBytes() const { return 0; }
     [[nodiscard]] std::uint64_t vertexCount() const { return m_vertices; }
     [[nodiscard]] std::uint64_t triangleCount() const { return m_triangles; }
@@ -72,9 +74,8 @@ private:
 };
 
 /// Refuses (InvalidInputError, naming options as options.optionName does) what a TIN written
-/// piece by piece cannot be: a format other than GeoPackage or PLY, an edges layer (its
-/// triangles' neighbours across pieces), appendLayer, a QGIS style; then what writeTin
-/// refuses of the options.
+/// piece by piece cannot be: 2DM, OBJ or LandXML, an edges layer (an edge's triangles may lie
+/// in two pieces), appendLayer, a QGIS style; then what writeTin refuses of the options.
 void checkTinStreamOptions(const TinWriteOptions& options, std::string_view pieceBy);
 
 /// The writer of `output`, after the checks writeTin makes before its first byte (the

@@ -10,6 +10,7 @@
 #include "landxml_writer.hpp"
 #include "obj_writer.hpp"
 #include "ogr_tin_writer.hpp"
+#include "ogr_triangle_layer.hpp"
 #include "ply_writer.hpp"
 #include "qgis_style.hpp"
 #include "terratin/error.hpp"

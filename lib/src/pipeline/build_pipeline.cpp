@@ -309,7 +309,7 @@ BuildReport finishStreamedTin(detail::StreamedTin& tin, const std::uint64_t writ
     if (tin.heldBytes() > writerBytes)
         detail::notify(options, report,
                        "the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +
-                           " MiB of boxes, more than the share of " +
+                           " MiB, more than the share of " +
                            optionName("memory_limit", options.optionSpelling) +
                            " set aside for it; give a larger limit or " +
                            optionName("no_spatial_index", options.optionSpelling));

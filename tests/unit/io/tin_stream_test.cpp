@@ -1,6 +1,7 @@
 // A TIN written piece by piece (issue 25's --memory-limit) is the TIN written whole: the same
-// PLY bytes, the same GeoPackage rows with a sound spatial index; what cannot be streamed is
-// refused before anything is written, and a stream never finished leaves no file.
+// PLY and Shapefile bytes, the same GeoPackage rows with a sound spatial index, the same
+// FlatGeobuf features; what cannot be streamed is refused before anything is written, and a
+// stream never finished leaves no file.
 
 #include "gpkg_tin_stream.hpp"
 
@@ -10,7 +11,13 @@
 #include "temporary_directory.hpp"
 #include "terratin/error.hpp"
 
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
 
 #include <fstream>
 #include <iterator>
@@ -89,6 +96,21 @@ TinWriteOptions streamOptions(TinFormat format) {
 }
 
 constexpr int kGrid = 9;
+constexpr std::array kStreamedFormats{TinFormat::Ply, TinFormat::GeoPackage, TinFormat::Shapefile,
+                                      TinFormat::FlatGeobuf};
+
+std::string outputName(TinFormat format) {
+    switch (format) {
+    case TinFormat::Ply:
+        return "t.ply";
+    case TinFormat::GeoPackage:
+        return "t.gpkg";
+    case TinFormat::Shapefile:
+        return "t.shp";
+    default:
+        return "t.fgb";
+    }
+}
 const std::vector<std::size_t> kPieces{0, 40, 41, 90};
 
 TEST(TinStream, APlyWrittenPieceByPiece_IsThePlyOfTheWholeTin) {
@@ -138,24 +160,77 @@ TEST(TinStream, AGeoPackageWrittenPieceByPiece_HasTheWholeTinsRows_AndASoundInde
               test::sqliteRows(directory / "whole.gpkg", tree));
 }
 
+TEST(TinStream, AShapefileWrittenPieceByPiece_IsTheShapefileOfTheWholeTin) {
+    const TemporaryDirectory directory;
+    std::filesystem::create_directory(directory / "streamed");
+    std::filesystem::create_directory(directory / "whole");
+    const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    const TinWriteOptions options = streamOptions(TinFormat::Shapefile);
+    streamPieces(cut, directory / "streamed" / "tin.shp", options);
+    writeTin(cut.whole, directory / "whole" / "tin.shp", options);
+    const std::set<std::string> files{"tin.shp", "tin.shx", "tin.dbf", "tin.prj", "tin.cpg"};
+    EXPECT_EQ(TemporaryDirectory::entriesOf(directory / "streamed"), files);
+    for (const std::string& file : files)
+        EXPECT_EQ(bytesOf(directory / "streamed" / file), bytesOf(directory / "whole" / file))
+            << file;
+}
+
+/// Each feature of the only layer of `path` as its geometry's WKT and its fields, sorted: a
+/// FlatGeobuf's index decides the order its features are stored in.
+std::vector<std::string> sortedFeatures(const std::filesystem::path& path) {
+    GDALDatasetUniquePtr dataset(
+        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    EXPECT_NE(dataset, nullptr) << path;
+    std::vector<std::string> features;
+    if (dataset == nullptr)
+        return features;
+    OGRLayer* layer = dataset->GetLayer(0);
+    for (auto& feature : *layer) {
+        std::string text = feature->GetGeometryRef()->exportToWkt();
+        for (int field = 0; field < feature->GetFieldCount(); ++field)
+            text += std::string(" ") + feature->GetFieldAsString(field);
+        features.push_back(std::move(text));
+    }
+    std::sort(features.begin(), features.end());
+    return features;
+}
+
+TEST(TinStream, AFlatGeobufWrittenPieceByPiece_HasTheWholeTinsFeatures_AndItsIndex) {
+    const TemporaryDirectory directory;
+    const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    for (const bool index : {true, false}) {
+        TinWriteOptions options = streamOptions(TinFormat::FlatGeobuf);
+        options.spatialIndex = index;
+        options.overwrite = true;
+        streamPieces(cut, directory / "streamed.fgb", options);
+        writeTin(cut.whole, directory / "whole.fgb", options);
+        const std::vector<std::string> streamed = sortedFeatures(directory / "streamed.fgb");
+        EXPECT_EQ(streamed.size(), cut.whole.triangleCount());
+        EXPECT_EQ(streamed, sortedFeatures(directory / "whole.fgb"));
+        GDALDatasetUniquePtr dataset(GDALDataset::Open((directory / "streamed.fgb").c_str(),
+                                                       GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+        ASSERT_NE(dataset, nullptr);
+        EXPECT_EQ(dataset->GetLayer(0)->TestCapability(OLCFastSpatialFilter) != 0, index);
+        EXPECT_EQ(directory.entries(), (std::set<std::string>{"streamed.fgb", "whole.fgb"}));
+    }
+}
+
 TEST(TinStream, ANewVertexNumberedOutOfTurn_IsRefused_AndNothingIsLeft) {
     const TemporaryDirectory directory;
     CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
     cut.numbers[1].back() += 1; // skips a number
-    for (const TinFormat format : {TinFormat::Ply, TinFormat::GeoPackage}) {
-        const std::filesystem::path output =
-            directory / (format == TinFormat::Ply ? "t.ply" : "t.gpkg");
+    for (const TinFormat format : kStreamedFormats) {
+        const std::filesystem::path output = directory / outputName(format);
         EXPECT_THROW(streamPieces(cut, output, streamOptions(format)), InvalidInputError);
-        EXPECT_TRUE(directory.entries().empty());
+        EXPECT_TRUE(directory.entries().empty()) << outputName(format);
     }
 }
 
 TEST(TinStream, AStreamNeverFinished_OrWithoutTriangles_LeavesNoFile) {
     const TemporaryDirectory directory;
     const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
-    for (const TinFormat format : {TinFormat::Ply, TinFormat::GeoPackage}) {
-        const std::filesystem::path output =
-            directory / (format == TinFormat::Ply ? "t.ply" : "t.gpkg");
+    for (const TinFormat format : kStreamedFormats) {
+        const std::filesystem::path output = directory / outputName(format);
         {
             auto writer = openTinStream(output, streamOptions(format), "--memory-limit");
             writer->append({&cut.pieces[0], cut.numbers[0], cut.cells[0]});
@@ -178,7 +253,9 @@ TEST(TinStream, WhatCannotBeWrittenPieceByPiece_IsRefusedBeforeAnyFile) {
         }
         return std::string("<accepted>");
     };
-    EXPECT_NE(refusal(streamOptions(TinFormat::Obj), "t.obj").find("GeoPackage or a PLY"),
+    EXPECT_NE(refusal(streamOptions(TinFormat::Obj), "t.obj").find("FlatGeobuf or PLY only"),
+              std::string::npos);
+    EXPECT_NE(refusal(streamOptions(TinFormat::Shapefile), "t.dbf").find("must end in .shp"),
               std::string::npos);
     TinWriteOptions edges = streamOptions(TinFormat::GeoPackage);
     edges.edges = true;
