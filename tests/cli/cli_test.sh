@@ -405,9 +405,20 @@ case "$case_name" in
     [ "$(report_count triangles)" -le 5000 ] || fail "$(report_count triangles) triangles"
     run 1 build "$sample" -o bad.gpkg --max-error 0.01 --tile-size 16 --max-points 100 --quiet
     expect_one_error_line "sides alone take"
+    # A rotated DEM's tiles are refined in its pixel frame: the north-up twin's triangles (the
+    # same vertex numbers: each vertex a cell), put at the rotated cells' centres.
     rotated_sample rotated.tif
-    run 1 build rotated.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
-    expect_one_error_line "north-up"
+    run 0 build north_up.vrt -o upright.obj --max-error 1 --tile-size 16 --threads 1 --quiet
+    run 0 build rotated.tif -o rotated.obj --max-error 1 --tile-size 16 --threads 1 --json --quiet
+    report_at_most achieved_max_error 1
+    [ "$(grep -c '^f ' rotated.obj)" -gt 100 ] || fail "too few triangles in rotated.obj"
+    cmp -s <(grep '^f ' upright.obj) <(grep '^f ' rotated.obj) ||
+      fail "the rotated DEM's tiles are not its north-up twin's triangles"
+    run 0 build rotated.tif -o rotated.gpkg --max-error 1 --tile-size 16 --memory-limit 1G --quiet
+    [ "$(feature_count_of rotated.gpkg tin)" = "$(grep -c '^f ' rotated.obj)" ] ||
+      fail "the rotated DEM written tile by tile has another triangle count"
+    check=$(sqlite3 rotated.gpkg "SELECT rtreecheck('rtree_tin_geom')")
+    [ "$check" = ok ] || fail "rtreecheck of the rotated tiles: $check"
     gdalwarp -q -t_srs EPSG:4326 small.tif geo.tif || fail "gdalwarp failed"
     run 1 build geo.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
     expect_one_error_line "tile-size"
@@ -480,6 +491,24 @@ case "$case_name" in
     validator=/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py
     /usr/bin/python3 "$validator" streamed.gpkg >validate.txt 2>&1 ||
       fail "validate_gpkg.py: $(cat validate.txt)"
+    # A Shapefile: the joined one's bytes; a FlatGeobuf: its features (the index orders them).
+    mkdir joined streamed
+    for kind in joined streamed; do
+      limit=()
+      [ "$kind" = streamed ] && limit=(--memory-limit 1G)
+      run 0 build "$sample" -o "$kind/tin.shp" --max-error 0.5 --tile-size 64 --threads 1 \
+        "${limit[@]}" --quiet
+      run 0 build "$sample" -o "$kind/tin.fgb" --max-error 0.5 --tile-size 64 --threads 1 \
+        "${limit[@]}" --quiet
+    done
+    for component in shp shx dbf prj cpg; do
+      cmp -s "joined/tin.$component" "streamed/tin.$component" ||
+        fail "the Shapefile's .$component written tile by tile is not the joined one"
+    done
+    features_of() { ogr2ogr -f CSV /vsistdout/ "$1" -lco GEOMETRY=AS_WKT | sort; }
+    [ "$(features_of joined/tin.fgb | md5sum)" = "$(features_of streamed/tin.fgb | md5sum)" ] ||
+      fail "the FlatGeobuf's features written tile by tile are not the joined ones"
+    [ "$(features_of streamed/tin.fgb | wc -l)" -gt 100 ] || fail "too few FlatGeobuf features"
     # Without --tile-size the tiles are sized to the limit, and the run says how.
     run 0 build "$sample" -o sized.gpkg --max-error 0.5 --memory-limit 512M --json --quiet
     grep -q '"tiles of [0-9]* cells a side within --memory-limit"' out.txt ||
@@ -500,7 +529,7 @@ case "$case_name" in
     run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 1G --edges --quiet
     expect_one_error_line "edges"
     run 1 build "$sample" -o bad.obj --max-error 1 --memory-limit 1G --quiet
-    expect_one_error_line "GeoPackage or a PLY"
+    expect_one_error_line "FlatGeobuf or PLY only"
     printf '0 0 1\n1 0 2\n0 1 3\n' >points.xyz
     run 1 build points.xyz -o bad.gpkg --memory-limit 1G --quiet
     expect_one_error_line "takes a DEM raster"

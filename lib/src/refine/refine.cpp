@@ -251,10 +251,6 @@ RefineResult refineTiles(CellSource& cells, const RefineOptions& options,
     checkRefineOptions(options);
     if (options.tileSize == 0)
         throw InvalidInputError("Refiner: refineTiles needs a tile size");
-    const std::array<double, 6> c = cells.geoTransform();
-    if (c[2] != 0.0 || c[4] != 0.0)
-        throw InvalidInputError("Refiner: tiles need a north-up grid (the geotransform is "
-                                "rotated); warp the DEM first (gdalwarp)");
     if (cells.width() <= 0 || cells.height() <= 0)
         throw InvalidInputError("Refiner: the grid is empty");
     if (static_cast<std::uint64_t>(cells.width()) * static_cast<std::uint64_t>(cells.height()) >

@@ -1,6 +1,7 @@
 #include "tile_refine.hpp"
 
 #include "one_tile.hpp"
+#include "pixel_frame.hpp"
 #include "tile_grid.hpp"
 #include "tile_mesh_merge.hpp"
 #include "tile_refinement.hpp"
@@ -11,6 +12,7 @@
 #include "terratin/refine/tile_distribution.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -48,6 +50,8 @@ struct TileJob {
     /// Each tile's share of options.maxPoints and maxTriangles (empty without them).
     std::vector<std::size_t> pointShares;
     std::vector<std::size_t> triangleShares;
+    /// A rotated grid's geotransform, its tiles refined in the pixel frame (pixel_frame.hpp).
+    std::optional<std::array<double, 6>> world;
 
     [[nodiscard]] TilePlace place(std::size_t tile) const { return tiles.placeOf(tile); }
     [[nodiscard]] RefineOptions optionsOf(std::size_t tile) const {
@@ -172,6 +176,8 @@ public:
 private:
     /// To the caller's sink, numbered by the grid's cells, or into the joined TIN.
     void pass(TinMesh& tile, const TilePlace& place) {
+        if (m_job->world)
+            mapTileToWorld(tile, place, *m_job->world);
         if (!m_job->options.tileSink) {
             m_merger.add(tile, place);
             return;
@@ -234,12 +240,18 @@ RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
     result.threads = options.threads != 0
                          ? options.threads
                          : std::clamp(std::thread::hardware_concurrency(), 1U, kMaxThreads);
-    TileJob job{&cells,
+    std::optional<PixelFrameCells> frame;
+    if (isRotated(cells.geoTransform()))
+        frame.emplace(cells);
+    TileJob job{frame ? &*frame : &cells,
                 TileGrid(static_cast<std::size_t>(cells.width()),
                          static_cast<std::size_t>(cells.height()), options.tileSize),
                 options,
                 {},
+                {},
                 {}};
+    if (frame)
+        job.world = cells.geoTransform();
     job.options.tileSize = 0;
     job.options.threads = result.threads;
     job.options.distribution = nullptr;
@@ -251,7 +263,7 @@ RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
     if (distribution != nullptr && !distribution->coordinates()) {
         distribution->serve([&](std::size_t tile) {
             return packTile(
-                refineOneTile(cells, job.tiles, tile, job.optionsOf(tile), workers, progress));
+                refineOneTile(*job.cells, job.tiles, tile, job.optionsOf(tile), workers, progress));
         });
         return result; // the coordinator has the TIN
     }

@@ -84,8 +84,9 @@ struct RefineOptions {
     /// share their border cells (issue 25); 0 = the whole grid at once. The tiles' TINs join
     /// without cracks: each border's vertices are chosen from its cells alone, within
     /// maxError (docs/algorithms.md, "Tiles"), and each tile's TIN is exactly Delaunay, the
-    /// whole only within tiles. Needs maxError (or everyCell) and a north-up grid without
-    /// positions; takes no spareVertices. A point or triangle limit is shared among the tiles
+    /// whole only within tiles; a rotated grid's tiles are Delaunay in its pixel frame and then
+    /// put at the cells' centres. Needs maxError (or everyCell) and a grid without positions;
+    /// takes no spareVertices. A point or triangle limit is shared among the tiles
     /// in proportion to the valid cells each owns (counted in a first pass over the cells), so
     /// the whole keeps to it; a tile whose share is below what its hull and sides keep within
     /// maxError fails the run.
