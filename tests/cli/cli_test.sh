@@ -478,9 +478,11 @@ case "$case_name" in
     run 0 build "$sample" -o streamed.ply --max-error 0.5 --tile-size 64 --threads 1 \
       --memory-limit 1G --quiet
     cmp -s joined.ply streamed.ply || fail "the PLY written tile by tile is not the joined one"
-    run 0 build "$sample" -o joined.gpkg --max-error 0.5 --tile-size 64 --threads 1 --nodes --quiet
+    run 0 build "$sample" -o joined.gpkg --max-error 0.5 --tile-size 64 --threads 1 --nodes \
+      --qgis-style --quiet
     run 0 build "$sample" -o streamed.gpkg --max-error 0.5 --tile-size 64 --threads 1 --nodes \
-      --memory-limit 1G --quiet
+      --qgis-style --memory-limit 1G --quiet
+    cmp -s joined.qml streamed.qml || fail "the style beside the GeoPackage is not the joined one"
     for layer in tin nodes; do
       rows="SELECT * FROM $layer ORDER BY fid"
       [ "$(sqlite3 joined.gpkg "$rows" | md5sum)" = "$(sqlite3 streamed.gpkg "$rows" | md5sum)" ] ||

@@ -3,15 +3,20 @@
 #include "atomic_output.hpp"
 #include "buffered_file.hpp"
 #include "gpkg/gpkg_tin_stream.hpp"
+#include "ogr_dataset_support.hpp"
 #include "ogr_tin_stream.hpp"
+#include "ogr_tin_writer.hpp"
 #include "ply_writer.hpp"
+#include "style_beside.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
 #include "writer_support.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -101,6 +106,52 @@ private:
     std::optional<BufferedFile> m_faces;
 };
 
+/// --qgis-style around a writer of a vector format: the elevations' range followed as the
+/// pieces come, the style put beside the data once it is in place (style_beside.hpp).
+class StyledStreamWriter final : public TinStreamWriter {
+public:
+    StyledStreamWriter(std::unique_ptr<TinStreamWriter> data, const fs::path& output,
+                       const TinWriteOptions& options)
+        : m_style(kOgrStage, output, ogrOutputFiles(output, options.format), options),
+          m_data(std::move(data)) {}
+
+    void append(const TinPiece& piece) override {
+        countPiece(piece, [&](std::size_t v) {
+            m_lowest = std::min(m_lowest, piece.mesh->vertices[v].z);
+            m_highest = std::max(m_highest, piece.mesh->vertices[v].z);
+        });
+        m_data->append(piece);
+    }
+
+    TinWriteResult finish(const ProgressCallback& progress) override {
+        if (triangleCount() > 0)
+            m_style.write(m_lowest, m_highest);
+        const TinWriteResult result = m_data->finish(progress);
+        m_style.commit();
+        return result;
+    }
+
+    [[nodiscard]] std::uint64_t heldBytes() const override { return m_data->heldBytes(); }
+
+private:
+    StyleBeside m_style;
+    std::unique_ptr<TinStreamWriter> m_data;
+    double m_lowest = std::numeric_limits<double>::infinity();
+    double m_highest = -std::numeric_limits<double>::infinity();
+};
+
+std::unique_ptr<TinStreamWriter> openDataStream(const fs::path& output,
+                                                const TinWriteOptions& options) {
+    switch (options.format) {
+    case TinFormat::Ply:
+        return std::make_unique<PlyStreamWriter>(output, options);
+    case TinFormat::GeoPackage:
+        return openGpkgTinStream(output, options);
+    default:
+        return openOgrTinStream(output, options);
+    }
+}
+
 } // namespace
 
 void TinStreamWriter::throwOutOfTurn(std::uint32_t number) const {
@@ -120,8 +171,6 @@ void checkTinStreamOptions(const TinWriteOptions& options, std::string_view piec
                " (an edge's triangles may lie in two tiles)");
     if (options.appendLayer)
         refuse("to a new file, not with " + options.optionName("append_layer"));
-    if (options.qgisStyle)
-        refuse("without " + options.optionName("qgis_style"));
     checkTinWriteOptions(options);
 }
 
@@ -130,14 +179,10 @@ openTinStream(const fs::path& output, const TinWriteOptions& options, std::strin
     initialiseGdal();
     checkTinStreamOptions(options, pieceBy);
     checkTinOutput(output, options);
-    switch (options.format) {
-    case TinFormat::Ply:
-        return std::make_unique<PlyStreamWriter>(output, options);
-    case TinFormat::GeoPackage:
-        return openGpkgTinStream(output, options);
-    default:
-        return openOgrTinStream(output, options);
-    }
+    std::unique_ptr<TinStreamWriter> data = openDataStream(output, options);
+    if (!options.qgisStyle)
+        return data;
+    return std::make_unique<StyledStreamWriter>(std::move(data), output, options);
 }
 
 } // namespace terratin::io::detail

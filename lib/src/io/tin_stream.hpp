@@ -75,7 +75,7 @@ private:
 
 /// Refuses (InvalidInputError, naming options as options.optionName does) what a TIN written
 /// piece by piece cannot be: 2DM, OBJ or LandXML, an edges layer (an edge's triangles may lie
-/// in two pieces), appendLayer, a QGIS style; then what writeTin refuses of the options.
+/// in two pieces), appendLayer; then what writeTin refuses of the options.
 void checkTinStreamOptions(const TinWriteOptions& options, std::string_view pieceBy);
 
 /// The writer of `output`, after the checks writeTin makes before its first byte (the

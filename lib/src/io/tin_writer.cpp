@@ -12,7 +12,7 @@
 #include "ogr_tin_writer.hpp"
 #include "ogr_triangle_layer.hpp"
 #include "ply_writer.hpp"
-#include "qgis_style.hpp"
+#include "style_beside.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
 #include "two_dm_writer.hpp"
@@ -89,12 +89,6 @@ void checkMesh(std::string_view stage, const TinMesh& mesh, const fs::path& outp
                                 std::to_string(mesh.triangles.size()) + " half-edges" + nothing);
 }
 
-fs::path stylePath(const fs::path& output) {
-    fs::path style = output;
-    style.replace_extension(".qml");
-    return style;
-}
-
 detail::MeshFileInfo meshFileInfo(std::string_view stage, const TinWriteOptions& options) {
     detail::MeshFileInfo info;
     info.name = options.layerName;
@@ -147,7 +141,7 @@ std::vector<fs::path> outputFiles(const fs::path& output, const TinWriteOptions&
                                         ? detail::ogrOutputFiles(output, options.format)
                                         : std::vector<fs::path>{output};
     if (options.qgisStyle)
-        outputs.push_back(stylePath(output));
+        outputs.push_back(detail::stylePath(output));
     return outputs;
 }
 
@@ -231,45 +225,22 @@ TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output, const TinWr
     if (!isOgrFormat(options.format))
         meshInfo = meshFileInfo(stage, options); // validates the CRS
     checkTinOutput(output, options);
-    // What this run creates rather than replaces: taken back if the style cannot follow.
-    std::vector<fs::path> created;
-    for (const auto& file : outputFiles(output, options))
-        if (detail::existingFiles({file}).empty() && file != stylePath(output))
-            created.push_back(file);
-
     // The style goes to its temporary first and is renamed after the data, so a failure in
     // either leaves both old files in place.
-    std::unique_ptr<detail::AtomicOutput> styleTemporaries;
-    fs::path styleTemporary;
+    std::optional<detail::StyleBeside> style;
     if (options.qgisStyle) {
         const auto [lowest, highest] =
             std::minmax_element(mesh.vertices.begin(), mesh.vertices.end(),
                                 [](const Point3& a, const Point3& b) { return a.z < b.z; });
-        styleTemporaries = std::make_unique<detail::AtomicOutput>(
-            stage, stylePath(output), detail::existingTargetFor(options.overwrite),
-            options.optionName);
-        styleTemporary = styleTemporaries->temporary(".qml");
-        detail::BufferedFile style(stage, styleTemporary, stylePath(output));
-        style.text(detail::qgisTerrainStyle("z_mean", lowest->z, highest->z));
-        style.close();
+        style.emplace(stage, output, outputFiles(output, options), options);
+        style->write(lowest->z, highest->z);
     }
 
     const TinWriteResult result = isOgrFormat(options.format)
                                       ? detail::writeOgrTin(mesh, output, options, progress)
                                       : writeMeshFormat(mesh, output, options, *meshInfo, progress);
-    if (styleTemporaries) {
-        try {
-            styleTemporaries->commit(styleTemporary, stylePath(output));
-        } catch (const Error&) {
-            // A style that appeared during the run is refused (issue 22, D5); the data this
-            // run has just put in place would otherwise stand without it.
-            for (const auto& file : created) {
-                std::error_code ignored;
-                fs::remove(file, ignored);
-            }
-            throw;
-        }
-    }
+    if (style)
+        style->commit();
 
     // The output is complete and in place: there is nothing left to cancel.
     if (progress)

@@ -215,6 +215,46 @@ TEST(TinStream, AFlatGeobufWrittenPieceByPiece_HasTheWholeTinsFeatures_AndItsInd
     }
 }
 
+TEST(TinStream, AStyleBesideAStream_IsTheWholeTinsStyle) {
+    // --qgis-style: the style colours the elevations' range, which only the last piece
+    // completes (the pieces' vertices are in no order of height).
+    const TemporaryDirectory directory;
+    TinMesh tin = test::gridTin(kGrid);
+    tin.vertices.back().z += 500.0; // the highest vertex, in the last piece
+    const CutTin cut = cutTin(tin, kPieces, kGrid);
+    for (const std::string name : {"t.gpkg", "t.shp", "t.fgb"}) {
+        SCOPED_TRACE(name);
+        TinWriteOptions options = streamOptions(name == "t.gpkg"  ? TinFormat::GeoPackage
+                                                : name == "t.shp" ? TinFormat::Shapefile
+                                                                  : TinFormat::FlatGeobuf);
+        options.qgisStyle = true;
+        std::filesystem::create_directory(directory / "streamed");
+        std::filesystem::create_directory(directory / "whole");
+        streamPieces(cut, directory / "streamed" / name, options);
+        writeTin(cut.whole, directory / "whole" / name, options);
+        const std::string style = bytesOf(directory / "streamed" / "t.qml");
+        EXPECT_NE(style.find("z_mean"), std::string::npos);
+        EXPECT_EQ(style, bytesOf(directory / "whole" / "t.qml"));
+        std::filesystem::remove_all(directory / "streamed");
+        std::filesystem::remove_all(directory / "whole");
+    }
+}
+
+TEST(TinStream, AStyleThatAppearedMeanwhile_IsKept_AndTheDataTakenBack) {
+    const TemporaryDirectory directory;
+    const CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
+    TinWriteOptions options = streamOptions(TinFormat::GeoPackage);
+    options.qgisStyle = true;
+    auto writer = openTinStream(directory / "t.gpkg", options, "--memory-limit");
+    for (std::size_t p = 0; p < cut.pieces.size(); ++p)
+        writer->append({&cut.pieces[p], cut.numbers[p], cut.cells[p]});
+    std::ofstream(directory / "t.qml") << "someone's style";
+    EXPECT_THROW(writer->finish({}), InvalidInputError);
+    writer.reset();
+    EXPECT_EQ(directory.entries(), (std::set<std::string>{"t.qml"}));
+    EXPECT_EQ(bytesOf(directory / "t.qml"), "someone's style");
+}
+
 TEST(TinStream, ANewVertexNumberedOutOfTurn_IsRefused_AndNothingIsLeft) {
     const TemporaryDirectory directory;
     CutTin cut = cutTin(test::gridTin(kGrid), kPieces, kGrid);
@@ -263,9 +303,9 @@ TEST(TinStream, WhatCannotBeWrittenPieceByPiece_IsRefusedBeforeAnyFile) {
     TinWriteOptions append = streamOptions(TinFormat::GeoPackage);
     append.appendLayer = true;
     EXPECT_NE(refusal(append, "t.gpkg").find("append_layer"), std::string::npos);
-    TinWriteOptions style = streamOptions(TinFormat::GeoPackage);
+    TinWriteOptions style = streamOptions(TinFormat::Ply);
     style.qgisStyle = true;
-    EXPECT_NE(refusal(style, "t.gpkg").find("qgis_style"), std::string::npos);
+    EXPECT_NE(refusal(style, "t.ply").find("qgis_style"), std::string::npos);
     std::ofstream(directory / "old.ply") << "old";
     EXPECT_NE(refusal(streamOptions(TinFormat::Ply), "old.ply").find("overwrite"),
               std::string::npos);
