@@ -17,6 +17,7 @@ class DemToTin(TerratinAlgorithm):
     MAX_ERROR = "MAX_ERROR"
     MAX_POINTS = "MAX_POINTS"
     FILL_HOLES = "FILL_HOLES"
+    MEMORY_LIMIT = "MEMORY_LIMIT"
 
     def name(self):
         return "demtotin"
@@ -29,7 +30,10 @@ class DemToTin(TerratinAlgorithm):
             "Triangulates the cell centres of a DEM into an exactly Delaunay TIN, one polygon "
             "per triangle with terrain attributes. With a maximum error or a maximum number of "
             "points the TIN is simplified: every valid cell stays within the maximum error (z "
-            "units) of it. Nodata cells are left out. The DEM must be a file GDAL reads."
+            "units) of it. Nodata cells are left out. The DEM must be a file GDAL reads. With a "
+            "memory limit (advanced) the DEM is read and triangulated tile by tile and the TIN "
+            "written as the tiles are done, for DEMs larger than memory: one TIN without "
+            "cracks, exactly Delaunay within each tile."
         )
 
     def createInstance(self):  # noqa: N802 (QGIS's name)
@@ -63,6 +67,13 @@ class DemToTin(TerratinAlgorithm):
                 defaultValue=False,
             )
         )
+        limit = QgsProcessingParameterNumber(
+            self.MEMORY_LIMIT,
+            "Memory limit (MiB; empty: the DEM and the TIN held whole)",
+            QgsProcessingParameterNumber.Integer, optional=True, minValue=1,
+        )
+        limit.setFlags(limit.flags() | limit.FlagAdvanced)
+        self.addParameter(limit)
         self.addTinParameters()
 
     def inputOptions(self, parameters, context, feedback):  # noqa: N802
@@ -81,4 +92,7 @@ class DemToTin(TerratinAlgorithm):
             options["max_points"] = self.parameterAsInt(parameters, self.MAX_POINTS, context)
         if self.parameterAsBoolean(parameters, self.FILL_HOLES, context):
             options["fill_holes"] = True
+        if given(parameters, self.MEMORY_LIMIT):
+            mebibytes = self.parameterAsInt(parameters, self.MEMORY_LIMIT, context)
+            options["memory_limit"] = f"{mebibytes}M"
         return [layer.source()], options

@@ -153,6 +153,7 @@ class ProgressRecorder(QgsProcessingFeedback):
         super().__init__()
         self.percentages = []
         self.texts = []
+        self.infos = []
 
     def setProgress(self, progress):  # noqa: N802 (QGIS's name)
         super().setProgress(progress)
@@ -161,6 +162,10 @@ class ProgressRecorder(QgsProcessingFeedback):
     def setProgressText(self, text):  # noqa: N802 (QGIS's name)
         super().setProgressText(text)
         self.texts.append(text)
+
+    def pushInfo(self, info):  # noqa: N802 (QGIS's name)
+        super().pushInfo(info)
+        self.infos.append(info)
 
 
 def test_the_progress_bar_follows_terratins_phases(processing, tmp_path):
@@ -174,6 +179,34 @@ def test_the_progress_bar_follows_terratins_phases(processing, tmp_path):
     assert feedback.percentages[-1] == 100
     assert "terratin: reading raster" in feedback.texts
     assert len(feedback.texts) == len(set(feedback.texts)), "each phase named once"
+
+
+def test_dem_to_tin_within_a_memory_limit_writes_the_clis_tiled_tin(processing, tmp_path):
+    # Issue 25 in the toolbox: the TIN written tile by tile, styled, as the command line's.
+    output = tmp_path / "tin.gpkg"
+    feedback = ProgressRecorder()
+    result = processing.run(
+        "terratin:demtotin",
+        {"INPUT": str(SAMPLE), "MAX_ERROR": 0.5, "MEMORY_LIMIT": 200, "OUTPUT": str(output)},
+        feedback=feedback,
+    )
+    counts = cli_counts(
+        SAMPLE, "-o", tmp_path / "cli.ply", "--max-error", "0.5", "--memory-limit", "200M"
+    )
+    whole = cli_counts(SAMPLE, "-o", tmp_path / "whole.ply", "--max-error", "0.5")
+    assert (result["VERTICES"], result["TRIANGLES"]) == (counts["vertices"], counts["triangles"])
+    assert counts != whole, "tiles put their own vertices on their sides"
+    assert any("cells a side within memory_limit" in info for info in feedback.infos)
+    layer = opened(output)
+    assert layer.featureCount() == counts["triangles"]
+    assert layer.renderer().type() == "graduatedSymbol"
+    with pytest.raises(QgsProcessingException, match="memory_limit 1M is too little"):
+        processing.run(
+            "terratin:demtotin",
+            {"INPUT": str(SAMPLE), "MAX_ERROR": 0.5, "MEMORY_LIMIT": 1,
+             "OUTPUT": str(tmp_path / "small.gpkg")},
+        )
+    assert not (tmp_path / "small.gpkg").exists()
 
 
 def test_dem_to_tin_limits_points_and_reprojects(processing, tmp_path):
