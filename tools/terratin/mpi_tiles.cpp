@@ -1,6 +1,7 @@
 #include "mpi_tiles.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/refine/tile_handout.hpp"
 
 #include <mpi.h>
 
@@ -8,6 +9,7 @@
 #include <climits>
 #include <cstdint>
 #include <cstring>
+#include <deque>
 #include <optional>
 #include <thread>
 
@@ -102,10 +104,11 @@ MpiSession::~MpiSession() {
 
 void MpiTiles::gather(std::size_t tileCount,
                       const std::function<void(std::size_t, std::vector<std::byte>)>& take,
-                      const std::function<bool()>& keepGoing) {
+                      const std::function<bool()>& keepGoing, std::uint64_t earlyBytes) {
     m_stopped.assign(static_cast<std::size_t>(m_size), false);
     m_stopped[kCoordinator] = true;
-    std::size_t handedOut = 0;
+    TileHandout handout(tileCount, earlyBytes);
+    std::deque<int> waiting; // ranks whose last message has no reply yet
     std::optional<std::string> failure;
     bool cancelled = false;
     for (int working = m_size - 1; working > 0;) {
@@ -114,6 +117,7 @@ void MpiTiles::gather(std::size_t tileCount,
             const std::uint64_t tile = numberOf(message.bytes);
             message.bytes.erase(message.bytes.begin(), message.bytes.begin() + sizeof tile);
             try {
+                handout.back(tile, message.bytes.size());
                 take(tile, std::move(message.bytes));
             } catch (const Error& error) {
                 failure = error.what();
@@ -121,19 +125,28 @@ void MpiTiles::gather(std::size_t tileCount,
         } else if (message.tag == kFailure && !failure) {
             failure = "rank " + std::to_string(message.source) + ": " + textOf(message.bytes);
         }
-        if (!failure && !cancelled && handedOut < tileCount) {
-            send(numberBytes(handedOut++), kTile, message.source);
-        } else {
-            send({}, kStop, message.source);
-            m_stopped[static_cast<std::size_t>(message.source)] = true;
-            --working;
+        waiting.push_back(message.source);
+        while (!waiting.empty()) {
+            const bool stop = failure || cancelled || handout.allHandedOut();
+            const std::optional<std::size_t> tile = stop ? std::nullopt : handout.next();
+            if (!stop && !tile)
+                break; // the early tiles hold too much: wait for the ones in turn
+            const int rank = waiting.front();
+            waiting.pop_front();
+            if (tile) {
+                send(numberBytes(*tile), kTile, rank);
+            } else {
+                send({}, kStop, rank);
+                m_stopped[static_cast<std::size_t>(rank)] = true;
+                --working;
+            }
         }
     }
     if (failure)
         throw Error(*failure);
     if (cancelled)
         throw Cancelled("Tiles: cancelled");
-    if (handedOut < tileCount)
+    if (!handout.allHandedOut())
         throw Error("MPI: no rank to refine the tiles");
 }
 

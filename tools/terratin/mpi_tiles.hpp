@@ -5,9 +5,11 @@
 //
 // The protocol: a rank that refines sends Request, then after each tile Result (the tile's
 // number and its packed TIN) or Failure (a message); every message it sends gets exactly one
-// reply, Tile (a number) or Stop. Rank 0 sends each other rank exactly one Stop: when no tile
-// is left, at the first failure (it then answers every message with Stop), or, when rank 0
-// fails before it gathers, from releaseAll(). So no rank waits for a message that never comes.
+// reply, Tile (a number) or Stop; the reply to a Result waits while the tiles that came back
+// before their turn hold more than rank 0's share of --memory-limit (TileHandout). Rank 0 sends
+// each other rank exactly one Stop: when no tile is left, at the first failure (it then answers
+// every message with Stop), or, when rank 0 fails before it gathers, from releaseAll(). So no rank
+// waits for a message that never comes.
 
 #include "terratin/refine/tile_distribution.hpp"
 
@@ -39,7 +41,7 @@ public:
     [[nodiscard]] bool coordinates() const override { return m_rank == 0; }
     void gather(std::size_t tileCount,
                 const std::function<void(std::size_t, std::vector<std::byte>)>& take,
-                const std::function<bool()>& keepGoing) override;
+                const std::function<bool()>& keepGoing, std::uint64_t earlyBytes) override;
     void serve(const std::function<std::vector<std::byte>(std::size_t)>& refine) override;
 
     /// Rank 0, failing before or outside gather: sends Stop to every rank not stopped yet.

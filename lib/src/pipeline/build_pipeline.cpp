@@ -358,6 +358,7 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
                                       refineOptions.fillHoles ? 0 : refineOptions.maxHole,
                                       refineOptions.tileSize, optionNamer(options.optionSpelling));
         gdalCache.emplace(budget->gdalCacheBytes);
+        refineOptions.earlyTileBytes = budget->tileBytes;
         if (coordinates)
             detail::notify(options, report,
                            "tiles of " + std::to_string(budget->tileSize) +

@@ -46,6 +46,7 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
     budget.writerBytes = limitBytes / 4;
     const std::uint64_t shared = budget.gdalCacheBytes + budget.writerBytes + kProcessBytes;
     const std::uint64_t forTiles = limitBytes > shared ? limitBytes - shared : 0;
+    budget.tileBytes = forTiles;
     const std::string limitName = optionName("memory_limit");
     if (tileSize > 0) {
         if (tileBytes(tileSize, marginCells) > forTiles)

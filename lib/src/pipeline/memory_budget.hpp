@@ -20,6 +20,9 @@ struct MemoryBudget {
     std::uint64_t gdalCacheBytes = 0;
     /// What the writer may keep without passing the limit.
     std::uint64_t writerBytes = 0;
+    /// What the tile in work may take; with MPI, rank 0 refines none and holds in it the
+    /// tiles that came back before their turn.
+    std::uint64_t tileBytes = 0;
 };
 
 /// The budget of `limitBytes` for tiles with a margin of `marginCells` (RefineOptions::maxHole,

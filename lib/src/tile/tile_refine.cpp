@@ -227,7 +227,8 @@ void gatherEveryTile(const TileJob& job, TileDistribution& distribution, TileJoi
             return !progress ||
                    progress(0.9 * static_cast<double>(join.joined()) / static_cast<double>(count),
                             "refining tiles");
-        });
+        },
+        job.options.earlyTileBytes);
 }
 
 } // namespace

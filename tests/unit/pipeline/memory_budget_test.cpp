@@ -45,6 +45,10 @@ TEST(MemoryBudget, TheTileChosenIsTheLargestThatFits) {
                       budget.tileSize);
             EXPECT_NE(refusal(limit, margin, budget.tileSize + 1), "<accepted>");
             EXPECT_LE(budget.gdalCacheBytes + budget.writerBytes, limit / 2);
+            // The tile's share is what the others leave, and the tile chosen takes most of it.
+            EXPECT_LT(budget.gdalCacheBytes + budget.writerBytes + budget.tileBytes, limit);
+            EXPECT_GT(budget.gdalCacheBytes + budget.writerBytes + budget.tileBytes,
+                      limit - 128 * kMiB);
         }
     // More memory, larger tiles; a wider margin, smaller ones.
     EXPECT_LT(memoryBudget(512 * kMiB, 1, 0, OptionNamer(namer)).tileSize,

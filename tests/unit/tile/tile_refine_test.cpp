@@ -259,7 +259,8 @@ TEST(TiledRefine, ATileWhoseCellsSpanNoArea_AddsNoTriangle) {
 }
 
 /// Tiles shared by threads of this process through a queue, a stand-in for MPI ranks: the
-/// coordinator queues the tiles in reverse order, so that their TINs come back out of order.
+/// coordinator queues the tiles in reverse order, so that their TINs come back out of order
+/// (all at once: no bound on the early tiles).
 class ThreadTiles {
 public:
     class Side final : public TileDistribution {
@@ -269,7 +270,7 @@ public:
         [[nodiscard]] bool coordinates() const override { return m_coordinates; }
         void gather(std::size_t tileCount,
                     const std::function<void(std::size_t, std::vector<std::byte>)>& take,
-                    const std::function<bool()>&) override {
+                    const std::function<bool()>&, std::uint64_t) override {
             std::unique_lock lock(m_shared->m_mutex);
             for (std::size_t tile = tileCount; tile-- > 0;)
                 m_shared->m_tiles.push_back(tile);

@@ -101,6 +101,9 @@ struct RefineOptions {
     /// a process that does not coordinate, refine() refines what it is handed and returns no
     /// TIN.
     TileDistribution* distribution = nullptr;
+    /// With a distribution: the bytes the coordinator may hold in tiles that came back before
+    /// their turn before it hands out no more (TileDistribution::gather; 0: no bound).
+    std::uint64_t earlyTileBytes = 0;
     /// With tiles: when set, receives each tile's TIN in tile order (a tile number, row-major
     /// among the tiles, and its TIN with sourceIndex = the grid's cell index; tiles without a
     /// triangle are skipped) instead of having them joined; the result then holds no TIN, only

@@ -6,6 +6,7 @@
 /// order whatever order they come back in, so the TIN is the same as in one process.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -21,14 +22,16 @@ public:
 
     /// The coordinator: hands out the tiles 0 .. tileCount - 1 as the others ask for work and
     /// calls take(tile, bytes) with each tile's packed TIN as it comes back, until all have;
-    /// then releases every other process. Calls `keepGoing` while it waits and stops when it
-    /// returns false. Throws terratin::Error naming the process and its message when one
-    /// fails (take's exceptions too), and Cancelled when keepGoing stopped it; every other
-    /// process is released first either way.
+    /// then releases every other process. Tiles that come back before their turn wait for it
+    /// in the coordinator: while they hold more than `earlyBytes` bytes (0: no bound) it hands
+    /// out no more (tile_handout.hpp keeps that count). Calls `keepGoing` while it waits and
+    /// stops when it returns false. Throws terratin::Error naming the process and its message
+    /// when one fails (take's exceptions too), and Cancelled when keepGoing stopped it; every
+    /// other process is released first either way.
     virtual void
     gather(std::size_t tileCount,
            const std::function<void(std::size_t tile, std::vector<std::byte> tin)>& take,
-           const std::function<bool()>& keepGoing) = 0;
+           const std::function<bool()>& keepGoing, std::uint64_t earlyBytes) = 0;
 
     /// The others: calls refine(tile) for each tile handed out and sends back the bytes it
     /// returns, until released. An exception from refine goes to the coordinator as its

@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// For a TileDistribution's coordinator: which tile to hand out next. Tiles go out in order,
+/// and are joined in order; one that comes back before its turn waits for it in the
+/// coordinator's memory. TileHandout counts those early tiles' bytes and hands out no more
+/// tiles while they hold more than a bound (issue 25: --memory-limit over MPI ranks). The
+/// first tile not back yet is always out in work, so a pause always ends.
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+
+namespace terratin {
+
+class TileHandout {
+public:
+    /// Tiles 0 .. tileCount - 1; `earlyBytes` the bound on the early tiles' bytes (0: none).
+    TileHandout(std::size_t tileCount, std::uint64_t earlyBytes);
+
+    /// The tile to hand out now, or nullopt: every tile is out, or the early tiles hold more
+    /// than the bound (a rank asking then waits until tiles come back in turn).
+    [[nodiscard]] std::optional<std::size_t> next();
+    [[nodiscard]] bool allHandedOut() const { return m_handedOut == m_tileCount; }
+
+    /// Tile `tile` (handed out, each once) came back as `bytes` bytes.
+    void back(std::size_t tile, std::uint64_t bytes);
+
+    /// What the early tiles hold now, and the most they held.
+    [[nodiscard]] std::uint64_t earlyBytes() const { return m_earlyBytes; }
+    [[nodiscard]] std::uint64_t mostEarlyBytes() const { return m_mostEarlyBytes; }
+
+private:
+    std::size_t m_tileCount;
+    std::uint64_t m_bound;
+    std::size_t m_handedOut = 0;
+    /// The first tile not back yet: every tile before it is joined.
+    std::size_t m_nextInTurn = 0;
+    std::map<std::size_t, std::uint64_t> m_early;
+    std::uint64_t m_earlyBytes = 0;
+    std::uint64_t m_mostEarlyBytes = 0;
+};
+
+} // namespace terratin
