@@ -575,6 +575,19 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
     }
 }
 
+bool GreedyRefiner::insertCells(std::span<const CellToInsert> cells, std::span<const TriId> slots,
+                                const ProgressCallback& progress) {
+    if (m_stop != RefineStop::ErrorReached)
+        return false;
+    ++m_completionPasses;
+    for (const CellToInsert& cell : cells) {
+        const TriId slot = slots[cell.triangle];
+        route(Candidate{cell.priority, cell.cell, slot, m_mesh->version(slot)});
+    }
+    runLevels(progress);
+    return true;
+}
+
 TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle,
                                           std::size_t spareVertices) const {
     std::vector<VertexRange> ranges{{0, static_cast<VertexId>(m_hullPoints)}};

@@ -23,6 +23,7 @@
 #include "candidate_queue.hpp"
 #include "cell_flags.hpp"
 #include "grid_scan.hpp"
+#include "located_check.hpp"
 #include "round_workers.hpp"
 #include "triangle_scan.hpp"
 
@@ -63,6 +64,12 @@ public:
     [[nodiscard]] TinMesh extractInCellOrder(std::vector<TriId>* slotOfTriangle = nullptr,
                                              std::size_t spareVertices = 0) const;
 
+    /// After run(): inserts `cells` (each in its triangle of the last extractInCellOrder, whose
+    /// slots are `slots`) and refines on until the scans find nothing more, as a completion
+    /// pass. Returns false, inserting nothing, when a limit stopped the refinement.
+    bool insertCells(std::span<const CellToInsert> cells, std::span<const TriId> slots,
+                     const ProgressCallback& progress);
+
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
     [[nodiscard]] std::size_t strips() const { return m_strips.size(); }
@@ -72,7 +79,7 @@ public:
     /// Points inserted by the pairs of strips, and by the sequential step of the levels.
     [[nodiscard]] std::size_t pairInsertions() const { return m_pairInsertions; }
     [[nodiscard]] std::size_t sharedInsertions() const { return m_sharedInsertions; }
-    /// Passes of completeAtPositions (0 without positions).
+    /// Completion passes: of completeAtPositions, and of insertCells.
     [[nodiscard]] std::size_t completionPasses() const { return m_completionPasses; }
     [[nodiscard]] std::size_t meshBytes() const { return m_mesh->memoryBytes(); }
 

@@ -5,6 +5,7 @@
 #include "greedy_refiner.hpp"
 #include "located_check.hpp"
 #include "round_workers.hpp"
+#include "stranded_cells.hpp"
 
 #include "../tile/tile_refine.hpp"
 
@@ -82,16 +83,8 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     detail::RoundWorkers workers(threads);
     detail::GreedyRefiner refiner(grid, positions, flags, options, workers);
     refiner.run(progress);
-    result.stop = refiner.stop();
-    detail::copyRefinerCounts(refiner, result);
-    result.completionPasses = refiner.completionPasses();
     result.insertSeconds = lap(phase);
 
-    result.mesh = refiner.extractInCellOrder(nullptr, options.spareVertices);
-    if (options.validate) {
-        detail::checkExactlyDelaunay(result.mesh, "the TIN");
-        result.validated = true;
-    }
     // Holes are decided on the whole triangulation; with positions, so are the errors (the
     // walks that locate cells need the triangles over holes).
     const auto trianglesOverHoles = [&] {
@@ -99,24 +92,46 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                    ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
                    : detail::trianglesOverOpenHolesAt(result.mesh, view, positions, threads);
     };
+    std::vector<detail::TriId> slots;
+    result.mesh = refiner.extractInCellOrder(&slots, options.spareVertices);
+    std::vector<std::uint8_t> drop; // empty: no triangle to drop, or the caller decides
+    if (result.openHoleCells > 0 && (options.measure || !options.keepHoleTriangles))
+        drop = trianglesOverHoles();
+    // Vertices the holes would strand get their neighbours (stranded_cells.hpp).
+    while (positions.empty() && !options.keepHoleTriangles && !drop.empty()) {
+        const std::vector<detail::CellToInsert> cells =
+            detail::cellsBesideStrandedVertices(result.mesh, drop, view);
+        if (cells.empty() || !refiner.insertCells(cells, slots, progress))
+            break;
+        result.mesh = refiner.extractInCellOrder(&slots, options.spareVertices);
+        drop = trianglesOverHoles();
+    }
+    result.stop = refiner.stop();
+    detail::copyRefinerCounts(refiner, result);
+    result.completionPasses = refiner.completionPasses();
+    result.extractSeconds = lap(phase); // with the holes' check and its completion passes
+
+    if (options.validate) {
+        detail::checkExactlyDelaunay(result.mesh, "the TIN");
+        result.validated = true;
+    }
     if (!options.measure) {
         if (!options.keepHoleTriangles && result.openHoleCells > 0)
-            result.droppedTriangles = dropTriangles(result.mesh, trianglesOverHoles());
-        result.extractSeconds = lap(phase);
+            result.droppedTriangles = dropTriangles(result.mesh, drop);
+        result.extractSeconds += lap(phase);
         if (progress)
             progress(1.0, "refined");
         return result;
     }
-    std::vector<std::uint8_t> drop(result.mesh.triangleCount(), 0);
+    if (drop.empty())
+        drop.assign(result.mesh.triangleCount(), 0);
     TinMesh whole;
     if (options.keepHoleTriangles && result.openHoleCells > 0) {
         // The whole TIN is kept aside with its arrays' room (a copy has none).
         whole = std::move(result.mesh);
         result.mesh = whole;
     }
-    if (result.openHoleCells > 0)
-        drop = trianglesOverHoles();
-    result.extractSeconds = lap(phase);
+    result.extractSeconds += lap(phase);
     detail::ErrorMeasure measure;
     if (!positions.empty())
         measure = detail::measureErrorsAt(result.mesh, drop, view, positions, threads);

@@ -6,6 +6,7 @@
 #include "../refine/error_check.hpp"
 #include "../refine/greedy_refiner.hpp"
 #include "../refine/round_workers.hpp"
+#include "../refine/stranded_cells.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"
@@ -136,6 +137,24 @@ void dropHoles(const HeightGrid& grid, CellFlags& flags, unsigned threads, TileR
     const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
     tile.droppedTriangles =
         dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, threads));
+}
+
+/// Gives the vertices the holes would strand their neighbours, as refine() does
+/// (stranded_cells.hpp): before dropHoles, while the sides' cells are still frozen.
+void coverStrandedVertices(const HeightGrid& grid, const CellFlags& flags, GreedyRefiner& refiner,
+                           std::vector<TriId>& slots, unsigned threads,
+                           const ProgressCallback& progress, TinMesh& mesh) {
+    if (std::none_of(flags.begin(), flags.end(),
+                     [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
+        return;
+    const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
+    for (;;) {
+        const std::vector<CellToInsert> cells =
+            cellsBesideStrandedVertices(mesh, trianglesOverOpenHoles(mesh, view, threads), view);
+        if (cells.empty() || !refiner.insertCells(cells, slots, progress))
+            return;
+        mesh = refiner.extractInCellOrder(&slots);
+    }
 }
 
 /// Measures the tile's largest error over every valid cell, the sides' included, in the pixel
@@ -281,9 +300,11 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
                                 std::to_string(tileColumn) + ": " + error.what() +
                                 " (the tile's share of the limit)");
     }
+    std::vector<TriId> slots;
+    result.mesh = refiner.extractInCellOrder(&slots);
+    coverStrandedVertices(grid, flags, refiner, slots, workers.size(), progress, result.mesh);
     copyRefinerCounts(refiner, result);
     result.stop = refiner.stop();
-    result.mesh = refiner.extractInCellOrder();
     checkTheShares(result.mesh, options, tileRow, tileColumn);
     if (options.validate)
         checkExactlyDelaunay(result.mesh, "a tile's TIN");

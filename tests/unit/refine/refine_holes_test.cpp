@@ -129,3 +129,31 @@ TEST(RefineHoles, WithoutTheLastMeasure_TheSameTin_AndNoFigures) {
 
 } // namespace
 } // namespace terratin
+
+namespace terratin {
+namespace {
+
+TEST(RefineHoles, AValidCellHangingIntoAnOpenHole_IsCovered) {
+    // Regression: "a refined TIN may leave a valid cell uncovered next to a large open hole"
+    // (issue 25's closing note). The full-resolution TIN covers every peninsula (each is the
+    // corner of a half-cell triangle with two cells above it); the simplified TIN must too.
+    std::size_t peninsulas = 0;
+    for (std::uint32_t seed = 1; seed <= 6; ++seed)
+        for (const double maxError : {0.5, 2.0, 8.0}) {
+            SCOPED_TRACE("seed " + std::to_string(seed) + ", max error " +
+                         std::to_string(maxError));
+            const HeightGrid grid = test::shoreWithPeninsulas(seed);
+            const RefineResult result = refine(grid, options(maxError));
+            const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, 1);
+            EXPECT_EQ(check.uncoveredValid, 0U);
+            EXPECT_EQ(result.uncoveredCells, 0U);
+            EXPECT_EQ(check.coveredOpenHoleCells, 0U);
+            EXPECT_LE(check.maxError, maxError + 1e-6);
+            test::expectEmptyCircumcircles(result.mesh);
+            peninsulas += result.completionPasses;
+        }
+    EXPECT_GT(peninsulas, 0U) << "no grid stranded a vertex: the test tests nothing";
+}
+
+} // namespace
+} // namespace terratin

@@ -50,6 +50,19 @@ HeightGrid roughTerrain(int width, int height, std::uint32_t seed) {
     });
 }
 
+HeightGrid shoreWithPeninsulas(std::uint32_t seed) {
+    const HeightGrid rough = roughTerrain(48, 40, seed);
+    return makeGrid(48, 40, [&](int row, int col) {
+        const double z =
+            rough.z[static_cast<std::size_t>(row) * 48U + static_cast<std::size_t>(col)];
+        if (row < 24)
+            return z;
+        if (row == 24 && col % 3 == (static_cast<int>(seed) + col / 12) % 3)
+            return z; // a peninsula: its row above valid, its sides and below nodata
+        return std::nan("");
+    });
+}
+
 namespace {
 
 Point2 planar(const Point3& p) {

@@ -24,6 +24,11 @@ RefineOptions validatedOptions(double maxError, unsigned threads = 1);
 /// Smooth hills plus deterministic pseudo-random noise (metres, 0..~300).
 HeightGrid roughTerrain(int width, int height, std::uint32_t seed);
 
+/// 48 x 40 cells: roughTerrain above row 24, a hole from row 24 down, and on row 24 single
+/// valid cells hanging into it (peninsulas: the row above valid, their sides and below
+/// nodata), the pattern that left a cell of Mt Hood uncovered (stranded_cells.hpp).
+HeightGrid shoreWithPeninsulas(std::uint32_t seed);
+
 /// What the independent check found.
 struct CoverageCheck {
     double maxError = 0.0;

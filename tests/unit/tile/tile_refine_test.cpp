@@ -246,6 +246,22 @@ TEST(TiledRefine, HolesAcrossSides_DecidedFromTheTilesMarginsAsFromTheWholeGrid)
     EXPECT_LE(check.maxError, 0.2 + 1e-6);
 }
 
+TEST(TiledRefine, AValidCellHangingIntoAnOpenHole_IsCovered) {
+    // Regression (issue 25's closing note): a tile's vertex that only triangles over an open
+    // hole use gets its valid neighbours, as untiled (stranded_cells.hpp).
+    for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        const HeightGrid grid = test::shoreWithPeninsulas(seed);
+        const RefineResult result = refine(grid, tiled(2.0, 20));
+        expectConforming(result.mesh);
+        const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, 1);
+        EXPECT_EQ(check.uncoveredValid, 0U);
+        EXPECT_EQ(result.uncoveredCells, 0U);
+        EXPECT_EQ(check.coveredOpenHoleCells, 0U);
+        EXPECT_LE(check.maxError, 2.0 + 1e-6);
+    }
+}
+
 TEST(TiledRefine, ATileWhoseCellsSpanNoArea_AddsNoTriangle) {
     // The last tile (columns 20-21) has data only on its shared side, column 20.
     const HeightGrid grid = test::makeGrid(22, 15, [](int row, int col) {
