@@ -13,7 +13,9 @@
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -177,6 +179,91 @@ void measure(const HeightGrid& grid, CellFlags& flags, UnownedSides unowned, uns
     tile.sumSquares = owned.sumSquares;
 }
 
+/// The tile's four sides, each a line of cells: its errors, NaN where the tile covers no cell.
+class SideCover {
+public:
+    explicit SideCover(const HeightGrid& grid)
+        : m_width(static_cast<std::size_t>(grid.width)),
+          m_height(static_cast<std::size_t>(grid.height)),
+          m_rows{std::vector<double>(m_width, kNone), std::vector<double>(m_width, kNone)},
+          m_columns{std::vector<double>(m_height, kNone), std::vector<double>(m_height, kNone)} {}
+
+    /// Cell (row, col) has squared error `squared` in a kept triangle, if it is on a side.
+    void cover(std::size_t row, std::size_t col, double squared) {
+        if (row == 0 || row == m_height - 1)
+            m_rows[row == 0 ? 0 : 1][col] = squared;
+        if (col == 0 || col == m_width - 1)
+            m_columns[col == 0 ? 0 : 1][row] = squared;
+    }
+    /// The squared error of side cell (row, col), NaN when uncovered.
+    [[nodiscard]] double at(std::size_t row, std::size_t col) const {
+        if (row == 0 || row == m_height - 1)
+            return m_rows[row == 0 ? 0 : 1][col];
+        return m_columns[col == 0 ? 0 : 1][row];
+    }
+
+private:
+    static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    std::size_t m_width;
+    std::size_t m_height;
+    std::array<std::vector<double>, 2> m_rows;    // top, bottom
+    std::array<std::vector<double>, 2> m_columns; // left, right
+};
+
+/// Fills the tile's coveredForLaterTiles and uncoveredSharedSides from its final TIN. A side
+/// is the tile's hull there, so a side cell is covered by a kept triangle's vertex or edge
+/// along the side (its error along that edge), by no other.
+void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, UnownedSides unowned,
+                   TileRefinement& tile) {
+    const auto width = static_cast<std::size_t>(grid.width);
+    const auto height = static_cast<std::size_t>(grid.height);
+    SideCover sides(grid);
+    const TinMesh& mesh = tile.mesh;
+    const auto rowOf = [&](std::uint32_t v) { return mesh.sourceIndex[v] / width; };
+    const auto colOf = [&](std::uint32_t v) { return mesh.sourceIndex[v] % width; };
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::size_t e = 0; e < 3; ++e) {
+            const std::uint32_t a = mesh.triangles[3 * t + e];
+            const std::uint32_t b = mesh.triangles[3 * t + (e + 1) % 3];
+            sides.cover(rowOf(a), colOf(a), 0.0);
+            const bool alongRow = rowOf(a) == rowOf(b) && (rowOf(a) == 0 || rowOf(a) == height - 1);
+            const bool alongColumn =
+                colOf(a) == colOf(b) && (colOf(a) == 0 || colOf(a) == width - 1);
+            if (!alongRow && !alongColumn)
+                continue;
+            const std::size_t from = alongRow ? colOf(a) : rowOf(a);
+            const std::size_t to = alongRow ? colOf(b) : rowOf(b);
+            const double za = mesh.vertices[a].z;
+            const double zb = mesh.vertices[b].z;
+            for (std::size_t k = std::min(from, to) + 1; k < std::max(from, to); ++k) {
+                const std::size_t row = alongRow ? rowOf(a) : k;
+                const std::size_t col = alongRow ? k : colOf(a);
+                const double z = grid.z[row * width + col];
+                if (std::isnan(z))
+                    continue;
+                const double along = (static_cast<double>(k) - static_cast<double>(from)) /
+                                     (static_cast<double>(to) - static_cast<double>(from));
+                const double error = z - (za + (zb - za) * along);
+                sides.cover(row, col, error * error);
+            }
+        }
+    for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
+        const std::size_t row = cell / width;
+        const std::size_t col = cell % width;
+        if (row != 0 && col != 0 && row != height - 1 && col != width - 1)
+            continue;
+        const bool shared = (topShared && row == 0) || (leftShared && col == 0);
+        const bool later = unowned(cell, width, height);
+        if ((!shared && !later) || std::isnan(grid.z[cell]))
+            continue;
+        const double squared = sides.at(row, col);
+        if (later && !std::isnan(squared))
+            tile.coveredForLaterTiles.push_back({static_cast<std::uint32_t>(cell), squared});
+        else if (!later && std::isnan(squared))
+            tile.uncoveredSharedSides.push_back(static_cast<std::uint32_t>(cell));
+    }
+}
+
 /// The measure of a tile whose every valid cell is a vertex: no error anywhere; a cell it owns
 /// is covered while a triangle keeps its vertex (the measure's rule for vertex cells).
 void measureEveryCell(const HeightGrid& grid, UnownedSides unowned, TileRefinement& tile) {
@@ -279,14 +366,17 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     TileRefinement result;
     const UnownedSides unowned = tiles.unownedSidesOf(tile);
     countCells(flags, inner.width(), inner.height(), unowned, result);
-    if (!validCellsSpanArea(grid))
+    if (!validCellsSpanArea(grid)) {
+        coverTheSides(grid, tileRow > 0, tileColumn > 0, unowned, result); // covers none
         return result;
+    }
     if (options.everyCell) {
         result.mesh = triangulateEveryCell(grid, flags, workers.size());
         if (options.validate)
             checkExactlyDelaunay(result.mesh, "a tile's TIN");
         dropHoles(grid, flags, workers.size(), result);
         measureEveryCell(grid, unowned, result);
+        coverTheSides(grid, tileRow > 0, tileColumn > 0, unowned, result);
         return result;
     }
     std::vector<std::uint32_t> seeds = seedTheSides(grid, *options.maxError, flags);
@@ -310,6 +400,7 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
         checkExactlyDelaunay(result.mesh, "a tile's TIN");
     dropHoles(grid, flags, workers.size(), result);
     measure(grid, flags, unowned, workers.size(), result);
+    coverTheSides(grid, tileRow > 0, tileColumn > 0, unowned, result);
     return result;
 }
 

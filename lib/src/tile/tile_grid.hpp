@@ -4,6 +4,7 @@
 /// that share their end cells with the neighbouring range, so that the cell line on a border
 /// belongs to both tiles and its vertices are decided once (border_profile.hpp).
 
+#include <algorithm>
 #include <cstddef>
 
 namespace terratin::detail {
@@ -65,6 +66,12 @@ public:
     /// Which sides of tile `tile` its neighbours own.
     [[nodiscard]] UnownedSides unownedSidesOf(std::size_t tile) const {
         return {tile / tileColumns() + 1 < tileRows(), tile % tileColumns() + 1 < tileColumns()};
+    }
+    /// The tile that owns the grid's cell (row, column) by that rule: the last tile of those
+    /// holding it.
+    [[nodiscard]] std::size_t ownerOf(std::size_t row, std::size_t column) const {
+        return std::min(row / m_tileSize, tileRows() - 1) * tileColumns() +
+               std::min(column / m_tileSize, tileColumns() - 1);
     }
 
 private:

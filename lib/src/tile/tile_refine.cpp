@@ -161,6 +161,7 @@ public:
                             std::to_string(m_joined) + " is " +
                             std::to_string(next->second.maxError) +
                             " from the TIN, more than the maximum error " + std::to_string(bound));
+            countSideCells(next->second, m_job->place(m_joined));
             if (next->second.mesh.triangleCount() > 0)
                 pass(next->second.mesh, m_job->place(m_joined));
             addFigures(next->second, *m_result);
@@ -174,6 +175,29 @@ public:
     [[nodiscard]] TinMesh finish() { return m_merger.finish(); }
 
 private:
+    /// A side cell its owner (this tile) leaves uncovered is covered when an earlier tile
+    /// covered it; an earlier tile's cover is kept until the cell's owner is joined.
+    void countSideCells(const TileRefinement& tile, const TilePlace& place) {
+        const auto gridWidth = static_cast<std::size_t>(m_job->cells->width());
+        const auto gridCell = [&](std::uint32_t cell) {
+            return (place.firstRow + cell / place.width) * gridWidth + place.firstColumn +
+                   cell % place.width;
+        };
+        for (const std::uint32_t cell : tile.uncoveredSharedSides) {
+            const auto earlier = m_laterCover.find({m_joined, gridCell(cell)});
+            if (earlier == m_laterCover.end())
+                continue;
+            ++m_result->coveredCells;
+            m_sumSquares += earlier->second;
+        }
+        m_laterCover.erase(m_laterCover.begin(), m_laterCover.lower_bound({m_joined + 1, 0}));
+        for (const SideCell& side : tile.coveredForLaterTiles) {
+            const std::size_t cell = gridCell(side.cell);
+            const std::size_t owner = m_job->tiles.ownerOf(cell / gridWidth, cell % gridWidth);
+            m_laterCover.emplace(std::pair{owner, cell}, side.squaredError);
+        }
+    }
+
     /// To the caller's sink, numbered by the grid's cells, or into the joined TIN.
     void pass(TinMesh& tile, const TilePlace& place) {
         if (m_job->world)
@@ -193,6 +217,9 @@ private:
     RefineResult* m_result;
     TileMeshMerger m_merger;
     std::map<std::size_t, TileRefinement> m_waiting;
+    /// Side cells covered by a tile joined already, keyed by their owner and the grid's cell
+    /// index: their squared errors.
+    std::map<std::pair<std::size_t, std::size_t>, double> m_laterCover;
     std::size_t m_joined = 0;
     double m_sumSquares = 0.0;
 };

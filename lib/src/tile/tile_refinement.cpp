@@ -73,6 +73,8 @@ template <class Visitor, class Tile> void visitTile(Visitor& visitor, Tile& tile
     visitor.array(tile.mesh.sourceIndex);
     visitor.array(tile.mesh.triangles);
     visitor.array(tile.mesh.neighbours);
+    visitor.array(tile.coveredForLaterTiles);
+    visitor.array(tile.uncoveredSharedSides);
 }
 
 } // namespace

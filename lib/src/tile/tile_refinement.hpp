@@ -7,11 +7,18 @@
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace terratin::detail {
 
 /// What one tile's refinement gives the whole (tile_refine.hpp).
+/// A valid cell on a side of a tile, in the tile's own cell index, and its squared error there.
+struct SideCell {
+    std::uint32_t cell = 0;
+    double squaredError = 0.0;
+};
+
 struct TileRefinement {
     /// sourceIndex = the tile's own cell index; no triangle when the tile's valid cells span
     /// no area.
@@ -36,6 +43,14 @@ struct TileRefinement {
     std::size_t pairInsertions = 0;
     std::size_t sharedInsertions = 0;
     std::size_t meshBytes = 0;
+    /// A side's cell may be covered by one of its tiles only (the other's triangles there are
+    /// over a hole). Each cell is counted by its owner (the tile below or to the right of a
+    /// side: joined after the others), so: the cells of the tile's bottom and right sides that
+    /// it covers, owned by the tiles after it (with their errors); and the cells of its top and
+    /// left sides, shared with the tiles before it, that it leaves uncovered (tile_refine.cpp
+    /// matches them).
+    std::vector<SideCell> coveredForLaterTiles;
+    std::vector<std::uint32_t> uncoveredSharedSides;
 };
 
 /// The bytes of `tile`, for unpackTile in a process of the same build.
