@@ -530,8 +530,16 @@ case "$case_name" in
     cmp -s full_joined.ply full_streamed.ply || fail "the full-resolution PLYs differ"
     run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 1G --edges --quiet
     expect_one_error_line "edges"
-    run 1 build "$sample" -o bad.obj --max-error 1 --memory-limit 1G --quiet
-    expect_one_error_line "FlatGeobuf or PLY only"
+    # The mesh formats too (LandXML's date and time aside).
+    for extension in 2dm obj xml; do
+      run 0 build "$sample" -o "joined.$extension" --max-error 0.5 --tile-size 64 --threads 1 \
+        --quiet
+      run 0 build "$sample" -o "streamed.$extension" --max-error 0.5 --tile-size 64 --threads 1 \
+        --memory-limit 1G --quiet
+      undated() { sed 's/ date="[^"]*" time="[^"]*"//' "$1"; }
+      cmp -s <(undated "joined.$extension") <(undated "streamed.$extension") ||
+        fail "the .$extension written tile by tile is not the joined one"
+    done
     printf '0 0 1\n1 0 2\n0 1 3\n' >points.xyz
     run 1 build points.xyz -o bad.gpkg --memory-limit 1G --quiet
     expect_one_error_line "takes a DEM raster"

@@ -9,7 +9,7 @@ rotating from round to round, so that each configuration meets every load), and 
 configuration the medians of the JSON report's refine and total seconds, the peak resident
 memory of the largest process, and the points, triangles and achieved error (the same every
 round). --full-resolution leaves --max-error out (every valid cell a vertex); --format gpkg,
-fgb or shp writes that format instead of PLY. Run from the source tree after the release build:
+fgb, shp, 2dm, obj or xml writes that format instead of PLY. Run from the source tree after the release build:
 
     /usr/bin/python3 tools/bench/tiles_bench.py build/release/tools/terratin \\
         ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif --max-error 1 --tiles 256 1024 \\
@@ -60,7 +60,8 @@ def main():
     parser.add_argument("dem", type=Path)
     parser.add_argument("--max-error", type=float, default=1.0)
     parser.add_argument("--full-resolution", action="store_true")
-    parser.add_argument("--format", choices=["ply", "gpkg", "fgb", "shp"], default="ply")
+    parser.add_argument("--format", choices=["ply", "gpkg", "fgb", "shp", "2dm", "obj", "xml"],
+                        default="ply")
     parser.add_argument("--tiles", type=int, nargs="*", default=[256, 1024])
     parser.add_argument("--memory-limits", nargs="*", default=[])
     parser.add_argument("--rounds", type=int, default=5)

@@ -89,25 +89,13 @@ void writeBreaklines(const MeshFileInfo& info, BufferedFile& file) {
 
 } // namespace
 
-std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
-                           const ProgressTicker& ticker) {
-    const std::uint64_t vertexCount = mesh.vertexCount();
-    const std::uint64_t triangleCount = mesh.triangleCount();
+void LandXmlSurface::addTriangle(const Point3& a, const Point3& b, const Point3& c) {
+    const TriangleAttributes attributes = computeTriangleAttributes(a, b, c);
+    area2d += attributes.area2d;
+    area3d += attributes.area3d;
+}
 
-    // Surface statistics for the Definition element.
-    double area2d = 0.0;
-    double area3d = 0.0;
-    for (std::uint64_t t = 0; t < triangleCount; ++t) {
-        const TriangleAttributes attributes = computeTriangleAttributes(
-            mesh.vertices[mesh.triangles[3 * t]], mesh.vertices[mesh.triangles[3 * t + 1]],
-            mesh.vertices[mesh.triangles[3 * t + 2]]);
-        area2d += attributes.area2d;
-        area3d += attributes.area3d;
-    }
-    const auto [lowest, highest] =
-        std::minmax_element(mesh.vertices.begin(), mesh.vertices.end(),
-                            [](const Point3& a, const Point3& b) { return a.z < b.z; });
-
+void putLandXmlHead(BufferedFile& file, const MeshFileInfo& info, const LandXmlSurface& surface) {
     const std::time_t now = std::time(nullptr);
     std::tm utc{};
     gmtime_r(&now, &utc);
@@ -147,39 +135,61 @@ std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, Buffer
     file.text("\">\n");
     writeBreaklines(info, file);
     file.text("<Definition surfType=\"TIN\" area2DSurf=\"");
-    file.number(area2d);
+    file.number(surface.area2d);
     file.text("\" area3DSurf=\"");
-    file.number(area3d);
+    file.number(surface.area3d);
     file.text("\" elevMax=\"");
-    file.number(highest->z);
+    file.number(surface.elevMax);
     file.text("\" elevMin=\"");
-    file.number(lowest->z);
+    file.number(surface.elevMin);
     file.text("\">\n<Pnts>\n");
+}
+
+void putLandXmlPoint(BufferedFile& file, std::uint64_t number, const Point3& p) {
+    file.text("<P id=\"");
+    file.number(number + 1);
+    file.text("\">");
+    file.number(p.y);
+    file.put(' ');
+    file.number(p.x);
+    file.put(' ');
+    file.number(p.z);
+    file.text("</P>\n");
+}
+
+void putLandXmlFace(BufferedFile& file, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    file.text("<F>");
+    file.number(std::uint64_t{a} + 1);
+    file.put(' ');
+    file.number(std::uint64_t{b} + 1);
+    file.put(' ');
+    file.number(std::uint64_t{c} + 1);
+    file.text("</F>\n");
+}
+
+std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
+                           const ProgressTicker& ticker) {
+    const std::uint64_t vertexCount = mesh.vertexCount();
+    const std::uint64_t triangleCount = mesh.triangleCount();
+    LandXmlSurface surface;
+    for (const Point3& p : mesh.vertices)
+        surface.addVertex(p);
+    for (std::uint64_t t = 0; t < triangleCount; ++t)
+        surface.addTriangle(mesh.vertices[mesh.triangles[3 * t]],
+                            mesh.vertices[mesh.triangles[3 * t + 1]],
+                            mesh.vertices[mesh.triangles[3 * t + 2]]);
+    putLandXmlHead(file, info, surface);
     for (std::uint64_t v = 0; v < vertexCount; ++v) {
         ticker.tick(v, "Writing points");
-        const Point3& p = mesh.vertices[v];
-        file.text("<P id=\"");
-        file.number(v + 1);
-        file.text("\">");
-        file.number(p.y);
-        file.put(' ');
-        file.number(p.x);
-        file.put(' ');
-        file.number(p.z);
-        file.text("</P>\n");
+        putLandXmlPoint(file, v, mesh.vertices[v]);
     }
-    file.text("</Pnts>\n<Faces>\n");
+    file.text(kLandXmlBetween);
     for (std::uint64_t t = 0; t < triangleCount; ++t) {
         ticker.tick(vertexCount + t, "Writing faces");
-        file.text("<F>");
-        for (int k = 0; k < 3; ++k) {
-            if (k > 0)
-                file.put(' ');
-            file.number(std::uint64_t{mesh.triangles[3 * t + k]} + 1);
-        }
-        file.text("</F>\n");
+        putLandXmlFace(file, mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                       mesh.triangles[3 * t + 2]);
     }
-    file.text("</Faces>\n</Definition>\n</Surface>\n</Surfaces>\n</LandXML>\n");
+    file.text(kLandXmlEnd);
     return vertexCount + triangleCount;
 }
 

@@ -8,39 +8,46 @@ namespace terratin::io::detail {
 
 namespace {
 
-/// floor(min) of one coordinate when subtracting it and adding it back is exact for every
-/// vertex, else 0.
-double exactOrigin(const TinMesh& mesh, double Point3::*axis) {
-    double lowest = mesh.vertices.front().*axis;
-    for (const Point3& p : mesh.vertices)
-        lowest = std::min(lowest, p.*axis);
-    const double origin = std::floor(lowest);
-    if (!std::isfinite(origin))
-        return 0.0;
-    for (const Point3& p : mesh.vertices) {
-        const double value = p.*axis;
-        const double local = value - origin;
-        // Exact subtraction: undoing it recovers both operands.
-        if (local + origin != value || value - local != origin)
-            return 0.0;
-    }
-    return origin;
-}
+double Point3::*const kAxes[2] = {&Point3::x, &Point3::y};
 
 } // namespace
 
-Point3 objLocalOrigin(const TinMesh& mesh) {
-    if (mesh.vertices.empty())
-        return {};
-    return {exactOrigin(mesh, &Point3::x), exactOrigin(mesh, &Point3::y), 0.0};
+void ObjOrigin::see(const Point3& p) {
+    for (std::size_t axis = 0; axis < 2; ++axis)
+        m_lowest[axis] = std::min(m_lowest[axis], p.*kAxes[axis]);
 }
 
-std::uint64_t writeObj(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
-                       const ProgressTicker& ticker) {
-    const std::uint64_t vertexCount = mesh.vertexCount();
-    const std::uint64_t triangleCount = mesh.triangleCount();
-    const Point3 origin = objLocalOrigin(mesh);
+double ObjOrigin::candidate(std::size_t axis) const {
+    const double origin = std::floor(m_lowest[axis]);
+    return std::isfinite(origin) ? origin : 0.0;
+}
 
+void ObjOrigin::check(const Point3& p) {
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+        const double value = p.*kAxes[axis];
+        const double origin = candidate(axis);
+        const double local = value - origin;
+        // Exact subtraction: undoing it recovers both operands.
+        if (local + origin != value || value - local != origin)
+            m_exact[axis] = false;
+    }
+}
+
+Point3 ObjOrigin::origin() const {
+    return {m_exact[0] ? candidate(0) : 0.0, m_exact[1] ? candidate(1) : 0.0, 0.0};
+}
+
+Point3 objLocalOrigin(const TinMesh& mesh) {
+    ObjOrigin origin;
+    for (const Point3& p : mesh.vertices)
+        origin.see(p);
+    for (const Point3& p : mesh.vertices)
+        origin.check(p);
+    return origin.origin();
+}
+
+void putObjHead(BufferedFile& file, const MeshFileInfo& info, std::uint64_t vertexCount,
+                std::uint64_t triangleCount, const Point3& origin) {
     file.text("# TIN written by terratin ");
     file.text(info.softwareVersion);
     file.text(": ");
@@ -73,26 +80,41 @@ std::uint64_t writeObj(const TinMesh& mesh, const MeshFileInfo& info, BufferedFi
     file.text("\no ");
     file.text(info.name);
     file.put('\n');
+}
 
+void putObjVertex(BufferedFile& file, const Point3& p, const Point3& origin) {
+    file.text("v ");
+    file.number(p.x - origin.x);
+    file.put(' ');
+    file.number(p.y - origin.y);
+    file.put(' ');
+    file.number(p.z - origin.z);
+    file.put('\n');
+}
+
+void putObjFace(BufferedFile& file, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    file.put('f');
+    for (const std::uint32_t corner : {a, b, c}) {
+        file.put(' ');
+        file.number(std::uint64_t{corner} + 1);
+    }
+    file.put('\n');
+}
+
+std::uint64_t writeObj(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
+                       const ProgressTicker& ticker) {
+    const std::uint64_t vertexCount = mesh.vertexCount();
+    const std::uint64_t triangleCount = mesh.triangleCount();
+    const Point3 origin = objLocalOrigin(mesh);
+    putObjHead(file, info, vertexCount, triangleCount, origin);
     for (std::uint64_t v = 0; v < vertexCount; ++v) {
         ticker.tick(v, "Writing vertices");
-        const Point3& p = mesh.vertices[v];
-        file.text("v ");
-        file.number(p.x - origin.x);
-        file.put(' ');
-        file.number(p.y - origin.y);
-        file.put(' ');
-        file.number(p.z - origin.z);
-        file.put('\n');
+        putObjVertex(file, mesh.vertices[v], origin);
     }
     for (std::uint64_t t = 0; t < triangleCount; ++t) {
         ticker.tick(vertexCount + t, "Writing faces");
-        file.put('f');
-        for (int k = 0; k < 3; ++k) {
-            file.put(' ');
-            file.number(std::uint64_t{mesh.triangles[3 * t + k]} + 1);
-        }
-        file.put('\n');
+        putObjFace(file, mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                   mesh.triangles[3 * t + 2]);
     }
     return vertexCount + triangleCount;
 }

@@ -2,9 +2,9 @@
 /// @file
 /// One TIN file written piece by piece, as the tiles of a tiled build are done (issue 25's
 /// bounded memory): each piece's vertices and triangles go to disk at once, and only what the
-/// file's end needs stays in memory (the GeoPackage's index boxes, the PLY's counts,
-/// GDAL's FlatGeobuf index entries).
-/// GeoPackage, Shapefile, FlatGeobuf and PLY; writeTin takes the whole TIN in every format.
+/// file's end needs stays in memory (the GeoPackage's index boxes, GDAL's FlatGeobuf index
+/// entries, a mesh format's counts and figures). Every format of writeTin
+/// (gpkg/gpkg_tin_stream.hpp, ogr_tin_stream.hpp, mesh_stream.hpp).
 
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
@@ -74,8 +74,8 @@ private:
 };
 
 /// Refuses (InvalidInputError, naming options as options.optionName does) what a TIN written
-/// piece by piece cannot be: 2DM, OBJ or LandXML, an edges layer (an edge's triangles may lie
-/// in two pieces), appendLayer; then what writeTin refuses of the options.
+/// piece by piece cannot be: with an edges layer (an edge's triangles may lie in two pieces),
+/// appended to a GeoPackage (appendLayer); then what writeTin refuses of the options.
 void checkTinStreamOptions(const TinWriteOptions& options, std::string_view pieceBy);
 
 /// The writer of `output`, after the checks writeTin makes before its first byte (the

@@ -43,21 +43,7 @@ constexpr double kMeshRecordShare = 0.98;
 }
 
 std::string_view stageOf(TinFormat format) {
-    switch (format) {
-    case TinFormat::GeoPackage:
-    case TinFormat::Shapefile:
-    case TinFormat::FlatGeobuf:
-        return "OgrTinWriter";
-    case TinFormat::TwoDm:
-        return "TwoDmWriter";
-    case TinFormat::Ply:
-        return "PlyWriter";
-    case TinFormat::Obj:
-        return "ObjWriter";
-    case TinFormat::LandXml:
-        return "LandXmlWriter";
-    }
-    return kStage;
+    return detail::writerStage(format);
 }
 
 void checkMesh(std::string_view stage, const TinMesh& mesh, const fs::path& output,

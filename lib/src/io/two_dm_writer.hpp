@@ -18,6 +18,13 @@
 
 namespace terratin::io::detail {
 
+/// The lines before the nodes; a node numbered `number` (from 0; its id is number + 1); an
+/// element numbered `number` of vertices a, b, c (numbered from 0).
+void putTwoDmHead(BufferedFile& file, const MeshFileInfo& info);
+void putTwoDmNode(BufferedFile& file, std::uint64_t number, const Point3& p);
+void putTwoDmElement(BufferedFile& file, std::uint64_t number, std::uint32_t a, std::uint32_t b,
+                     std::uint32_t c);
+
 /// Writes the whole file; returns vertices + triangles. Throws IoError, Cancelled.
 std::uint64_t writeTwoDm(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
                          const ProgressTicker& ticker);

@@ -59,4 +59,22 @@ CrsSummary summariseCrs(std::string_view stage, const std::string& wkt) {
     return summary;
 }
 
+std::string_view writerStage(TinFormat format) {
+    switch (format) {
+    case TinFormat::GeoPackage:
+    case TinFormat::Shapefile:
+    case TinFormat::FlatGeobuf:
+        return "OgrTinWriter";
+    case TinFormat::TwoDm:
+        return "TwoDmWriter";
+    case TinFormat::Ply:
+        return "PlyWriter";
+    case TinFormat::Obj:
+        return "ObjWriter";
+    case TinFormat::LandXml:
+        return "LandXmlWriter";
+    }
+    return "TinWriter";
+}
+
 } // namespace terratin::io::detail

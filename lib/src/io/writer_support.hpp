@@ -4,6 +4,7 @@
 /// describe it.
 
 #include "terratin/geometry/point.hpp"
+#include "terratin/io/tin_format.hpp"
 #include "terratin/progress.hpp"
 
 #include <cstdint>
@@ -71,6 +72,9 @@ struct CrsSummary {
 
 /// Parses `wkt` (empty: no CRS). Throws CrsError "<stage>: the output CRS is not valid WKT".
 CrsSummary summariseCrs(std::string_view stage, const std::string& wkt);
+
+/// The stage a writer of `format` starts its messages with ("PlyWriter", "OgrTinWriter"...).
+std::string_view writerStage(TinFormat format);
 
 } // namespace terratin::io::detail
 
