@@ -9,7 +9,8 @@ rotating from round to round, so that each configuration meets every load), and 
 configuration the medians of the JSON report's refine and total seconds, the peak resident
 memory of the largest process, and the points, triangles and achieved error (the same every
 round). --full-resolution leaves --max-error out (every valid cell a vertex); --format gpkg,
-fgb, shp, 2dm, obj or xml writes that format instead of PLY. Run from the source tree after the release build:
+fgb, shp, 2dm, obj or xml writes that format instead of PLY. Run from the source tree after the
+release build:
 
     /usr/bin/python3 tools/bench/tiles_bench.py build/release/tools/terratin \\
         ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif --max-error 1 --tiles 256 1024 \\
