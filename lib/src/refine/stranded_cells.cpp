@@ -54,15 +54,17 @@ std::vector<CellToInsert> cellsBesideStrandedVertices(const TinMesh& mesh,
                                                       std::span<const std::uint8_t> drop,
                                                       const GridView& grid) {
     std::vector<std::uint8_t> kept(mesh.vertexCount(), 0);
-    std::vector<std::uint32_t> triangleOf(mesh.vertexCount(), 0);
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        for (std::size_t k = 0; k < 3; ++k) {
-            const std::uint32_t v = mesh.triangles[3 * t + k];
-            triangleOf[v] = static_cast<std::uint32_t>(t);
-            if (drop[t] == 0)
-                kept[v] = 1;
-        }
+        if (drop[t] == 0)
+            for (std::size_t k = 0; k < 3; ++k)
+                kept[mesh.triangles[3 * t + k]] = 1;
     std::vector<CellToInsert> cells;
+    if (std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k != 0; }))
+        return cells;
+    std::vector<std::uint32_t> triangleOf(mesh.vertexCount(), 0); // a triangle of each vertex
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::size_t k = 0; k < 3; ++k)
+            triangleOf[mesh.triangles[3 * t + k]] = static_cast<std::uint32_t>(t);
     constexpr std::uint8_t kNotInsertable = kCellNoData | kCellVertex | kCellFrozen;
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
         if (kept[v] != 0)

@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -129,32 +130,41 @@ void countCells(const CellFlags& flags, std::size_t width, std::size_t height, U
     }
 }
 
-/// Drops the tile's triangles over open holes (clearing the sides' kCellFrozen first).
-void dropHoles(const HeightGrid& grid, CellFlags& flags, unsigned threads, TileRefinement& tile) {
-    for (std::uint8_t& flag : flags)
-        flag &= static_cast<std::uint8_t>(~kCellFrozen);
+/// For each triangle of `mesh`, 1 when it covers a cell of an open hole; empty when the tile
+/// has none.
+std::vector<std::uint8_t> trianglesOverHoles(const HeightGrid& grid, const CellFlags& flags,
+                                             const TinMesh& mesh, unsigned threads) {
     if (std::none_of(flags.begin(), flags.end(),
                      [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
-        return;
+        return {};
     const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
-    tile.droppedTriangles =
-        dropTriangles(tile.mesh, trianglesOverOpenHoles(tile.mesh, view, threads));
+    return trianglesOverOpenHoles(mesh, view, threads);
+}
+
+/// Drops the tile's triangles marked in `drop` (from trianglesOverHoles), clearing the sides'
+/// kCellFrozen first.
+void dropHoles(CellFlags& flags, std::span<const std::uint8_t> drop, TileRefinement& tile) {
+    for (std::uint8_t& flag : flags)
+        flag &= static_cast<std::uint8_t>(~kCellFrozen);
+    if (!drop.empty())
+        tile.droppedTriangles = dropTriangles(tile.mesh, drop);
 }
 
 /// Gives the vertices the holes would strand their neighbours, as refine() does
-/// (stranded_cells.hpp): before dropHoles, while the sides' cells are still frozen.
-void coverStrandedVertices(const HeightGrid& grid, const CellFlags& flags, GreedyRefiner& refiner,
-                           std::vector<TriId>& slots, unsigned threads,
-                           const ProgressCallback& progress, TinMesh& mesh) {
-    if (std::none_of(flags.begin(), flags.end(),
-                     [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
-        return;
+/// (stranded_cells.hpp), while the sides' cells are still frozen. Returns trianglesOverHoles
+/// of the final `mesh`.
+std::vector<std::uint8_t> coverStrandedVertices(const HeightGrid& grid, const CellFlags& flags,
+                                                GreedyRefiner& refiner, std::vector<TriId>& slots,
+                                                unsigned threads, const ProgressCallback& progress,
+                                                TinMesh& mesh) {
     const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
     for (;;) {
-        const std::vector<CellToInsert> cells =
-            cellsBesideStrandedVertices(mesh, trianglesOverOpenHoles(mesh, view, threads), view);
+        std::vector<std::uint8_t> drop = trianglesOverHoles(grid, flags, mesh, threads);
+        if (drop.empty())
+            return drop;
+        const std::vector<CellToInsert> cells = cellsBesideStrandedVertices(mesh, drop, view);
         if (cells.empty() || !refiner.insertCells(cells, slots, progress))
-            return;
+            return drop;
         mesh = refiner.extractInCellOrder(&slots);
     }
 }
@@ -221,16 +231,22 @@ void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, Unow
     const TinMesh& mesh = tile.mesh;
     const auto rowOf = [&](std::uint32_t v) { return mesh.sourceIndex[v] / width; };
     const auto colOf = [&](std::uint32_t v) { return mesh.sourceIndex[v] % width; };
+    // The sides each vertex lies on (bits: top, bottom, left, right), found once.
+    std::vector<std::uint8_t> onSides(mesh.vertexCount(), 0);
+    for (std::uint32_t v = 0; v < onSides.size(); ++v)
+        onSides[v] = static_cast<std::uint8_t>(
+            (rowOf(v) == 0 ? 1U : 0U) | (rowOf(v) == height - 1 ? 2U : 0U) |
+            (colOf(v) == 0 ? 4U : 0U) | (colOf(v) == width - 1 ? 8U : 0U));
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
         for (std::size_t e = 0; e < 3; ++e) {
             const std::uint32_t a = mesh.triangles[3 * t + e];
             const std::uint32_t b = mesh.triangles[3 * t + (e + 1) % 3];
-            sides.cover(rowOf(a), colOf(a), 0.0);
-            const bool alongRow = rowOf(a) == rowOf(b) && (rowOf(a) == 0 || rowOf(a) == height - 1);
-            const bool alongColumn =
-                colOf(a) == colOf(b) && (colOf(a) == 0 || colOf(a) == width - 1);
-            if (!alongRow && !alongColumn)
+            const unsigned common = onSides[a] & onSides[b];
+            if (onSides[a] != 0)
+                sides.cover(rowOf(a), colOf(a), 0.0);
+            if (common == 0)
                 continue;
+            const bool alongRow = (common & 3U) != 0;
             const std::size_t from = alongRow ? colOf(a) : rowOf(a);
             const std::size_t to = alongRow ? colOf(b) : rowOf(b);
             const double za = mesh.vertices[a].z;
@@ -247,20 +263,27 @@ void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, Unow
                 sides.cover(row, col, error * error);
             }
         }
-    for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
-        const std::size_t row = cell / width;
-        const std::size_t col = cell % width;
-        if (row != 0 && col != 0 && row != height - 1 && col != width - 1)
-            continue;
+    const auto report = [&](std::size_t row, std::size_t col) {
+        const std::size_t cell = row * width + col;
         const bool shared = (topShared && row == 0) || (leftShared && col == 0);
         const bool later = unowned(cell, width, height);
         if ((!shared && !later) || std::isnan(grid.z[cell]))
-            continue;
+            return;
         const double squared = sides.at(row, col);
         if (later && !std::isnan(squared))
             tile.coveredForLaterTiles.push_back({static_cast<std::uint32_t>(cell), squared});
         else if (!later && std::isnan(squared))
             tile.uncoveredSharedSides.push_back(static_cast<std::uint32_t>(cell));
+    };
+    for (std::size_t col = 0; col < width; ++col) {
+        report(0, col);
+        if (height > 1)
+            report(height - 1, col);
+    }
+    for (std::size_t row = 1; row + 1 < height; ++row) {
+        report(row, 0);
+        if (width > 1)
+            report(row, width - 1);
     }
 }
 
@@ -374,7 +397,7 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
         result.mesh = triangulateEveryCell(grid, flags, workers.size());
         if (options.validate)
             checkExactlyDelaunay(result.mesh, "a tile's TIN");
-        dropHoles(grid, flags, workers.size(), result);
+        dropHoles(flags, trianglesOverHoles(grid, flags, result.mesh, workers.size()), result);
         measureEveryCell(grid, unowned, result);
         coverTheSides(grid, tileRow > 0, tileColumn > 0, unowned, result);
         return result;
@@ -392,13 +415,14 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     }
     std::vector<TriId> slots;
     result.mesh = refiner.extractInCellOrder(&slots);
-    coverStrandedVertices(grid, flags, refiner, slots, workers.size(), progress, result.mesh);
+    const std::vector<std::uint8_t> drop =
+        coverStrandedVertices(grid, flags, refiner, slots, workers.size(), progress, result.mesh);
     copyRefinerCounts(refiner, result);
     result.stop = refiner.stop();
     checkTheShares(result.mesh, options, tileRow, tileColumn);
     if (options.validate)
         checkExactlyDelaunay(result.mesh, "a tile's TIN");
-    dropHoles(grid, flags, workers.size(), result);
+    dropHoles(flags, drop, result);
     measure(grid, flags, unowned, workers.size(), result);
     coverTheSides(grid, tileRow > 0, tileColumn > 0, unowned, result);
     return result;
