@@ -197,6 +197,19 @@ TEST(TinStream, A2dmAnObjAndALandXmlWrittenPieceByPiece_AreTheWholeTinsFiles) {
     test::expectSameMesh(test::readTwoDm(directory / "streamed-t.2dm"), cut.whole);
 }
 
+TEST(TinStream, AnObjOfMoreVerticesThanAReadBackChunk_IsTheWholeTinsObj) {
+    // OBJ's vertices wait as raw doubles and are read back a MiB at a time: 250 x 250
+    // vertices (1.5 MB) cut records across a chunk's end.
+    const TemporaryDirectory directory;
+    constexpr int kLarge = 250;
+    const CutTin cut = cutTin(test::gridTin(kLarge), {0, 40000, 90000}, kLarge);
+    const TinWriteOptions options = streamOptions(TinFormat::Obj);
+    streamPieces(cut, directory / "streamed.obj", options);
+    writeTin(cut.whole, directory / "whole.obj", options);
+    EXPECT_EQ(bytesOf(directory / "streamed.obj"), bytesOf(directory / "whole.obj"));
+    EXPECT_GT(cut.whole.vertexCount() * sizeof(Point3), std::size_t{1} << 20);
+}
+
 TEST(TinStream, AShapefileWrittenPieceByPiece_IsTheShapefileOfTheWholeTin) {
     const TemporaryDirectory directory;
     std::filesystem::create_directory(directory / "streamed");
