@@ -26,8 +26,15 @@ std::uint64_t tileBytes(std::size_t tileSize, std::size_t marginCells) {
     return side * side * kTileBytesPerCell;
 }
 
+/// A limit to give, rounded up to whole MiB.
 std::string mebibytes(std::uint64_t bytes) {
     return std::to_string((bytes + kMiB - 1) / kMiB) + "M";
+}
+
+/// The limit given, as given where it is whole MiB, else in bytes (not rounded up to the
+/// limit it is not).
+std::string givenLimit(std::uint64_t bytes) {
+    return bytes % kMiB == 0 ? mebibytes(bytes) : std::to_string(bytes) + " bytes";
 }
 
 /// The limit whose share for tiles holds `bytes`: the inverse of the shares below.
@@ -64,7 +71,7 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
     budget.tileSize = std::min(side > grown ? side - grown : 0, kMaxTileSize);
     if (budget.tileSize < kLeastTileSize)
         throw InvalidInputError(
-            "Build: " + limitName + " " + mebibytes(limitBytes) + " is too little for tiles of " +
+            "Build: " + limitName + " " + givenLimit(limitBytes) + " is too little for tiles of " +
             std::to_string(kLeastTileSize) + " cells with their margin of " +
             optionName("max_hole") + " cells; give " +
             mebibytes(limitFor(tileBytes(kLeastTileSize, marginCells))) + " or more");

@@ -60,6 +60,9 @@ TEST(MemoryBudget, TheTileChosenIsTheLargestThatFits) {
 TEST(MemoryBudget, ALimitTooSmall_NamesALimitThatIsEnough) {
     const std::string small = refusal(100 * kMiB, 1, 0);
     EXPECT_NE(small.find("--memory_limit 100M is too little"), std::string::npos) << small;
+    // A limit of a few bytes is named as given, not rounded up to 1M.
+    const std::string tiny = refusal(10, 1, 0);
+    EXPECT_NE(tiny.find("--memory_limit 10 bytes is too little"), std::string::npos) << tiny;
     EXPECT_EQ(refusal(namedLimit(small), 1, 0), "<accepted>");
     EXPECT_NE(refusal(namedLimit(small) - 2 * kMiB, 1, 0), "<accepted>");
 
