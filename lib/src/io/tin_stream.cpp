@@ -1,6 +1,5 @@
 #include "tin_stream.hpp"
 
-#include "atomic_output.hpp"
 #include "gpkg/gpkg_tin_stream.hpp"
 #include "mesh_stream.hpp"
 #include "ogr_dataset_support.hpp"
@@ -9,7 +8,6 @@
 #include "style_beside.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "writer_support.hpp"
 
 #include <algorithm>
 #include <limits>

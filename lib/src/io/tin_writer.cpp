@@ -42,10 +42,6 @@ constexpr double kMeshRecordShare = 0.98;
     throw InvalidInputError(std::string(stage) + ": " + message);
 }
 
-std::string_view stageOf(TinFormat format) {
-    return detail::writerStage(format);
-}
-
 void checkMesh(std::string_view stage, const TinMesh& mesh, const fs::path& output,
                const TinWriteOptions& options) {
     const std::string nothing = "; nothing written to " + detail::quoted(output);
@@ -87,7 +83,7 @@ detail::MeshFileInfo meshFileInfo(std::string_view stage, const TinWriteOptions&
 TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
                                const TinWriteOptions& options, const detail::MeshFileInfo& info,
                                const ProgressCallback& progress) {
-    const std::string_view stage = stageOf(options.format);
+    const std::string_view stage = detail::writerStage(options.format);
     const detail::AtomicOutput temporaries(
         stage, output, detail::existingTargetFor(options.overwrite), options.optionName);
     const fs::path temporary = temporaries.temporary(output.extension().string());
@@ -185,7 +181,7 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
 }
 
 void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {
-    const std::string_view stage = stageOf(options.format);
+    const std::string_view stage = detail::writerStage(options.format);
     detail::checkOutputLocation(stage, output);
     std::vector<fs::path> outputs = outputFiles(output, options);
     // Not even --overwrite replaces a device, a FIFO or a symbolic link (issue 22, D18).
@@ -200,7 +196,7 @@ void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {
 TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output, const TinWriteOptions& options,
                         const ProgressCallback& progress) {
     initialiseGdal();
-    const std::string_view stage = stageOf(options.format);
+    const std::string_view stage = detail::writerStage(options.format);
 
     // Everything that can be refused is refused before the first byte is written.
     checkTinWriteOptions(options);

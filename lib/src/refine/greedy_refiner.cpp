@@ -5,6 +5,7 @@
 #include "level_schedule.hpp"
 #include "level_tasks.hpp"
 #include "located_check.hpp"
+#include "stranded_cells.hpp"
 #include "valid_hull.hpp"
 
 #include "terratin/error.hpp"
@@ -575,17 +576,28 @@ void GreedyRefiner::completeAtPositions(const ProgressCallback& progress) {
     }
 }
 
-bool GreedyRefiner::insertCells(std::span<const CellToInsert> cells, std::span<const TriId> slots,
-                                const ProgressCallback& progress) {
-    if (m_stop != RefineStop::ErrorReached)
-        return false;
-    ++m_completionPasses;
-    for (const CellToInsert& cell : cells) {
-        const TriId slot = slots[cell.triangle];
-        route(Candidate{cell.priority, cell.cell, slot, m_mesh->version(slot)});
+std::vector<std::uint8_t> GreedyRefiner::coverStrandedVertices(TinMesh& mesh,
+                                                               std::vector<TriId>& slots,
+                                                               std::size_t spareVertices,
+                                                               const ProgressCallback& progress) {
+    if (std::none_of(m_flags.begin(), m_flags.end(),
+                     [](std::uint8_t f) { return (f & kCellOpenHole) != 0; }))
+        return {};
+    for (;;) {
+        std::vector<std::uint8_t> drop = trianglesOverOpenHoles(mesh, m_view, m_workers->size());
+        if (m_stop != RefineStop::ErrorReached)
+            return drop;
+        const std::vector<CellToInsert> cells = cellsBesideStrandedVertices(mesh, drop, m_view);
+        if (cells.empty())
+            return drop;
+        ++m_completionPasses;
+        for (const CellToInsert& cell : cells) {
+            const TriId slot = slots[cell.triangle];
+            route(Candidate{cell.priority, cell.cell, slot, m_mesh->version(slot)});
+        }
+        runLevels(progress);
+        mesh = extractInCellOrder(&slots, spareVertices);
     }
-    runLevels(progress);
-    return true;
 }
 
 TinMesh GreedyRefiner::extractInCellOrder(std::vector<TriId>* slotOfTriangle,

@@ -64,11 +64,14 @@ public:
     [[nodiscard]] TinMesh extractInCellOrder(std::vector<TriId>* slotOfTriangle = nullptr,
                                              std::size_t spareVertices = 0) const;
 
-    /// After run(): inserts `cells` (each in its triangle of the last extractInCellOrder, whose
-    /// slots are `slots`) and refines on until the scans find nothing more, as a completion
-    /// pass. Returns false, inserting nothing, when a limit stopped the refinement.
-    bool insertCells(std::span<const CellToInsert> cells, std::span<const TriId> slots,
-                     const ProgressCallback& progress);
+    /// After run(), with `mesh` its last extractInCellOrder(&slots, spareVertices): while a
+    /// vertex is used only by triangles over open holes, inserts its neighbours
+    /// (stranded_cells.hpp), refines on, and extracts `mesh` and `slots` again, each time a
+    /// completion pass; not after a limit stopped the refinement. Returns the final mesh's
+    /// trianglesOverOpenHoles, empty when the grid has no open hole.
+    std::vector<std::uint8_t> coverStrandedVertices(TinMesh& mesh, std::vector<TriId>& slots,
+                                                    std::size_t spareVertices,
+                                                    const ProgressCallback& progress);
 
     [[nodiscard]] RefineStop stop() const { return m_stop; }
     [[nodiscard]] std::size_t hullPoints() const { return m_hullPoints; }
@@ -79,7 +82,7 @@ public:
     /// Points inserted by the pairs of strips, and by the sequential step of the levels.
     [[nodiscard]] std::size_t pairInsertions() const { return m_pairInsertions; }
     [[nodiscard]] std::size_t sharedInsertions() const { return m_sharedInsertions; }
-    /// Completion passes: of completeAtPositions, and of insertCells.
+    /// Completion passes: of completeAtPositions, and of coverStrandedVertices.
     [[nodiscard]] std::size_t completionPasses() const { return m_completionPasses; }
     [[nodiscard]] std::size_t meshBytes() const { return m_mesh->memoryBytes(); }
 

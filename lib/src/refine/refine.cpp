@@ -5,7 +5,6 @@
 #include "greedy_refiner.hpp"
 #include "located_check.hpp"
 #include "round_workers.hpp"
-#include "stranded_cells.hpp"
 
 #include "../tile/tile_refine.hpp"
 
@@ -95,17 +94,10 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     std::vector<detail::TriId> slots;
     result.mesh = refiner.extractInCellOrder(&slots, options.spareVertices);
     std::vector<std::uint8_t> drop; // empty: no triangle to drop, or the caller decides
-    if (result.openHoleCells > 0 && (options.measure || !options.keepHoleTriangles))
+    if (positions.empty() && !options.keepHoleTriangles)
+        drop = refiner.coverStrandedVertices(result.mesh, slots, options.spareVertices, progress);
+    else if (result.openHoleCells > 0 && (options.measure || !options.keepHoleTriangles))
         drop = trianglesOverHoles();
-    // Vertices the holes would strand get their neighbours (stranded_cells.hpp).
-    while (positions.empty() && !options.keepHoleTriangles && !drop.empty()) {
-        const std::vector<detail::CellToInsert> cells =
-            detail::cellsBesideStrandedVertices(result.mesh, drop, view);
-        if (cells.empty() || !refiner.insertCells(cells, slots, progress))
-            break;
-        result.mesh = refiner.extractInCellOrder(&slots, options.spareVertices);
-        drop = trianglesOverHoles();
-    }
     result.stop = refiner.stop();
     detail::copyRefinerCounts(refiner, result);
     result.completionPasses = refiner.completionPasses();

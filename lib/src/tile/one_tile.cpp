@@ -6,7 +6,6 @@
 #include "../refine/error_check.hpp"
 #include "../refine/greedy_refiner.hpp"
 #include "../refine/round_workers.hpp"
-#include "../refine/stranded_cells.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"
@@ -141,32 +140,13 @@ std::vector<std::uint8_t> trianglesOverHoles(const HeightGrid& grid, const CellF
     return trianglesOverOpenHoles(mesh, view, threads);
 }
 
-/// Drops the tile's triangles marked in `drop` (from trianglesOverHoles), clearing the sides'
+/// Drops the tile's triangles marked in `drop` (over open holes; empty: none), clearing the sides'
 /// kCellFrozen first.
 void dropHoles(CellFlags& flags, std::span<const std::uint8_t> drop, TileRefinement& tile) {
     for (std::uint8_t& flag : flags)
         flag &= static_cast<std::uint8_t>(~kCellFrozen);
     if (!drop.empty())
         tile.droppedTriangles = dropTriangles(tile.mesh, drop);
-}
-
-/// Gives the vertices the holes would strand their neighbours, as refine() does
-/// (stranded_cells.hpp), while the sides' cells are still frozen. Returns trianglesOverHoles
-/// of the final `mesh`.
-std::vector<std::uint8_t> coverStrandedVertices(const HeightGrid& grid, const CellFlags& flags,
-                                                GreedyRefiner& refiner, std::vector<TriId>& slots,
-                                                unsigned threads, const ProgressCallback& progress,
-                                                TinMesh& mesh) {
-    const GridView view{grid.width, grid.height, grid.z.data(), flags.data()};
-    for (;;) {
-        std::vector<std::uint8_t> drop = trianglesOverHoles(grid, flags, mesh, threads);
-        if (drop.empty())
-            return drop;
-        const std::vector<CellToInsert> cells = cellsBesideStrandedVertices(mesh, drop, view);
-        if (cells.empty() || !refiner.insertCells(cells, slots, progress))
-            return drop;
-        mesh = refiner.extractInCellOrder(&slots);
-    }
 }
 
 /// Measures the tile's largest error over every valid cell, the sides' included, in the pixel
@@ -415,8 +395,9 @@ TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size
     }
     std::vector<TriId> slots;
     result.mesh = refiner.extractInCellOrder(&slots);
+    // While the sides' cells are still frozen (dropHoles thaws them).
     const std::vector<std::uint8_t> drop =
-        coverStrandedVertices(grid, flags, refiner, slots, workers.size(), progress, result.mesh);
+        refiner.coverStrandedVertices(result.mesh, slots, 0, progress);
     copyRefinerCounts(refiner, result);
     result.stop = refiner.stop();
     checkTheShares(result.mesh, options, tileRow, tileColumn);
