@@ -1,0 +1,402 @@
+#include "cell_completion.hpp"
+
+#include "../triangulate/parallel_for.hpp"
+#include "terratin/constrain/insert_constraints.hpp"
+#include "terratin/geometry/predicates.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace terratin::detail {
+
+namespace {
+
+Point2 cellPosition(const HeightGrid& grid, std::span<const Point2> positions, std::size_t cell) {
+    return positions.empty() ? grid.cellCentre(static_cast<std::uint64_t>(cell)) : positions[cell];
+}
+
+/// The triangle across the edge of triangle t that p lies on, up to rounding (within the error
+/// bound of orient2d's floating-point stage, as TinLocator::locateNear decides), or
+/// kNoNeighbour when p lies on none or that edge is on the hull.
+std::int32_t neighbourSharing(const TinMesh& mesh, std::size_t t, Point2 p) {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Point3& a = mesh.vertices[mesh.triangles[3 * t + i]];
+        const Point3& b = mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]];
+        const double detLeft = (a.x - p.x) * (b.y - p.y);
+        const double detRight = (a.y - p.y) * (b.x - p.x);
+        if (std::fabs(detLeft - detRight) <=
+            predicates::detail::kOrient2dErrorBoundA * (std::fabs(detLeft) + std::fabs(detRight)))
+            return mesh.neighbours[3 * t + i];
+    }
+    return kNoNeighbour;
+}
+
+bool isCorner(const TinMesh& mesh, std::size_t t, Point2 p) {
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Point3& corner = mesh.vertices[mesh.triangles[3 * t + i]];
+        if (corner.x == p.x && corner.y == p.y)
+            return true;
+    }
+    return false;
+}
+
+/// The plane of triangle t at p (barycentric, in double).
+double planeAt(const TinMesh& mesh, std::size_t t, Point2 p) {
+    const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
+    const Point3& b = mesh.vertices[mesh.triangles[3 * t + 1]];
+    const Point3& c = mesh.vertices[mesh.triangles[3 * t + 2]];
+    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double wb = ((p.x - a.x) * (c.y - a.y) - (p.y - a.y) * (c.x - a.x)) / area;
+    const double wc = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / area;
+    return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
+}
+
+/// A triangle's cell to insert: the worst over the bound (error infinite: a valid cell in a
+/// triangle over an open hole).
+struct Candidate {
+    double error = 0.0;
+    std::size_t cell = 0;
+    std::uint32_t triangle = 0;
+};
+
+/// What the check of a block of cells found: the figures, and every cell proposed as its
+/// triangle's candidate, in cell order.
+struct BlockTally {
+    double maxError = 0.0;
+    double sumSquares = 0.0;
+    std::size_t covered = 0;
+    std::size_t uncovered = 0;
+    std::vector<Candidate> proposals;
+};
+
+/// One check of the whole constrained TIN.
+struct Measure {
+    double maxError = 0.0;
+    double sumSquares = 0.0;
+    std::size_t covered = 0;
+    std::size_t uncovered = 0;
+    std::vector<std::uint8_t> drop;
+    std::size_t holeTriangles = 0;
+    std::vector<Candidate> candidates; // at most one per triangle
+};
+
+constexpr std::uint32_t kNoTriangle = 0xffffffffU;
+
+/// The cells are checked in fixed blocks of this many on the threads: the blocks, not the
+/// threads, decide the order of the walks and of the sums, so the result is the same for any
+/// number of threads.
+constexpr std::size_t kCellBlock = 16384;
+
+/// Per triangle, `decide(tin)`, or zeros without it.
+std::vector<std::uint8_t>
+trianglesWhere(const std::function<std::vector<std::uint8_t>(const ConstrainedTin&)>& decide,
+               const ConstrainedTin& tin) {
+    return decide ? decide(tin) : std::vector<std::uint8_t>(tin.mesh.triangleCount(), 0);
+}
+
+/// Measures the constrained TIN against the grid, again after each round of insertions: every
+/// cell is located once, and after that only the cells of the triangles the insertions changed
+/// (the others hold the same cells with the same errors).
+class CompletionCheck {
+public:
+    CompletionCheck(const HeightGrid& grid, std::span<const Point2> positions,
+                    const ConstrainedTin& tin, const CompletionRules& rules,
+                    std::optional<double> maxError, unsigned threads)
+        : m_grid(&grid), m_positions(positions), m_tin(&tin), m_rules(&rules),
+          m_maxError(maxError), m_threads(std::max(threads, 1U)) {
+        m_cellTriangle.assign(rules.measuredCells.size(), kNoTriangle);
+        m_cellError.assign(rules.measuredCells.size(), 0.0);
+        m_holeTriangle.assign(rules.openHoleCells.size(), kNoTriangle);
+    }
+
+    /// Measures the TIN; `changed` (empty: everything) marks the triangles changed since the
+    /// last call. With `everyCell` false, only the cells located again (those of changed
+    /// triangles) are measured and counted: the candidates then come from changed triangles
+    /// alone, where the last insertions left them. `squaredErrors`, when given, receives each
+    /// measured cell's squared error (NaN: in no kept triangle); only with `everyCell`.
+    [[nodiscard]] Measure measure(const std::vector<std::uint8_t>& changed, bool everyCell,
+                                  std::vector<double>* squaredErrors = nullptr) {
+        relocate(changed);
+        const std::size_t triangles = m_tin->mesh.triangleCount();
+        Measure measure;
+        measure.drop = trianglesWhere(m_rules->outsideArea, *m_tin);
+        const std::vector<std::uint8_t> flat = trianglesWhere(m_rules->unmeasured, *m_tin);
+        const std::vector<std::uint8_t> overHole = trianglesOverHoles();
+        m_candidateOf.resize(triangles, kNoTriangle);
+        const std::size_t count = everyCell ? m_rules->measuredCells.size() : m_relocated.size();
+        if (squaredErrors != nullptr)
+            squaredErrors->assign(count, std::numeric_limits<double>::quiet_NaN());
+        std::vector<BlockTally> blocks((count + kCellBlock - 1) / kCellBlock);
+        forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                const std::size_t i = everyCell ? k : m_relocated[k];
+                tally(i, overHole, flat, measure.drop, blocks[block],
+                      squaredErrors != nullptr ? &(*squaredErrors)[i] : nullptr);
+            }
+        });
+        for (const BlockTally& block : blocks) {
+            measure.maxError = std::max(measure.maxError, block.maxError);
+            measure.sumSquares += block.sumSquares;
+            measure.covered += block.covered;
+            measure.uncovered += block.uncovered;
+            for (const Candidate& candidate : block.proposals)
+                propose(candidate, measure);
+        }
+        for (const Candidate& candidate : measure.candidates)
+            m_candidateOf[candidate.triangle] = kNoTriangle;
+        for (std::size_t t = 0; t < triangles; ++t)
+            if (overHole[t] != 0 && measure.drop[t] == 0) {
+                measure.drop[t] = 1;
+                ++measure.holeTriangles;
+            }
+        return measure;
+    }
+
+private:
+    [[nodiscard]] Point2 position(std::size_t cell) const {
+        return cellPosition(*m_grid, m_positions, cell);
+    }
+
+    /// 1 for the triangles holding an open hole's cell; a closed triangle covers a cell on its
+    /// edge too, so both sides of such an edge count.
+    [[nodiscard]] std::vector<std::uint8_t> trianglesOverHoles() const {
+        const TinMesh& mesh = m_tin->mesh;
+        std::vector<std::uint8_t> overHole(mesh.triangleCount(), 0);
+        for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
+            const std::uint32_t t = m_holeTriangle[i];
+            if (t == kNoTriangle)
+                continue;
+            overHole[t] = 1;
+            const std::int32_t other =
+                neighbourSharing(mesh, t, position(m_rules->openHoleCells[i]));
+            if (other != kNoNeighbour)
+                overHole[static_cast<std::size_t>(other)] = 1;
+        }
+        return overHole;
+    }
+
+    /// Whether a cell in triangle `t` must be located again. A cell outside the hull
+    /// (kNoTriangle) stays outside: the insertions keep the hull.
+    static bool stale(std::uint32_t t, const std::vector<std::uint8_t>& changed) {
+        return changed.empty() || (t != kNoTriangle && changed[t] != 0);
+    }
+
+    /// Calls visit(block, begin, end) for the fixed blocks of kCellBlock of [0, count), the
+    /// threads taking them in turn. Plain threads, joined before it returns (parallelForChunks,
+    /// as the triangulators' loops): ThreadSanitizer sees what they write, which it cannot
+    /// through an uninstrumented task pool.
+    template <class Visit> void forEachBlock(std::size_t count, Visit&& visit) {
+        parallelForChunks(count, m_threads, kCellBlock,
+                          [&](unsigned, std::size_t begin, std::size_t end) {
+                              visit(begin / kCellBlock, begin, end);
+                          });
+    }
+
+    /// Locates again the cells (measured ones, and open holes' ones) of changed triangles; the
+    /// measured ones are listed in m_relocated, in cell order.
+    void relocate(const std::vector<std::uint8_t>& changed) {
+        // The locator is built once and only copied, so that every walk starts from the same
+        // state: which triangle a cell on an edge gets does not depend on the threads. Later
+        // the cells of changed triangles walk from their old triangle, whose slot now holds a
+        // triangle near it.
+        if (!m_locator)
+            m_locator.emplace(m_tin->mesh, m_threads);
+        TinLocator locator = *m_locator;
+        for (std::size_t i = 0; i < m_rules->openHoleCells.size(); ++i)
+            if (stale(m_holeTriangle[i], changed))
+                m_holeTriangle[i] =
+                    locator.locateNearFrom(position(m_rules->openHoleCells[i]), m_holeTriangle[i])
+                        .value_or(kNoTriangle);
+        // The measured cells, each block with a fresh copy of the locator (made when the block
+        // first needs it: most blocks of a late check have nothing to locate).
+        const std::size_t count = m_rules->measuredCells.size();
+        std::vector<std::vector<std::size_t>> relocated((count + kCellBlock - 1) / kCellBlock);
+        forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
+            std::optional<TinLocator> blockLocator;
+            for (std::size_t i = begin; i < end; ++i)
+                if (stale(m_cellTriangle[i], changed)) {
+                    if (!blockLocator)
+                        blockLocator.emplace(*m_locator);
+                    measureAt(i, *blockLocator);
+                    relocated[block].push_back(i);
+                }
+        });
+        m_relocated.clear();
+        for (const std::vector<std::size_t>& cells : relocated)
+            m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
+    }
+
+    /// Locates measured cell i, walking from its old triangle, and measures its error there.
+    void measureAt(std::size_t i, TinLocator& locator) {
+        const std::size_t cell = m_rules->measuredCells[i];
+        const Point2 p = position(cell);
+        const std::uint32_t t = locator.locateNearFrom(p, m_cellTriangle[i]).value_or(kNoTriangle);
+        m_cellTriangle[i] = t;
+        if (t != kNoTriangle)
+            m_cellError[i] = std::abs(double{m_grid->z[cell]} - planeAt(m_tin->mesh, t, p));
+    }
+
+    /// Counts measured cell i into `block`, and proposes it as its triangle's candidate when it
+    /// is over the bound, or lies in a triangle over an open hole, and may be inserted.
+    void tally(std::size_t i, const std::vector<std::uint8_t>& overHole,
+               const std::vector<std::uint8_t>& flat, const std::vector<std::uint8_t>& drop,
+               BlockTally& block, double* squaredError) const {
+        std::uint32_t t = m_cellTriangle[i];
+        if (t == kNoTriangle) {
+            ++block.uncovered;
+            return;
+        }
+        const std::size_t cell = m_rules->measuredCells[i];
+        const auto left = [&](std::size_t u) {
+            return drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
+        };
+        if (left(t)) {
+            // A cell on an edge belongs to a kept triangle on the other side, if there is one
+            // (its error there is the same: the planes meet along the edge).
+            const std::int32_t other = neighbourSharing(m_tin->mesh, t, position(cell));
+            if (other != kNoNeighbour && !left(static_cast<std::size_t>(other)))
+                t = static_cast<std::uint32_t>(other);
+        }
+        if (drop[t] != 0 || flat[t] != 0)
+            return; // outside the output's area, or in a replace area
+        const bool corner = isCorner(m_tin->mesh, t, position(cell));
+        const bool insertable = !corner && (!m_rules->insertable || m_rules->insertable(cell));
+        if (overHole[t] != 0 && !corner) {
+            // As the refiner does: a hole's triangle is split until it covers no valid cell.
+            ++block.uncovered;
+            if (insertable)
+                block.proposals.push_back({std::numeric_limits<double>::infinity(), cell, t});
+            return;
+        }
+        const double error = m_cellError[i];
+        ++block.covered;
+        block.sumSquares += error * error;
+        block.maxError = std::max(block.maxError, error);
+        if (squaredError != nullptr)
+            *squaredError = corner ? 0.0 : error * error;
+        if (m_maxError && error > *m_maxError && insertable)
+            block.proposals.push_back({error, cell, t});
+    }
+
+    /// `candidate` becomes its triangle's candidate unless that has a worse one (an earlier
+    /// cell keeps a tie).
+    void propose(const Candidate& candidate, Measure& measure) {
+        std::uint32_t& slot = m_candidateOf[candidate.triangle];
+        if (slot == kNoTriangle) {
+            slot = static_cast<std::uint32_t>(measure.candidates.size());
+            measure.candidates.push_back(candidate);
+        } else if (candidate.error > measure.candidates[slot].error) {
+            measure.candidates[slot] = candidate;
+        }
+    }
+
+    const HeightGrid* m_grid;
+    std::span<const Point2> m_positions;
+    const ConstrainedTin* m_tin;
+    const CompletionRules* m_rules;
+    std::optional<double> m_maxError;
+    unsigned m_threads;
+    /// For each measured cell the triangle holding it (kNoTriangle: outside the hull) and its
+    /// error there; the triangle holding each open hole cell.
+    std::vector<std::uint32_t> m_cellTriangle;
+    std::vector<double> m_cellError;
+    std::vector<std::uint32_t> m_holeTriangle;
+    std::vector<std::size_t> m_relocated;
+    /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
+    std::optional<TinLocator> m_locator;
+    /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
+    std::vector<std::uint32_t> m_candidateOf;
+};
+
+/// The candidates to insert, worst first when a limit cuts them, then in cell order (short
+/// walks); empty when a limit leaves no room (`limitReached` set).
+std::vector<Candidate> chooseCandidates(std::vector<Candidate> worst, const TinMesh& mesh,
+                                        const RefineOptions& options, bool& limitReached) {
+    std::size_t room = worst.size();
+    if (options.maxPoints)
+        room = std::min(room, *options.maxPoints > mesh.vertexCount()
+                                  ? *options.maxPoints - mesh.vertexCount()
+                                  : std::size_t{0});
+    if (options.maxTriangles) // each inserted point adds two triangles
+        room = std::min(room, *options.maxTriangles > mesh.triangleCount() + 1
+                                  ? (*options.maxTriangles - mesh.triangleCount()) / 2
+                                  : std::size_t{0});
+    if (room < worst.size()) {
+        limitReached = true;
+        std::sort(worst.begin(), worst.end(), [](const Candidate& a, const Candidate& b) {
+            return a.error != b.error ? a.error > b.error : a.cell < b.cell;
+        });
+        worst.resize(room);
+    }
+    std::sort(worst.begin(), worst.end(),
+              [](const Candidate& a, const Candidate& b) { return a.cell < b.cell; });
+    return worst;
+}
+
+} // namespace
+
+Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> positions,
+                             ConstrainedTin& tin, const CompletionRules& rules,
+                             const RefineOptions& options, unsigned threads,
+                             const ProgressCallback& progress) {
+    Completion result;
+    CompletionCheck check(grid, positions, tin, rules, options.maxError, threads);
+    std::vector<std::uint8_t> changed; // empty: every triangle is new to the check
+    bool everyCell = false;
+    Measure measure;
+    const auto finalMeasure = [&] {
+        return check.measure(changed, true,
+                             rules.keepCellErrors ? &result.squaredErrors : nullptr);
+    };
+    for (;;) {
+        if (progress)
+            progress(1.0 - 1.0 / static_cast<double>(result.passes + 1),
+                     "inserting cells over the bound");
+        measure = everyCell ? finalMeasure() : check.measure(changed, false);
+        ++result.passes;
+        const std::vector<Candidate> candidates = chooseCandidates(
+            std::move(measure.candidates), tin.mesh, options, result.limitReached);
+        if (candidates.empty()) {
+            if (everyCell)
+                break;
+            // The changed triangles are within the bound: every cell is measured, for the
+            // figures and to make sure.
+            everyCell = true;
+            changed.assign(tin.mesh.triangleCount(), 0);
+            continue;
+        }
+        everyCell = false;
+        std::vector<Point3> points;
+        std::vector<std::uint32_t> cells; // each point's source index
+        std::vector<std::uint32_t> near;  // where each was located: its walk starts there
+        for (const Candidate& candidate : candidates) {
+            const Point2 p = cellPosition(grid, positions, candidate.cell);
+            points.push_back({p.x, p.y, double{grid.z[candidate.cell]}});
+            cells.push_back(static_cast<std::uint32_t>(candidate.cell));
+            near.push_back(candidate.triangle);
+        }
+        const std::size_t inserted = insertVertices(tin, points, cells, &changed, near);
+        if (rules.afterInsertions)
+            rules.afterInsertions(tin);
+        result.insertedCells += inserted;
+        if (inserted == 0) {
+            measure = finalMeasure();
+            break;
+        }
+    }
+    result.maxError = measure.maxError;
+    result.sumSquares = measure.sumSquares;
+    result.rmse = measure.covered > 0
+                      ? std::sqrt(measure.sumSquares / static_cast<double>(measure.covered))
+                      : 0.0;
+    result.coveredCells = measure.covered;
+    result.uncoveredCells = measure.uncovered;
+    result.holeTriangles = measure.holeTriangles;
+    result.drop = std::move(measure.drop);
+    return result;
+}
+
+} // namespace terratin::detail
