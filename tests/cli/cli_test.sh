@@ -419,10 +419,32 @@ case "$case_name" in
       fail "the rotated DEM written tile by tile has another triangle count"
     check=$(sqlite3 rotated.gpkg "SELECT rtreecheck('rtree_tin_geom')")
     [ "$check" = ok ] || fail "rtreecheck of the rotated tiles: $check"
-    gdalwarp -q -t_srs EPSG:4326 small.tif geo.tif || fail "gdalwarp failed"
-    run 1 build geo.tif -o bad.gpkg --max-error 1 --tile-size 16 --quiet
-    expect_one_error_line "tile-size"
-    [ ! -e bad.gpkg ] || fail "output written despite an error"
+    # A geographic DEM (its corners without data) is refined in its UTM zone, each tile at its
+    # cells' projected positions and constrained to a boundary through its sides' vertices
+    # (--validate checks each tile constrained Delaunay and the join every shared edge): within
+    # the bound, every valid cell covered, about as many points as untiled; streamed, the same
+    # triangles; at full resolution every valid cell a vertex.
+    gdalwarp -q -t_srs EPSG:4326 -dstnodata -9999 "$sample" geo.tif || fail "gdalwarp failed"
+    run 0 build geo.tif -o geo_whole.ply --max-error 1 --json --quiet
+    whole=$(report_count vertices)
+    run 0 build geo.tif -o geo_tiles.obj --max-error 1 --tile-size 40 --threads 1 --validate \
+      --json --quiet
+    report_at_most achieved_max_error 1
+    grep -q '"uncovered_cells": 0' out.txt || fail "geographic tiles left cells uncovered"
+    grep -q '"reprojected": true' out.txt || fail "the geographic tiles were not reprojected"
+    tiled=$(report_count vertices)
+    awk -v a="$tiled" -v b="$whole" 'BEGIN { exit !(a <= 1.05 * b) }' ||
+      fail "$tiled vertices in geographic tiles, against $whole untiled"
+    run 0 build geo.tif -o geo_tiles.gpkg --max-error 1 --tile-size 40 --threads 1 \
+      --memory-limit 1G --quiet
+    [ "$(feature_count_of geo_tiles.gpkg tin)" = "$(grep -c '^f ' geo_tiles.obj)" ] ||
+      fail "the geographic tiles streamed have another triangle count"
+    check=$(sqlite3 geo_tiles.gpkg "SELECT rtreecheck('rtree_tin_geom')")
+    [ "$check" = ok ] || fail "rtreecheck of the geographic tiles: $check"
+    ogrinfo -ro -so geo_tiles.gpkg tin | grep -q 'UTM zone 33N' || fail "not in the UTM zone"
+    run 0 build geo.tif -o geo_full.ply --tile-size 40 --validate --json --quiet
+    valid=$(( $(report_count raster_cells) - $(report_count skipped_cells) ))
+    [ "$(report_count vertices)" = "$valid" ] || fail "$(report_count vertices) vertices, $valid cells"
     expect_no_leftovers
     ;;
   tiles_dir)
@@ -439,6 +461,13 @@ case "$case_name" in
       sed -n 's/.*t (Integer[0-9]*) = //p')
     [ "$indexed" = "$joined" ] || fail "the index counts $indexed triangles, not $joined"
     ogrinfo -ro -so tiles/tiles.gpkg tiles | grep -q 'EPSG.*32633' || fail "index not in EPSG:32633"
+    # A geographic DEM's tiles and their footprints lie in its UTM zone, not in degrees.
+    gdalwarp -q -t_srs EPSG:4326 "$sample" geo.tif || fail "gdalwarp failed"
+    run 0 build geo.tif --tiles-dir geo_tiles -f ply --max-error 1 --tile-size 128 --quiet
+    ogrinfo -ro -so geo_tiles/tiles.gpkg tiles | grep -q 'UTM zone 33N' ||
+      fail "the geographic tiles' index is not in the UTM zone"
+    west=$(ogrinfo -ro -so geo_tiles/tiles.gpkg tiles | sed -n 's/^Extent: (\([0-9.-]*\),.*/\1/p')
+    awk -v x="$west" 'BEGIN { exit !(x > 100000) }' || fail "footprints at x = $west, not in metres"
     # An existing tile is not replaced without --overwrite, and the run writes nothing.
     touch before_refusal
     run 1 build "$sample" --tiles-dir tiles -f ply --max-error 0.5 --tile-size 64 --quiet
@@ -581,6 +610,15 @@ case "$case_name" in
              print a, b, c }' "$1" | sort
     }
     run 0 build dem.tif -o one.obj --max-error 0.5 --tile-size 40 --quiet
+    # A geographic DEM's tiles too (refined at their cells' projected positions).
+    gdalwarp -q -t_srs EPSG:4326 -dstnodata -9999 dem.tif geo.tif || fail "gdalwarp failed"
+    run 0 build geo.tif -o geo_one.obj --max-error 0.5 --tile-size 60 --quiet
+    "${mpi[@]}" -np 3 "$terratin" build geo.tif -o geo_ranks.obj --max-error 0.5 \
+      --tile-size 60 --quiet >out.txt 2>err.txt || fail "mpirun on a geographic DEM failed"
+    cmp -s <(grep '^v ' geo_one.obj) <(grep '^v ' geo_ranks.obj) ||
+      fail "geographic: not the one process's vertices"
+    cmp -s <(triangles_of geo_one.obj) <(triangles_of geo_ranks.obj) ||
+      fail "geographic: not the one process's triangles"
     for ranks in 2 3; do
       "${mpi[@]}" -np "$ranks" "$terratin" build dem.tif -o "ranks$ranks.obj" --max-error 0.5 \
         --tile-size 40 --json --quiet >out.txt 2>err.txt || fail "mpirun -np $ranks failed"

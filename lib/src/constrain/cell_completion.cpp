@@ -18,29 +18,72 @@ Point2 cellPosition(const HeightGrid& grid, std::span<const Point2> positions, s
     return positions.empty() ? grid.cellCentre(static_cast<std::uint64_t>(cell)) : positions[cell];
 }
 
-/// The triangle across the edge of triangle t that p lies on, up to rounding (within the error
-/// bound of orient2d's floating-point stage, as TinLocator::locateNear decides), or
-/// kNoNeighbour when p lies on none or that edge is on the hull.
+/// Whether p lies on the line of edge i of triangle t, up to rounding (within the error bound
+/// of orient2d's floating-point stage, as TinLocator::locateNear decides).
+bool onEdgeLine(const TinMesh& mesh, std::size_t t, std::size_t i, Point2 p) {
+    const Point3& a = mesh.vertices[mesh.triangles[3 * t + i]];
+    const Point3& b = mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]];
+    const double detLeft = (a.x - p.x) * (b.y - p.y);
+    const double detRight = (a.y - p.y) * (b.x - p.x);
+    return std::fabs(detLeft - detRight) <=
+           predicates::detail::kOrient2dErrorBoundA * (std::fabs(detLeft) + std::fabs(detRight));
+}
+
+/// The triangle across the edge of triangle t that p lies on, or kNoNeighbour when p lies on
+/// none or that edge is on the hull. The first such edge.
 std::int32_t neighbourSharing(const TinMesh& mesh, std::size_t t, Point2 p) {
-    for (std::size_t i = 0; i < 3; ++i) {
-        const Point3& a = mesh.vertices[mesh.triangles[3 * t + i]];
-        const Point3& b = mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]];
-        const double detLeft = (a.x - p.x) * (b.y - p.y);
-        const double detRight = (a.y - p.y) * (b.x - p.x);
-        if (std::fabs(detLeft - detRight) <=
-            predicates::detail::kOrient2dErrorBoundA * (std::fabs(detLeft) + std::fabs(detRight)))
+    for (std::size_t i = 0; i < 3; ++i)
+        if (onEdgeLine(mesh, t, i, p))
             return mesh.neighbours[3 * t + i];
-    }
     return kNoNeighbour;
 }
 
-bool isCorner(const TinMesh& mesh, std::size_t t, Point2 p) {
+/// The corner of triangle t at p (0 to 2), or 3 when none is.
+std::size_t cornerAt(const TinMesh& mesh, std::size_t t, Point2 p) {
     for (std::size_t i = 0; i < 3; ++i) {
         const Point3& corner = mesh.vertices[mesh.triangles[3 * t + i]];
         if (corner.x == p.x && corner.y == p.y)
-            return true;
+            return i;
     }
-    return false;
+    return 3;
+}
+
+bool isCorner(const TinMesh& mesh, std::size_t t, Point2 p) {
+    return cornerAt(mesh, t, p) < 3;
+}
+
+/// A triangle that `kept` accepts and that holds p on its boundary, found from triangle t
+/// (which holds p): around p's vertex when p is a corner of t, else across an edge p lies on;
+/// kNoNeighbour when none does. Slivers whose corners all lie near one line (a constrained
+/// boundary's pockets) hold p near several edges' lines: every such edge is tried.
+template <class Kept>
+std::int32_t keptTriangleAt(const TinMesh& mesh, std::size_t t, Point2 p, const Kept& kept) {
+    const std::size_t corner = cornerAt(mesh, t, p);
+    if (corner == 3) {
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::int32_t n = mesh.neighbours[3 * t + i];
+            if (n != kNoNeighbour && kept(static_cast<std::size_t>(n)) && onEdgeLine(mesh, t, i, p))
+                return n;
+        }
+        return kNoNeighbour;
+    }
+    // Around the vertex, one way and then the other, until a kept triangle or the hull.
+    const std::uint32_t vertex = mesh.triangles[3 * t + corner];
+    for (const std::size_t turn : {std::size_t{0}, std::size_t{2}}) {
+        std::int32_t u = static_cast<std::int32_t>(t);
+        for (;;) {
+            const auto at = static_cast<std::size_t>(u);
+            std::size_t i = 0;
+            while (mesh.triangles[3 * at + i] != vertex)
+                ++i;
+            u = mesh.neighbours[3 * at + (i + turn) % 3];
+            if (u == kNoNeighbour || u == static_cast<std::int32_t>(t))
+                break;
+            if (kept(static_cast<std::size_t>(u)))
+                return u;
+        }
+    }
+    return kNoNeighbour;
 }
 
 /// The plane of triangle t at p (barycentric, in double).
@@ -79,6 +122,8 @@ struct Measure {
     std::size_t covered = 0;
     std::size_t uncovered = 0;
     std::vector<std::uint8_t> drop;
+    /// 1 for the triangles dropped only for covering an open hole's cell (holeTriangles).
+    std::vector<std::uint8_t> overHoleOnly;
     std::size_t holeTriangles = 0;
     std::vector<Candidate> candidates; // at most one per triangle
 };
@@ -147,9 +192,11 @@ public:
         }
         for (const Candidate& candidate : measure.candidates)
             m_candidateOf[candidate.triangle] = kNoTriangle;
+        measure.overHoleOnly.assign(triangles, 0);
         for (std::size_t t = 0; t < triangles; ++t)
             if (overHole[t] != 0 && measure.drop[t] == 0) {
                 measure.drop[t] = 1;
+                measure.overHoleOnly[t] = 1;
                 ++measure.holeTriangles;
             }
         return measure;
@@ -254,10 +301,11 @@ private:
             return drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
         };
         if (left(t)) {
-            // A cell on an edge belongs to a kept triangle on the other side, if there is one
-            // (its error there is the same: the planes meet along the edge).
-            const std::int32_t other = neighbourSharing(m_tin->mesh, t, position(cell));
-            if (other != kNoNeighbour && !left(static_cast<std::size_t>(other)))
+            // A cell on an edge or at a vertex belongs to a kept triangle beside, if there is
+            // one (its error there is the same: the planes meet along the edge).
+            const std::int32_t other = keptTriangleAt(m_tin->mesh, t, position(cell),
+                                                      [&](std::size_t u) { return !left(u); });
+            if (other != kNoNeighbour)
                 t = static_cast<std::uint32_t>(other);
         }
         if (drop[t] != 0 || flat[t] != 0)
@@ -336,6 +384,54 @@ std::vector<Candidate> chooseCandidates(std::vector<Candidate> worst, const TinM
     return worst;
 }
 
+/// The valid cells beside the vertices that only triangles over open holes use (each such
+/// vertex would drop out of the TIN with them, leaving its cell uncovered): the cells around
+/// each, not vertices and insertable, as candidates to insert at the holes' priority. As
+/// stranded_cells.hpp does for the refiner.
+std::vector<Candidate> cellsBesideStrandedVertices(const HeightGrid& grid, const TinMesh& mesh,
+                                                   const Measure& measure,
+                                                   const CompletionRules& rules) {
+    constexpr std::uint8_t kKept = 1;
+    constexpr std::uint8_t kOverHole = 2;
+    std::vector<std::uint8_t> uses(mesh.vertexCount(), 0);
+    std::vector<std::uint32_t> triangleOf(mesh.vertexCount(), kNoTriangle);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::uint32_t v = mesh.triangles[3 * t + i];
+            uses[v] |= measure.drop[t] == 0 ? kKept : measure.overHoleOnly[t] != 0 ? kOverHole : 0;
+            triangleOf[v] = static_cast<std::uint32_t>(t);
+        }
+    std::vector<std::uint8_t> isVertex(grid.cellCount(), 0);
+    for (const std::uint32_t cell : mesh.sourceIndex)
+        if (cell < grid.cellCount())
+            isVertex[cell] = 1;
+    std::vector<Candidate> candidates;
+    const auto width = static_cast<std::int64_t>(grid.width);
+    const auto height = static_cast<std::int64_t>(grid.height);
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        const std::uint32_t cell = mesh.sourceIndex[v];
+        if (uses[v] != kOverHole || cell >= grid.cellCount())
+            continue;
+        const std::int64_t row = cell / width;
+        const std::int64_t column = cell % width;
+        for (std::int64_t r = std::max<std::int64_t>(row - 1, 0);
+             r <= std::min(row + 1, height - 1); ++r)
+            for (std::int64_t c = std::max<std::int64_t>(column - 1, 0);
+                 c <= std::min(column + 1, width - 1); ++c) {
+                const auto neighbour = static_cast<std::size_t>(r * width + c);
+                if (grid.isValid(neighbour) && isVertex[neighbour] == 0 &&
+                    (!rules.insertable || rules.insertable(neighbour))) {
+                    isVertex[neighbour] = 1; // once
+                    candidates.push_back(
+                        {std::numeric_limits<double>::infinity(), neighbour, triangleOf[v]});
+                }
+            }
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.cell < b.cell; });
+    return candidates;
+}
+
 } // namespace
 
 Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> positions,
@@ -357,8 +453,13 @@ Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> pos
                      "inserting cells over the bound");
         measure = everyCell ? finalMeasure() : check.measure(changed, false);
         ++result.passes;
-        const std::vector<Candidate> candidates = chooseCandidates(
+        std::vector<Candidate> candidates = chooseCandidates(
             std::move(measure.candidates), tin.mesh, options, result.limitReached);
+        if (candidates.empty() && everyCell && rules.coverStrandedVertices &&
+            !result.limitReached)
+            candidates = chooseCandidates(
+                cellsBesideStrandedVertices(grid, tin.mesh, measure, rules), tin.mesh, options,
+                result.limitReached);
         if (candidates.empty()) {
             if (everyCell)
                 break;

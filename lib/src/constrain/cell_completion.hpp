@@ -36,6 +36,10 @@ struct CompletionRules {
     std::function<bool(std::size_t cell)> insertable;
     /// Called after each round of insertions (the replace rings flattened again).
     std::function<void(ConstrainedTin&)> afterInsertions;
+    /// When every cell is within the bound, insert the valid cells beside each vertex that only
+    /// triangles over open holes use, and go on, until there is none (a TIN refined without
+    /// that step: a tile at projected positions).
+    bool coverStrandedVertices = false;
     /// Keep each measured cell's squared error at the end (Completion::squaredErrors).
     bool keepCellErrors = false;
 };

@@ -8,6 +8,7 @@
 #include "refine_placement.hpp"
 #include "streamed_tin.hpp"
 #include "terratin/constrain/constrained_validation.hpp"
+#include "terratin/crs/grid_projection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
 #include "terratin/io/height_grid_reader.hpp"
@@ -338,17 +339,20 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     extent.geoTransform = cells.geoTransform();
     const detail::RefineCrs crs =
         detail::chooseRefineCrs(options, extent.extentCentre(), cells.crsWkt(), report);
-    if (crs.movesCells())
-        throw InvalidInputError(demOnlyWork(options) +
-                                " needs the DEM in the TIN's CRS; warp it first (gdalwarp "
-                                "-t_srs): it is geographic, or " +
-                                optionName("t_srs", options.optionSpelling) + " asks for another");
     describeCrs(crs.target, report);
     report.rasterCells = extent.cellCount();
 
     // Reading is part of the refinement: each tile reads its own cells.
     const Stopwatch refineTime;
     RefineOptions refineOptions = refineOptionsOf(options);
+    if (crs.movesCells()) {
+        // A geographic DEM is refined in its UTM zone, each tile at its cells' positions.
+        refineOptions.cellPositions = [source = crs.source,
+                                       target = crs.target](const HeightGrid& window) {
+            return crs::projectCellCentres(window, source, target);
+        };
+        report.reprojected = true;
+    }
     const bool coordinates =
         options.tileDistribution == nullptr || options.tileDistribution->coordinates();
     std::optional<detail::MemoryBudget> budget;
@@ -356,7 +360,8 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     if (options.memoryLimit) {
         budget = detail::memoryBudget(*options.memoryLimit,
                                       refineOptions.fillHoles ? 0 : refineOptions.maxHole,
-                                      refineOptions.tileSize, optionNamer(options.optionSpelling));
+                                      refineOptions.tileSize, optionNamer(options.optionSpelling),
+                                      crs.movesCells());
         gdalCache.emplace(budget->gdalCacheBytes);
         refineOptions.earlyTileBytes = budget->tileBytes;
         if (coordinates)
@@ -380,7 +385,8 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     std::optional<detail::TileFiles> files;
     std::optional<detail::StreamedTin> streamed;
     if (!options.tilesDir.empty() && coordinates) {
-        files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions);
+        files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions,
+                      refineOptions.cellPositions);
         refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
             if (!keptTriangles(tin))
                 return; // every triangle too long: no file

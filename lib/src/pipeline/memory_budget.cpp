@@ -20,10 +20,13 @@ constexpr std::uint64_t kProcessBytes = 96 * kMiB;
 /// triangles and candidates, the tile's TIN on its way to the writer); measured on random
 /// heights, where --max-error keeps them all.
 constexpr std::uint64_t kTileBytesPerCell = 320;
+/// What a tile at projected positions adds per cell: the positions, the constrained TIN's
+/// check of every cell (tile/projected_tile.hpp).
+constexpr std::uint64_t kMovedCellBytes = 128;
 
-std::uint64_t tileBytes(std::size_t tileSize, std::size_t marginCells) {
+std::uint64_t tileBytes(std::size_t tileSize, std::size_t marginCells, std::uint64_t perCell) {
     const auto side = static_cast<std::uint64_t>(tileSize + 1 + 2 * marginCells);
-    return side * side * kTileBytesPerCell;
+    return side * side * perCell;
 }
 
 /// A limit to give, rounded up to whole MiB.
@@ -45,7 +48,11 @@ std::uint64_t limitFor(std::uint64_t bytes) {
 } // namespace
 
 MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std::size_t tileSize,
-                          const OptionNamer& optionName) {
+                          const OptionNamer& optionName, bool cellsMove) {
+    const std::uint64_t perCell = kTileBytesPerCell + (cellsMove ? kMovedCellBytes : 0);
+    const auto tileBytes = [&](std::size_t size, std::size_t margin) {
+        return detail::tileBytes(size, margin, perCell);
+    };
     MemoryBudget budget;
     // Of the limit: 1/16 for GDAL's cache, 1/4 for the writer, the rest for the process and
     // the tile.
@@ -66,7 +73,7 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
         return budget;
     }
     const auto side = static_cast<std::size_t>(
-        std::sqrt(static_cast<double>(forTiles) / static_cast<double>(kTileBytesPerCell)));
+        std::sqrt(static_cast<double>(forTiles) / static_cast<double>(perCell)));
     const std::size_t grown = 1 + 2 * marginCells;
     budget.tileSize = std::min(side > grown ? side - grown : 0, kMaxTileSize);
     if (budget.tileSize < kLeastTileSize)

@@ -28,9 +28,11 @@ struct MemoryBudget {
 /// The budget of `limitBytes` for tiles with a margin of `marginCells` (RefineOptions::maxHole,
 /// 0 with fillHoles). `tileSize` 0: the largest tiles that fit, up to kMaxTileSize; else that
 /// size, refused (InvalidInputError naming the least limit it needs) when it does not fit. A
-/// limit too small for tiles of kLeastTileSize is refused, naming the least limit.
+/// limit too small for tiles of kLeastTileSize is refused, naming the least limit. `cellsMove`:
+/// the tiles' cells lie at projected positions (RefineOptions::cellPositions), which takes more
+/// a cell.
 MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std::size_t tileSize,
-                          const OptionNamer& optionName);
+                          const OptionNamer& optionName, bool cellsMove = false);
 
 /// Holds GDAL's block cache to at most `bytes` while it lives: GDAL's default, 5 % of the
 /// machine's memory, may pass a limit alone.

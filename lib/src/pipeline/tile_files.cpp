@@ -27,12 +27,23 @@ std::string padded(std::size_t number, int digits) {
            text;
 }
 
-/// The rectangle through the centres of the corner cells of the tile, counter-clockwise.
-std::array<std::array<double, 2>, 4> footprint(const HeightGrid& extent, CellRange rows,
-                                               CellRange columns) {
+/// The quadrilateral through the corner cells of the tile (their centres, or their positions
+/// with `cellPositions`), counter-clockwise.
+std::array<std::array<double, 2>, 4>
+footprint(const HeightGrid& extent, CellRange rows, CellRange columns,
+          const std::function<std::vector<Point2>(const HeightGrid&)>& cellPositions) {
     const auto centre = [&](std::size_t row, std::size_t column) {
-        const Point2 p =
+        Point2 p =
             extent.cellCentre(static_cast<std::int64_t>(row), static_cast<std::int64_t>(column));
+        if (cellPositions) {
+            HeightGrid cell;
+            cell.width = 1;
+            cell.height = 1;
+            cell.geoTransform = extent.geoTransform;
+            cell.firstRow = static_cast<int>(row);
+            cell.firstColumn = static_cast<int>(column);
+            p = cellPositions(cell).at(0);
+        }
         return std::array<double, 2>{p.x, p.y};
     };
     std::array<std::array<double, 2>, 4> corners{
@@ -52,12 +63,13 @@ std::array<std::array<double, 2>, 4> footprint(const HeightGrid& extent, CellRan
 } // namespace
 
 TileFiles::TileFiles(fs::path directory, const HeightGrid& extent, std::size_t tileSize,
-                     io::TinWriteOptions writeOptions)
+                     io::TinWriteOptions writeOptions,
+                     std::function<std::vector<Point2>(const HeightGrid&)> cellPositions)
     : m_directory(std::move(directory)), m_extent(extent),
       m_tiles(static_cast<std::size_t>(extent.width), static_cast<std::size_t>(extent.height),
               tileSize),
       m_digits(digitsOf(std::max(m_tiles.tileRows(), m_tiles.tileColumns()) - 1)),
-      m_writeOptions(std::move(writeOptions)) {
+      m_writeOptions(std::move(writeOptions)), m_cellPositions(std::move(cellPositions)) {
     std::error_code error;
     if (!fs::exists(m_directory, error)) {
         if (!fs::create_directories(m_directory, error))
@@ -109,7 +121,8 @@ void TileFiles::write(std::size_t tile, const TinMesh& tin,
         {name, static_cast<std::int64_t>(tileRow), static_cast<std::int64_t>(tileColumn),
          static_cast<std::int64_t>(tin.vertexCount()),
          static_cast<std::int64_t>(tin.triangleCount()),
-         footprint(m_extent, m_tiles.rowsOf(tileRow), m_tiles.columnsOf(tileColumn))});
+         footprint(m_extent, m_tiles.rowsOf(tileRow), m_tiles.columnsOf(tileColumn),
+                   m_cellPositions)});
     m_features += io::writeTin(tin, m_directory / name, options).features;
     m_points += tin.vertexCount();
     m_triangles += tin.triangleCount();

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,11 @@ public:
     /// Checks, before anything is refined, that every file the tiles of a grid shaped like
     /// `extent`, cut in tiles of `tileSize`, may write can be written (an existing one only with
     /// writeOptions.overwrite), and makes the directory when it is missing. Throws IoError,
-    /// InvalidInputError.
+    /// InvalidInputError. `cellPositions`: where cells lie in the TIN's CRS when they move
+    /// (RefineOptions::cellPositions), for the footprints; empty: at their centres.
     TileFiles(std::filesystem::path directory, const HeightGrid& extent, std::size_t tileSize,
-              io::TinWriteOptions writeOptions);
+              io::TinWriteOptions writeOptions,
+              std::function<std::vector<Point2>(const HeightGrid&)> cellPositions = {});
     TileFiles(const TileFiles&) = delete;
     TileFiles& operator=(const TileFiles&) = delete;
     ~TileFiles();
@@ -54,6 +57,7 @@ private:
     TileGrid m_tiles;
     int m_digits;
     io::TinWriteOptions m_writeOptions;
+    std::function<std::vector<Point2>(const HeightGrid&)> m_cellPositions;
     bool m_madeDirectory = false;
     bool m_committed = false;
     std::vector<io::TileIndexEntry> m_entries;

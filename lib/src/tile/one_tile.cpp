@@ -1,6 +1,8 @@
 #include "one_tile.hpp"
 
 #include "border_profile.hpp"
+#include "projected_tile.hpp"
+#include "tile_cells.hpp"
 
 #include "../refine/cell_flags.hpp"
 #include "../refine/error_check.hpp"
@@ -23,91 +25,6 @@ namespace terratin::detail {
 
 namespace {
 
-/// A rectangle of cells, in the grid's rows and columns (both ends included).
-struct CellWindow {
-    CellRange rows;
-    CellRange columns;
-
-    [[nodiscard]] std::size_t width() const { return columns.count(); }
-    [[nodiscard]] std::size_t height() const { return rows.count(); }
-};
-
-/// `inner` grown by `margin` cells on every side, within a grid of width x height cells.
-CellWindow grown(const CellWindow& inner, std::size_t margin, std::size_t width,
-                 std::size_t height) {
-    const auto grow = [margin](CellRange range, std::size_t cells) {
-        return CellRange{range.first - std::min(range.first, margin),
-                         std::min(range.last + margin, cells - 1)};
-    };
-    return {grow(inner.rows, height), grow(inner.columns, width)};
-}
-
-/// The cells of `inner` out of a row-major array over `outer`, row-major over `inner`.
-template <class Array>
-Array cellsWithin(const Array& cells, const CellWindow& outer, const CellWindow& inner) {
-    Array copy(inner.width() * inner.height());
-    for (std::size_t row = 0; row < inner.height(); ++row) {
-        const std::size_t from = (inner.rows.first - outer.rows.first + row) * outer.width() +
-                                 (inner.columns.first - outer.columns.first);
-        std::copy_n(cells.begin() + static_cast<std::ptrdiff_t>(from), inner.width(),
-                    copy.begin() + static_cast<std::ptrdiff_t>(row * inner.width()));
-    }
-    return copy;
-}
-
-/// The grid of `inner` out of `grid`, which holds `outer`.
-HeightGrid gridWithin(const HeightGrid& grid, const CellWindow& outer, const CellWindow& inner) {
-    HeightGrid within;
-    within.width = static_cast<int>(inner.width());
-    within.height = static_cast<int>(inner.height());
-    within.geoTransform = grid.geoTransform;
-    within.firstRow = grid.firstRow + static_cast<int>(inner.rows.first - outer.rows.first);
-    within.firstColumn =
-        grid.firstColumn + static_cast<int>(inner.columns.first - outer.columns.first);
-    within.z = cellsWithin(grid.z, outer, inner);
-    return within;
-}
-
-/// Whether the valid cells of `grid` span an area (three of them not on one line), which the
-/// refiner needs. Exact: pixel coordinates are integers.
-bool validCellsSpanArea(const HeightGrid& grid) {
-    const auto width = static_cast<std::int64_t>(grid.width);
-    std::int64_t first = -1;
-    std::int64_t second = -1;
-    for (std::int64_t cell = 0; cell < static_cast<std::int64_t>(grid.cellCount()); ++cell) {
-        if (!grid.isValid(static_cast<std::size_t>(cell)))
-            continue;
-        if (first < 0) {
-            first = cell;
-        } else if (second < 0) {
-            second = cell;
-        } else {
-            const std::int64_t ac = cell % width - first % width;
-            const std::int64_t ar = cell / width - first / width;
-            const std::int64_t bc = second % width - first % width;
-            const std::int64_t br = second / width - first / width;
-            if (bc * ar != br * ac)
-                return true;
-        }
-    }
-    return false;
-}
-
-/// The cells of the four sides of a width x height tile (row-major tile indices), each in
-/// increasing row or column order, as the tile on the other side reads them too.
-std::vector<std::vector<std::uint32_t>> sidesOf(std::size_t width, std::size_t height) {
-    std::vector<std::vector<std::uint32_t>> sides(4);
-    for (std::size_t column = 0; column < width; ++column) {
-        sides[0].push_back(static_cast<std::uint32_t>(column));
-        sides[1].push_back(static_cast<std::uint32_t>((height - 1) * width + column));
-    }
-    for (std::size_t row = 0; row < height; ++row) {
-        sides[2].push_back(static_cast<std::uint32_t>(row * width));
-        sides[3].push_back(static_cast<std::uint32_t>(row * width + width - 1));
-    }
-    return sides;
-}
-
 /// Freezes every cell on the tile's sides in `flags` and returns the cells the sides keep
 /// (the refiner's seeds), side after side.
 std::vector<std::uint32_t> seedTheSides(const HeightGrid& tile, double maxError, CellFlags& flags) {
@@ -116,17 +33,6 @@ std::vector<std::uint32_t> seedTheSides(const HeightGrid& tile, double maxError,
         for (const std::uint32_t cell : side)
             flags[cell] |= kCellFrozen;
     return keptSideCells(tile, maxError);
-}
-
-/// Counts the owned valid and open hole cells of the tile.
-void countCells(const CellFlags& flags, std::size_t width, std::size_t height, UnownedSides unowned,
-                TileRefinement& tile) {
-    for (std::size_t cell = 0; cell < flags.size(); ++cell) {
-        if (unowned(cell, width, height))
-            continue;
-        tile.validCells += (flags[cell] & kCellNoData) == 0 ? 1U : 0U;
-        tile.openHoleCells += (flags[cell] & kCellOpenHole) != 0 ? 1U : 0U;
-    }
 }
 
 /// For each triangle of `mesh`, 1 when it covers a cell of an open hole; empty when the tile
@@ -304,24 +210,6 @@ TinMesh triangulateEveryCell(const HeightGrid& grid, CellFlags& flags, unsigned 
     return mesh;
 }
 
-/// Refuses a tile whose sides and hull alone took more than its share of a point or triangle
-/// limit: the whole would pass the limit.
-void checkTheShares(const TinMesh& mesh, const RefineOptions& options, std::size_t tileRow,
-                    std::size_t tileColumn) {
-    const auto refuse = [&](const std::string& what, std::size_t share, std::size_t kept) {
-        throw InvalidInputError("Refiner: tile " + std::to_string(tileRow) + ", " +
-                                std::to_string(tileColumn) + " gets " + std::to_string(share) +
-                                " " + what + " of the limit, fewer than the " +
-                                std::to_string(kept) + " its hull and sides keep within the " +
-                                "maximum error; raise the limit or the maximum error, or make "
-                                "the tiles larger");
-    };
-    if (options.maxPoints && mesh.vertexCount() > *options.maxPoints)
-        refuse("points", *options.maxPoints, mesh.vertexCount());
-    if (options.maxTriangles && mesh.triangleCount() > *options.maxTriangles)
-        refuse("triangles", *options.maxTriangles, mesh.triangleCount());
-}
-
 } // namespace
 
 std::vector<std::uint32_t> keptSideCells(const HeightGrid& tile, double maxError) {
@@ -350,21 +238,14 @@ double sideTolerance(std::span<const float> side, double maxError) {
 TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
                              const RefineOptions& options, RoundWorkers& workers,
                              const ProgressCallback& progress) {
+    if (options.cellPositions)
+        return refineProjectedTile(cells, tiles, tile, options, workers, progress);
     const std::size_t tileRow = tile / tiles.tileColumns();
     const std::size_t tileColumn = tile % tiles.tileColumns();
-    const CellWindow inner{tiles.rowsOf(tileRow), tiles.columnsOf(tileColumn)};
-    const CellWindow outer =
-        grown(inner, options.fillHoles ? 0 : options.maxHole,
-              static_cast<std::size_t>(cells.width()), static_cast<std::size_t>(cells.height()));
-    const HeightGrid margin =
-        cells.window(static_cast<int>(outer.rows.first), static_cast<int>(outer.height()),
-                     static_cast<int>(outer.columns.first), static_cast<int>(outer.width()));
-    // A nodata region of more than maxHole cells has that many within maxHole cells of any of
-    // its cells: the margin decides the tile's cells as the whole grid would.
-    std::size_t ignored = 0;
-    CellFlags flags = cellsWithin(
-        makeCellFlags(margin, options.maxHole, options.fillHoles, ignored), outer, inner);
-    const HeightGrid grid = gridWithin(margin, outer, inner);
+    TileCells read = readTileCells(cells, tiles, tile, options);
+    const HeightGrid& grid = read.grid;
+    CellFlags& flags = read.flags;
+    const CellWindow& inner = read.inner;
 
     TileRefinement result;
     const UnownedSides unowned = tiles.unownedSidesOf(tile);

@@ -2,6 +2,7 @@
 
 #include "one_tile.hpp"
 #include "pixel_frame.hpp"
+#include "projected_tile.hpp"
 #include "tile_grid.hpp"
 #include "tile_mesh_merge.hpp"
 #include "tile_refinement.hpp"
@@ -75,7 +76,8 @@ struct TileTally {
 };
 
 /// Every tile's tally, reading a tile's window at a time.
-std::vector<TileTally> tallyTiles(CellSource& cells, const TileGrid& tiles, double maxError) {
+std::vector<TileTally> tallyTiles(CellSource& cells, const TileGrid& tiles,
+                                  const RefineOptions& options) {
     std::vector<TileTally> tallies(tiles.tileCount());
     for (std::size_t tile = 0; tile < tallies.size(); ++tile) {
         const TilePlace place = tiles.placeOf(tile);
@@ -89,9 +91,14 @@ std::vector<TileTally> tallyTiles(CellSource& cells, const TileGrid& tiles, doub
         TileTally& tally = tallies[tile];
         for (std::size_t cell = 0; cell < window.cellCount(); ++cell)
             tally.ownedCells += window.isValid(cell) && owned(cell) ? 1U : 0U;
-        std::vector<std::uint32_t> kept = keptSideCells(window, maxError);
-        std::sort(kept.begin(), kept.end());
-        kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+        std::vector<std::uint32_t> kept;
+        if (options.cellPositions) {
+            kept = keptProjectedSideCells(cells, tiles, tile, options);
+        } else {
+            kept = keptSideCells(window, *options.maxError);
+            std::sort(kept.begin(), kept.end());
+            kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+        }
         tally.sideVertices = kept.size();
         for (const std::uint32_t cell : kept)
             tally.ownedSideVertices += owned(cell) ? 1U : 0U;
@@ -119,7 +126,7 @@ std::uint64_t shareOf(std::uint64_t spare, std::uint64_t part, std::uint64_t who
 void shareTheLimits(TileJob& job) {
     if (!job.options.maxPoints && !job.options.maxTriangles)
         return;
-    const std::vector<TileTally> tallies = tallyTiles(*job.cells, job.tiles, *job.options.maxError);
+    const std::vector<TileTally> tallies = tallyTiles(*job.cells, job.tiles, job.options);
     std::uint64_t cells = 0;
     std::uint64_t sidePoints = 0;
     std::uint64_t sideTriangles = 0;
@@ -269,8 +276,8 @@ RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
                          ? options.threads
                          : std::clamp(std::thread::hardware_concurrency(), 1U, kMaxThreads);
     std::optional<PixelFrameCells> frame;
-    if (isRotated(cells.geoTransform()))
-        frame.emplace(cells);
+    if (isRotated(cells.geoTransform()) && !options.cellPositions)
+        frame.emplace(cells); // positions place the cells themselves
     TileJob job{frame ? &*frame : &cells,
                 TileGrid(static_cast<std::size_t>(cells.width()),
                          static_cast<std::size_t>(cells.height()), options.tileSize),

@@ -85,7 +85,8 @@ struct RefineOptions {
     /// without cracks: each border's vertices are chosen from its cells alone, within
     /// maxError (docs/algorithms.md, "Tiles"), and each tile's TIN is exactly Delaunay, the
     /// whole only within tiles; a rotated grid's tiles are Delaunay in its pixel frame and then
-    /// put at the cells' centres. Needs maxError (or everyCell) and a grid without positions;
+    /// put at the cells' centres. Needs maxError (or everyCell) and a grid without positions
+    /// (cellPositions moves the cells of a tiled refinement);
     /// takes no spareVertices. A point or triangle limit is shared among the tiles
     /// in proportion to the valid cells each owns (counted in a first pass over the cells), so
     /// the whole keeps to it; a tile whose share is below what its hull and sides keep within
@@ -104,6 +105,14 @@ struct RefineOptions {
     /// With a distribution: the bytes the coordinator may hold in tiles that came back before
     /// their turn before it hands out no more (TileDistribution::gather; 0: no bound).
     std::uint64_t earlyTileBytes = 0;
+    /// With tiles: where the cells of a window of the grid lie in the TIN's CRS, row-major
+    /// over the window (given as a grid with its shape, firstRow, firstColumn and geoTransform,
+    /// and no elevations), as refine()'s positions: a geographic DEM's cell centres projected to
+    /// its UTM zone. Windows overlap; a cell must get exactly the same position every time. Each
+    /// tile is then refined at its cells' positions and its TIN cut along a boundary through its
+    /// sides' vertices (docs/algorithms.md, "Tiles at projected positions"). Empty: the cells
+    /// lie at their centres.
+    std::function<std::vector<Point2>(const HeightGrid& window)> cellPositions;
     /// With tiles: when set, receives each tile's TIN in tile order (a tile number, row-major
     /// among the tiles, and its TIN with sourceIndex = the grid's cell index; tiles without a
     /// triangle are skipped) instead of having them joined; the result then holds no TIN, only
