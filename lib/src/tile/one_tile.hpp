@@ -34,7 +34,8 @@ std::vector<std::uint32_t> keptSideCells(const HeightGrid& tile, double maxError
 /// Refines tile `tile` (row-major among tiles.tileCount()) of `cells` with `options` (maxError
 /// set, or everyCell; maxPoints and maxTriangles the tile's shares; tileSize, threads and
 /// distribution ignored: the tile runs on `workers`). Throws InvalidInputError when a share is
-/// below what the tile's hull and sides keep.
+/// below what the tile's hull and sides keep. With options.cellPositions, refineProjectedTile
+/// (projected_tile.hpp) refines it.
 TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
                              const RefineOptions& options, RoundWorkers& workers,
                              const ProgressCallback& progress);
