@@ -398,7 +398,10 @@ std::vector<Candidate> cellsBesideStrandedVertices(const HeightGrid& grid, const
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
         for (std::size_t i = 0; i < 3; ++i) {
             const std::uint32_t v = mesh.triangles[3 * t + i];
-            uses[v] |= measure.drop[t] == 0 ? kKept : measure.overHoleOnly[t] != 0 ? kOverHole : 0;
+            if (measure.drop[t] == 0)
+                uses[v] |= kKept;
+            else if (measure.overHoleOnly[t] != 0)
+                uses[v] |= kOverHole;
             triangleOf[v] = static_cast<std::uint32_t>(t);
         }
     std::vector<std::uint8_t> isVertex(grid.cellCount(), 0);

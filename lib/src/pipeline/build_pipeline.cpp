@@ -358,10 +358,17 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
     std::optional<detail::MemoryBudget> budget;
     std::optional<detail::GdalCacheCap> gdalCache;
     if (options.memoryLimit) {
-        budget = detail::memoryBudget(*options.memoryLimit,
-                                      refineOptions.fillHoles ? 0 : refineOptions.maxHole,
-                                      refineOptions.tileSize, optionNamer(options.optionSpelling),
+        const std::size_t margin = refineOptions.fillHoles ? 0 : refineOptions.maxHole;
+        const OptionNamer namer = optionNamer(options.optionSpelling);
+        // planTiles sized the tiles before the CRS was known; cells that move take more a
+        // cell, so such tiles are sized again.
+        if (crs.movesCells() &&
+            refineOptions.tileSize ==
+                detail::memoryBudget(*options.memoryLimit, margin, 0, namer).tileSize)
+            refineOptions.tileSize = 0;
+        budget = detail::memoryBudget(*options.memoryLimit, margin, refineOptions.tileSize, namer,
                                       crs.movesCells());
+        refineOptions.tileSize = budget->tileSize;
         gdalCache.emplace(budget->gdalCacheBytes);
         refineOptions.earlyTileBytes = budget->tileBytes;
         if (coordinates)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -106,7 +107,8 @@ void splitRun(const ProjectedSide& side, std::size_t first, std::size_t last, do
 
 } // namespace
 
-std::vector<std::uint32_t> keptProjectedSideCells(const ProjectedSide& side, double tolerance) {
+std::vector<std::uint32_t> keptProjectedSideCells(const ProjectedSide& side,
+                                                  std::optional<double> tolerance) {
     std::vector<std::uint32_t> kept;
     std::size_t previousEnd = side.z.size(); // none yet
     std::size_t i = 0;
@@ -129,9 +131,10 @@ std::vector<std::uint32_t> keptProjectedSideCells(const ProjectedSide& side, dou
         std::size_t from = i;
         kept.push_back(static_cast<std::uint32_t>(i));
         for (std::size_t k = i + 1; k <= last; ++k)
-            if (k == last || besideNoData(side, k)) {
+            if (!tolerance || k == last || besideNoData(side, k)) {
                 kept.push_back(static_cast<std::uint32_t>(k));
-                splitRun(side, from, k, tolerance, kept);
+                if (tolerance)
+                    splitRun(side, from, k, *tolerance, kept);
                 from = k;
             }
         previousEnd = last;

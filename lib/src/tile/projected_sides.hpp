@@ -9,6 +9,7 @@
 #include "terratin/geometry/point.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -44,9 +45,11 @@ struct ProjectedSide {
 /// - where a line beside is missing (the raster's edge), no valid cell of the side to lie
 ///   strictly beyond its chord, so that the TIN covers it.
 /// A chord over the tolerance splits at its worst cell, one that only bends too much at its
-/// middle cell. Throws InvalidInputError when a chord across a gap of no data bends past a
-/// valid cell beside it (no cell of the gap can split it: the tiles must be smaller), Error when
-/// two neighbouring cells' chord does.
-std::vector<std::uint32_t> keptProjectedSideCells(const ProjectedSide& side, double tolerance);
+/// middle cell. Without a tolerance, every valid cell is kept (full resolution). Throws
+/// InvalidInputError when a chord across a gap of no data bends past a valid cell beside it (no
+/// cell of the gap can split it: the tiles must be smaller), Error when two neighbouring cells'
+/// chord does.
+std::vector<std::uint32_t> keptProjectedSideCells(const ProjectedSide& side,
+                                                  std::optional<double> tolerance);
 
 } // namespace terratin::detail

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -128,14 +129,10 @@ std::vector<std::vector<std::uint32_t>> keptSides(const PlacedTile& tile,
     std::vector<std::vector<std::uint32_t>> kept(4);
     for (std::size_t k = 0; k < 4; ++k) {
         const ProjectedSide side = projectedSide(tile, k, rasterWidth, rasterHeight);
-        if (options.everyCell) {
-            for (std::size_t i = 0; i < side.z.size(); ++i)
-                if (!std::isnan(side.z[i]))
-                    kept[k].push_back(sides[k][i]);
-            continue;
-        }
-        for (const std::uint32_t i :
-             keptProjectedSideCells(side, sideTolerance(side.z, *options.maxError)))
+        const std::optional<double> tolerance =
+            options.everyCell ? std::nullopt
+                              : std::optional(sideTolerance(side.z, *options.maxError));
+        for (const std::uint32_t i : keptProjectedSideCells(side, tolerance))
             kept[k].push_back(sides[k][i]);
     }
     return kept;
@@ -286,11 +283,23 @@ std::uint64_t edgeKey(std::uint32_t from, std::uint32_t to) {
     return (std::uint64_t{from} << 32U) | to;
 }
 
-/// 1 for every triangle of `tin` outside the ring, whose edges are the sorted directed `ring`
-/// keys (inside on their left): the triangles on the right of a ring edge and every triangle
-/// reached from them across unconstrained edges.
-std::vector<std::uint8_t> trianglesOutsideRing(const ConstrainedTin& tin,
-                                               const std::vector<std::uint64_t>& ring) {
+/// The ring's edges in `tin` (its chains, which the cells inserted on them split), as sorted
+/// keys directed with the tile on their left at the positions (where the pixel frame's ring has
+/// it when `frameSign` is +1).
+std::vector<std::uint64_t> ringEdges(const ConstrainedTin& tin, int frameSign) {
+    std::vector<std::uint64_t> edges;
+    for (const std::vector<std::uint32_t>& chain : tin.chains)
+        for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+            edges.push_back(frameSign > 0 ? edgeKey(chain[i], chain[i + 1])
+                                          : edgeKey(chain[i + 1], chain[i]));
+    std::sort(edges.begin(), edges.end());
+    return edges;
+}
+
+/// 1 for every triangle of `tin` outside the tile's ring: the triangles on the outer side of a
+/// ring edge and every triangle reached from them across unconstrained edges.
+std::vector<std::uint8_t> trianglesOutsideRing(const ConstrainedTin& tin, int frameSign) {
+    const std::vector<std::uint64_t> ring = ringEdges(tin, frameSign);
     const TinMesh& mesh = tin.mesh;
     std::vector<std::uint8_t> outside(mesh.triangleCount(), 0);
     std::vector<std::size_t> pending;
@@ -361,12 +370,9 @@ TinMesh firstTin(const PlacedTile& tile, const TileRing& ring, const RefineOptio
     return refiner.extractInCellOrder();
 }
 
-/// The ring inserted into `mesh` as constraints; `ringEdges` gets its edges as sorted keys,
-/// directed with the tile on their left (at the positions, which the pixel frame's ring has
-/// there when `frameSign` is +1). Throws Error where the ring crosses itself or a vertex lies on
-/// a side's chord (which the choice of the sides' cells rules out).
-ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring, int frameSign,
-                               std::vector<std::uint64_t>& ringEdges) {
+/// The ring inserted into `mesh` as constraints. Throws Error where the ring crosses itself or
+/// a vertex lies on a side's chord (which the choice of the sides' cells rules out).
+ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring) {
     std::vector<std::uint32_t> vertexOfCell;
     for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v) {
         const std::uint32_t cell = mesh.sourceIndex[v];
@@ -387,16 +393,9 @@ ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring, int frameSign
     ConstrainedTin tin = insertConstraints(std::move(mesh), set);
     if (tin.intersections > 0 || tin.addedPoints > 0)
         throw Error("Tiles: a tile's boundary crosses itself");
-    ringEdges.clear();
-    for (std::size_t k = 0; k < tin.chains.size(); ++k) {
-        const std::vector<std::uint32_t>& chain = tin.chains[k];
-        if (ring.alongSide(k) && chain.size() != 2)
+    for (std::size_t k = 0; k < tin.chains.size(); ++k)
+        if (ring.alongSide(k) && tin.chains[k].size() != 2)
             throw Error("Tiles: a vertex lies on the chord between two side cells of a tile");
-        for (std::size_t i = 0; i + 1 < chain.size(); ++i)
-            ringEdges.push_back(frameSign > 0 ? edgeKey(chain[i], chain[i + 1])
-                                              : edgeKey(chain[i + 1], chain[i]));
-    }
-    std::sort(ringEdges.begin(), ringEdges.end());
     return tin;
 }
 
@@ -476,12 +475,11 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
                                   static_cast<std::size_t>(cells.height())));
     TinMesh mesh = firstTin(placed, ring, options, workers, partOf(progress, 0.0, 0.8), result);
     checkTheShares(mesh, options, tileRow, tileColumn);
-    std::vector<std::uint64_t> ringEdges;
-    ConstrainedTin tin = constrainToRing(std::move(mesh), ring, placed.frameSign, ringEdges);
+    ConstrainedTin tin = constrainToRing(std::move(mesh), ring);
 
     const std::vector<std::uint8_t> insideSides = sideCellsInside(ring, grid);
-    rules.outsideArea = [&ringEdges](const ConstrainedTin& constrained) {
-        return trianglesOutsideRing(constrained, ringEdges);
+    rules.outsideArea = [frameSign = placed.frameSign](const ConstrainedTin& constrained) {
+        return trianglesOutsideRing(constrained, frameSign);
     };
     rules.insertable = [&](std::size_t cell) {
         return !ring.onSide(static_cast<std::uint32_t>(cell)) || insideSides[cell] != 0;

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,21 +64,25 @@ void expectKeptSide(const ProjectedSide& side, const std::vector<std::uint32_t>&
         const bool runEnd = !std::isnan(side.z[i]) &&
                             (i == 0 || std::isnan(side.z[i - 1]) || i + 1 == side.z.size() ||
                              std::isnan(side.z[i + 1]));
-        if (runEnd)
+        if (runEnd) {
             EXPECT_NE(std::find(kept.begin(), kept.end(), i), kept.end()) << "run end " << i;
+        }
     }
     for (std::size_t k = 0; k + 1 < kept.size(); ++k) {
         const std::size_t a = kept[k];
         const std::size_t b = kept[k + 1];
         for (std::size_t i = a; i <= b; ++i) {
-            if (!side.after.empty() && !std::isnan(side.afterZ[i]))
+            if (!side.after.empty() && !std::isnan(side.afterZ[i])) {
                 EXPECT_EQ(sideOf(side, a, b, side.after[i]), 1) << "chord " << a << "-" << b;
-            if (!side.before.empty() && !std::isnan(side.beforeZ[i]))
+            }
+            if (!side.before.empty() && !std::isnan(side.beforeZ[i])) {
                 EXPECT_EQ(sideOf(side, a, b, side.before[i]), -1) << "chord " << a << "-" << b;
+            }
             if (i == a || i == b || std::isnan(side.z[i]))
                 continue;
-            if (side.before.empty())
+            if (side.before.empty()) {
                 EXPECT_GE(sideOf(side, a, b, side.at[i]), 0) << "cell " << i << " beyond";
+            }
             const double dx = side.at[b].x - side.at[a].x;
             const double dy = side.at[b].y - side.at[a].y;
             const double t = ((side.at[i].x - side.at[a].x) * dx +
@@ -99,6 +104,8 @@ TEST(ProjectedSides, AStraightEvenSide_KeepsItsRunsEndsWhereTheProfileIsStraight
     }
     side.afterSign = 1;
     EXPECT_EQ(keptProjectedSideCells(side, 0.1), (std::vector<std::uint32_t>{0, 19, 25, 49}));
+    // Full resolution: every valid cell.
+    EXPECT_EQ(keptProjectedSideCells(side, std::nullopt).size(), 45U);
 }
 
 TEST(ProjectedSides, ABentSide_ChordsClearOfTheLinesBeside_AndWithinTheTolerance) {
@@ -129,6 +136,7 @@ TEST(ProjectedSides, AGapTheProjectionBendsPastACellBeside_IsRefused) {
     const auto gap = [](std::size_t i) { return i >= 10 && i < 70 ? kNoData : wavy(i); };
     const ProjectedSide bent = arcSide(80, 40.0, false, gap);
     EXPECT_THROW(keptProjectedSideCells(bent, 1.0), InvalidInputError);
+    EXPECT_THROW(keptProjectedSideCells(bent, std::nullopt), InvalidInputError);
     // Where the lines beside have no data there either, nothing stands in the chord's way.
     ProjectedSide open = bent;
     for (std::size_t i = 10; i < 70; ++i) {
