@@ -117,8 +117,9 @@ TEST(ProjectedSides, ABentSide_ChordsClearOfTheLinesBeside_AndWithinTheTolerance
         // A loose tolerance still splits where the arc bends past the lines beside.
         const std::vector<std::uint32_t> loose = keptProjectedSideCells(side, 1000.0);
         expectKeptSide(side, loose, 1000.0);
-        if (std::abs(radius) < 100.0)
+        if (std::abs(radius) < 100.0) {
             EXPECT_GT(loose.size(), 4U);
+        }
     }
 }
 
