@@ -5,11 +5,13 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <thread>
 
@@ -51,14 +53,23 @@ Message receive(const MPI_Status& probed) {
     return message;
 }
 
-/// The next message from any rank; keepGoing is asked every millisecond while none is there.
-Message receiveAny(const std::function<bool()>& keepGoing, bool& cancelled) {
+/// The next message from ranks 1 .. ranks - 1 that `accept` takes (given its tag, sender and
+/// size; one it leaves stays with its sender, unreceived, and is asked about again), probing
+/// each rank in turn; keepGoing is asked every millisecond while none is there.
+Message receiveAccepted(int ranks, const std::function<bool(int, int, std::uint64_t)>& accept,
+                        const std::function<bool()>& keepGoing, bool& cancelled) {
     for (;;) {
-        int arrived = 0;
-        MPI_Status status;
-        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
-        if (arrived != 0)
-            return receive(status);
+        for (int rank = 1; rank < ranks; ++rank) {
+            int arrived = 0;
+            MPI_Status status;
+            MPI_Iprobe(rank, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+            if (arrived == 0)
+                continue;
+            int count = 0;
+            MPI_Get_count(&status, MPI_BYTE, &count);
+            if (accept(status.MPI_TAG, rank, static_cast<std::uint64_t>(count)))
+                return receive(status);
+        }
         if (!cancelled && !keepGoing())
             cancelled = true;
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -109,10 +120,19 @@ void MpiTiles::gather(std::size_t tileCount,
     m_stopped[kCoordinator] = true;
     TileHandout handout(tileCount, earlyBytes);
     std::deque<int> waiting; // ranks whose last message has no reply yet
+    std::vector<std::size_t> tileOf(static_cast<std::size_t>(m_size), 0); // each rank's work
     std::optional<std::string> failure;
     bool cancelled = false;
+    // A tile that came back before its turn and would pass the bound stays with its rank (its
+    // send waits) until its turn comes or the early tiles make room; after a failure or a
+    // cancellation every message is taken, so that each rank gets its Stop.
+    const auto accept = [&](int tag, int rank, std::uint64_t bytes) {
+        return tag != kResult || failure || cancelled ||
+               handout.accepts(tileOf[static_cast<std::size_t>(rank)],
+                               bytes - std::min<std::uint64_t>(bytes, sizeof(std::uint64_t)));
+    };
     for (int working = m_size - 1; working > 0;) {
-        Message message = receiveAny(keepGoing, cancelled);
+        Message message = receiveAccepted(m_size, accept, keepGoing, cancelled);
         if (message.tag == kResult && !failure && !cancelled) {
             const std::uint64_t tile = numberOf(message.bytes);
             message.bytes.erase(message.bytes.begin(), message.bytes.begin() + sizeof tile);
@@ -134,6 +154,7 @@ void MpiTiles::gather(std::size_t tileCount,
             const int rank = waiting.front();
             waiting.pop_front();
             if (tile) {
+                tileOf[static_cast<std::size_t>(rank)] = *tile;
                 send(numberBytes(*tile), kTile, rank);
             } else {
                 send({}, kStop, rank);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdint>
 #include <optional>
 #include <random>
@@ -97,8 +99,69 @@ TEST(TileHandout, WorkersFinishingInAnyOrder_NeverAllWait_AndTheEarlyBytesStayNe
         EXPECT_TRUE(handout.allHandedOut());
         EXPECT_EQ(handout.earlyBytes(), 0U);
         EXPECT_LE(handout.mostEarlyBytes(), kBound + (workers - 1) * kLargest);
-        if (workers > 1)
+        if (workers > 1) {
             EXPECT_GT(handout.mostEarlyBytes(), 0U);
+        }
+    }
+}
+
+TEST(TileHandout, TilesLeftWithTheirWorkersUntilAccepted_KeepTheEarlyBytesWithinTheBound) {
+    // As above, but a finished tile comes back only when accepts() says so (MPI leaves the
+    // result unreceived); until then its worker holds it and takes no other tile. The early
+    // tiles never pass the bound, and the run still ends: the tile in turn is always accepted.
+    constexpr std::uint64_t kBound = 1000;
+    constexpr std::uint64_t kLargest = 400;
+    std::mt19937 random(26);
+    for (const std::size_t workers : {1U, 2U, 7U, 20U}) {
+        SCOPED_TRACE("workers " + std::to_string(workers));
+        constexpr std::size_t kTiles = 200;
+        TileHandout handout(kTiles, kBound);
+        struct Work {
+            std::size_t tile;
+            std::uint64_t bytes;
+            bool finished;
+        };
+        std::vector<Work> busy; // each busy worker's tile, finished or not
+        std::size_t idle = workers;
+        std::size_t back = 0;
+        const auto handOut = [&] {
+            while (idle > 0) {
+                const std::optional<std::size_t> tile = handout.next();
+                if (!tile)
+                    return;
+                busy.push_back(
+                    {*tile, std::uniform_int_distribution<std::uint64_t>(1, kLargest)(random),
+                     false});
+                --idle;
+            }
+        };
+        handOut();
+        while (back < kTiles) {
+            ASSERT_FALSE(busy.empty()) << "every worker waits with " << kTiles - back << " left";
+            // A worker still refining finishes, or a finished one is asked about again.
+            Work& work = busy[std::uniform_int_distribution<std::size_t>(0, busy.size() - 1)(
+                random)];
+            work.finished = true;
+            const auto accepted =
+                std::find_if(busy.begin(), busy.end(), [&](const Work& w) {
+                    return w.finished && handout.accepts(w.tile, w.bytes);
+                });
+            if (accepted == busy.end()) {
+                const bool anyRefining = std::any_of(busy.begin(), busy.end(),
+                                                     [](const Work& w) { return !w.finished; });
+                ASSERT_TRUE(anyRefining) << "every worker holds a tile none accepts";
+                continue;
+            }
+            handout.back(accepted->tile, accepted->bytes);
+            EXPECT_LE(handout.earlyBytes(), kBound);
+            busy.erase(accepted);
+            ++back;
+            ++idle;
+            handOut();
+        }
+        EXPECT_TRUE(handout.allHandedOut());
+        EXPECT_EQ(handout.earlyBytes(), 0U);
+        EXPECT_LE(handout.mostEarlyBytes(), kBound);
     }
 }
 

@@ -3,8 +3,9 @@
 /// For a TileDistribution's coordinator: which tile to hand out next. Tiles go out in order,
 /// and are joined in order; one that comes back before its turn waits for it in the
 /// coordinator's memory. TileHandout counts those early tiles' bytes and hands out no more
-/// tiles while they hold more than a bound (issue 25: --memory-limit over MPI ranks). The
-/// first tile not back yet is always out in work, so a pause always ends.
+/// tiles while they hold more than a bound (issue 25: --memory-limit over MPI ranks), and says
+/// which tiles may come back within it (accepts). The first tile not back yet is always out in
+/// work and always accepted, so a pause always ends.
 
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +23,14 @@ public:
     /// than the bound (a rank asking then waits until tiles come back in turn).
     [[nodiscard]] std::optional<std::size_t> next();
     [[nodiscard]] bool allHandedOut() const { return m_handedOut == m_tileCount; }
+
+    /// Whether tile `tile` may come back now as `bytes` bytes: it is the tile in turn (joined at
+    /// once), or the early tiles stay within the bound with it. A transport that can leave a
+    /// tile with its rank (MPI: the result not received yet) does so until it may, so that the
+    /// early tiles never pass the bound.
+    [[nodiscard]] bool accepts(std::size_t tile, std::uint64_t bytes) const {
+        return tile == m_nextInTurn || m_bound == 0 || m_earlyBytes + bytes <= m_bound;
+    }
 
     /// Tile `tile` (handed out, each once) came back as `bytes` bytes.
     void back(std::size_t tile, std::uint64_t bytes);
