@@ -399,6 +399,24 @@ ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring) {
     return tin;
 }
 
+/// For each of `cells` (each a vertex of `mesh`, ascending), 0 when a triangle that `drop`
+/// keeps uses its vertex (a vertex's error), else NaN: full resolution's measure.
+std::vector<double> verticesKept(const TinMesh& mesh, const std::vector<std::uint8_t>& drop,
+                                 const std::vector<std::size_t>& cells) {
+    std::vector<std::uint8_t> used(mesh.vertexCount(), 0);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        if (drop[t] == 0)
+            for (std::size_t i = 0; i < 3; ++i)
+                used[mesh.triangles[3 * t + i]] = 1;
+    std::vector<double> squared(cells.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        const auto at = std::lower_bound(cells.begin(), cells.end(), mesh.sourceIndex[v]);
+        if (used[v] != 0 && at != cells.end() && *at == mesh.sourceIndex[v])
+            squared[static_cast<std::size_t>(at - cells.begin())] = 0.0;
+    }
+    return squared;
+}
+
 /// `progress` for a part of the tile's work, from `start` for `share` of it.
 ProgressCallback partOf(const ProgressCallback& progress, double start, double share) {
     if (!progress)
@@ -456,20 +474,24 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
     TileRefinement result;
     countCells(placed.read.flags, placed.width(), placed.height(), unowned, result);
 
+    std::vector<std::size_t> validCells;
     CompletionRules rules;
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
         if (grid.isValid(cell))
-            rules.measuredCells.push_back(cell);
+            validCells.push_back(cell);
         else if ((placed.read.flags[cell] & kCellOpenHole) != 0)
             rules.openHoleCells.push_back(cell);
     }
     if (!validCellsSpanArea(grid)) { // no triangle: every shared side cell uncovered
-        countFromErrors(rules.measuredCells,
-                        std::vector<double>(rules.measuredCells.size(),
+        countFromErrors(validCells,
+                        std::vector<double>(validCells.size(),
                                             std::numeric_limits<double>::quiet_NaN()),
                         grid, tileRow > 0, tileColumn > 0, unowned, result);
         return result;
     }
+    // At full resolution every valid cell is a vertex already: only the holes are located.
+    if (!options.everyCell)
+        rules.measuredCells = validCells;
     const TileRing ring(placed,
                         keptSides(placed, options, static_cast<std::size_t>(cells.width()),
                                   static_cast<std::size_t>(cells.height())));
@@ -498,12 +520,14 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
                         (validation.problems.empty() ? std::string("(no detail)")
                                                      : validation.problems.front()));
     }
+    const std::vector<double> squaredErrors =
+        options.everyCell ? verticesKept(tin.mesh, completion.drop, validCells)
+                          : completion.squaredErrors;
     result.mesh = std::move(tin.mesh);
     dropTriangles(result.mesh, completion.drop);
     result.droppedTriangles = completion.holeTriangles;
     result.maxError = completion.maxError;
-    countFromErrors(rules.measuredCells, completion.squaredErrors, grid, tileRow > 0,
-                    tileColumn > 0, unowned, result);
+    countFromErrors(validCells, squaredErrors, grid, tileRow > 0, tileColumn > 0, unowned, result);
     return result;
 }
 
