@@ -150,8 +150,8 @@ public:
     CompletionCheck(const HeightGrid& grid, std::span<const Point2> positions,
                     const ConstrainedTin& tin, const CompletionRules& rules,
                     std::optional<double> maxError, unsigned threads)
-        : m_grid(&grid), m_positions(positions), m_tin(&tin), m_rules(&rules),
-          m_maxError(maxError), m_threads(std::max(threads, 1U)) {
+        : m_grid(&grid), m_positions(positions), m_tin(&tin), m_rules(&rules), m_maxError(maxError),
+          m_threads(std::max(threads, 1U)) {
         m_cellTriangle.assign(rules.measuredCells.size(), kNoTriangle);
         m_cellError.assign(rules.measuredCells.size(), 0.0);
         m_holeTriangle.assign(rules.openHoleCells.size(), kNoTriangle);
@@ -447,8 +447,7 @@ Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> pos
     bool everyCell = false;
     Measure measure;
     const auto finalMeasure = [&] {
-        return check.measure(changed, true,
-                             rules.keepCellErrors ? &result.squaredErrors : nullptr);
+        return check.measure(changed, true, rules.keepCellErrors ? &result.squaredErrors : nullptr);
     };
     for (;;) {
         if (progress)
@@ -456,13 +455,12 @@ Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> pos
                      "inserting cells over the bound");
         measure = everyCell ? finalMeasure() : check.measure(changed, false);
         ++result.passes;
-        std::vector<Candidate> candidates = chooseCandidates(
-            std::move(measure.candidates), tin.mesh, options, result.limitReached);
-        if (candidates.empty() && everyCell && rules.coverStrandedVertices &&
-            !result.limitReached)
-            candidates = chooseCandidates(
-                cellsBesideStrandedVertices(grid, tin.mesh, measure, rules), tin.mesh, options,
-                result.limitReached);
+        std::vector<Candidate> candidates =
+            chooseCandidates(std::move(measure.candidates), tin.mesh, options, result.limitReached);
+        if (candidates.empty() && everyCell && rules.coverStrandedVertices && !result.limitReached)
+            candidates =
+                chooseCandidates(cellsBesideStrandedVertices(grid, tin.mesh, measure, rules),
+                                 tin.mesh, options, result.limitReached);
         if (candidates.empty()) {
             if (everyCell)
                 break;

@@ -117,12 +117,12 @@ void TileFiles::write(std::size_t tile, const TinMesh& tin,
     io::TinWriteOptions options = m_writeOptions;
     options.vertexCells = std::move(vertexCells);
     // Recorded first: a write that fails half-way is taken back with the others.
-    m_entries.push_back(
-        {name, static_cast<std::int64_t>(tileRow), static_cast<std::int64_t>(tileColumn),
-         static_cast<std::int64_t>(tin.vertexCount()),
-         static_cast<std::int64_t>(tin.triangleCount()),
-         footprint(m_extent, m_tiles.rowsOf(tileRow), m_tiles.columnsOf(tileColumn),
-                   m_cellPositions)});
+    m_entries.push_back({name, static_cast<std::int64_t>(tileRow),
+                         static_cast<std::int64_t>(tileColumn),
+                         static_cast<std::int64_t>(tin.vertexCount()),
+                         static_cast<std::int64_t>(tin.triangleCount()),
+                         footprint(m_extent, m_tiles.rowsOf(tileRow), m_tiles.columnsOf(tileColumn),
+                                   m_cellPositions)});
     m_features += io::writeTin(tin, m_directory / name, options).features;
     m_points += tin.vertexCount();
     m_triangles += tin.triangleCount();

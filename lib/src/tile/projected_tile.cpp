@@ -46,8 +46,7 @@ struct PlacedTile {
     [[nodiscard]] std::size_t height() const { return read.inner.height(); }
     /// The position and elevation of the raster's cell (row, column), within `around`.
     [[nodiscard]] Point2 positionAt(std::size_t row, std::size_t column) const {
-        return aroundAt[(row - around.rows.first) * around.width() + column -
-                        around.columns.first];
+        return aroundAt[(row - around.rows.first) * around.width() + column - around.columns.first];
     }
     [[nodiscard]] float elevationAt(std::size_t row, std::size_t column) const {
         return read.margin.z[(row - read.outer.rows.first) * read.outer.width() + column -
@@ -77,11 +76,11 @@ PlacedTile placeTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
     if (placed.around.width() > 1 && placed.around.height() > 1) {
         const std::size_t r = placed.around.rows.first;
         const std::size_t c = placed.around.columns.first;
-        placed.frameSign = predicates::orient2d(placed.positionAt(r, c),
-                                                placed.positionAt(r, c + 1),
-                                                placed.positionAt(r + 1, c)) < 0.0
-                               ? -1
-                               : 1;
+        placed.frameSign =
+            predicates::orient2d(placed.positionAt(r, c), placed.positionAt(r, c + 1),
+                                 placed.positionAt(r + 1, c)) < 0.0
+                ? -1
+                : 1;
     }
     return placed;
 }
@@ -334,8 +333,7 @@ std::vector<std::uint8_t> trianglesOutsideRing(const ConstrainedTin& tin, int fr
 /// refiner's, from the ring's cells and the valid cells on no side (the sides' other cells are
 /// decided by the ring: kept out of the refiner as cells without data).
 TinMesh firstTin(const PlacedTile& tile, const TileRing& ring, const RefineOptions& options,
-                 RoundWorkers& workers, const ProgressCallback& progress,
-                 TileRefinement& result) {
+                 RoundWorkers& workers, const ProgressCallback& progress, TileRefinement& result) {
     const HeightGrid& grid = tile.read.grid;
     if (options.everyCell) {
         std::vector<Point3> points;
@@ -428,8 +426,8 @@ ProgressCallback partOf(const ProgressCallback& progress, double start, double s
 
 /// The tile's figures from each valid cell's squared error in its kept triangles (NaN: none).
 void countFromErrors(const std::vector<std::size_t>& cells, const std::vector<double>& squared,
-                     const HeightGrid& grid, bool topShared, bool leftShared,
-                     UnownedSides unowned, TileRefinement& result) {
+                     const HeightGrid& grid, bool topShared, bool leftShared, UnownedSides unowned,
+                     TileRefinement& result) {
     const auto width = static_cast<std::size_t>(grid.width);
     const auto height = static_cast<std::size_t>(grid.height);
     for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -483,18 +481,17 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
             rules.openHoleCells.push_back(cell);
     }
     if (!validCellsSpanArea(grid)) { // no triangle: every shared side cell uncovered
-        countFromErrors(validCells,
-                        std::vector<double>(validCells.size(),
-                                            std::numeric_limits<double>::quiet_NaN()),
-                        grid, tileRow > 0, tileColumn > 0, unowned, result);
+        countFromErrors(
+            validCells,
+            std::vector<double>(validCells.size(), std::numeric_limits<double>::quiet_NaN()), grid,
+            tileRow > 0, tileColumn > 0, unowned, result);
         return result;
     }
     // At full resolution every valid cell is a vertex already: only the holes are located.
     if (!options.everyCell)
         rules.measuredCells = validCells;
-    const TileRing ring(placed,
-                        keptSides(placed, options, static_cast<std::size_t>(cells.width()),
-                                  static_cast<std::size_t>(cells.height())));
+    const TileRing ring(placed, keptSides(placed, options, static_cast<std::size_t>(cells.width()),
+                                          static_cast<std::size_t>(cells.height())));
     TinMesh mesh = firstTin(placed, ring, options, workers, partOf(progress, 0.0, 0.8), result);
     checkTheShares(mesh, options, tileRow, tileColumn);
     ConstrainedTin tin = constrainToRing(std::move(mesh), ring);
@@ -508,9 +505,8 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
     };
     rules.coverStrandedVertices = true;
     rules.keepCellErrors = true;
-    const Completion completion =
-        completeWithCells(grid, placed.at, tin, rules, options, workers.size(),
-                          partOf(progress, 0.8, 0.2));
+    const Completion completion = completeWithCells(grid, placed.at, tin, rules, options,
+                                                    workers.size(), partOf(progress, 0.8, 0.2));
     if (completion.limitReached && result.stop == RefineStop::ErrorReached)
         result.stop = options.maxPoints ? RefineStop::PointLimit : RefineStop::TriangleLimit;
     if (options.validate) {

@@ -39,16 +39,16 @@ TileCells readTileCells(CellSource& cells, const TileGrid& tiles, std::size_t ti
     TileCells read;
     const std::size_t tileRow = tile / tiles.tileColumns();
     read.inner = {tiles.rowsOf(tileRow), tiles.columnsOf(tile % tiles.tileColumns())};
-    read.outer = grown(read.inner, std::max(options.fillHoles ? std::size_t{0} : options.maxHole, leastMargin),
-                       static_cast<std::size_t>(cells.width()),
-                       static_cast<std::size_t>(cells.height()));
+    read.outer = grown(
+        read.inner, std::max(options.fillHoles ? std::size_t{0} : options.maxHole, leastMargin),
+        static_cast<std::size_t>(cells.width()), static_cast<std::size_t>(cells.height()));
     read.margin = cells.window(
         static_cast<int>(read.outer.rows.first), static_cast<int>(read.outer.height()),
         static_cast<int>(read.outer.columns.first), static_cast<int>(read.outer.width()));
     std::size_t ignored = 0;
-    read.flags = cellsWithin(
-        makeCellFlags(read.margin, options.maxHole, options.fillHoles, ignored), read.outer,
-        read.inner);
+    read.flags =
+        cellsWithin(makeCellFlags(read.margin, options.maxHole, options.fillHoles, ignored),
+                    read.outer, read.inner);
     read.grid = gridWithin(read.margin, read.outer, read.inner);
     return read;
 }

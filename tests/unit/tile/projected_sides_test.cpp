@@ -61,9 +61,9 @@ int sideOf(const ProjectedSide& side, std::size_t a, std::size_t b, Point2 p) {
 void expectKeptSide(const ProjectedSide& side, const std::vector<std::uint32_t>& kept,
                     double tolerance) {
     for (std::size_t i = 0; i < side.z.size(); ++i) {
-        const bool runEnd = !std::isnan(side.z[i]) &&
-                            (i == 0 || std::isnan(side.z[i - 1]) || i + 1 == side.z.size() ||
-                             std::isnan(side.z[i + 1]));
+        const bool runEnd =
+            !std::isnan(side.z[i]) && (i == 0 || std::isnan(side.z[i - 1]) ||
+                                       i + 1 == side.z.size() || std::isnan(side.z[i + 1]));
         if (runEnd) {
             EXPECT_NE(std::find(kept.begin(), kept.end(), i), kept.end()) << "run end " << i;
         }
@@ -85,9 +85,9 @@ void expectKeptSide(const ProjectedSide& side, const std::vector<std::uint32_t>&
             }
             const double dx = side.at[b].x - side.at[a].x;
             const double dy = side.at[b].y - side.at[a].y;
-            const double t = ((side.at[i].x - side.at[a].x) * dx +
-                              (side.at[i].y - side.at[a].y) * dy) /
-                             (dx * dx + dy * dy);
+            const double t =
+                ((side.at[i].x - side.at[a].x) * dx + (side.at[i].y - side.at[a].y) * dy) /
+                (dx * dx + dy * dy);
             const double line = side.z[a] + (side.z[b] - side.z[a]) * t;
             EXPECT_LE(std::abs(side.z[i] - line), tolerance) << "cell " << i;
         }

@@ -83,8 +83,7 @@ TEST(TilesAtPositions, OneConformingTin_WithinTheBound_EachTileConstrainedDelaun
             // A disc: V - E + F = 1.
             EXPECT_EQ(result.mesh.vertexCount() + result.mesh.triangleCount(),
                       1 + edges.interior + edges.boundary);
-            const test::CoverageCheck check =
-                test::checkCoverage(result.mesh, grid, 1, positions);
+            const test::CoverageCheck check = test::checkCoverage(result.mesh, grid, 1, positions);
             EXPECT_LE(check.maxError, maxError + 1e-6);
             EXPECT_EQ(check.uncoveredValid, 0U);
             EXPECT_EQ(result.uncoveredCells, 0U);
@@ -117,8 +116,8 @@ TEST(TilesAtPositions, NoDataAcrossSidesAndCorners_TheUncoveredReportedAreTheCel
             for (const bool everyCell : {false, true}) {
                 SCOPED_TRACE("tile size " + std::to_string(tileSize) + ", seed " +
                              std::to_string(seed) + (everyCell ? ", every cell" : ""));
-                const RefineResult result = refine(
-                    grid, everyCell ? everyCellAt(tileSize, false) : tiledAt(1.0, tileSize, false));
+                const RefineResult result = refine(grid, everyCell ? everyCellAt(tileSize, false)
+                                                                   : tiledAt(1.0, tileSize, false));
                 expectConforming(result.mesh);
                 const test::CoverageCheck check =
                     test::checkCoverage(result.mesh, grid, 1, positions);

@@ -129,9 +129,9 @@ TEST(TileHandout, TilesLeftWithTheirWorkersUntilAccepted_KeepTheEarlyBytesWithin
                 const std::optional<std::size_t> tile = handout.next();
                 if (!tile)
                     return;
-                busy.push_back(
-                    {*tile, std::uniform_int_distribution<std::uint64_t>(1, kLargest)(random),
-                     false});
+                busy.push_back({*tile,
+                                std::uniform_int_distribution<std::uint64_t>(1, kLargest)(random),
+                                false});
                 --idle;
             }
         };
@@ -139,13 +139,12 @@ TEST(TileHandout, TilesLeftWithTheirWorkersUntilAccepted_KeepTheEarlyBytesWithin
         while (back < kTiles) {
             ASSERT_FALSE(busy.empty()) << "every worker waits with " << kTiles - back << " left";
             // A worker still refining finishes, or a finished one is asked about again.
-            Work& work = busy[std::uniform_int_distribution<std::size_t>(0, busy.size() - 1)(
-                random)];
+            Work& work =
+                busy[std::uniform_int_distribution<std::size_t>(0, busy.size() - 1)(random)];
             work.finished = true;
-            const auto accepted =
-                std::find_if(busy.begin(), busy.end(), [&](const Work& w) {
-                    return w.finished && handout.accepts(w.tile, w.bytes);
-                });
+            const auto accepted = std::find_if(busy.begin(), busy.end(), [&](const Work& w) {
+                return w.finished && handout.accepts(w.tile, w.bytes);
+            });
             if (accepted == busy.end()) {
                 const bool anyRefining = std::any_of(busy.begin(), busy.end(),
                                                      [](const Work& w) { return !w.finished; });
