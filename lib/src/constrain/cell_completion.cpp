@@ -14,10 +14,6 @@ namespace terratin::detail {
 
 namespace {
 
-Point2 cellPosition(const HeightGrid& grid, std::span<const Point2> positions, std::size_t cell) {
-    return positions.empty() ? grid.cellCentre(static_cast<std::uint64_t>(cell)) : positions[cell];
-}
-
 /// Whether p lies on the line of edge i of triangle t, up to rounding (within the error bound
 /// of orient2d's floating-point stage, as TinLocator::locateNear decides).
 bool onEdgeLine(const TinMesh& mesh, std::size_t t, std::size_t i, Point2 p) {
@@ -311,11 +307,14 @@ private:
         if (drop[t] != 0 || flat[t] != 0)
             return; // outside the output's area, or in a replace area
         const bool corner = isCorner(m_tin->mesh, t, position(cell));
-        const bool insertable = !corner && (!m_rules->insertable || m_rules->insertable(cell));
+        // Asked only of a cell about to be proposed: the rule may be a call per cell.
+        const auto insertable = [&] {
+            return !corner && (!m_rules->insertable || m_rules->insertable(cell));
+        };
         if (overHole[t] != 0 && !corner) {
             // As the refiner does: a hole's triangle is split until it covers no valid cell.
             ++block.uncovered;
-            if (insertable)
+            if (insertable())
                 block.proposals.push_back({std::numeric_limits<double>::infinity(), cell, t});
             return;
         }
@@ -325,7 +324,7 @@ private:
         block.maxError = std::max(block.maxError, error);
         if (squaredError != nullptr)
             *squaredError = corner ? 0.0 : error * error;
-        if (m_maxError && error > *m_maxError && insertable)
+        if (m_maxError && error > *m_maxError && insertable())
             block.proposals.push_back({error, cell, t});
     }
 

@@ -19,6 +19,12 @@
 
 namespace terratin::detail {
 
+/// Where `cell` lies: positions[cell], or the grid's cell centre when `positions` is empty.
+inline Point2 cellPosition(const HeightGrid& grid, std::span<const Point2> positions,
+                           std::size_t cell) {
+    return positions.empty() ? grid.cellCentre(static_cast<std::uint64_t>(cell)) : positions[cell];
+}
+
 /// Which cells a completion measures, which triangles it keeps, which cells it may insert.
 struct CompletionRules {
     /// The valid cells the bound holds for, ascending; and the cells of open holes, which no

@@ -13,10 +13,6 @@ namespace terratin::detail {
 
 namespace {
 
-Point2 cellPosition(const HeightGrid& grid, std::span<const Point2> positions, std::size_t cell) {
-    return positions.empty() ? grid.cellCentre(static_cast<std::uint64_t>(cell)) : positions[cell];
-}
-
 /// Which cells the bound holds for, and where the open holes are.
 struct CellSets {
     /// The valid cells (the erase and replace areas' cells are no data by now,

@@ -368,14 +368,13 @@ TinMesh firstTin(const PlacedTile& tile, const TileRing& ring, const RefineOptio
     return refiner.extractInCellOrder();
 }
 
-/// The ring inserted into `mesh` as constraints. Throws Error where the ring crosses itself or
+/// The ring inserted into `mesh` (its vertices cells of a tile of `cellCount`) as constraints.
+/// Throws Error where the ring crosses itself or
 /// a vertex lies on a side's chord (which the choice of the sides' cells rules out).
-ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring) {
-    std::vector<std::uint32_t> vertexOfCell;
+ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring, std::size_t cellCount) {
+    std::vector<std::uint32_t> vertexOfCell(cellCount, kNotAVertex);
     for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v) {
         const std::uint32_t cell = mesh.sourceIndex[v];
-        if (cell >= vertexOfCell.size())
-            vertexOfCell.resize(std::size_t{cell} + 1, kNotAVertex);
         vertexOfCell[cell] = v;
     }
     const std::vector<std::uint32_t>& cells = ring.cells();
@@ -383,8 +382,7 @@ ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring) {
     for (std::size_t k = 0; k < cells.size(); ++k) {
         const std::uint32_t u = cells[k];
         const std::uint32_t v = cells[(k + 1) % cells.size()];
-        if (u >= vertexOfCell.size() || v >= vertexOfCell.size() ||
-            vertexOfCell[u] == kNotAVertex || vertexOfCell[v] == kNotAVertex)
+        if (vertexOfCell[u] == kNotAVertex || vertexOfCell[v] == kNotAVertex)
             throw Error("Tiles: a cell of a tile's boundary is no vertex of its TIN");
         set.segments.push_back({vertexOfCell[u], vertexOfCell[v]});
     }
@@ -494,7 +492,7 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
                                           static_cast<std::size_t>(cells.height())));
     TinMesh mesh = firstTin(placed, ring, options, workers, partOf(progress, 0.0, 0.8), result);
     checkTheShares(mesh, options, tileRow, tileColumn);
-    ConstrainedTin tin = constrainToRing(std::move(mesh), ring);
+    ConstrainedTin tin = constrainToRing(std::move(mesh), ring, grid.cellCount());
 
     const std::vector<std::uint8_t> insideSides = sideCellsInside(ring, grid);
     rules.outsideArea = [frameSign = placed.frameSign](const ConstrainedTin& constrained) {
