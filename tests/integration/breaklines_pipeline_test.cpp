@@ -30,6 +30,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -204,6 +205,45 @@ TEST(BreaklinesPipeline, APointCloudTakesBreaklines_WithZFromItsTin) {
     EXPECT_TRUE(hasEdge(tin, {800.75, 650.125}, {300.5, 900.25}));
     const Point3& corner = tin.mesh.vertices[tin.vertexAt.at({800.75, 650.125})];
     EXPECT_NEAR(corner.z, 800.75 / 100.0 + 650.125 / 50.0, 1e-9);
+}
+
+TEST(BreaklinesPipeline, APointCloudsBreaklineZ_IsTheSameBitsForEveryThreadCount) {
+    // Regression: the breakline vertices' z from the TIN followed the numbering of its
+    // triangles, which differs with the threads that built it (TinLocator::elevationIn), so
+    // the TIN differed in the last bits of some z between 1 and 2 threads.
+    TemporaryDirectory directory;
+    const fs::path points = directory.path() / "points.xyz";
+    (void)test::writePlanePoints(points, 20000, 777);
+    const fs::path lines = directory.path() / "lines.gpkg";
+    std::vector<std::string> wkts;
+    for (int k = 0; k < 40; ++k) {
+        const double y = 12.5 + 24.25 * k;
+        wkts.push_back("LINESTRING (3.5 " + std::to_string(y) + ", 500.25 " +
+                       std::to_string(y + 300.0 - 11.0 * k) + ", 996.75 " +
+                       std::to_string(990.0 - y) + ")");
+    }
+    writeLines(lines, wkts, 0);
+    std::vector<std::vector<Point3>> vertices;
+    for (const unsigned threads : {1U, 2U}) {
+        BuildOptions options;
+        options.inputs = {points.string()};
+        options.output = directory.path() / "tin.ply";
+        options.overwrite = true;
+        options.breaklines = {lines.string()};
+        options.triangulation.threads = threads;
+        EXPECT_TRUE(runBuild(options).breaklines == 40U);
+        vertices.push_back(readTin(directory.path() / "tin.ply").mesh.vertices);
+        std::sort(vertices.back().begin(), vertices.back().end(),
+                  [](const Point3& a, const Point3& b) {
+                      return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+                  });
+    }
+    ASSERT_EQ(vertices[0].size(), vertices[1].size());
+    EXPECT_GT(vertices[0].size(), 20000U);
+    std::size_t differing = 0;
+    for (std::size_t v = 0; v < vertices[0].size(); ++v)
+        differing += vertices[0][v] == vertices[1][v] ? 0 : 1;
+    EXPECT_EQ(differing, 0U);
 }
 
 /// Twice the planimetric area of the TIN in `path` (a PLY).

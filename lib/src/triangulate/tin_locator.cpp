@@ -235,11 +235,37 @@ std::optional<double> TinLocator::elevation(Point2 point) {
     return elevationIn(*triangle, point);
 }
 
+// The elevation must not depend on how the triangle is stored (which corner comes first) nor,
+// for a point on an edge, on which of the edge's two triangles holds it: both follow the
+// numbering of the triangles, which depends on the threads that built the TIN, and a constraint
+// vertex's z would then differ in the last bit from one thread count to another. So the corners
+// are taken from the one with the lowest index, a point at a vertex takes its z, and a point on
+// an edge (exactly) is interpolated along the edge alone, from its vertex with the lower index.
 double TinLocator::elevationIn(std::uint32_t triangle, Point2 point) const {
     const TinMesh& mesh = *m_mesh;
-    const Point3& a = mesh.vertices[mesh.triangles[3 * std::size_t{triangle}]];
-    const Point3& b = mesh.vertices[mesh.triangles[3 * std::size_t{triangle} + 1]];
-    const Point3& c = mesh.vertices[mesh.triangles[3 * std::size_t{triangle} + 2]];
+    std::array<std::uint32_t, 3> corners{};
+    const std::size_t base = 3 * std::size_t{triangle};
+    const std::size_t first = mesh.triangles[base + 1] < mesh.triangles[base]
+                                  ? (mesh.triangles[base + 2] < mesh.triangles[base + 1] ? 2 : 1)
+                                  : (mesh.triangles[base + 2] < mesh.triangles[base] ? 2 : 0);
+    for (std::size_t i = 0; i < 3; ++i)
+        corners[i] = mesh.triangles[base + (first + i) % 3];
+    for (const std::uint32_t corner : corners)
+        if (planar(mesh.vertices[corner]) == point)
+            return mesh.vertices[corner].z;
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Point3& u = mesh.vertices[std::min(corners[i], corners[(i + 1) % 3])];
+        const Point3& v = mesh.vertices[std::max(corners[i], corners[(i + 1) % 3])];
+        if (predicates::orient2d(planar(u), planar(v), point) != 0.0)
+            continue;
+        const double dx = v.x - u.x;
+        const double dy = v.y - u.y;
+        const double t = ((point.x - u.x) * dx + (point.y - u.y) * dy) / (dx * dx + dy * dy);
+        return u.z + t * (v.z - u.z);
+    }
+    const Point3& a = mesh.vertices[corners[0]];
+    const Point3& b = mesh.vertices[corners[1]];
+    const Point3& c = mesh.vertices[corners[2]];
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     const double wa =
         ((b.x - point.x) * (c.y - point.y) - (b.y - point.y) * (c.x - point.x)) / area;

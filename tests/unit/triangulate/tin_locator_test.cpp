@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -44,6 +45,57 @@ TEST(TinLocator, ElevationIsTheTinsLinearSurface) {
     for (const Point2 p : {Point2{1012.5, 2031.25}, Point2{1000.0, 2000.0}, Point2{1039.0, 2001.0}})
         EXPECT_NEAR(*locator.elevation(p), 3.0 * p.x + 2.0 * p.y, 1e-9);
     EXPECT_FALSE(locator.elevation({1050.0, 2000.0}).has_value());
+}
+
+// The same triangles, each with its corners (and their neighbours) stored from the next corner.
+TinMesh rotatedCorners(TinMesh mesh) {
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        std::rotate(mesh.triangles.begin() + static_cast<std::ptrdiff_t>(3 * t),
+                    mesh.triangles.begin() + static_cast<std::ptrdiff_t>(3 * t + 1),
+                    mesh.triangles.begin() + static_cast<std::ptrdiff_t>(3 * t + 3));
+        std::rotate(mesh.neighbours.begin() + static_cast<std::ptrdiff_t>(3 * t),
+                    mesh.neighbours.begin() + static_cast<std::ptrdiff_t>(3 * t + 1),
+                    mesh.neighbours.begin() + static_cast<std::ptrdiff_t>(3 * t + 3));
+    }
+    return mesh;
+}
+
+TEST(TinLocator, ElevationIn_TheSameBitsForEitherTriangleOfAnEdgeAndAnyFirstCorner) {
+    // Regression: a breakline vertex where the DEM has no value (or in a point cloud) took the
+    // TIN's z from the triangle the walk found, from its first stored corner on; both follow the
+    // numbering of the triangles, which differs with the threads that built the TIN, and the
+    // vertex's z differed in the last bit between 1 and 2 threads.
+    std::mt19937_64 random(21);
+    std::uniform_real_distribution<double> elevation(100.0, 2000.0);
+    std::vector<Point3> points;
+    for (int row = 0; row < 12; ++row)
+        for (int col = 0; col < 12; ++col) // a grid: its edges' quarter points are exact
+            points.push_back({1000.0 + 8.0 * col, 2000.0 + 8.0 * row, elevation(random)});
+    const TinMesh mesh = triangulate(points).mesh;
+    const TinMesh rotated = rotatedCorners(mesh);
+    TinLocator locator(mesh);
+    TinLocator rotatedLocator(rotated);
+    std::size_t edgePoints = 0;
+    for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::size_t i = 0; i < 3; ++i) {
+            const Point3& a = mesh.vertices[mesh.triangles[3 * t + i]];
+            const Point3& b = mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]];
+            const Point3& c = mesh.vertices[mesh.triangles[3 * t + (i + 2) % 3]];
+            const Point2 inside{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
+            EXPECT_EQ(locator.elevationIn(t, inside), rotatedLocator.elevationIn(t, inside));
+            EXPECT_EQ(locator.elevationIn(t, {a.x, a.y}), a.z);
+            const Point2 onEdge{a.x + 0.25 * (b.x - a.x), a.y + 0.25 * (b.y - a.y)};
+            ASSERT_EQ(predicates::orient2d({a.x, a.y}, {b.x, b.y}, onEdge), 0.0);
+            const double z = locator.elevationIn(t, onEdge);
+            EXPECT_EQ(rotatedLocator.elevationIn(t, onEdge), z);
+            const std::int32_t across = mesh.neighbours[3 * t + i];
+            if (across < 0)
+                continue;
+            EXPECT_EQ(locator.elevationIn(static_cast<std::uint32_t>(across), onEdge), z)
+                << "triangles " << t << " and " << across;
+            ++edgePoints;
+        }
+    EXPECT_GT(edgePoints, 500U);
 }
 
 TEST(TinLocator, ClipsToTheHull_KeepingInsideParts) {

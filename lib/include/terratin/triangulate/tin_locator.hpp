@@ -53,7 +53,9 @@ public:
     /// segment (NaN stays NaN). Parts of a single point are dropped.
     [[nodiscard]] std::vector<std::vector<Point3>> clipToHull(const std::vector<Point3>& polyline);
 
-    /// The TIN's elevation at `point`, linear in `triangle`, which holds it (as locate gives).
+    /// The TIN's elevation at `point`, linear in `triangle`, which holds it (as locate gives):
+    /// the same to the last bit whichever triangle holding the point is given, and however its
+    /// corners are stored (so the same for any numbering of the triangles).
     [[nodiscard]] double elevationIn(std::uint32_t triangle, Point2 point) const;
 
     /// A part of a polyline inside the hull, with the triangle holding each of its points.
