@@ -7,7 +7,9 @@ function(terratin_apply_sanitizers target)
     return()
   endif()
   list(JOIN TERRATIN_SANITIZE "," _sanitizers)
-  target_compile_options(${target} PRIVATE -fsanitize=${_sanitizers} -fno-omit-frame-pointer -g)
+  # -g1: line tables are all a sanitizer's stack trace needs, and full debug information
+  # doubled the suite's compile time (docs/testing.md).
+  target_compile_options(${target} PRIVATE -fsanitize=${_sanitizers} -fno-omit-frame-pointer -g1)
   get_target_property(_type ${target} TYPE)
   if(_type STREQUAL "STATIC_LIBRARY")
     # Instrumented objects need the sanitizer runtimes wherever the archive is linked: in
