@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <thread>
 
 namespace terratin {
@@ -20,6 +21,28 @@ Point2 planar(const Point3& p) {
 
 Point3 along(const Point3& a, const Point3& b, double t) {
     return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+}
+
+// `triangle`'s corners from the one with the lowest index on, in their order.
+std::array<std::uint32_t, 3> cornersFromLowest(const TinMesh& mesh, std::uint32_t triangle) {
+    const std::uint32_t* stored = &mesh.triangles[3 * std::size_t{triangle}];
+    const std::size_t first =
+        stored[1] < stored[0] ? (stored[2] < stored[1] ? 2 : 1) : (stored[2] < stored[0] ? 2 : 0);
+    return {stored[first], stored[(first + 1) % 3], stored[(first + 2) % 3]};
+}
+
+// The z at `point` along the edge between vertices a and b, interpolated from the one with the
+// lower index, when the point lies exactly on the edge's line.
+std::optional<double> elevationOnEdge(const TinMesh& mesh, std::uint32_t a, std::uint32_t b,
+                                      Point2 point) {
+    const Point3& u = mesh.vertices[std::min(a, b)];
+    const Point3& v = mesh.vertices[std::max(a, b)];
+    if (predicates::orient2d(planar(u), planar(v), point) != 0.0)
+        return std::nullopt;
+    const double dx = v.x - u.x;
+    const double dy = v.y - u.y;
+    const double t = ((point.x - u.x) * dx + (point.y - u.y) * dy) / (dx * dx + dy * dy);
+    return u.z + t * (v.z - u.z);
 }
 
 unsigned threadsToUse(unsigned threads) {
@@ -240,29 +263,17 @@ std::optional<double> TinLocator::elevation(Point2 point) {
 // numbering of the triangles, which depends on the threads that built the TIN, and a constraint
 // vertex's z would then differ in the last bit from one thread count to another. So the corners
 // are taken from the one with the lowest index, a point at a vertex takes its z, and a point on
-// an edge (exactly) is interpolated along the edge alone, from its vertex with the lower index.
+// an edge (exactly) is interpolated along the edge alone.
 double TinLocator::elevationIn(std::uint32_t triangle, Point2 point) const {
     const TinMesh& mesh = *m_mesh;
-    std::array<std::uint32_t, 3> corners{};
-    const std::size_t base = 3 * std::size_t{triangle};
-    const std::size_t first = mesh.triangles[base + 1] < mesh.triangles[base]
-                                  ? (mesh.triangles[base + 2] < mesh.triangles[base + 1] ? 2 : 1)
-                                  : (mesh.triangles[base + 2] < mesh.triangles[base] ? 2 : 0);
-    for (std::size_t i = 0; i < 3; ++i)
-        corners[i] = mesh.triangles[base + (first + i) % 3];
+    const std::array<std::uint32_t, 3> corners = cornersFromLowest(mesh, triangle);
     for (const std::uint32_t corner : corners)
         if (planar(mesh.vertices[corner]) == point)
             return mesh.vertices[corner].z;
-    for (std::size_t i = 0; i < 3; ++i) {
-        const Point3& u = mesh.vertices[std::min(corners[i], corners[(i + 1) % 3])];
-        const Point3& v = mesh.vertices[std::max(corners[i], corners[(i + 1) % 3])];
-        if (predicates::orient2d(planar(u), planar(v), point) != 0.0)
-            continue;
-        const double dx = v.x - u.x;
-        const double dy = v.y - u.y;
-        const double t = ((point.x - u.x) * dx + (point.y - u.y) * dy) / (dx * dx + dy * dy);
-        return u.z + t * (v.z - u.z);
-    }
+    for (std::size_t i = 0; i < 3; ++i)
+        if (const std::optional<double> z =
+                elevationOnEdge(mesh, corners[i], corners[(i + 1) % 3], point))
+            return *z;
     const Point3& a = mesh.vertices[corners[0]];
     const Point3& b = mesh.vertices[corners[1]];
     const Point3& c = mesh.vertices[corners[2]];
