@@ -231,7 +231,7 @@ TEST(BreaklinesPipeline, APointCloudsBreaklineZ_IsTheSameBitsForEveryThreadCount
         options.overwrite = true;
         options.breaklines = {lines.string()};
         options.triangulation.threads = threads;
-        EXPECT_TRUE(runBuild(options).breaklines == 40U);
+        EXPECT_EQ(runBuild(options).breaklines, 40U);
         vertices.push_back(readTin(directory.path() / "tin.ply").mesh.vertices);
         std::sort(vertices.back().begin(), vertices.back().end(),
                   [](const Point3& a, const Point3& b) {
