@@ -375,6 +375,8 @@ ConstrainedTin constrainToRing(TinMesh mesh, const TileRing& ring, std::size_t c
     std::vector<std::uint32_t> vertexOfCell(cellCount, kNotAVertex);
     for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v) {
         const std::uint32_t cell = mesh.sourceIndex[v];
+        if (cell >= cellCount)
+            throw Error("Tiles: a vertex of a tile's TIN is no cell of the tile");
         vertexOfCell[cell] = v;
     }
     const std::vector<std::uint32_t>& cells = ring.cells();
