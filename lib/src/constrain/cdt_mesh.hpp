@@ -9,9 +9,11 @@
 #include "terratin/geometry/point.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -119,6 +121,23 @@ public:
     /// Empties `stack`.
     void restoreDelaunay(std::vector<std::size_t>& stack);
 
+    /// A triangle of a cavity's new triangulation: its corners, counter-clockwise, and for
+    /// each edge (corner i to corner (i + 1) % 3) what lies across it: the position of another
+    /// new triangle in the list, or kCavityBoundary | k for the k-th boundary half-edge.
+    struct CavityTriangle {
+        static constexpr std::uint32_t kCavityBoundary = 0x80000000U;
+        std::array<std::uint32_t, 3> corners;
+        std::array<std::uint32_t, 3> across;
+    };
+    /// Replaces the triangles `slots` (a region of the mesh) by `triangles`, the k-th written
+    /// into slots[k]. `boundary` lists the half-edges of the region's triangles on its boundary;
+    /// a new triangle's edge on the k-th keeps that half-edge's direction, its neighbour outside
+    /// and its flag; an edge between two new triangles is unconstrained. std::logic_error when
+    /// the counts differ or a new edge on the boundary has other vertices than its half-edge
+    /// (checked before the region's triangles are written). O(triangles).
+    void replaceCavity(std::span<const std::size_t> slots, std::span<const std::size_t> boundary,
+                       std::span<const CavityTriangle> triangles);
+
 private:
     /// The corner of `triangle` that is `v` (0, 1 or 2); std::logic_error when none is.
     [[nodiscard]] std::size_t cornerOf(std::int32_t triangle, std::uint32_t v) const;
@@ -155,6 +174,14 @@ private:
     std::vector<std::uint8_t>* m_written = nullptr;
     /// insertPoint's stack of edges to legalise, kept to spare an allocation per point.
     std::vector<std::size_t> m_toCheck;
+    /// replaceCavity's boundary half-edges as they were, kept to spare an allocation per cavity.
+    struct BoundaryEdge {
+        std::uint32_t from;
+        std::uint32_t to;
+        std::int32_t outer;
+        std::uint8_t flag;
+    };
+    std::vector<BoundaryEdge> m_cavityBoundary;
 };
 
 template <class Visit> void CdtMesh::forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const {

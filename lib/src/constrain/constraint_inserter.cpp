@@ -88,7 +88,10 @@ void ConstraintInserter::insertPiece(const Piece& piece) {
             splitAtCrossing(u, v, piece.owners, blocking);
             return;
         }
-        markConstrained(flipSegmentIn(m_mesh, u, m_crossed), piece.owners);
+        std::size_t segment = retriangulateCavity(m_mesh, u, m_crossed, m_cavity);
+        if (segment == kNoHalfEdge)
+            segment = flipSegmentIn(m_mesh, u, m_crossed);
+        markConstrained(segment, piece.owners);
         m_chains.insertBetween(piece.owners, u, v, m_crossed.end);
         u = m_crossed.end;
     }

@@ -5,6 +5,7 @@
 #include "cdt_mesh.hpp"
 #include "constraint_chains.hpp"
 #include "constraint_owners.hpp"
+#include "segment_cavity.hpp"
 #include "segment_flips.hpp"
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/geometry/point.hpp"
@@ -72,6 +73,7 @@ private:
     /// that rounding sends the pieces round in a circle (see splitAtCrossing).
     std::set<std::array<std::uint32_t, 4>> m_crossingsMet;
     CrossedEdges m_crossed;
+    CavityScratch m_cavity;
     std::optional<VertexBuckets> m_buckets; // built for the first polyline
     std::size_t m_hintTriangle = 0;
     std::size_t m_addedPoints = 0;

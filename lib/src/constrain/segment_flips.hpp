@@ -6,9 +6,12 @@
 // every edge the flips touched. The walk changes nothing, so when it meets a constrained edge
 // the caller can split that edge at the crossing first.
 //
-// Why flips and not Anglada's retriangulation of the two pseudo-polygons: a segment passing
+// The inserter retriangulates the crossed region instead where it can (segment_cavity.hpp,
+// which writes each new triangle once); the flips take the cases it leaves: a segment passing
 // close by a vertex may cross every triangle around it, which puts that vertex inside the
-// crossed region (the "pseudo-polygon" then has a slit to it); flips need no such case.
+// crossed region (the region beside the segment then has a slit to it), and segments crossing
+// many edges, where choosing the polygons' vertices one by one would be quadratic. Flips need
+// no such case.
 
 #include "cdt_mesh.hpp"
 
@@ -37,6 +40,10 @@ SegmentStart findSegmentStart(const CdtMesh& mesh, std::uint32_t u, std::uint32_
 struct CrossedEdges {
     std::vector<CdtMesh::Edge> edges;
     std::uint32_t end = 0;
+    /// The triangles the segment passes through, in order from u (one more than the edges),
+    /// and the half-edge by which it enters each after the first (the twin of each edge's hint).
+    std::vector<std::size_t> triangles;
+    std::vector<std::size_t> entries;
     /// Scratch space of flipSegmentIn, kept to spare an allocation per segment.
     std::vector<CdtMesh::Edge> queue;
     std::vector<std::size_t> touched;

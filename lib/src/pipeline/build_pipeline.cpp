@@ -461,12 +461,14 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     detail::ConstraintSources sources;
     std::size_t replacedCells = 0;
     if (constrained) {
+        const Stopwatch constrainTime;
         // A projected (geographic) DEM's cells are no longer on its grid: no bilinear z then.
         sources = detail::readConstraintSources(
             options, placement.targetWkt, placement.positions.empty() ? &raster.grid : nullptr,
             report);
         replacedCells = detail::leaveOutAreaCells(raster.grid, placement.positions, sources);
         refineOptions.spareVertices = sources.spareVertices();
+        report.timings.constrain = constrainTime.seconds();
     }
     RefineResult result =
         placement.positions.empty()
@@ -475,11 +477,13 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
     reportRefinement(result, refineOptions, result.mesh.vertexCount(), report);
     TinMesh mesh = std::move(result.mesh);
     if (constrained) {
+        const Stopwatch constrainTime;
         detail::ConstrainedRefinement corrected = detail::refineWithConstraints(
             raster.grid, placement.positions, std::move(mesh), options, std::move(sources), report,
             phaseProgress(progress, kReadShare + refineShare, kTriangulateShare - refineShare));
         mesh = takeConstrainedMesh(std::move(corrected), options, writeOptions, report);
         report.replacedPoints += replacedCells;
+        report.timings.constrain += constrainTime.seconds();
     }
     const int gridWidth = raster.grid.width;
     raster.grid = {}; // the mesh holds its own vertices
@@ -603,10 +607,12 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     std::optional<detail::ConstraintSources> sources;
     TriangulationOptions triangulationOptions = options.triangulation;
     if (hasConstraints(options)) {
+        const Stopwatch constrainTime;
         const std::optional<HeightGrid> dem = detail::cellSurface(gathered);
         sources =
             detail::readConstraintSources(options, gathered.crsWkt, dem ? &*dem : nullptr, report);
         triangulationOptions.spareVertices = sources->spareVertices();
+        report.timings.constrain = constrainTime.seconds();
     }
     TriangulationResult triangulation =
         triangulate(gathered.points, triangulationOptions,
@@ -622,8 +628,10 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
                                   static_cast<double>(std::max<std::uint64_t>(report.points, 1));
     std::optional<detail::ConstrainedBuild> constrained;
     if (sources) {
+        const Stopwatch constrainTime;
         constrained = detail::addConstraints(std::move(triangulation.mesh), options, report,
                                              std::move(*sources));
+        report.timings.constrain += constrainTime.seconds();
         report.vertices = constrained->tin.mesh.vertexCount();
         report.triangles = constrained->tin.mesh.triangleCount();
     }

@@ -74,6 +74,7 @@ std::string toJson(const BuildReport& report) {
          << ", \"validate\": " << report.timings.validate << ", \"write\": " << report.timings.write
          << ", \"total\": " << report.timings.total
          << ", \"reproject\": " << report.timings.reproject
+         << ", \"constrain\": " << report.timings.constrain
          << "}, \"validated\": " << (report.validated ? "true" : "false");
     // Inputs and coordinate systems.
     json << ", \"source_crs\": {\"name\": " << jsonString(report.sourceCrsName)

@@ -146,6 +146,9 @@ struct BuildTimings {
     double total = 0.0;
     /// Reprojection of the inputs; included in `read`.
     double reproject = 0.0;
+    /// The constraint layers read and inserted (with --max-error or --max-points, the cells
+    /// checked and inserted after them too); included in `triangulate`.
+    double constrain = 0.0;
 };
 
 /// What was read from one input.
