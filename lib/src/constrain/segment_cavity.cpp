@@ -19,12 +19,16 @@ bool hasRepeat(const std::vector<std::uint32_t>& chain) {
     return false;
 }
 
-// The chains and the boundary half-edges, read from the triangles the walk passed through.
+// The triangles the walk passed through, the chains and the boundary half-edges, read from its
+// crossed edges and entries.
 // The first triangle (u, right, left) has u -> right and left -> u on the boundary; each
 // middle one, entered by (left, right), the edge to its third vertex on that vertex's side;
 // the last, entered by (left, right), right -> w and w -> left.
 void readCavity(const CrossedEdges& crossed, CavityScratch& scratch) {
     const std::vector<CdtMesh::Edge>& edges = crossed.edges;
+    scratch.slots.assign(1, edges.front().hint / 3);
+    for (const std::size_t entry : crossed.entries)
+        scratch.slots.push_back(entry / 3);
     scratch.left.assign(1, edges.front().b);
     scratch.right.assign(1, edges.front().a);
     scratch.boundary.assign(1, nextHalfEdge(edges.front().hint));
@@ -104,8 +108,8 @@ std::size_t retriangulateCavity(CdtMesh& mesh, std::uint32_t u, const CrossedEdg
     // The segment: edge 0 of each side's first triangle.
     scratch.triangles[0].across[0] = rightFirst;
     scratch.triangles[rightFirst].across[0] = 0;
-    mesh.replaceCavity(crossed.triangles, scratch.boundary, scratch.triangles);
-    return 3 * crossed.triangles[0];
+    mesh.replaceCavity(scratch.slots, scratch.boundary, scratch.triangles);
+    return 3 * scratch.slots[0];
 }
 
 } // namespace terratin::detail

@@ -26,6 +26,8 @@ inline constexpr std::size_t kMaxCavityCrossings = 64;
 
 /// Scratch space of retriangulateCavity, kept to spare allocations per segment.
 struct CavityScratch {
+    /// The triangles the segment passes through, in order from u.
+    std::vector<std::size_t> slots;
     std::vector<std::uint32_t> left;
     std::vector<std::uint32_t> right;
     /// The polygons' boundary half-edges as the region's triangles hold them: the left

@@ -93,7 +93,6 @@ SegmentStart findSegmentStart(const CdtMesh& mesh, std::uint32_t u, std::uint32_
 std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t v,
                              const SegmentStart& start, CrossedEdges& crossed) {
     crossed.edges.clear();
-    crossed.triangles.assign(1, start.halfEdge / 3);
     crossed.entries.clear();
     const Point2 pu = mesh.xy(u);
     const Point2 pv = mesh.xy(v);
@@ -107,7 +106,6 @@ std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t
         const std::size_t entry = mesh.twin(exit);
         if (entry == kNoHalfEdge)
             throw std::logic_error("insertConstraints: segment walk left the convex hull");
-        crossed.triangles.push_back(entry / 3);
         crossed.entries.push_back(entry);
         // entry runs left -> right; w is the vertex opposite it.
         const std::uint32_t w = mesh.from(previousHalfEdge(entry));

@@ -40,9 +40,8 @@ SegmentStart findSegmentStart(const CdtMesh& mesh, std::uint32_t u, std::uint32_
 struct CrossedEdges {
     std::vector<CdtMesh::Edge> edges;
     std::uint32_t end = 0;
-    /// The triangles the segment passes through, in order from u (one more than the edges),
-    /// and the half-edge by which it enters each after the first (the twin of each edge's hint).
-    std::vector<std::size_t> triangles;
+    /// The half-edge by which the segment enters each triangle after the first (the twin of
+    /// each edge's hint, in the same order).
     std::vector<std::size_t> entries;
     /// Scratch space of flipSegmentIn, kept to spare an allocation per segment.
     std::vector<CdtMesh::Edge> queue;

@@ -160,8 +160,9 @@ TEST(SegmentCavity, KeepsTheFlagOfAConstrainedEdgeOnTheBoundary) {
     const std::uint32_t u = vertexAt(original, 1.5, -1.0);
     ASSERT_TRUE(walkFrom(mesh, u, vertexAt(original, 1.6, 2.5), crossed));
     const auto crossedTriangle = [&](std::size_t h) {
-        return std::find(crossed.triangles.begin(), crossed.triangles.end(), h / 3) !=
-               crossed.triangles.end();
+        return h / 3 == crossed.edges.front().hint / 3 ||
+               std::any_of(crossed.entries.begin(), crossed.entries.end(),
+                           [&](std::size_t entry) { return entry / 3 == h / 3; });
     };
     ASSERT_TRUE(crossedTriangle(edge) || crossedTriangle(mesh.twin(edge)));
     const std::size_t segment = retriangulateCavity(mesh, u, crossed, scratch);
