@@ -6,6 +6,7 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -150,6 +151,7 @@ public:
           m_threads(std::max(threads, 1U)) {
         m_cellTriangle.assign(rules.measuredCells.size(), kNoTriangle);
         m_cellError.assign(rules.measuredCells.size(), 0.0);
+        m_cellAtCorner.assign(rules.measuredCells.size(), 0);
         m_holeTriangle.assign(rules.openHoleCells.size(), kNoTriangle);
     }
 
@@ -170,11 +172,12 @@ public:
         const std::size_t count = everyCell ? m_rules->measuredCells.size() : m_relocated.size();
         if (squaredErrors != nullptr)
             squaredErrors->assign(count, std::numeric_limits<double>::quiet_NaN());
+        const std::vector<std::uint8_t> left = trianglesLeftOut(measure.drop, flat, overHole);
         std::vector<BlockTally> blocks((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 const std::size_t i = everyCell ? k : m_relocated[k];
-                tally(i, overHole, flat, measure.drop, blocks[block],
+                tally(i, left, blocks[block],
                       squaredErrors != nullptr ? &(*squaredErrors)[i] : nullptr);
             }
         });
@@ -199,6 +202,25 @@ public:
     }
 
 private:
+    /// What keeps a cell in triangle t from being measured there, as bits: outside the area,
+    /// flat (a replace area) or over an open hole.
+    static constexpr std::uint8_t kDropped = 1;
+    static constexpr std::uint8_t kFlat = 2;
+    static constexpr std::uint8_t kOverHole = 4;
+
+    /// Per triangle, its kDropped, kFlat and kOverHole bits in one byte: a cell's tally reads
+    /// one byte of its triangle instead of three arrays.
+    static std::vector<std::uint8_t> trianglesLeftOut(const std::vector<std::uint8_t>& drop,
+                                                      const std::vector<std::uint8_t>& flat,
+                                                      const std::vector<std::uint8_t>& overHole) {
+        std::vector<std::uint8_t> left(drop.size());
+        for (std::size_t t = 0; t < left.size(); ++t)
+            left[t] = static_cast<std::uint8_t>((drop[t] != 0 ? kDropped : 0) |
+                                                (flat[t] != 0 ? kFlat : 0) |
+                                                (overHole[t] != 0 ? kOverHole : 0));
+        return left;
+    }
+
     [[nodiscard]] Point2 position(std::size_t cell) const {
         return cellPosition(*m_grid, m_positions, cell);
     }
@@ -254,64 +276,133 @@ private:
                     locator.locateNearFrom(position(m_rules->openHoleCells[i]), m_holeTriangle[i])
                         .value_or(kNoTriangle);
         // The measured cells, each block with a fresh copy of the locator (made when the block
-        // first needs it: most blocks of a late check have nothing to locate).
+        // first needs it: most blocks of a late check have nothing to locate). On the first
+        // check the cells at vertices need no walk, and each other cell walks from the
+        // triangle of the cell before it.
+        const bool first = changed.empty();
+        if (first)
+            placeVertexCells();
         const std::size_t count = m_rules->measuredCells.size();
         std::vector<std::vector<std::size_t>> relocated((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
             std::optional<TinLocator> blockLocator;
-            for (std::size_t i = begin; i < end; ++i)
-                if (stale(m_cellTriangle[i], changed)) {
+            std::uint32_t previous = kNoTriangle;
+            for (std::size_t i = begin; i < end; ++i) {
+                if (first && m_cellTriangle[i] != kNoTriangle) {
+                    previous = m_cellTriangle[i]; // a vertex
+                } else if (stale(m_cellTriangle[i], changed)) {
                     if (!blockLocator)
                         blockLocator.emplace(*m_locator);
-                    measureAt(i, *blockLocator);
-                    relocated[block].push_back(i);
+                    measureAt(i, *blockLocator, first ? previous : m_cellTriangle[i]);
+                    if (m_cellTriangle[i] != kNoTriangle)
+                        previous = m_cellTriangle[i];
+                } else {
+                    continue;
                 }
+                relocated[block].push_back(i);
+            }
         });
         m_relocated.clear();
         for (const std::vector<std::size_t>& cells : relocated)
             m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
     }
 
-    /// Locates measured cell i, walking from its old triangle, and measures its error there.
-    void measureAt(std::size_t i, TinLocator& locator) {
+    /// Gives each measured cell that is a vertex of the TIN (at the cell's position) the
+    /// lowest-numbered triangle around it, and its error there: the vertex's own elevation
+    /// against the cell's. A simplified TIN has most of its cells as vertices, and a vertex
+    /// needs no walk. On the threads; the lowest triangle makes the result the same for any
+    /// number of them.
+    void placeVertexCells() {
+        constexpr std::uint32_t kNotMeasured = 0xffffffffU;
+        const std::vector<std::size_t>& cells = m_rules->measuredCells;
+        std::vector<std::uint32_t> measuredIndex(m_grid->cellCount(), kNotMeasured);
+        parallelFor(cells.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) // distinct cells
+                measuredIndex[cells[i]] = static_cast<std::uint32_t>(i);
+        });
+        const TinMesh& mesh = m_tin->mesh;
+        std::vector<std::uint32_t> vertexTriangle(mesh.vertexCount(), kNoTriangle);
+        parallelFor(mesh.triangleCount(), m_threads,
+                    [&](unsigned, std::size_t begin, std::size_t end) {
+                        for (std::size_t t = begin; t < end; ++t)
+                            for (std::size_t k = 0; k < 3; ++k)
+                                storeLower(vertexTriangle[mesh.triangles[3 * t + k]],
+                                           static_cast<std::uint32_t>(t));
+                    });
+        parallelFor(mesh.vertexCount(), m_threads,
+                    [&](unsigned, std::size_t begin, std::size_t end) {
+                        for (std::size_t v = begin; v < end; ++v) {
+                            const std::uint32_t cell = mesh.sourceIndex[v];
+                            if (cell >= measuredIndex.size() ||
+                                measuredIndex[cell] == kNotMeasured)
+                                continue;
+                            const Point3& at = mesh.vertices[v];
+                            const Point2 p = position(cell);
+                            if (at.x != p.x || at.y != p.y)
+                                continue;
+                            // Only this vertex lies at the cell's position: no other thread
+                            // writes cell i.
+                            const std::uint32_t i = measuredIndex[cell];
+                            m_cellTriangle[i] = vertexTriangle[v];
+                            m_cellError[i] = std::abs(double{m_grid->z[cell]} - at.z);
+                            m_cellAtCorner[i] = 1;
+                        }
+                    });
+    }
+
+    /// Lowers `slot` to `value` when that is lower, as an atomic minimum.
+    static void storeLower(std::uint32_t& slot, std::uint32_t value) {
+        std::atomic_ref<std::uint32_t> lowest(slot);
+        std::uint32_t seen = lowest.load(std::memory_order_relaxed);
+        while (value < seen &&
+               !lowest.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
+        }
+    }
+
+    /// Locates measured cell i, walking from triangle `start` (kNoTriangle: from where the
+    /// locator's last walk ended), and measures its error there.
+    void measureAt(std::size_t i, TinLocator& locator, std::uint32_t start) {
         const std::size_t cell = m_rules->measuredCells[i];
         const Point2 p = position(cell);
-        const std::uint32_t t = locator.locateNearFrom(p, m_cellTriangle[i]).value_or(kNoTriangle);
+        const std::uint32_t t = locator.locateNearFrom(p, start).value_or(kNoTriangle);
         m_cellTriangle[i] = t;
-        if (t != kNoTriangle)
-            m_cellError[i] = std::abs(double{m_grid->z[cell]} - planeAt(m_tin->mesh, t, p));
+        if (t == kNoTriangle)
+            return;
+        // Measured while the walk has the triangle's corners in cache: the tally, a pass
+        // over every cell later, then reads no corner.
+        m_cellError[i] = std::abs(double{m_grid->z[cell]} - planeAt(m_tin->mesh, t, p));
+        m_cellAtCorner[i] = isCorner(m_tin->mesh, t, p) ? 1 : 0;
     }
 
     /// Counts measured cell i into `block`, and proposes it as its triangle's candidate when it
-    /// is over the bound, or lies in a triangle over an open hole, and may be inserted.
-    void tally(std::size_t i, const std::vector<std::uint8_t>& overHole,
-               const std::vector<std::uint8_t>& flat, const std::vector<std::uint8_t>& drop,
-               BlockTally& block, double* squaredError) const {
+    /// is over the bound, or lies in a triangle over an open hole, and may be inserted. `left`:
+    /// trianglesLeftOut.
+    void tally(std::size_t i, const std::vector<std::uint8_t>& left, BlockTally& block,
+               double* squaredError) const {
         std::uint32_t t = m_cellTriangle[i];
         if (t == kNoTriangle) {
             ++block.uncovered;
             return;
         }
         const std::size_t cell = m_rules->measuredCells[i];
-        const auto left = [&](std::size_t u) {
-            return drop[u] != 0 || flat[u] != 0 || overHole[u] != 0;
-        };
-        if (left(t)) {
+        bool corner = m_cellAtCorner[i] != 0;
+        if (left[t] != 0) {
             // A cell on an edge or at a vertex belongs to a kept triangle beside, if there is
             // one (its error there is the same: the planes meet along the edge).
             const std::int32_t other = keptTriangleAt(m_tin->mesh, t, position(cell),
-                                                      [&](std::size_t u) { return !left(u); });
-            if (other != kNoNeighbour)
+                                                      [&](std::size_t u) { return left[u] == 0; });
+            if (other != kNoNeighbour) {
                 t = static_cast<std::uint32_t>(other);
+                corner = isCorner(m_tin->mesh, t, position(cell));
+            }
         }
-        if (drop[t] != 0 || flat[t] != 0)
+        if ((left[t] & (kDropped | kFlat)) != 0)
             return; // outside the output's area, or in a replace area
-        const bool corner = isCorner(m_tin->mesh, t, position(cell));
         // Asked only of a cell about to be proposed: the rule may be a call per cell.
         const auto insertable = [&] {
             return !corner && (!m_rules->insertable || m_rules->insertable(cell));
         };
-        if (overHole[t] != 0 && !corner) {
+        if ((left[t] & kOverHole) != 0 && !corner) {
             // As the refiner does: a hole's triangle is split until it covers no valid cell.
             ++block.uncovered;
             if (insertable())
@@ -350,6 +441,8 @@ private:
     /// error there; the triangle holding each open hole cell.
     std::vector<std::uint32_t> m_cellTriangle;
     std::vector<double> m_cellError;
+    /// 1 for a measured cell at a corner of its triangle (a vertex).
+    std::vector<std::uint8_t> m_cellAtCorner;
     std::vector<std::uint32_t> m_holeTriangle;
     std::vector<std::size_t> m_relocated;
     /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
