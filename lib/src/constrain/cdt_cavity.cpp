@@ -14,7 +14,8 @@ void CdtMesh::replaceCavity(std::span<const std::size_t> slots,
         throw std::logic_error("CdtMesh: a cavity refilled with another number of triangles");
     m_cavityBoundary.clear();
     for (const std::size_t h : boundary)
-        m_cavityBoundary.push_back({from(h), to(h), m_mesh.neighbours[h], m_constrained[h]});
+        m_cavityBoundary.push_back(
+            {from(h), to(h), m_arrays->mesh.neighbours[h], m_arrays->constrained[h]});
     std::size_t boundaryEdges = 0;
     for (const CavityTriangle& triangle : triangles)
         for (std::size_t i = 0; i < 3; ++i) {
@@ -36,14 +37,14 @@ void CdtMesh::replaceCavity(std::span<const std::size_t> slots,
         for (std::size_t i = 0; i < 3; ++i) {
             const std::size_t h = 3 * t + i;
             if ((triangle.across[i] & CavityTriangle::kCavityBoundary) == 0) {
-                m_mesh.neighbours[h] = static_cast<std::int32_t>(slots[triangle.across[i]]);
-                m_constrained[h] = 0;
+                m_arrays->mesh.neighbours[h] = static_cast<std::int32_t>(slots[triangle.across[i]]);
+                m_arrays->constrained[h] = 0;
                 continue;
             }
             const BoundaryEdge& edge =
                 m_cavityBoundary[triangle.across[i] & ~CavityTriangle::kCavityBoundary];
-            m_mesh.neighbours[h] = edge.outer;
-            m_constrained[h] = edge.flag;
+            m_arrays->mesh.neighbours[h] = edge.outer;
+            m_arrays->constrained[h] = edge.flag;
             relink(edge.outer, edge.to, t);
         }
     }

@@ -1,10 +1,12 @@
 #include "cdt_mesh.hpp"
 
+#include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace terratin::detail {
@@ -20,38 +22,146 @@ constexpr std::size_t kMaxVertices = std::numeric_limits<std::uint32_t>::max() -
 
 } // namespace
 
-CdtMesh::CdtMesh(TinMesh mesh)
-    : m_mesh(std::move(mesh)), m_constrained(m_mesh.triangles.size(), 0),
-      m_vertexTriangle(m_mesh.vertices.size(), kUnknownTriangle) {
+CdtMesh::CdtMesh(TinMesh mesh) : m_own(std::make_unique<Arrays>()), m_arrays(m_own.get()) {
+    m_arrays->mesh = std::move(mesh);
+    m_arrays->constrained.assign(m_arrays->mesh.triangles.size(), 0);
+    m_arrays->vertexTriangle.assign(m_arrays->mesh.vertices.size(), kUnknownTriangle);
     // As much room as the mesh has (reserveRoom): growing copies the whole array.
-    m_constrained.reserve(m_mesh.triangles.capacity());
-    m_vertexTriangle.reserve(m_mesh.vertices.capacity());
+    m_arrays->constrained.reserve(m_arrays->mesh.triangles.capacity());
+    m_arrays->vertexTriangle.reserve(m_arrays->mesh.vertices.capacity());
+}
+
+CdtMesh::CdtMesh(CdtMesh& shared, Zone zone, SlotRange vertices, SlotRange triangles)
+    : m_arrays(shared.m_arrays), m_zoned(true), m_zone(zone), m_vertexSlots(vertices),
+      m_triangleSlots(triangles) {}
+
+std::pair<SlotRange, SlotRange> CdtMesh::appendSlots(std::size_t vertices, std::size_t triangles) {
+    TinMesh& mesh = m_arrays->mesh;
+    const std::size_t firstVertex = mesh.vertices.size();
+    const std::size_t firstTriangle = mesh.triangleCount();
+    if (firstVertex + vertices > kMaxVertices || firstTriangle + triangles > kMaxTriangles)
+        throw InvalidInputError("insertConstraints: too many vertices or triangles");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    mesh.vertices.resize(firstVertex + vertices, Point3{nan, nan, nan});
+    mesh.sourceIndex.resize(firstVertex + vertices, kConstraintPointSource);
+    m_arrays->vertexTriangle.resize(firstVertex + vertices, kUnknownTriangle);
+    mesh.triangles.resize(3 * (firstTriangle + triangles), 0);
+    mesh.neighbours.resize(3 * (firstTriangle + triangles), kNoNeighbour);
+    m_arrays->constrained.resize(3 * (firstTriangle + triangles), 0);
+    return {{firstVertex, firstVertex, firstVertex + vertices},
+            {firstTriangle, firstTriangle, firstTriangle + triangles}};
+}
+
+namespace {
+
+/// The slots of `unused` ([next, end) of each range), ascending.
+std::vector<std::size_t> holesOf(std::span<const SlotRange> unused) {
+    std::vector<std::size_t> holes;
+    for (const SlotRange& range : unused)
+        for (std::size_t i = range.next; i < range.end; ++i)
+            holes.push_back(i);
+    std::sort(holes.begin(), holes.end());
+    return holes;
+}
+
+/// Calls move(from, to) for each hole below `count` minus the holes, taking the last slots
+/// in use from the top: afterwards the slots in use are [0, count - holes).
+template <class Move>
+std::size_t fillHoles(const std::vector<std::size_t>& holes, std::size_t count, Move&& move) {
+    const std::size_t kept = count - holes.size();
+    std::size_t top = count;
+    auto hole = holes.end();
+    for (const std::size_t target : holes) {
+        if (target >= kept)
+            break;
+        // The highest slot in use: skip the holes at the top.
+        for (--top; hole != holes.begin() && *(hole - 1) == top; --top)
+            --hole;
+        move(top, target);
+    }
+    return kept;
+}
+
+} // namespace
+
+std::vector<std::uint32_t> CdtMesh::compact(std::span<const SlotRange> unusedVertices,
+                                            std::span<const SlotRange> unusedTriangles) {
+    TinMesh& mesh = m_arrays->mesh;
+    std::vector<std::uint32_t>& vertexTriangle = m_arrays->vertexTriangle;
+    const std::size_t triangles = fillHoles(
+        holesOf(unusedTriangles), mesh.triangleCount(), [&](std::size_t from, std::size_t to) {
+            for (std::size_t i = 0; i < 3; ++i) {
+                mesh.triangles[3 * to + i] = mesh.triangles[3 * from + i];
+                mesh.neighbours[3 * to + i] = mesh.neighbours[3 * from + i];
+                m_arrays->constrained[3 * to + i] = m_arrays->constrained[3 * from + i];
+                vertexTriangle[mesh.triangles[3 * to + i]] = static_cast<std::uint32_t>(to);
+                const std::int32_t n = mesh.neighbours[3 * to + i];
+                if (n < 0)
+                    continue;
+                std::int32_t* links = &mesh.neighbours[3 * static_cast<std::size_t>(n)];
+                *std::find(links, links + 3, static_cast<std::int32_t>(from)) =
+                    static_cast<std::int32_t>(to);
+            }
+        });
+    mesh.triangles.resize(3 * triangles);
+    mesh.neighbours.resize(3 * triangles);
+    m_arrays->constrained.resize(3 * triangles);
+
+    const std::size_t vertexCount = mesh.vertices.size();
+    const std::vector<std::size_t> vertexHoles = holesOf(unusedVertices);
+    std::vector<std::uint32_t> movedTo(vertexHoles.size());
+    std::vector<std::size_t> star;
+    const std::size_t vertices =
+        fillHoles(vertexHoles, vertexCount, [&](std::size_t from, std::size_t to) {
+            star.clear();
+            forEachHalfEdgeAround(static_cast<std::uint32_t>(from), [&](std::size_t h) {
+                star.push_back(h);
+                return false;
+            });
+            for (const std::size_t h : star) {
+                const std::size_t corner = this->from(h) == from ? h : nextHalfEdge(h);
+                mesh.triangles[corner] = static_cast<std::uint32_t>(to);
+            }
+            mesh.vertices[to] = mesh.vertices[from];
+            mesh.sourceIndex[to] = mesh.sourceIndex[from];
+            vertexTriangle[to] = vertexTriangle[from];
+            movedTo[from - (vertexCount - vertexHoles.size())] = static_cast<std::uint32_t>(to);
+        });
+    mesh.vertices.resize(vertices);
+    mesh.sourceIndex.resize(vertices);
+    vertexTriangle.resize(vertices);
+    return movedTo;
 }
 
 // Sequential, in triangle order: the same map whatever happened before.
 void CdtMesh::completeVertexMap() const {
-    const std::size_t triangleCount = m_mesh.triangleCount();
+    const std::size_t triangleCount = m_arrays->mesh.triangleCount();
     for (std::size_t t = 0; t < triangleCount; ++t)
         for (std::size_t i = 0; i < 3; ++i) {
-            std::uint32_t& triangle = m_vertexTriangle[m_mesh.triangles[3 * t + i]];
+            std::uint32_t& triangle = m_arrays->vertexTriangle[m_arrays->mesh.triangles[3 * t + i]];
             if (triangle == kUnknownTriangle)
                 triangle = static_cast<std::uint32_t>(t);
         }
 }
 
 void CdtMesh::rememberTriangleOf(std::size_t h) {
-    m_vertexTriangle[from(h)] = static_cast<std::uint32_t>(h / 3);
-    m_vertexTriangle[to(h)] = static_cast<std::uint32_t>(h / 3);
+    rememberTriangle(from(h), h / 3);
+    rememberTriangle(to(h), h / 3);
+}
+
+void CdtMesh::rememberTriangle(std::uint32_t v, std::size_t t) {
+    if (inZone(v)) // another zone's vertex is its view's to note
+        m_arrays->vertexTriangle[v] = static_cast<std::uint32_t>(t);
 }
 
 CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained) : CdtMesh(std::move(mesh)) {
-    if (constrained.size() != m_constrained.size())
+    if (constrained.size() != m_arrays->constrained.size())
         throw std::logic_error("CdtMesh: one constrained flag per half-edge expected");
-    m_constrained = std::move(constrained);
+    m_arrays->constrained = std::move(constrained);
 }
 
 std::size_t CdtMesh::twin(std::size_t h) const {
-    const std::int32_t neighbour = m_mesh.neighbours[h];
+    const std::int32_t neighbour = m_arrays->mesh.neighbours[h];
     if (neighbour < 0)
         return kNoHalfEdge;
     return 3 * static_cast<std::size_t>(neighbour) + cornerOf(neighbour, to(h));
@@ -59,7 +169,8 @@ std::size_t CdtMesh::twin(std::size_t h) const {
 
 // Selects rather than branches: which corner it is is a coin toss for the branch predictor.
 std::size_t CdtMesh::cornerOf(std::int32_t triangle, std::uint32_t v) const {
-    const std::uint32_t* corners = &m_mesh.triangles[3 * static_cast<std::size_t>(triangle)];
+    const std::uint32_t* corners =
+        &m_arrays->mesh.triangles[3 * static_cast<std::size_t>(triangle)];
     const std::size_t corner = corners[1] == v ? 1 : (corners[2] == v ? 2 : 0);
     if (corners[corner] != v)
         throw std::logic_error("CdtMesh: neighbour links are not mutual");
@@ -68,7 +179,8 @@ std::size_t CdtMesh::cornerOf(std::int32_t triangle, std::uint32_t v) const {
 
 void CdtMesh::relink(std::int32_t outer, std::uint32_t edgeStart, std::size_t triangle) {
     if (outer >= 0)
-        m_mesh.neighbours[3 * static_cast<std::size_t>(outer) + cornerOf(outer, edgeStart)] =
+        m_arrays->mesh
+            .neighbours[3 * static_cast<std::size_t>(outer) + cornerOf(outer, edgeStart)] =
             static_cast<std::int32_t>(triangle);
 }
 
@@ -80,11 +192,13 @@ void CdtMesh::setConstrained(std::size_t h, bool constrained) {
 }
 
 std::size_t CdtMesh::halfEdgeLeaving(std::uint32_t v) const {
-    if (m_vertexTriangle[v] == kUnknownTriangle)
+    if (m_zoned && (!inZone(v) || m_arrays->vertexTriangle[v] == kUnknownTriangle))
+        throw ZoneRefusal{}; // a view may not read another zone's star, nor fill the map
+    if (m_arrays->vertexTriangle[v] == kUnknownTriangle)
         completeVertexMap();
-    const std::size_t base = 3 * static_cast<std::size_t>(m_vertexTriangle[v]);
+    const std::size_t base = 3 * static_cast<std::size_t>(m_arrays->vertexTriangle[v]);
     for (std::size_t i = 0; i < 3; ++i)
-        if (m_mesh.triangles[base + i] == v)
+        if (m_arrays->mesh.triangles[base + i] == v)
             return base + i;
     throw std::logic_error("CdtMesh: vertex-to-triangle map is stale");
 }
@@ -124,7 +238,9 @@ MeshLocation CdtMesh::locate(const Point2& p, std::size_t startTriangle) {
             const std::size_t h = 3 * t + (first + k) % 3;
             if (h == cameThrough || predicates::orient2d(xy(from(h)), xy(to(h)), p) >= 0.0)
                 continue;
-            if (m_mesh.neighbours[h] < 0)
+            if (m_zoned) // before the link is read: another zone may write it
+                requireCrossable(h);
+            if (m_arrays->mesh.neighbours[h] < 0)
                 return {MeshLocation::Kind::OutsideHull, h, 0};
             cameThrough = twin(h);
             t = cameThrough / 3;
@@ -137,7 +253,7 @@ MeshLocation CdtMesh::locate(const Point2& p, std::size_t startTriangle) {
     for (std::size_t i = 0; i < 3; ++i) {
         const std::size_t h = 3 * t + i;
         if (xy(from(h)) == p) {
-            m_vertexTriangle[from(h)] = static_cast<std::uint32_t>(t);
+            rememberTriangle(from(h), t);
             return {MeshLocation::Kind::OnVertex, h, from(h)};
         }
         if (predicates::orient2d(xy(from(h)), xy(to(h)), p) == 0.0)
@@ -146,25 +262,44 @@ MeshLocation CdtMesh::locate(const Point2& p, std::size_t startTriangle) {
     return where;
 }
 
+void CdtMesh::requireInsertable(const MeshLocation& where) const {
+    if (!m_zoned)
+        return;
+    requireOwned(where.halfEdge / 3);
+    if (where.kind == MeshLocation::Kind::OnEdge)
+        if (const std::size_t g = twin(where.halfEdge); g != kNoHalfEdge)
+            requireOwned(g / 3);
+    if (m_vertexSlots.next == m_vertexSlots.end || m_triangleSlots.end - m_triangleSlots.next < 2)
+        throw ZoneRefusal{};
+}
+
 std::size_t CdtMesh::addTriangle() {
-    const std::size_t t = m_mesh.triangleCount();
+    if (m_zoned) // requireInsertable made sure of the room
+        return m_triangleSlots.next++;
+    const std::size_t t = m_arrays->mesh.triangleCount();
     if (t >= kMaxTriangles)
         throw InvalidInputError("insertConstraints: too many triangles");
     for (int i = 0; i < 3; ++i) {
-        m_mesh.triangles.push_back(0);
-        m_mesh.neighbours.push_back(kNoNeighbour);
-        m_constrained.push_back(0);
+        m_arrays->mesh.triangles.push_back(0);
+        m_arrays->mesh.neighbours.push_back(kNoNeighbour);
+        m_arrays->constrained.push_back(0);
     }
     return t;
 }
 
 std::uint32_t CdtMesh::addVertex(const Point3& p, std::uint32_t source) {
-    const std::size_t v = m_mesh.vertices.size();
+    if (m_zoned) {
+        const std::size_t v = m_vertexSlots.next++;
+        m_arrays->mesh.vertices[v] = p;
+        m_arrays->mesh.sourceIndex[v] = source;
+        return static_cast<std::uint32_t>(v);
+    }
+    const std::size_t v = m_arrays->mesh.vertices.size();
     if (v >= kMaxVertices)
         throw InvalidInputError("insertConstraints: too many vertices");
-    m_mesh.vertices.push_back(p);
-    m_mesh.sourceIndex.push_back(source);
-    m_vertexTriangle.push_back(kUnknownTriangle);
+    m_arrays->mesh.vertices.push_back(p);
+    m_arrays->mesh.sourceIndex.push_back(source);
+    m_arrays->vertexTriangle.push_back(kUnknownTriangle);
     return static_cast<std::uint32_t>(v);
 }
 
@@ -174,29 +309,29 @@ void CdtMesh::writeCorners(std::size_t t, std::uint32_t a, std::uint32_t b, std:
             m_written->resize(t + 1, 0);
         (*m_written)[t] = 1;
     }
-    m_mesh.triangles[3 * t] = a;
-    m_mesh.triangles[3 * t + 1] = b;
-    m_mesh.triangles[3 * t + 2] = c;
-    m_vertexTriangle[a] = static_cast<std::uint32_t>(t);
-    m_vertexTriangle[b] = static_cast<std::uint32_t>(t);
-    m_vertexTriangle[c] = static_cast<std::uint32_t>(t);
+    m_arrays->mesh.triangles[3 * t] = a;
+    m_arrays->mesh.triangles[3 * t + 1] = b;
+    m_arrays->mesh.triangles[3 * t + 2] = c;
+    m_arrays->vertexTriangle[a] = static_cast<std::uint32_t>(t);
+    m_arrays->vertexTriangle[b] = static_cast<std::uint32_t>(t);
+    m_arrays->vertexTriangle[c] = static_cast<std::uint32_t>(t);
 }
 
 void CdtMesh::writeTriangle(std::size_t t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     writeCorners(t, a, b, c);
     for (std::size_t i = 0; i < 3; ++i) {
-        m_mesh.neighbours[3 * t + i] = kNoNeighbour;
-        m_constrained[3 * t + i] = 0;
+        m_arrays->mesh.neighbours[3 * t + i] = kNoNeighbour;
+        m_arrays->constrained[3 * t + i] = 0;
     }
 }
 
 void CdtMesh::link(std::size_t h, std::size_t other) {
     if (other == kNoHalfEdge) {
-        m_mesh.neighbours[h] = kNoNeighbour;
+        m_arrays->mesh.neighbours[h] = kNoNeighbour;
         return;
     }
-    m_mesh.neighbours[h] = static_cast<std::int32_t>(other / 3);
-    m_mesh.neighbours[other] = static_cast<std::int32_t>(h / 3);
+    m_arrays->mesh.neighbours[h] = static_cast<std::int32_t>(other / 3);
+    m_arrays->mesh.neighbours[other] = static_cast<std::int32_t>(h / 3);
 }
 
 // Triangle (a, b, c) of h becomes (a, b, v), (b, c, v), (c, a, v). Its outer edges keep their
@@ -204,13 +339,14 @@ void CdtMesh::link(std::size_t h, std::size_t other) {
 // are pointed at them.
 void CdtMesh::splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck) {
     const std::size_t t = h / 3;
-    const std::uint32_t a = m_mesh.triangles[3 * t];
-    const std::uint32_t b = m_mesh.triangles[3 * t + 1];
-    const std::uint32_t c = m_mesh.triangles[3 * t + 2];
-    const std::int32_t outer[3] = {m_mesh.neighbours[3 * t], m_mesh.neighbours[3 * t + 1],
-                                   m_mesh.neighbours[3 * t + 2]};
-    const std::uint8_t flags[3] = {m_constrained[3 * t], m_constrained[3 * t + 1],
-                                   m_constrained[3 * t + 2]};
+    const std::uint32_t a = m_arrays->mesh.triangles[3 * t];
+    const std::uint32_t b = m_arrays->mesh.triangles[3 * t + 1];
+    const std::uint32_t c = m_arrays->mesh.triangles[3 * t + 2];
+    const std::int32_t outer[3] = {m_arrays->mesh.neighbours[3 * t],
+                                   m_arrays->mesh.neighbours[3 * t + 1],
+                                   m_arrays->mesh.neighbours[3 * t + 2]};
+    const std::uint8_t flags[3] = {m_arrays->constrained[3 * t], m_arrays->constrained[3 * t + 1],
+                                   m_arrays->constrained[3 * t + 2]};
     const std::size_t t1 = addTriangle();
     const std::size_t t2 = addTriangle();
     const std::size_t fans[3] = {t, t1, t2};
@@ -220,12 +356,12 @@ void CdtMesh::splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::siz
         // (start, next start, v): the outer edge, then v's edges shared with the next and the
         // previous fan triangle.
         writeCorners(fan, starts[k], starts[(k + 1) % 3], v);
-        m_mesh.neighbours[3 * fan] = outer[k];
-        m_mesh.neighbours[3 * fan + 1] = static_cast<std::int32_t>(fans[(k + 1) % 3]);
-        m_mesh.neighbours[3 * fan + 2] = static_cast<std::int32_t>(fans[(k + 2) % 3]);
-        m_constrained[3 * fan] = flags[k];
-        m_constrained[3 * fan + 1] = 0;
-        m_constrained[3 * fan + 2] = 0;
+        m_arrays->mesh.neighbours[3 * fan] = outer[k];
+        m_arrays->mesh.neighbours[3 * fan + 1] = static_cast<std::int32_t>(fans[(k + 1) % 3]);
+        m_arrays->mesh.neighbours[3 * fan + 2] = static_cast<std::int32_t>(fans[(k + 2) % 3]);
+        m_arrays->constrained[3 * fan] = flags[k];
+        m_arrays->constrained[3 * fan + 1] = 0;
+        m_arrays->constrained[3 * fan + 2] = 0;
         toCheck.push_back(3 * fan);
     }
     relink(outer[1], c, t1);
@@ -299,6 +435,10 @@ void CdtMesh::legalise(std::uint32_t v, std::vector<std::size_t>& toCheck) {
         // v inside the circle of the triangle across h makes their quadrilateral convex.
         if (predicates::incircleTieBroken(xy(from(h)), xy(to(h)), xy(v), xy(opposite)) <= 0)
             continue;
+        if (!owns(g / 3)) { // a view's fan triangle beside another zone's
+            m_pending.push_back({from(h), to(h), h});
+            continue;
+        }
         flipAcross(h, g);
         toCheck.push_back(3 * (h / 3));
         toCheck.push_back(3 * (g / 3));
@@ -328,8 +468,12 @@ void CdtMesh::restoreDelaunay(std::vector<std::size_t>& stack) {
             continue;
         const std::uint32_t opposite = from(previousHalfEdge(g));
         if (predicates::incircleTieBroken(xy(from(h)), xy(to(h)), xy(from(previousHalfEdge(h))),
-                                          xy(opposite)) > 0)
+                                          xy(opposite)) <= 0)
+            continue;
+        if (owns(h / 3) && owns(g / 3))
             flipAndRecord(h, g, stack);
+        else
+            m_pending.push_back({from(h), to(h), h});
     }
 }
 
@@ -347,14 +491,14 @@ void CdtMesh::flipAcross(std::size_t h, std::size_t g) {
     const std::uint32_t b = to(h);
     const std::uint32_t c = from(previousHalfEdge(h));
     const std::uint32_t d = from(previousHalfEdge(g));
-    const std::int32_t outerBc = m_mesh.neighbours[nextHalfEdge(h)];
-    const std::int32_t outerCa = m_mesh.neighbours[previousHalfEdge(h)];
-    const std::int32_t outerAd = m_mesh.neighbours[nextHalfEdge(g)];
-    const std::int32_t outerDb = m_mesh.neighbours[previousHalfEdge(g)];
-    const std::uint8_t flagBc = m_constrained[nextHalfEdge(h)];
-    const std::uint8_t flagCa = m_constrained[previousHalfEdge(h)];
-    const std::uint8_t flagAd = m_constrained[nextHalfEdge(g)];
-    const std::uint8_t flagDb = m_constrained[previousHalfEdge(g)];
+    const std::int32_t outerBc = m_arrays->mesh.neighbours[nextHalfEdge(h)];
+    const std::int32_t outerCa = m_arrays->mesh.neighbours[previousHalfEdge(h)];
+    const std::int32_t outerAd = m_arrays->mesh.neighbours[nextHalfEdge(g)];
+    const std::int32_t outerDb = m_arrays->mesh.neighbours[previousHalfEdge(g)];
+    const std::uint8_t flagBc = m_arrays->constrained[nextHalfEdge(h)];
+    const std::uint8_t flagCa = m_arrays->constrained[previousHalfEdge(h)];
+    const std::uint8_t flagAd = m_arrays->constrained[nextHalfEdge(g)];
+    const std::uint8_t flagDb = m_arrays->constrained[previousHalfEdge(g)];
 
     writeCorners(t, a, d, c);
     writeCorners(u, d, b, c);
@@ -363,10 +507,10 @@ void CdtMesh::flipAcross(std::size_t h, std::size_t g) {
     const std::uint8_t tFlags[3] = {flagAd, 0, flagCa};
     const std::uint8_t uFlags[3] = {flagDb, flagBc, 0};
     for (std::size_t i = 0; i < 3; ++i) {
-        m_mesh.neighbours[3 * t + i] = tNeighbours[i];
-        m_mesh.neighbours[3 * u + i] = uNeighbours[i];
-        m_constrained[3 * t + i] = tFlags[i];
-        m_constrained[3 * u + i] = uFlags[i];
+        m_arrays->mesh.neighbours[3 * t + i] = tNeighbours[i];
+        m_arrays->mesh.neighbours[3 * u + i] = uNeighbours[i];
+        m_arrays->constrained[3 * t + i] = tFlags[i];
+        m_arrays->constrained[3 * u + i] = uFlags[i];
     }
     relink(outerBc, c, u);
     relink(outerAd, d, t);

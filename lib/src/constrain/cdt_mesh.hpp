@@ -5,6 +5,16 @@
 //
 // Notation: half-edge h = 3t + i runs from corner i to corner (i+1)%3 of triangle t; its twin
 // is the half-edge of the neighbour across that edge, running the other way.
+//
+// Zones: several threads may change one mesh at once, each through a view of its own that is
+// confined to a zone, a band [low, high) of x. A view owns the triangles whose three corners
+// lie in its zone; it rewrites only those, and reads a triangle or a link only across an edge
+// with an end in its zone. Another zone's view writes only its own triangles and the links
+// and flags of edges with both ends in its zone, so the two never touch the same data. An
+// operation that would need more throws ZoneRefusal before it writes anything; a flip it would
+// need across the zone's edge is left undone and listed (takePending), for the mesh's owner to
+// make once the views are done. New vertices and triangles go to slots reserved for the view
+// (appendSlots), closed up afterwards (compact). docs/algorithms.md has the proof.
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
@@ -13,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -27,6 +38,23 @@ inline std::size_t nextHalfEdge(std::size_t h) {
 inline std::size_t previousHalfEdge(std::size_t h) {
     return h % 3 == 0 ? h + 2 : h - 1;
 }
+
+/// Thrown by a zone's view before an operation writes anything, when the operation would reach
+/// outside the zone or the view's reserved slots are used up.
+struct ZoneRefusal {};
+
+/// A band of the plane, low <= x < high.
+struct Zone {
+    double low = 0.0;
+    double high = 0.0;
+};
+
+/// Slots of the mesh's arrays, [begin, end), and the next one free.
+struct SlotRange {
+    std::size_t begin = 0;
+    std::size_t next = 0;
+    std::size_t end = 0;
+};
 
 /// Where a point lies in the triangulation.
 struct MeshLocation {
@@ -44,48 +72,95 @@ public:
     explicit CdtMesh(TinMesh mesh);
     /// The same, with the constrained flags of a constrained triangulation (one per half-edge).
     CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained);
+    /// A view of `shared`'s arrays confined to `zone`, its new vertices and triangles taken
+    /// from `vertices` and `triangles` (appendSlots). `shared` must outlive it; only views of
+    /// disjoint zones may work at once, and `shared` itself only when none does.
+    CdtMesh(CdtMesh& shared, Zone zone, SlotRange vertices, SlotRange triangles);
+
+    /// Appends `vertices` vertex slots and `triangles` triangle slots that nothing uses, and
+    /// returns them; compact() removes those left unused.
+    std::pair<SlotRange, SlotRange> appendSlots(std::size_t vertices, std::size_t triangles);
+    /// Removes the slots of `unusedVertices` and `unusedTriangles` (ranges [next, end) of each,
+    /// disjoint), which nothing refers to, by moving the last vertices and triangles into them:
+    /// O(slots removed) with the degree of each vertex moved. Returns where the vertices moved:
+    /// vertex v >= the new vertexCount() is now movedTo[v - vertexCount()]; the others stay.
+    std::vector<std::uint32_t> compact(std::span<const SlotRange> unusedVertices,
+                                       std::span<const SlotRange> unusedTriangles);
+    /// The view's slots as far as it used them.
+    [[nodiscard]] SlotRange vertexSlots() const { return m_vertexSlots; }
+    [[nodiscard]] SlotRange triangleSlots() const { return m_triangleSlots; }
+    /// Whether vertex `v` lies in the view's zone (every vertex when the mesh is no view).
+    [[nodiscard]] bool inZone(std::uint32_t v) const {
+        return !m_zoned || (m_arrays->mesh.vertices[v].x >= m_zone.low &&
+                            m_arrays->mesh.vertices[v].x < m_zone.high);
+    }
+    /// Whether the view owns triangle t: its three corners in the zone.
+    [[nodiscard]] bool owns(std::size_t t) const {
+        return inZone(from(3 * t)) && inZone(from(3 * t + 1)) && inZone(from(3 * t + 2));
+    }
+    /// Throws ZoneRefusal unless the view owns triangle t.
+    void requireOwned(std::size_t t) const {
+        if (!owns(t))
+            throw ZoneRefusal{};
+    }
+    /// Throws ZoneRefusal unless a view owns what inserting a point at `where` rewrites and
+    /// has a vertex and two triangles left.
+    void requireInsertable(const MeshLocation& where) const;
+    /// Throws ZoneRefusal unless the view may read across half-edge h: one of its ends in the
+    /// zone.
+    void requireCrossable(std::size_t h) const {
+        if (!inZone(from(h)) && !inZone(to(h)))
+            throw ZoneRefusal{};
+    }
 
     /// From now on, sets (*written)[t] = 1 for every triangle t written (growing it as
     /// triangles are added); nullptr stops.
     void recordWrites(std::vector<std::uint8_t>* written) { m_written = written; }
 
-    [[nodiscard]] const TinMesh& mesh() const { return m_mesh; }
-    [[nodiscard]] TinMesh takeMesh() { return std::move(m_mesh); }
-    [[nodiscard]] std::vector<std::uint8_t> takeFlags() { return std::move(m_constrained); }
+    [[nodiscard]] const TinMesh& mesh() const { return m_arrays->mesh; }
+    [[nodiscard]] TinMesh takeMesh() { return std::move(m_arrays->mesh); }
+    [[nodiscard]] std::vector<std::uint8_t> takeFlags() { return std::move(m_arrays->constrained); }
 
-    [[nodiscard]] std::size_t vertexCount() const { return m_mesh.vertices.size(); }
+    [[nodiscard]] std::size_t vertexCount() const { return m_arrays->mesh.vertices.size(); }
     [[nodiscard]] Point2 xy(std::uint32_t v) const {
-        return {m_mesh.vertices[v].x, m_mesh.vertices[v].y};
+        return {m_arrays->mesh.vertices[v].x, m_arrays->mesh.vertices[v].y};
     }
-    [[nodiscard]] const Point3& vertex(std::uint32_t v) const { return m_mesh.vertices[v]; }
-    [[nodiscard]] std::uint32_t from(std::size_t h) const { return m_mesh.triangles[h]; }
+    [[nodiscard]] const Point3& vertex(std::uint32_t v) const { return m_arrays->mesh.vertices[v]; }
+    [[nodiscard]] std::uint32_t from(std::size_t h) const { return m_arrays->mesh.triangles[h]; }
     [[nodiscard]] std::uint32_t to(std::size_t h) const {
-        return m_mesh.triangles[nextHalfEdge(h)];
+        return m_arrays->mesh.triangles[nextHalfEdge(h)];
     }
     /// The twin of `h`, or kNoHalfEdge on the convex hull. O(1).
     [[nodiscard]] std::size_t twin(std::size_t h) const;
-    [[nodiscard]] bool isConstrained(std::size_t h) const { return m_constrained[h] != 0; }
+    [[nodiscard]] bool isConstrained(std::size_t h) const { return m_arrays->constrained[h] != 0; }
     /// Sets the flag of `h` and of its twin.
     void setConstrained(std::size_t h, bool constrained);
     /// A half-edge leaving `v`. O(1), except that the first vertex asked for whose triangle
     /// is not known yet (neither written since nor found by locate or rememberTriangleOf)
     /// completes the vertex-to-triangle map, O(n) once.
     [[nodiscard]] std::size_t halfEdgeLeaving(std::uint32_t v) const;
-    /// Notes the triangle of `h` as one holding both its vertices.
+    /// Notes the triangle of `h` as one holding both its vertices (those in the zone, for a
+    /// view).
     void rememberTriangleOf(std::size_t h);
+    /// Notes triangle t as one holding vertex v, a corner of it; nothing for a view when v lies
+    /// outside its zone.
+    void rememberTriangle(std::uint32_t v, std::size_t t);
 
     /// Every half-edge leaving `v`, counter-clockwise, then (when `v` is on the hull) the
     /// hull half-edge arriving at `v`; `visit(h)` returns true to stop. O(degree).
     template <class Visit> void forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const;
 
     /// Locates `p`, walking from triangle `startTriangle` (a remembering stochastic walk,
-    /// which terminates on any triangulation, constrained ones included).
+    /// which terminates on any triangulation, constrained ones included). A view starts from a
+    /// triangle with a corner in its zone and refuses to cross an edge with neither end in it.
     [[nodiscard]] MeshLocation locate(const Point2& p, std::size_t startTriangle);
 
     /// Inserts `p` at `where` (InTriangle or OnEdge, as locate found it) as a new vertex with
     /// source index `source`, then restores the constrained Delaunay property by Lawson flips
     /// that never flip a constrained edge. A constrained edge split by `p` stays constrained
-    /// in both halves; `onSplit(a, b, p)` is told. Returns the new vertex.
+    /// in both halves; `onSplit(a, b, p)` is told. Returns the new vertex. A view refuses when
+    /// it does not own the triangles split or has no slots left; a flip across its zone's edge
+    /// is left to takePending.
     template <class OnSplit>
     std::uint32_t insertPoint(const Point3& p, std::uint32_t source, const MeshLocation& where,
                               OnSplit&& onSplit);
@@ -118,8 +193,11 @@ public:
     /// triangles and records all five of their edges, so an edge recorded earlier is either
     /// still where it was recorded or recorded again: half-edge places need no check that they
     /// still hold the edge meant (a place now holding another edge is checked, harmlessly).
-    /// Empties `stack`.
+    /// Empties `stack`. A view leaves a flip of a triangle it does not own to takePending.
     void restoreDelaunay(std::vector<std::size_t>& stack);
+    /// The edges a view left not locally Delaunay (flips across its zone's edge), and empties
+    /// the list.
+    [[nodiscard]] std::vector<Edge> takePending() { return std::move(m_pending); }
 
     /// A triangle of a cavity's new triangulation: its corners, counter-clockwise, and for
     /// each edge (corner i to corner (i + 1) % 3) what lies across it: the position of another
@@ -155,21 +233,35 @@ private:
     /// Makes `h` and `other` twins (`other` may be kNoHalfEdge: `h` is then a hull edge).
     void link(std::size_t h, std::size_t other);
     /// Sets the flag of `h` alone (the twin is set by the caller).
-    void setFlag(std::size_t h, bool constrained) { m_constrained[h] = constrained ? 1 : 0; }
+    void setFlag(std::size_t h, bool constrained) {
+        m_arrays->constrained[h] = constrained ? 1 : 0;
+    }
     std::size_t addTriangle();
     std::uint32_t addVertex(const Point3& p, std::uint32_t source);
     void splitTriangle(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck);
     void splitEdge(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck);
     void legalise(std::uint32_t v, std::vector<std::size_t>& toCheck);
 
-    TinMesh m_mesh;
-    std::vector<std::uint8_t> m_constrained;
-    /// A triangle holding each vertex, kUnknownTriangle until one is written or found: the
-    /// constraints touch few of the vertices, so the map is completed (completeVertexMap) only
-    /// when an unknown one is asked for, as index segments and polylines without triangles do.
+    /// The arrays: the mesh's own, or for a view the shared mesh's.
+    struct Arrays {
+        TinMesh mesh;
+        std::vector<std::uint8_t> constrained;
+        /// A triangle holding each vertex, kUnknownTriangle until one is written or found:
+        /// the constraints touch few of the vertices, so the map is completed
+        /// (completeVertexMap) only when an unknown one is asked for, as index segments and
+        /// polylines without triangles do.
+        std::vector<std::uint32_t> vertexTriangle;
+    };
     static constexpr std::uint32_t kUnknownTriangle = 0xffffffffU;
-    mutable std::vector<std::uint32_t> m_vertexTriangle;
     void completeVertexMap() const;
+    std::unique_ptr<Arrays> m_own;
+    Arrays* m_arrays = nullptr;
+    /// A view's zone, slots, and the flips it left.
+    bool m_zoned = false;
+    Zone m_zone;
+    SlotRange m_vertexSlots;
+    SlotRange m_triangleSlots;
+    std::vector<Edge> m_pending;
     std::uint64_t m_walkRandom = 0x9e3779b97f4a7c15ULL;
     std::vector<std::uint8_t>* m_written = nullptr;
     /// insertPoint's stack of edges to legalise, kept to spare an allocation per point.
@@ -216,6 +308,8 @@ template <class Visit> void CdtMesh::forEachHalfEdgeAround(std::uint32_t v, Visi
 template <class OnSplit>
 std::uint32_t CdtMesh::insertPoint(const Point3& p, std::uint32_t source, const MeshLocation& where,
                                    OnSplit&& onSplit) {
+    if (m_zoned)
+        requireInsertable(where);
     const std::uint32_t v = addVertex(p, source);
     std::vector<std::size_t>& toCheck = m_toCheck; // empty between insertions
     if (where.kind == MeshLocation::Kind::OnEdge) {

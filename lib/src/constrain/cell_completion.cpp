@@ -333,8 +333,7 @@ private:
                     [&](unsigned, std::size_t begin, std::size_t end) {
                         for (std::size_t v = begin; v < end; ++v) {
                             const std::uint32_t cell = mesh.sourceIndex[v];
-                            if (cell >= measuredIndex.size() ||
-                                measuredIndex[cell] == kNotMeasured)
+                            if (cell >= measuredIndex.size() || measuredIndex[cell] == kNotMeasured)
                                 continue;
                             const Point3& at = mesh.vertices[v];
                             const Point2 p = position(cell);

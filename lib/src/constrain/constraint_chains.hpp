@@ -26,6 +26,22 @@ public:
         return m_chains[owner];
     }
 
+    /// Room for segments 0 to `segments` - 1: start() then grows nothing, and may be called
+    /// for different segments at once.
+    void prepare(std::size_t segments) {
+        if (m_chains.size() < segments)
+            m_chains.resize(segments);
+    }
+
+    /// Replaces every vertex v >= `kept` of every chain by movedTo[v - kept]
+    /// (CdtMesh::compact).
+    void renumber(std::size_t kept, const std::vector<std::uint32_t>& movedTo) {
+        for (std::vector<std::uint32_t>& chain : m_chains)
+            for (std::uint32_t& v : chain)
+                if (v >= kept)
+                    v = movedTo[v - kept];
+    }
+
 private:
     std::vector<std::vector<std::uint32_t>> m_chains;
 };

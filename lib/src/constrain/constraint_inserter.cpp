@@ -37,8 +37,9 @@ std::optional<std::uint32_t> ConstraintInserter::insertPointFrom(const Point3& p
     m_hintTriangle = where.halfEdge / 3;
     if (where.kind == MeshLocation::Kind::OnVertex)
         return where.vertex;
-    ++m_addedPoints;
-    return insertVertex(p, kConstraintPointSource, where);
+    const std::uint32_t v = insertVertex(p, kConstraintPointSource, where);
+    ++m_addedPoints; // after: a zone may refuse the insertion
+    return v;
 }
 
 std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t source,
@@ -48,16 +49,28 @@ std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t so
             const ConstraintOwners::Owners owners = m_owners.take(a, b);
             m_owners.add(a, middle, owners);
             m_owners.add(middle, b, owners);
-            m_chains.insertBetween(owners, a, b, middle);
+            m_chains->insertBetween(owners, a, b, middle);
         });
     m_hintTriangle = m_mesh.halfEdgeLeaving(v) / 3;
     return v;
 }
 
 void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner) {
-    m_chains.start(owner, a, b);
-    m_crossingsMet.clear();
+    m_chains->start(owner, a, b);
     m_pieces.push_back({a, b, {owner}});
+    insertPendingPieces(owner);
+}
+
+void ConstraintInserter::insertPieces(std::vector<Piece> pieces) {
+    if (pieces.empty())
+        return;
+    const std::uint32_t owner = pieces.front().owners.front();
+    m_pieces = std::move(pieces);
+    insertPendingPieces(owner);
+}
+
+void ConstraintInserter::insertPendingPieces(std::uint32_t owner) {
+    m_crossingsMet.clear();
     // Each crossing makes at most four pieces and there are fewer than 3n constrained edges to
     // cross, so more pieces than this means a loop: an error rather than a hang.
     const std::size_t maxPieces = 64 + 16 * m_mesh.vertexCount();
@@ -65,35 +78,41 @@ void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::ui
         if (pieces > maxPieces)
             throw std::logic_error("insertConstraints: segment " + std::to_string(owner) +
                                    " does not converge");
-        const Piece piece = std::move(m_pieces.back());
+        Piece piece = std::move(m_pieces.back());
         m_pieces.pop_back();
-        insertPiece(piece);
+        try {
+            insertPiece(piece);
+        } catch (const ZoneRefusal&) {
+            m_pieces.push_back(std::move(piece)); // what is left of it, for takePieces
+            throw;
+        }
     }
 }
 
-void ConstraintInserter::insertPiece(const Piece& piece) {
-    std::uint32_t u = piece.from;
+void ConstraintInserter::insertPiece(Piece& piece) {
     const std::uint32_t v = piece.to;
-    while (u != v) {
+    while (piece.from != v) {
+        const std::uint32_t u = piece.from;
         const SegmentStart start = findSegmentStart(m_mesh, u, v);
         if (start.kind == SegmentStart::Kind::AlongEdge) {
             m_mesh.rememberTriangleOf(start.halfEdge); // the next piece starts at its vertex
             markConstrained(start.halfEdge, piece.owners);
-            m_chains.insertBetween(piece.owners, u, v, start.vertex);
-            u = start.vertex;
+            m_chains->insertBetween(piece.owners, u, v, start.vertex);
+            piece.from = start.vertex;
             continue;
         }
         const std::size_t blocking = walkCrossedEdges(m_mesh, u, v, start, m_crossed);
         if (blocking != kNoHalfEdge) {
             splitAtCrossing(u, v, piece.owners, blocking);
+            piece.from = v; // the pieces it pushed go on
             return;
         }
         std::size_t segment = retriangulateCavity(m_mesh, u, m_crossed, m_cavity);
         if (segment == kNoHalfEdge)
             segment = flipSegmentIn(m_mesh, u, m_crossed);
         markConstrained(segment, piece.owners);
-        m_chains.insertBetween(piece.owners, u, v, m_crossed.end);
-        u = m_crossed.end;
+        m_chains->insertBetween(piece.owners, u, v, m_crossed.end);
+        piece.from = m_crossed.end;
     }
 }
 
@@ -130,7 +149,7 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     if (!near && metBefore)
         near = t <= 0.5 ? c : d;
     if (near) {
-        m_chains.insertBetween(owners, u, v, *near);
+        m_chains->insertBetween(owners, u, v, *near);
         m_pieces.push_back({*near, v, owners});
         m_pieces.push_back({u, *near, owners});
         return;
@@ -140,8 +159,8 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     const Point3 crossing{pc.x + t * (pd.x - pc.x), pc.y + t * (pd.y - pc.y),
                           pc.z + t * (pd.z - pc.z)};
 
-    const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
-    m_mesh.setConstrained(crossed, false);
+    // Found, and for a zone's inserter checked, before anything changes: a refusal leaves
+    // the mesh as it was.
     const MeshLocation where = m_mesh.locate({crossing.x, crossing.y}, crossed / 3);
     if (where.kind == MeshLocation::Kind::OutsideHull)
         throw std::logic_error("insertConstraints: a crossing lies outside the convex hull");
@@ -150,12 +169,19 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
         w = where.vertex;
     else
         w = vertexWithinRounding(crossing, where.halfEdge / 3);
+    if (w)
+        m_mesh.rememberTriangle(*w, where.halfEdge / 3);
+    else
+        m_mesh.requireInsertable(where);
+
+    const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
+    m_mesh.setConstrained(crossed, false);
     if (!w) {
         w = insertVertex(crossing, kIntersectionSource, where);
         ++m_intersections;
     }
-    m_chains.insertBetween(crossedOwners, c, d, *w);
-    m_chains.insertBetween(owners, u, v, *w);
+    m_chains->insertBetween(crossedOwners, c, d, *w);
+    m_chains->insertBetween(owners, u, v, *w);
     // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
     // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
     if (const std::size_t unmarked = m_mesh.findEdge(c, d); unmarked != kNoHalfEdge) {
@@ -203,6 +229,29 @@ std::optional<std::uint32_t> ConstraintInserter::vertexWithinRounding(const Poin
             return corner;
     }
     return std::nullopt;
+}
+
+void ConstraintInserter::absorb(ConstraintInserter& zone) {
+    m_owners.addAll(zone.m_owners);
+    m_addedPoints += zone.m_addedPoints;
+    m_intersections += zone.m_intersections;
+    std::vector<std::size_t> stack;
+    for (const CdtMesh::Edge& edge : zone.m_mesh.takePending())
+        if (const std::size_t h = m_mesh.find(edge); h != kNoHalfEdge)
+            stack.push_back(h);
+    m_mesh.restoreDelaunay(stack);
+}
+
+void ConstraintInserter::compact(std::span<const SlotRange> unusedVertices,
+                                 std::span<const SlotRange> unusedTriangles,
+                                 std::vector<std::vector<std::uint32_t>>& vertexLists) {
+    const std::vector<std::uint32_t> movedTo = m_mesh.compact(unusedVertices, unusedTriangles);
+    const std::size_t kept = m_mesh.vertexCount();
+    m_chains->renumber(kept, movedTo);
+    for (std::vector<std::uint32_t>& list : vertexLists)
+        for (std::uint32_t& v : list)
+            if (v >= kept)
+                v = movedTo[v - kept];
 }
 
 void ConstraintInserter::finish(ConstrainedTin& tin) {

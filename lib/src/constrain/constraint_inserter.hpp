@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <set>
+#include <span>
 #include <vector>
 
 namespace terratin::detail {
@@ -26,6 +27,18 @@ public:
     ConstraintInserter(TinMesh mesh, std::size_t segments) : m_mesh(std::move(mesh)) {
         m_owners.reserve(2 * segments);
     }
+    /// An inserter for one zone of `shared`'s mesh (CdtMesh's views), with the slots it may
+    /// fill, sharing its chains; about `segments` segments go in through it. Its operations
+    /// throw ZoneRefusal, changing nothing, when they would reach outside the zone: after one
+    /// in insertSegment, takePieces() gives what is left of that segment. Only inserters of
+    /// disjoint zones may work at once.
+    ConstraintInserter(ConstraintInserter& shared, Zone zone, SlotRange vertices,
+                       SlotRange triangles, std::size_t segments)
+        : m_mesh(shared.m_mesh, zone, vertices, triangles), m_chains(shared.m_chains) {
+        m_owners.reserve(2 * segments);
+    }
+    ConstraintInserter(const ConstraintInserter&) = delete;
+    ConstraintInserter& operator=(const ConstraintInserter&) = delete;
 
     /// The vertex at `p`'s x and y: an existing one, or a new one (sourceIndex
     /// kConstraintPointSource); nothing when `p` lies outside the convex hull. The search
@@ -38,23 +51,54 @@ public:
     /// splitting it (and what it crosses) where needed.
     void insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner);
 
+    /// What is left of a segment: pieces still to insert, each between two vertices, with the
+    /// input segments they belong to.
+    struct Piece {
+        std::uint32_t from;
+        std::uint32_t to;
+        ConstraintOwners::Owners owners;
+    };
+    /// After a ZoneRefusal from insertSegment: the pieces of that segment not inserted yet.
+    [[nodiscard]] std::vector<Piece> takePieces() { return std::move(m_pieces); }
+    /// Inserts pieces that another inserter's zone refused (takePieces), as insertSegment
+    /// would have gone on.
+    void insertPieces(std::vector<Piece> pieces);
+
+    /// Room in the chains for `segments` segments: a zone's inserters may then start theirs
+    /// at once.
+    void prepareChains(std::size_t segments) { m_chains->prepare(segments); }
+    /// Takes over what a zone's inserter did: its constrained edges' owners, its counts, and
+    /// the flips its zone's edge left (made now). Call after every zone is done.
+    void absorb(ConstraintInserter& zone);
+    /// Closes up the slots the zones left unused (CdtMesh::compact) and renumbers the vertices
+    /// of the chains and of `vertexLists` to match.
+    void compact(std::span<const SlotRange> unusedVertices,
+                 std::span<const SlotRange> unusedTriangles,
+                 std::vector<std::vector<std::uint32_t>>& vertexLists);
+    /// The view's slots as far as it used them.
+    [[nodiscard]] SlotRange vertexSlots() const { return m_mesh.vertexSlots(); }
+    [[nodiscard]] SlotRange triangleSlots() const { return m_mesh.triangleSlots(); }
+    /// appendSlots of the mesh.
+    std::pair<SlotRange, SlotRange> appendSlots(std::size_t vertices, std::size_t triangles) {
+        return m_mesh.appendSlots(vertices, triangles);
+    }
+    /// The mesh (a zone's view: its zone's part is read safely).
+    [[nodiscard]] CdtMesh& mesh() { return m_mesh; }
+
     /// The vertices of segment `owner`'s chain, from its first vertex to its last (final once
     /// every segment is inserted).
     [[nodiscard]] const std::vector<std::uint32_t>& chainOf(std::uint32_t owner) const {
-        return m_chains.chain(owner);
+        return m_chains->chain(owner);
     }
 
     /// Moves the mesh and the flags into `tin`, with the counts of added vertices.
     void finish(ConstrainedTin& tin);
 
 private:
-    struct Piece {
-        std::uint32_t from;
-        std::uint32_t to;
-        ConstraintOwners::Owners owners;
-    };
-
-    void insertPiece(const Piece& piece);
+    /// Runs the pieces on m_pieces until none is left.
+    void insertPendingPieces(std::uint32_t owner);
+    /// Inserts `piece`, moving its start along as its parts go in.
+    void insertPiece(Piece& piece);
     void markConstrained(std::size_t h, const ConstraintOwners::Owners& owners);
     void splitAtCrossing(std::uint32_t u, std::uint32_t v, const ConstraintOwners::Owners& owners,
                          std::size_t crossed);
@@ -67,7 +111,8 @@ private:
 
     CdtMesh m_mesh;
     ConstraintOwners m_owners;
-    ConstraintChains m_chains;
+    ConstraintChains m_ownChains;
+    ConstraintChains* m_chains = &m_ownChains; // a zone's inserter: the shared one's
     std::vector<Piece> m_pieces;
     /// The crossings (u, v, c, d) met while inserting the current segment: one met again means
     /// that rounding sends the pieces round in a circle (see splitAtCrossing).

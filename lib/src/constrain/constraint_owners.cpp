@@ -97,4 +97,17 @@ ConstraintOwners::Owners ConstraintOwners::take(std::uint32_t a, std::uint32_t b
     return owners;
 }
 
+void ConstraintOwners::addAll(const ConstraintOwners& other) {
+    Owners owners;
+    for (const Slot& slot : other.m_slots) {
+        if (slot.key == kEmptyKey)
+            continue;
+        owners.clear();
+        for (std::uint32_t n = slot.first; n != kEnd; n = other.m_nodes[n].next)
+            owners.push_back(other.m_nodes[n].owner);
+        add(static_cast<std::uint32_t>(slot.key >> 32U), static_cast<std::uint32_t>(slot.key),
+            owners);
+    }
+}
+
 } // namespace terratin::detail

@@ -18,6 +18,8 @@ public:
     void add(std::uint32_t a, std::uint32_t b, const Owners& owners);
     /// Removes the edge {a, b} and returns its owners (empty when it had none).
     Owners take(std::uint32_t a, std::uint32_t b);
+    /// Adds every edge of `other` with its owners.
+    void addAll(const ConstraintOwners& other);
 
 private:
     static std::uint64_t key(std::uint32_t a, std::uint32_t b) {

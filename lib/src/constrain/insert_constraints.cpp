@@ -1,7 +1,9 @@
 #include "terratin/constrain/insert_constraints.hpp"
 
 #include "constraint_inserter.hpp"
+#include "polyline_insertion.hpp"
 #include "terratin/error.hpp"
+#include "zoned_insertion.hpp"
 
 #include <cmath>
 #include <limits>
@@ -10,10 +12,6 @@
 namespace terratin {
 
 namespace {
-
-std::string pointText(const Point3& p) {
-    return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
-}
 
 void checkPolylineTriangles(const TinMesh& mesh, const ConstraintSet& constraints) {
     const std::vector<std::vector<std::uint32_t>>& triangles = constraints.polylineTriangles;
@@ -66,28 +64,6 @@ std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constrain
     return segments;
 }
 
-// The vertices of polyline k's points, each inserted unless a vertex has its x and y.
-// The search for each starts from its triangle in `triangles` when there are any.
-std::vector<std::uint32_t> polylineVertices(detail::ConstraintInserter& inserter,
-                                            const std::vector<Point3>& polyline,
-                                            const std::vector<std::uint32_t>& triangles,
-                                            std::size_t k) {
-    std::vector<std::uint32_t> vertices;
-    vertices.reserve(polyline.size());
-    for (std::size_t j = 0; j < polyline.size(); ++j) {
-        const std::optional<std::uint32_t> v =
-            triangles.empty() ? inserter.insertPoint(polyline[j], j == 0)
-                              : inserter.insertPointFrom(polyline[j], triangles[j]);
-        if (!v)
-            throw InvalidInputError(
-                "insertConstraints: polyline " + std::to_string(k) + ", point " +
-                std::to_string(j) + " " + pointText(polyline[j]) +
-                " lies outside the convex hull of the mesh (clipping is not supported)");
-        vertices.push_back(*v);
-    }
-    return vertices;
-}
-
 } // namespace
 
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints) {
@@ -97,24 +73,38 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
     // The index segments, then each polyline: its points (a point on a constrained edge splits
     // it), then its segments, while the mesh around them is still in cache. Every input segment
     // is numbered as the owner of the edges it becomes.
-    std::vector<std::array<std::uint32_t, 2>> segments = constraints.segments;
+    const std::vector<std::array<std::uint32_t, 2>>& segments = constraints.segments;
     for (std::size_t s = 0; s < segments.size(); ++s)
         inserter.insertSegment(segments[s][0], segments[s][1], static_cast<std::uint32_t>(s));
-    std::vector<std::vector<std::uint32_t>> polylines;
-    polylines.reserve(constraints.polylines.size());
-    for (std::size_t k = 0; k < constraints.polylines.size(); ++k) {
-        polylines.push_back(polylineVertices(inserter, constraints.polylines[k],
-                                             constraints.polylineTriangles.empty()
-                                                 ? std::vector<std::uint32_t>{}
-                                                 : constraints.polylineTriangles[k],
-                                             k));
-        const std::vector<std::uint32_t>& polyline = polylines.back();
-        for (std::size_t j = 1; j < polyline.size(); ++j) {
-            inserter.insertSegment(polyline[j - 1], polyline[j],
-                                   static_cast<std::uint32_t>(segments.size()));
-            segments.push_back({polyline[j - 1], polyline[j]});
-        }
+    std::vector<std::uint32_t> firstOwner;
+    std::size_t owners = segments.size();
+    for (const std::vector<Point3>& polyline : constraints.polylines) {
+        firstOwner.push_back(static_cast<std::uint32_t>(owners));
+        owners += polyline.empty() ? 0 : polyline.size() - 1;
     }
+    inserter.prepareChains(owners);
+
+    // In zones on the threads where the polylines are many and come with their triangles in
+    // the mesh as given (no index segment has changed it), then on this thread what they
+    // refused, or every polyline.
+    std::vector<std::vector<std::uint32_t>> polylines(constraints.polylines.size());
+    const unsigned zones = segments.empty() && !constraints.polylineTriangles.empty()
+                               ? detail::zoneCount(constraints)
+                               : 1;
+    detail::ZonedInsertion zoned;
+    if (zones > 1) {
+        zoned = detail::insertInZones(inserter, constraints, zones, constraints.threads, firstOwner,
+                                      polylines);
+    } else {
+        zoned.refused.resize(constraints.polylines.size());
+        for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
+            zoned.refused[k].polyline = k;
+    }
+    for (detail::PolylineProgress& progress : zoned.refused)
+        detail::insertPolyline(inserter, constraints, polylines[progress.polyline],
+                               firstOwner[progress.polyline], progress);
+    if (zones > 1)
+        inserter.compact(zoned.unusedVertices, zoned.unusedTriangles, polylines);
 
     ConstrainedTin tin;
     for (std::size_t s = 0; s < constraints.segments.size(); ++s)

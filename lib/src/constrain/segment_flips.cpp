@@ -99,6 +99,9 @@ std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t
     // In the first triangle (u, right, left) the segment leaves through right -> left; each
     // exit half-edge runs from the vertex right of the segment to the one left of it.
     std::size_t exit = nextHalfEdge(start.halfEdge);
+    // A view must own every triangle the segment crosses: they are all rewritten. Each is
+    // checked before the walk reads through it.
+    mesh.requireOwned(start.halfEdge / 3);
     for (;;) {
         if (mesh.isConstrained(exit))
             return exit;
@@ -106,6 +109,7 @@ std::size_t walkCrossedEdges(const CdtMesh& mesh, std::uint32_t u, std::uint32_t
         const std::size_t entry = mesh.twin(exit);
         if (entry == kNoHalfEdge)
             throw std::logic_error("insertConstraints: segment walk left the convex hull");
+        mesh.requireOwned(entry / 3);
         crossed.entries.push_back(entry);
         // entry runs left -> right; w is the vertex opposite it.
         const std::uint32_t w = mesh.from(previousHalfEdge(entry));

@@ -3,12 +3,14 @@
 #include "mesh_invariants.hpp"
 #include "terratin/constrain/constrained_validation.hpp"
 #include "terratin/geometry/predicates.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <unordered_map>
 
@@ -176,6 +178,29 @@ std::vector<std::array<std::uint32_t, 2>> randomSegments(std::size_t vertexCount
         segments.push_back({static_cast<std::uint32_t>(next() % vertexCount),
                             static_cast<std::uint32_t>(next() % vertexCount)});
     return segments;
+}
+
+ConstraintSet walksWithTriangles(const TinMesh& mesh, int walks, int steps, std::uint64_t seed) {
+    std::vector<std::vector<Point3>> lines;
+    std::mt19937_64 random(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int k = 0; k < walks; ++k) {
+        std::vector<Point3> line{{unit(random), unit(random), 1.0}};
+        double heading = 6.283 * unit(random);
+        for (int j = 0; j < steps; ++j) {
+            heading += unit(random) - 0.5;
+            line.push_back({line.back().x + 0.02 * std::cos(heading),
+                            line.back().y + 0.02 * std::sin(heading), 1.0});
+        }
+        lines.push_back(line);
+    }
+    ConstraintSet constraints;
+    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 2))
+        for (TinLocator::LocatedPolyline& part : parts) {
+            constraints.polylines.push_back(std::move(part.points));
+            constraints.polylineTriangles.push_back(std::move(part.triangles));
+        }
+    return constraints;
 }
 
 } // namespace terratin::test

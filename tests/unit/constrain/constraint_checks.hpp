@@ -20,6 +20,11 @@ void expectConstrainedDelaunay(const ConstrainedTin& tin, const TinMesh& origina
 std::vector<std::array<std::uint32_t, 2>> randomSegments(std::size_t vertexCount, std::size_t count,
                                                          std::uint64_t seed);
 
+/// Random walks of `steps` steps of about a fiftieth of the unit square's width, started in
+/// it and clipped to `mesh`'s hull (TinLocator::clipToSurface), with the triangles found for
+/// their points. A fixed generator: the same seed gives the same walks everywhere.
+ConstraintSet walksWithTriangles(const TinMesh& mesh, int walks, int steps, std::uint64_t seed);
+
 /// Whether `tin` has an edge a-b marked constrained on each of its half-edges.
 bool hasConstrainedEdge(const ConstrainedTin& tin, std::uint32_t a, std::uint32_t b);
 

@@ -465,34 +465,9 @@ std::vector<std::array<std::uint32_t, 3>> triangleSet(const TinMesh& mesh) {
     return triangles;
 }
 
-// Random walks of `steps` steps of about a fiftieth of the cloud's width, inside its hull
-// (TinLocator clips them), with the triangles found for their points.
-ConstraintSet walksWithTriangles(const TinMesh& mesh, int walks, int steps, std::uint64_t seed) {
-    std::vector<std::vector<Point3>> lines;
-    std::mt19937_64 random(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    for (int k = 0; k < walks; ++k) {
-        std::vector<Point3> line{{unit(random), unit(random), 1.0}};
-        double heading = 6.283 * unit(random);
-        for (int j = 0; j < steps; ++j) {
-            heading += unit(random) - 0.5;
-            line.push_back({line.back().x + 0.02 * std::cos(heading),
-                            line.back().y + 0.02 * std::sin(heading), 1.0});
-        }
-        lines.push_back(line);
-    }
-    ConstraintSet constraints;
-    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 2))
-        for (TinLocator::LocatedPolyline& part : parts) {
-            constraints.polylines.push_back(std::move(part.points));
-            constraints.polylineTriangles.push_back(std::move(part.triangles));
-        }
-    return constraints;
-}
-
 TEST(InsertConstraints, PolylineTrianglesGiveTheSameTin_AsTheSearchWithout) {
     const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 3000, 21));
-    ConstraintSet located = walksWithTriangles(mesh, 40, 30, 5);
+    ConstraintSet located = test::walksWithTriangles(mesh, 40, 30, 5);
     ASSERT_GT(located.polylines.size(), 30U);
     ConstraintSet searched = located;
     searched.polylineTriangles.clear();
@@ -533,7 +508,7 @@ TEST(InsertConstraints, GridLinePolylinesWithTriangles_AlongEdgesThroughUntouche
 
 TEST(InsertConstraints, IsConstrainedDelaunay_WhenPolylineTrianglesAreFarFromTheirPoints) {
     const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Grid, 3000, 3));
-    ConstraintSet constraints = walksWithTriangles(mesh, 20, 30, 8);
+    ConstraintSet constraints = test::walksWithTriangles(mesh, 20, 30, 8);
     for (std::vector<std::uint32_t>& triangles : constraints.polylineTriangles)
         std::fill(triangles.begin(), triangles.end(), 0U);
     constrainAndCheck(mesh, constraints);

@@ -27,6 +27,12 @@ struct ConstraintSet {
     /// same vertices; the numbering of its triangles, and the diagonals of cocircular points,
     /// may depend on them.
     std::vector<std::vector<std::uint32_t>> polylineTriangles;
+    /// With polylineTriangles and no index segments: the polylines go in on up to `threads`
+    /// threads, in `zones` bands of x at once (0: one band per 20,000 polyline points, a power
+    /// of two, at most 16; 1: one after another). The TIN depends on the zones, not on the
+    /// threads.
+    unsigned threads = 1;
+    unsigned zones = 0;
 };
 
 /// Inserts every constraint of `constraints` into `mesh`, a Delaunay triangulation (as
@@ -42,7 +48,8 @@ struct ConstraintSet {
 ///   has exactly its x and y: then that vertex is used and keeps its elevation.
 /// - Two segments that cross get a new vertex (sourceIndex kIntersectionSource) at their
 ///   intersection, computed in double along the segment inserted first (segments go in the
-///   order given: `segments`, then each polyline's points and segments), c + t (d - c), with its
+///   order given: `segments`, then each polyline's points and segments; with zones, what a
+///   zone stopped short goes in after the zones' polylines), c + t (d - c), with its
 ///   z interpolated linearly along that segment. Rounding may leave the vertex off either segment
 ///   by about one unit in the last place of the coordinates: both segments then bend through it
 ///   and their halves are constrained as they are.
@@ -64,8 +71,10 @@ struct ConstraintSet {
 /// crossing a point insertion, per polyline point a walk from its triangle in polylineTriangles,
 /// else from the previous point (the first from a bucket grid, O(n) once); a pass over the
 /// triangles, O(n) once, to complete the vertex-to-triangle map when a segment starts at a vertex
-/// nothing before reached (index segments, polylines without triangles). Sequential.
-/// docs/algorithms.md ("Constrained Delaunay") describes the method.
+/// nothing before reached (index segments, polylines without triangles). With zones, the
+/// polylines of each zone go in on a thread of their own, as far as they stay inside it, and
+/// the rest after them on one thread; then an O(n) pass closes up the slots the zones kept.
+/// docs/algorithms.md ("Constrained Delaunay", "Zones") describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 
 /// Inserts `points` into `tin` (a constrained Delaunay TIN as insertConstraints makes it) as new

@@ -1,0 +1,59 @@
+#include "polyline_insertion.hpp"
+
+#include "terratin/error.hpp"
+
+#include <optional>
+#include <string>
+
+namespace terratin::detail {
+
+namespace {
+
+std::string pointText(const Point3& p) {
+    return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
+}
+
+// Point j's vertex: an existing one at its x and y, or a new one.
+std::uint32_t pointVertex(ConstraintInserter& inserter, const ConstraintSet& constraints,
+                          const std::vector<std::uint32_t>& vertices,
+                          const std::vector<std::uint32_t>& start,
+                          const PolylineProgress& progress) {
+    const std::size_t k = progress.polyline;
+    const std::size_t j = progress.nextPoint;
+    const Point3& point = constraints.polylines[k][j];
+    std::optional<std::uint32_t> v;
+    if (!start.empty() && start[j] == kFromPreviousPoint)
+        v = inserter.insertPointFrom(point, inserter.mesh().halfEdgeLeaving(vertices.back()) / 3);
+    else if (!start.empty())
+        v = inserter.insertPointFrom(point, start[j]);
+    else if (!constraints.polylineTriangles.empty())
+        v = inserter.insertPointFrom(point, constraints.polylineTriangles[k][j]);
+    else
+        v = inserter.insertPoint(point, j == 0);
+    if (!v)
+        throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) + ", point " +
+                                std::to_string(j) + " " + pointText(point) +
+                                " lies outside the convex hull of the mesh (clipping is not "
+                                "supported)");
+    return *v;
+}
+
+} // namespace
+
+void insertPolyline(ConstraintInserter& inserter, const ConstraintSet& constraints,
+                    std::vector<std::uint32_t>& vertices, std::uint32_t firstOwner,
+                    PolylineProgress& progress, const std::vector<std::uint32_t>& start) {
+    const std::size_t points = constraints.polylines[progress.polyline].size();
+    for (; progress.nextPoint < points; ++progress.nextPoint)
+        vertices.push_back(pointVertex(inserter, constraints, vertices, start, progress));
+    if (!progress.pieces.empty()) {
+        inserter.insertPieces(std::move(progress.pieces));
+        progress.pieces.clear();
+        ++progress.nextSegment;
+    }
+    for (; progress.nextSegment < vertices.size(); ++progress.nextSegment)
+        inserter.insertSegment(vertices[progress.nextSegment - 1], vertices[progress.nextSegment],
+                               firstOwner + static_cast<std::uint32_t>(progress.nextSegment - 1));
+}
+
+} // namespace terratin::detail

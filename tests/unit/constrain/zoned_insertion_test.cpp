@@ -1,0 +1,158 @@
+#include "zoned_insertion.hpp"
+
+#include "constraint_checks.hpp"
+#include "point_distributions.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
+#include "terratin/triangulate/triangulate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace terratin {
+namespace {
+
+using test::Distribution;
+
+// The polylines of `lines` clipped to `mesh`'s hull, with their triangles (zones need them).
+ConstraintSet locatedPolylines(const TinMesh& mesh, const std::vector<std::vector<Point3>>& lines) {
+    ConstraintSet constraints;
+    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 1))
+        for (TinLocator::LocatedPolyline& part : parts) {
+            constraints.polylines.push_back(std::move(part.points));
+            constraints.polylineTriangles.push_back(std::move(part.triangles));
+        }
+    return constraints;
+}
+
+// An n x n grid of unit spacing, z = x - y.
+TinMesh gridMesh(int n) {
+    std::vector<Point3> points;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            points.push_back({double(x), double(y), double(x - y)});
+    return triangulate(points).mesh;
+}
+
+class ZonedInsertionDistribution
+    : public ::testing::TestWithParam<std::tuple<Distribution, unsigned>> {};
+
+// The zones' views of one mesh change it on several threads: the TIN is constrained Delaunay,
+// and the same, array for array, for 1, 2 and 4 threads.
+TEST_P(ZonedInsertionDistribution, IsConstrainedDelaunay_AndTheSameForAnyNumberOfThreads) {
+    const auto [distribution, zones] = GetParam();
+    const TinMesh mesh = triangulate(test::generatePoints(distribution, 4000, 11)).mesh;
+    ConstraintSet constraints = test::walksWithTriangles(mesh, 80, 40, 3);
+    ASSERT_GT(constraints.polylines.size(), 20U);
+    constraints.zones = zones;
+    constraints.threads = 1;
+    const ConstrainedTin one = insertConstraints(mesh, constraints);
+    test::expectConstrainedDelaunay(one, mesh, constraints);
+    for (const unsigned threads : {2U, 4U}) {
+        constraints.threads = threads;
+        const ConstrainedTin many = insertConstraints(mesh, constraints);
+        EXPECT_EQ(many.mesh.vertices, one.mesh.vertices) << threads << " threads";
+        EXPECT_EQ(many.mesh.triangles, one.mesh.triangles) << threads << " threads";
+        EXPECT_EQ(many.mesh.neighbours, one.mesh.neighbours) << threads << " threads";
+        EXPECT_EQ(many.constrained, one.constrained) << threads << " threads";
+        EXPECT_EQ(many.chains, one.chains) << threads << " threads";
+        EXPECT_EQ(many.intersections, one.intersections) << threads << " threads";
+    }
+}
+
+TEST_P(ZonedInsertionDistribution, IsConstrainedDelaunay_WhenOffsetByAMillion) {
+    const auto [distribution, zones] = GetParam();
+    const TinMesh unit = triangulate(test::generatePoints(distribution, 2000, 5)).mesh;
+    ConstraintSet walks = test::walksWithTriangles(unit, 40, 30, 9);
+    std::vector<std::vector<Point3>> lines;
+    for (const std::vector<Point3>& polyline : walks.polylines)
+        lines.push_back(test::offset(polyline, 1.0e6, 5.0e6));
+    const TinMesh mesh =
+        triangulate(test::offset(test::generatePoints(distribution, 2000, 5), 1.0e6, 5.0e6)).mesh;
+    ConstraintSet constraints = locatedPolylines(mesh, lines);
+    constraints.zones = zones;
+    constraints.threads = 2;
+    test::expectConstrainedDelaunay(insertConstraints(mesh, constraints), mesh, constraints);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    PaperDistributions, ZonedInsertionDistribution,
+    ::testing::Combine(::testing::Values(Distribution::Uniform, Distribution::Gauss,
+                                         Distribution::Cluster, Distribution::Grid,
+                                         Distribution::Arc),
+                       ::testing::Values(2U, 4U)),
+    [](const auto& paramInfo) {
+        return test::toString(std::get<0>(paramInfo.param)) + "_" +
+               std::to_string(std::get<1>(paramInfo.param)) + "zones";
+    });
+
+// Polylines along a grid's lines and diagonals (cocircular everywhere, segments through
+// vertices) in four zones.
+TEST(ZonedInsertion, GridLinePolylinesAreConstrainedDelaunay) {
+    const int n = 41;
+    const TinMesh mesh = gridMesh(n);
+    std::vector<std::vector<Point3>> lines;
+    for (int k = 1; k < n - 1; k += 3) {
+        lines.push_back({{double(k), 0, 0}, {double(k), double(n - 1), 0}});
+        lines.push_back({{double(k) + 0.5, 0.5, 0}, {double(k) + 0.5, 20, 0}, {39.5, 30.25, 0}});
+    }
+    ConstraintSet constraints = locatedPolylines(mesh, lines);
+    constraints.zones = 4;
+    constraints.threads = 4;
+    const ConstrainedTin tin = insertConstraints(mesh, constraints);
+    test::expectConstrainedDelaunay(tin, mesh, constraints);
+    EXPECT_EQ(tin.chains[0].size(), std::size_t(n)); // every vertex of the column
+    EXPECT_GT(tin.intersections, 0U);
+}
+
+// The zones insert the polylines that keep to their zone, and refuse, leaving for afterwards,
+// those that reach across the border between them.
+TEST(ZonedInsertion, ZonesInsertThePolylinesInsideThem_AndRefuseThoseAcrossTheBorder) {
+    const TinMesh mesh = gridMesh(41);
+    std::vector<std::vector<Point3>> lines;
+    for (int k = 0; k < 16; ++k) {
+        const double y = 2.25 + 2.0 * k;
+        const double x = k % 2 == 0 ? 2.5 : 22.5;
+        lines.push_back({{x, y, 0}, {x + 6.0, y + 0.5, 0}, {x + 14.0, y + 0.75, 0}});
+    }
+    // Its first point puts the border between the zones at x = 20.5; it reaches across.
+    lines.push_back({{20.5, 1.25, 0}, {6.5, 38.5, 0}});
+    const ConstraintSet constraints = locatedPolylines(mesh, lines);
+    detail::ConstraintInserter inserter(mesh, 64);
+    std::vector<std::uint32_t> firstOwner;
+    std::uint32_t owners = 0;
+    for (const std::vector<Point3>& polyline : constraints.polylines) {
+        firstOwner.push_back(owners);
+        owners += static_cast<std::uint32_t>(polyline.size() - 1);
+    }
+    inserter.prepareChains(owners);
+    std::vector<std::vector<std::uint32_t>> vertices(constraints.polylines.size());
+    const detail::ZonedInsertion zoned =
+        detail::insertInZones(inserter, constraints, 2, 2, firstOwner, vertices);
+    ASSERT_EQ(zoned.refused.size(), 1U);
+    EXPECT_EQ(zoned.refused.front().polyline, 16U);
+    for (std::size_t k = 0; k < 16; ++k)
+        EXPECT_EQ(vertices[k].size(), 3U) << "polyline " << k;
+}
+
+// A polyline a zone refused crosses, when it goes in afterwards on one thread, a constrained
+// edge a zone made: the crossing's vertex is inserted by the mesh itself, which has no slots
+// of a zone to run out of (it refused, and the refusal escaped).
+TEST(ZonedInsertion, RegressionRefusedPolylineCrossesAZonesConstrainedEdge) {
+    const TinMesh mesh = gridMesh(21);
+    const std::vector<std::vector<Point3>> lines{
+        {{1.5, 10.25, 0}, {18.5, 10.25, 0}}, // zone 0, across the border: refused
+        {{5.5, 1.5, 0}, {6.5, 1.5, 0}},      // sets the border at x = 5.5
+        {{15.5, 0.5, 0}, {15.5, 19.5, 0}}};  // zone 1, crossed by the first
+    ConstraintSet constraints = locatedPolylines(mesh, lines);
+    constraints.zones = 2;
+    constraints.threads = 2;
+    const ConstrainedTin tin = insertConstraints(mesh, constraints);
+    test::expectConstrainedDelaunay(tin, mesh, constraints);
+    EXPECT_EQ(tin.intersections, 1U);
+}
+
+} // namespace
+} // namespace terratin
