@@ -7,8 +7,9 @@ walks that turn gently, inside the raster's extent), then runs, in turn, --round
 median seconds of each (the JSON report's total and its triangulate phase, which holds the
 constraint insertion) and their ratio, and the median of the constrained runs' `constrain` timing
 (the constraint layers read and inserted), a part of the phase that the triangulation's noise
-does not blur. PLY output keeps the write phase small, so that the
-ratio measures the triangulation. Run from the source tree after the release build:
+does not blur. PLY output (the default) keeps the write phase small, so that the ratio
+measures the triangulation; --format gpkg writes GeoPackages, the run a user makes. Run from the
+source tree after the release build:
 
     /usr/bin/python3 tools/bench/breaklines_bench.py build/release/tools/terratin \\
         ../shared/dems/gdalraster__lf_elev_220_mt_hood_utm.tif
@@ -82,12 +83,13 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--options", default="", help="more build options, e.g. '--max-error 1'")
     parser.add_argument("--baseline", help="another terratin binary, run in turn with the first")
+    parser.add_argument("--format", default="ply", help="the output's extension: ply or gpkg")
     arguments = parser.parse_args()
 
     with tempfile.TemporaryDirectory() as work:
         network = Path(work) / "network.gpkg"
         write_network(arguments.dem, network, arguments.lines, arguments.segments, arguments.seed)
-        output = Path(work) / "tin.ply"
+        output = Path(work) / f"tin.{arguments.format}"
         extra = arguments.options.split()
         sides = {"plain": extra, "breaklines": [*extra, "--breaklines", str(network)]}
         binaries = [arguments.terratin] + ([arguments.baseline] if arguments.baseline else [])
@@ -109,7 +111,8 @@ def main():
                           f"{report['counts']['vertices']}, triangles "
                           f"{report['counts']['triangles']}")
         print(f"{arguments.lines} lines x {arguments.segments} segments, "
-              f"options '{arguments.options}', medians of {arguments.rounds} interleaved rounds:")
+              f"options '{arguments.options}', {arguments.format} output, "
+              f"medians of {arguments.rounds} interleaved rounds:")
         print("| binary | phase | without s | with breaklines s | with / without |")
         print("|---|---|---|---|---|")
         for binary in binaries:

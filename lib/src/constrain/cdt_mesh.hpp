@@ -7,14 +7,14 @@
 // is the half-edge of the neighbour across that edge, running the other way.
 //
 // Zones: several threads may change one mesh at once, each through a view of its own that is
-// confined to a zone, a band [low, high) of x. A view owns the triangles whose three corners
-// lie in its zone; it rewrites only those, and reads a triangle or a link only across an edge
-// with an end in its zone. Another zone's view writes only its own triangles and the links
-// and flags of edges with both ends in its zone, so the two never touch the same data. An
-// operation that would need more throws ZoneRefusal before it writes anything; a flip it would
-// need across the zone's edge is left undone and listed (takePending), for the mesh's owner to
-// make once the views are done. New vertices and triangles go to slots reserved for the view
-// (appendSlots), closed up afterwards (compact). docs/algorithms.md has the proof.
+// confined to a zone, a band [low, high) of x or of y. A view owns the triangles whose three
+// corners lie in its zone; it rewrites only those, and reads a triangle or a link only across an
+// edge with an end in its zone. Another zone's view writes only its own triangles and the links and
+// flags of edges with both ends in its zone, so the two never touch the same data. An operation
+// that would need more throws ZoneRefusal before it writes anything; a flip it would need across
+// the zone's edge is left undone and listed (takePending), for the mesh's owner to make once the
+// views are done. New vertices and triangles go to slots reserved for the view (appendSlots),
+// closed up afterwards (compact). docs/algorithms.md has the proof.
 
 #include "terratin/geometry/point.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
@@ -43,10 +43,16 @@ inline std::size_t previousHalfEdge(std::size_t h) {
 /// outside the zone or the view's reserved slots are used up.
 struct ZoneRefusal {};
 
-/// A band of the plane, low <= x < high.
+/// A band of the plane: low <= x < high, or with `alongY` low <= y < high.
 struct Zone {
+    bool alongY = false;
     double low = 0.0;
     double high = 0.0;
+
+    [[nodiscard]] bool holds(const Point3& p) const {
+        const double coordinate = alongY ? p.y : p.x;
+        return coordinate >= low && coordinate < high;
+    }
 };
 
 /// Slots of the mesh's arrays, [begin, end), and the next one free.
@@ -91,9 +97,10 @@ public:
     [[nodiscard]] SlotRange triangleSlots() const { return m_triangleSlots; }
     /// Whether vertex `v` lies in the view's zone (every vertex when the mesh is no view).
     [[nodiscard]] bool inZone(std::uint32_t v) const {
-        return !m_zoned || (m_arrays->mesh.vertices[v].x >= m_zone.low &&
-                            m_arrays->mesh.vertices[v].x < m_zone.high);
+        return !m_zoned || m_zone.holds(m_arrays->mesh.vertices[v]);
     }
+    /// Whether this is a zone's view.
+    [[nodiscard]] bool isView() const { return m_zoned; }
     /// Whether the view owns triangle t: its three corners in the zone.
     [[nodiscard]] bool owns(std::size_t t) const {
         return inZone(from(3 * t)) && inZone(from(3 * t + 1)) && inZone(from(3 * t + 2));

@@ -42,8 +42,15 @@ std::optional<std::uint32_t> ConstraintInserter::insertPointFrom(const Point3& p
     return v;
 }
 
+void ConstraintInserter::requireOwnEdge(std::uint32_t a, std::uint32_t b) const {
+    if (m_sharedOwners != nullptr && m_sharedOwners->contains(a, b))
+        throw ZoneRefusal{}; // an earlier round's: another zone may split its segments' chains
+}
+
 std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t source,
                                                const MeshLocation& where) {
+    if (where.kind == MeshLocation::Kind::OnEdge && m_mesh.isConstrained(where.halfEdge))
+        requireOwnEdge(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
     const std::uint32_t v = m_mesh.insertPoint(
         p, source, where, [this](std::uint32_t a, std::uint32_t b, std::uint32_t middle) {
             const ConstraintOwners::Owners owners = m_owners.take(a, b);
@@ -169,10 +176,14 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
         w = where.vertex;
     else
         w = vertexWithinRounding(crossing, where.halfEdge / 3);
-    if (w)
+    if (w) {
         m_mesh.rememberTriangle(*w, where.halfEdge / 3);
-    else
+    } else {
         m_mesh.requireInsertable(where);
+        if (where.kind == MeshLocation::Kind::OnEdge && m_mesh.isConstrained(where.halfEdge))
+            requireOwnEdge(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
+    }
+    requireOwnEdge(c, d);
 
     const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
     m_mesh.setConstrained(crossed, false);

@@ -34,7 +34,8 @@ public:
     /// disjoint zones may work at once.
     ConstraintInserter(ConstraintInserter& shared, Zone zone, SlotRange vertices,
                        SlotRange triangles, std::size_t segments)
-        : m_mesh(shared.m_mesh, zone, vertices, triangles), m_chains(shared.m_chains) {
+        : m_mesh(shared.m_mesh, zone, vertices, triangles), m_chains(shared.m_chains),
+          m_sharedOwners(&shared.m_owners) {
         m_owners.reserve(2 * segments);
     }
     ConstraintInserter(const ConstraintInserter&) = delete;
@@ -100,6 +101,9 @@ private:
     /// Inserts `piece`, moving its start along as its parts go in.
     void insertPiece(Piece& piece);
     void markConstrained(std::size_t h, const ConstraintOwners::Owners& owners);
+    /// For a zone's inserter: throws ZoneRefusal when the constrained edge {a, b} is not one of
+    /// its own but an earlier round's, whose segments' chains another zone may change too.
+    void requireOwnEdge(std::uint32_t a, std::uint32_t b) const;
     void splitAtCrossing(std::uint32_t u, std::uint32_t v, const ConstraintOwners::Owners& owners,
                          std::size_t crossed);
     [[nodiscard]] std::optional<std::uint32_t> vertexWithinRounding(const Point3& p,
@@ -113,6 +117,8 @@ private:
     ConstraintOwners m_owners;
     ConstraintChains m_ownChains;
     ConstraintChains* m_chains = &m_ownChains; // a zone's inserter: the shared one's
+    /// A zone's inserter: the shared inserter's owners (an earlier round's edges), read only.
+    const ConstraintOwners* m_sharedOwners = nullptr;
     std::vector<Piece> m_pieces;
     /// The crossings (u, v, c, d) met while inserting the current segment: one met again means
     /// that rounding sends the pieces round in a circle (see splitAtCrossing).

@@ -20,6 +20,10 @@ public:
     Owners take(std::uint32_t a, std::uint32_t b);
     /// Adds every edge of `other` with its owners.
     void addAll(const ConstraintOwners& other);
+    /// Whether the edge {a, b} has owners here.
+    [[nodiscard]] bool contains(std::uint32_t a, std::uint32_t b) const {
+        return !m_slots.empty() && m_slots[slotOf(key(a, b))].key != kEmptyKey;
+    }
 
 private:
     static std::uint64_t key(std::uint32_t a, std::uint32_t b) {

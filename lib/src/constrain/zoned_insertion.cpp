@@ -11,54 +11,62 @@ namespace terratin::detail {
 
 namespace {
 
-/// One zone: its band, its polylines, its inserter and what it refused.
+/// One zone of a round: its band, the polylines it goes on with, its inserter and what it
+/// refused.
 struct ZoneWork {
     Zone zone;
-    std::vector<std::size_t> polylines;
+    std::vector<PolylineProgress> todo;
     std::size_t points = 0;
     std::size_t segments = 0;
     std::unique_ptr<ConstraintInserter> inserter;
     std::vector<PolylineProgress> refused;
 };
 
-/// `zones` bands holding about as many polylines each, by the x of their first points.
-std::vector<ZoneWork> zoneBands(const ConstraintSet& constraints, unsigned zones) {
-    std::vector<double> firstX;
-    for (const std::vector<Point3>& polyline : constraints.polylines)
-        if (!polyline.empty())
-            firstX.push_back(polyline.front().x);
-    std::sort(firstX.begin(), firstX.end());
+/// Where a polyline goes on: its next point, or the start of its next segment.
+const Point3& resumePoint(const ConstraintSet& constraints, const PolylineProgress& progress) {
+    const std::vector<Point3>& polyline = constraints.polylines[progress.polyline];
+    return progress.nextPoint < polyline.size() ? polyline[progress.nextPoint]
+                                                : polyline[progress.nextSegment - 1];
+}
+
+/// `zones` bands of x (or of y, `alongY`) holding about as many of `todo` each, by where they
+/// go on.
+std::vector<ZoneWork> zoneBands(const ConstraintSet& constraints,
+                                std::vector<PolylineProgress> todo, unsigned zones, bool alongY) {
+    const auto coordinate = [&](const PolylineProgress& progress) {
+        const Point3& p = resumePoint(constraints, progress);
+        return alongY ? p.y : p.x;
+    };
+    std::vector<double> at;
+    for (const PolylineProgress& progress : todo)
+        at.push_back(coordinate(progress));
+    std::sort(at.begin(), at.end());
     std::vector<ZoneWork> works(zones);
     double low = -std::numeric_limits<double>::infinity();
     for (unsigned z = 0; z < zones; ++z) {
-        const double high = z + 1 == zones || firstX.empty()
-                                ? std::numeric_limits<double>::infinity()
-                                : firstX[(z + 1) * firstX.size() / zones];
-        works[z].zone = {low, high};
+        const double high = z + 1 == zones || at.empty() ? std::numeric_limits<double>::infinity()
+                                                         : at[(z + 1) * at.size() / zones];
+        works[z].zone = {alongY, low, high};
         low = high;
     }
-    for (std::size_t k = 0; k < constraints.polylines.size(); ++k) {
-        const std::vector<Point3>& polyline = constraints.polylines[k];
-        if (polyline.empty())
-            continue;
-        ZoneWork& work = *std::find_if(works.begin(), works.end(), [&](const ZoneWork& w) {
-            return polyline.front().x < w.zone.high;
-        });
-        work.polylines.push_back(k);
-        work.points += polyline.size();
-        work.segments += polyline.size() - 1;
+    for (PolylineProgress& progress : todo) {
+        const double c = coordinate(progress);
+        ZoneWork& work = *std::find_if(works.begin(), works.end(),
+                                       [&](const ZoneWork& w) { return c < w.zone.high; });
+        const std::size_t points = constraints.polylines[progress.polyline].size();
+        work.points += points - progress.nextPoint;
+        work.segments += points - progress.nextSegment;
+        work.todo.push_back(std::move(progress));
     }
     return works;
 }
 
 /// Where each point's search starts in a zone: its triangle in polylineTriangles when a corner
-/// of it lies in the zone (a triangle the zone may read, however it changes), else the previous
-/// point's vertex. The mesh must be as polylineTriangles describe it.
+/// of it now lies in the zone (a triangle the zone may read, however it changes), else the
+/// previous point's vertex.
 std::vector<std::uint32_t> zoneStarts(const CdtMesh& mesh, const ConstraintSet& constraints,
                                       std::size_t k, const Zone& zone) {
-    const auto inZone = [&](std::uint32_t v) {
-        return mesh.vertex(v).x >= zone.low && mesh.vertex(v).x < zone.high;
-    };
+    const auto inZone = [&](std::uint32_t v) { return zone.holds(mesh.vertex(v)); };
     std::vector<std::uint32_t> starts;
     for (const std::uint32_t t : constraints.polylineTriangles[k]) {
         const bool readable = inZone(mesh.from(3 * std::size_t{t})) ||
@@ -69,15 +77,14 @@ std::vector<std::uint32_t> zoneStarts(const CdtMesh& mesh, const ConstraintSet& 
     return starts;
 }
 
-/// Inserts a zone's polylines in order, each as far as the zone allows.
+/// Goes on with a zone's polylines in order, each as far as the zone allows.
 void runZone(ZoneWork& work, const ConstraintSet& constraints,
              const std::vector<std::vector<std::uint32_t>>& starts,
              const std::vector<std::uint32_t>& firstOwner,
              std::vector<std::vector<std::uint32_t>>& vertices) {
-    for (const std::size_t k : work.polylines) {
-        PolylineProgress progress;
-        progress.polyline = k;
-        if (starts[k].front() == kFromPreviousPoint) {
+    for (PolylineProgress& progress : work.todo) {
+        const std::size_t k = progress.polyline;
+        if (progress.nextPoint == 0 && starts[k].front() == kFromPreviousPoint) {
             work.refused.push_back(std::move(progress)); // no safe place to start from
             continue;
         }
@@ -89,6 +96,54 @@ void runZone(ZoneWork& work, const ConstraintSet& constraints,
             work.refused.push_back(std::move(progress));
         }
     }
+}
+
+/// One round: `todo` in `zones` bands of x or of y on up to `threads` threads; the flips held
+/// back at the bands' edges made after. Returns what the zones refused, in polyline order;
+/// adds the slots they left unused to `result`.
+std::vector<PolylineProgress>
+runRound(ConstraintInserter& inserter, const ConstraintSet& constraints,
+         std::vector<PolylineProgress> todo, unsigned zones, bool alongY, unsigned threads,
+         const std::vector<std::uint32_t>& firstOwner,
+         std::vector<std::vector<std::uint32_t>>& vertices, ZonedInsertion& result) {
+    if (todo.empty())
+        return {};
+    std::vector<ZoneWork> works = zoneBands(constraints, std::move(todo), zones, alongY);
+    std::vector<std::vector<std::uint32_t>> starts(constraints.polylines.size());
+    for (ZoneWork& work : works) {
+        if (work.todo.empty())
+            continue;
+        for (const PolylineProgress& progress : work.todo)
+            starts[progress.polyline] =
+                zoneStarts(inserter.mesh(), constraints, progress.polyline, work.zone);
+        // Room for every point and a quarter as many crossings; a zone that runs out refuses
+        // the rest.
+        const std::size_t room = work.points + work.points / 4 + 64;
+        const auto [vertexSlots, triangleSlots] = inserter.appendSlots(room, 2 * room);
+        work.inserter = std::make_unique<ConstraintInserter>(inserter, work.zone, vertexSlots,
+                                                             triangleSlots, work.segments);
+    }
+    const unsigned workers = std::clamp(threads, 1U, zones);
+    runOnThreads(workers, [&](unsigned worker) {
+        for (std::size_t z = worker; z < works.size(); z += workers)
+            runZone(works[z], constraints, starts, firstOwner, vertices);
+    });
+
+    std::vector<PolylineProgress> refused;
+    for (ZoneWork& work : works) {
+        if (!work.inserter)
+            continue;
+        inserter.absorb(*work.inserter);
+        result.unusedVertices.push_back(work.inserter->vertexSlots());
+        result.unusedTriangles.push_back(work.inserter->triangleSlots());
+        for (PolylineProgress& progress : work.refused)
+            refused.push_back(std::move(progress));
+    }
+    std::sort(refused.begin(), refused.end(),
+              [](const PolylineProgress& a, const PolylineProgress& b) {
+                  return a.polyline < b.polyline;
+              });
+    return refused;
 }
 
 } // namespace
@@ -107,36 +162,19 @@ ZonedInsertion insertInZones(ConstraintInserter& inserter, const ConstraintSet& 
                              unsigned zones, unsigned threads,
                              const std::vector<std::uint32_t>& firstOwner,
                              std::vector<std::vector<std::uint32_t>>& vertices) {
-    std::vector<ZoneWork> works = zoneBands(constraints, zones);
-    std::vector<std::vector<std::uint32_t>> starts(constraints.polylines.size());
-    for (ZoneWork& work : works) {
-        for (const std::size_t k : work.polylines)
-            starts[k] = zoneStarts(inserter.mesh(), constraints, k, work.zone);
-        // Room for every point and a quarter as many crossings; a zone that runs out refuses
-        // the rest.
-        const std::size_t room = work.points + work.points / 4 + 64;
-        const auto [vertexSlots, triangleSlots] = inserter.appendSlots(room, 2 * room);
-        work.inserter = std::make_unique<ConstraintInserter>(inserter, work.zone, vertexSlots,
-                                                             triangleSlots, work.segments);
-    }
-    const unsigned workers = std::clamp(threads, 1U, zones);
-    runOnThreads(workers, [&](unsigned worker) {
-        for (std::size_t z = worker; z < works.size(); z += workers)
-            runZone(works[z], constraints, starts, firstOwner, vertices);
-    });
-
+    std::vector<PolylineProgress> todo;
+    for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
+        if (!constraints.polylines[k].empty()) {
+            todo.emplace_back();
+            todo.back().polyline = k;
+        }
     ZonedInsertion result;
-    for (ZoneWork& work : works) {
-        inserter.absorb(*work.inserter);
-        result.unusedVertices.push_back(work.inserter->vertexSlots());
-        result.unusedTriangles.push_back(work.inserter->triangleSlots());
-        for (PolylineProgress& progress : work.refused)
-            result.refused.push_back(std::move(progress));
-    }
-    std::sort(result.refused.begin(), result.refused.end(),
-              [](const PolylineProgress& a, const PolylineProgress& b) {
-                  return a.polyline < b.polyline;
-              });
+    // Bands of x, then, for what stopped at their edges (polylines near a line x = c), bands
+    // of y.
+    std::vector<PolylineProgress> refused = runRound(inserter, constraints, std::move(todo), zones,
+                                                     false, threads, firstOwner, vertices, result);
+    result.refused = runRound(inserter, constraints, std::move(refused), zones, true, threads,
+                              firstOwner, vertices, result);
     return result;
 }
 

@@ -2,8 +2,9 @@
 // The polylines inserted on several threads at once: the plane is cut into bands of x (zones),
 // each polyline goes to the zone of its first point, and each zone's inserter (a view of the
 // one mesh, CdtMesh) inserts its polylines in order, as far as it can without reaching outside
-// its zone. What the zones refused goes in afterwards on one thread. The zones, and so the
-// TIN, depend on the polylines alone, never on the threads.
+// its zone. What the zones stopped short (polylines near the bands' edges) goes on in bands of
+// y the same way, by where each goes on, and what those refused afterwards on one thread. The
+// zones, and so the TIN, depend on the polylines alone, never on the threads.
 
 #include "constraint_inserter.hpp"
 #include "polyline_insertion.hpp"
@@ -30,11 +31,11 @@ struct ZonedInsertion {
     std::vector<SlotRange> unusedTriangles;
 };
 
-/// Inserts the polylines of `constraints` (which must have their triangles) in `zones` zones on
-/// up to `threads` threads; polyline k's vertices go to vertices[k], its j-th segment is input
-/// segment firstOwner[k] + j - 1 (the chains must have room for them: prepareChains). Then
-/// makes the flips the zones' edges held back. Call before anything else changed the mesh,
-/// which polylineTriangles describe.
+/// Inserts the polylines of `constraints` (which must have their triangles) in `zones` bands of
+/// x, then what they refused in `zones` bands of y, on up to `threads` threads; polyline k's
+/// vertices go to vertices[k], its j-th segment is input segment firstOwner[k] + j - 1 (the chains
+/// must have room for them: prepareChains). Then makes the flips the zones' edges held back. Call
+/// before anything else changed the mesh, which polylineTriangles describe.
 ZonedInsertion insertInZones(ConstraintInserter& inserter, const ConstraintSet& constraints,
                              unsigned zones, unsigned threads,
                              const std::vector<std::uint32_t>& firstOwner,

@@ -108,7 +108,7 @@ TEST(ZonedInsertion, GridLinePolylinesAreConstrainedDelaunay) {
 }
 
 // The zones insert the polylines that keep to their zone, and refuse, leaving for afterwards,
-// those that reach across the border between them.
+// those that reach across the border between them (in both rounds: bands of x, then of y).
 TEST(ZonedInsertion, ZonesInsertThePolylinesInsideThem_AndRefuseThoseAcrossTheBorder) {
     const TinMesh mesh = gridMesh(41);
     std::vector<std::vector<Point3>> lines;
@@ -135,6 +135,35 @@ TEST(ZonedInsertion, ZonesInsertThePolylinesInsideThem_AndRefuseThoseAcrossTheBo
     EXPECT_EQ(zoned.refused.front().polyline, 16U);
     for (std::size_t k = 0; k < 16; ++k)
         EXPECT_EQ(vertices[k].size(), 3U) << "polyline " << k;
+}
+
+// Polylines that all stop at the edge of the first round's bands of x (their first points
+// lie on it) go on in the second round's bands of y: each keeps to its band but one, whose
+// first point sets the bands' border.
+TEST(ZonedInsertion, PolylinesStoppedAtABandsEdge_GoOnInBandsOfY) {
+    const TinMesh mesh = gridMesh(41);
+    std::vector<std::vector<Point3>> lines;
+    for (int k = 0; k < 8; ++k) {
+        std::vector<Point3> line;
+        for (int j = 0; j < 8; ++j)
+            line.push_back({2.5 + 5.0 * j, 3.5 + 4.5 * k, 0});
+        lines.push_back(line);
+    }
+    const ConstraintSet constraints = locatedPolylines(mesh, lines);
+    detail::ConstraintInserter inserter(mesh, 64);
+    std::vector<std::uint32_t> firstOwner;
+    for (std::uint32_t k = 0; k < 8; ++k)
+        firstOwner.push_back(7 * k);
+    inserter.prepareChains(56);
+    std::vector<std::vector<std::uint32_t>> vertices(8);
+    const detail::ZonedInsertion zoned =
+        detail::insertInZones(inserter, constraints, 2, 2, firstOwner, vertices);
+    ASSERT_EQ(zoned.refused.size(), 1U);
+    EXPECT_EQ(zoned.refused.front().polyline, 4U); // at y = 21.5, the border
+    for (std::size_t k = 0; k < 8; ++k)
+        if (k != 4) {
+            EXPECT_EQ(vertices[k].size(), 8U) << "polyline " << k;
+        }
 }
 
 // A polyline a zone refused crosses, when it goes in afterwards on one thread, a constrained
