@@ -16,7 +16,8 @@ source tree after the release build:
 
 With --baseline OTHER_TERRATIN (a build of another commit), each round runs both binaries in
 turn (every other round in reverse order), so that a change is measured against its baseline
-under the same load.
+under the same load. --one-thread adds the constrained build on one thread to each round: the
+same TIN, so its `constrain` against the others' is what the threads gain.
 
 docs/benchmarks.md holds the measurement, with its date, commit and machine.
 """
@@ -84,6 +85,8 @@ def main():
     parser.add_argument("--options", default="", help="more build options, e.g. '--max-error 1'")
     parser.add_argument("--baseline", help="another terratin binary, run in turn with the first")
     parser.add_argument("--format", default="ply", help="the output's extension: ply or gpkg")
+    parser.add_argument("--one-thread", action="store_true",
+                        help="also the constrained build with --threads 1, in turn with the rest")
     arguments = parser.parse_args()
 
     with tempfile.TemporaryDirectory() as work:
@@ -92,6 +95,8 @@ def main():
         output = Path(work) / f"tin.{arguments.format}"
         extra = arguments.options.split()
         sides = {"plain": extra, "breaklines": [*extra, "--breaklines", str(network)]}
+        if arguments.one_thread:
+            sides["one thread"] = [*sides["breaklines"], "--threads", "1"]
         binaries = [arguments.terratin] + ([arguments.baseline] if arguments.baseline else [])
         seconds = {(binary, side): {"total": [], "triangulate": [], "constrain": []}
                    for binary in binaries for side in sides}
@@ -123,6 +128,10 @@ def main():
                       f"| {constrained / plain:.2f} |")
             constrain = statistics.median(seconds[binary, "breaklines"]["constrain"])
             print(f"| {binary} | constrain (part of triangulate) | | {constrain:.3f} | |")
+            if arguments.one_thread:
+                for phase in ("constrain", "total"):
+                    one = statistics.median(seconds[binary, "one thread"][phase])
+                    print(f"| {binary} | {phase}, constrained, --threads 1 | | {one:.3f} | |")
 
 
 if __name__ == "__main__":

@@ -194,6 +194,10 @@ ConstraintSet walksWithTriangles(const TinMesh& mesh, int walks, int steps, std:
         }
         lines.push_back(line);
     }
+    return locatedPolylines(mesh, lines);
+}
+
+ConstraintSet locatedPolylines(const TinMesh& mesh, const std::vector<std::vector<Point3>>& lines) {
     ConstraintSet constraints;
     for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 2))
         for (TinLocator::LocatedPolyline& part : parts) {

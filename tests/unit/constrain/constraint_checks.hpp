@@ -25,6 +25,10 @@ std::vector<std::array<std::uint32_t, 2>> randomSegments(std::size_t vertexCount
 /// their points. A fixed generator: the same seed gives the same walks everywhere.
 ConstraintSet walksWithTriangles(const TinMesh& mesh, int walks, int steps, std::uint64_t seed);
 
+/// `lines` clipped to `mesh`'s hull (TinLocator::clipToSurface), with the triangles found for
+/// their points.
+ConstraintSet locatedPolylines(const TinMesh& mesh, const std::vector<std::vector<Point3>>& lines);
+
 /// Whether `tin` has an edge a-b marked constrained on each of its half-edges.
 bool hasConstrainedEdge(const ConstrainedTin& tin, std::uint32_t a, std::uint32_t b);
 

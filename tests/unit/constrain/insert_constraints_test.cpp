@@ -4,7 +4,6 @@
 #include "point_distributions.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
-#include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <gtest/gtest.h>
@@ -13,7 +12,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <string>
 #include <tuple>
 
@@ -492,12 +490,7 @@ TEST(InsertConstraints, GridLinePolylinesWithTriangles_AlongEdgesThroughUntouche
         lines.push_back({{0, double(k), 0}, {double(n - 1), double(k), 0}});
         lines.push_back({{double(k), 0.5, 0}, {double(k), 20, 0}, {double(n - 1), 29.5, 0}});
     }
-    ConstraintSet constraints;
-    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 1))
-        for (TinLocator::LocatedPolyline& part : parts) {
-            constraints.polylines.push_back(std::move(part.points));
-            constraints.polylineTriangles.push_back(std::move(part.triangles));
-        }
+    const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
     const ConstrainedTin tin = constrainAndCheck(mesh, constraints);
     EXPECT_EQ(tin.chains[0].size(), std::size_t(n)); // every vertex of the row
     EXPECT_GT(tin.intersections, 0U);

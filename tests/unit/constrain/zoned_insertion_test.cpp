@@ -2,7 +2,6 @@
 
 #include "constraint_checks.hpp"
 #include "point_distributions.hpp"
-#include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <gtest/gtest.h>
@@ -15,17 +14,6 @@ namespace terratin {
 namespace {
 
 using test::Distribution;
-
-// The polylines of `lines` clipped to `mesh`'s hull, with their triangles (zones need them).
-ConstraintSet locatedPolylines(const TinMesh& mesh, const std::vector<std::vector<Point3>>& lines) {
-    ConstraintSet constraints;
-    for (std::vector<TinLocator::LocatedPolyline>& parts : TinLocator(mesh).clipToSurface(lines, 1))
-        for (TinLocator::LocatedPolyline& part : parts) {
-            constraints.polylines.push_back(std::move(part.points));
-            constraints.polylineTriangles.push_back(std::move(part.triangles));
-        }
-    return constraints;
-}
 
 // An n x n grid of unit spacing, z = x - y.
 TinMesh gridMesh(int n) {
@@ -71,7 +59,7 @@ TEST_P(ZonedInsertionDistribution, IsConstrainedDelaunay_WhenOffsetByAMillion) {
         lines.push_back(test::offset(polyline, 1.0e6, 5.0e6));
     const TinMesh mesh =
         triangulate(test::offset(test::generatePoints(distribution, 2000, 5), 1.0e6, 5.0e6)).mesh;
-    ConstraintSet constraints = locatedPolylines(mesh, lines);
+    ConstraintSet constraints = test::locatedPolylines(mesh, lines);
     constraints.zones = zones;
     constraints.threads = 2;
     test::expectConstrainedDelaunay(insertConstraints(mesh, constraints), mesh, constraints);
@@ -98,7 +86,7 @@ TEST(ZonedInsertion, GridLinePolylinesAreConstrainedDelaunay) {
         lines.push_back({{double(k), 0, 0}, {double(k), double(n - 1), 0}});
         lines.push_back({{double(k) + 0.5, 0.5, 0}, {double(k) + 0.5, 20, 0}, {39.5, 30.25, 0}});
     }
-    ConstraintSet constraints = locatedPolylines(mesh, lines);
+    ConstraintSet constraints = test::locatedPolylines(mesh, lines);
     constraints.zones = 4;
     constraints.threads = 4;
     const ConstrainedTin tin = insertConstraints(mesh, constraints);
@@ -119,7 +107,7 @@ TEST(ZonedInsertion, ZonesInsertThePolylinesInsideThem_AndRefuseThoseAcrossTheBo
     }
     // Its first point puts the border between the zones at x = 20.5; it reaches across.
     lines.push_back({{20.5, 1.25, 0}, {6.5, 38.5, 0}});
-    const ConstraintSet constraints = locatedPolylines(mesh, lines);
+    const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
     detail::ConstraintInserter inserter(mesh, 64);
     std::vector<std::uint32_t> firstOwner;
     std::uint32_t owners = 0;
@@ -149,7 +137,7 @@ TEST(ZonedInsertion, PolylinesStoppedAtABandsEdge_GoOnInBandsOfY) {
             line.push_back({2.5 + 5.0 * j, 3.5 + 4.5 * k, 0});
         lines.push_back(line);
     }
-    const ConstraintSet constraints = locatedPolylines(mesh, lines);
+    const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
     detail::ConstraintInserter inserter(mesh, 64);
     std::vector<std::uint32_t> firstOwner;
     for (std::uint32_t k = 0; k < 8; ++k)
@@ -175,7 +163,7 @@ TEST(ZonedInsertion, RegressionRefusedPolylineCrossesAZonesConstrainedEdge) {
         {{1.5, 10.25, 0}, {18.5, 10.25, 0}}, // zone 0, across the border: refused
         {{5.5, 1.5, 0}, {6.5, 1.5, 0}},      // sets the border at x = 5.5
         {{15.5, 0.5, 0}, {15.5, 19.5, 0}}};  // zone 1, crossed by the first
-    ConstraintSet constraints = locatedPolylines(mesh, lines);
+    ConstraintSet constraints = test::locatedPolylines(mesh, lines);
     constraints.zones = 2;
     constraints.threads = 2;
     const ConstrainedTin tin = insertConstraints(mesh, constraints);
