@@ -28,9 +28,9 @@ struct ConstraintSet {
     /// may depend on them.
     std::vector<std::vector<std::uint32_t>> polylineTriangles;
     /// With polylineTriangles and no index segments: the polylines go in on up to `threads`
-    /// threads, in `zones` bands of x at once (0: one band per 20,000 polyline points, a power
-    /// of two, at most 16; 1: one after another). The TIN depends on the zones, not on the
-    /// threads.
+    /// threads, in `zones` bands of x at once, then what those stop short of in as many bands
+    /// of y (0: one band per 20,000 polyline points, a power of two, at most 16; 1: one after
+    /// another). The TIN depends on the zones, not on the threads.
     unsigned threads = 1;
     unsigned zones = 0;
 };
@@ -72,9 +72,10 @@ struct ConstraintSet {
 /// else from the previous point (the first from a bucket grid, O(n) once); a pass over the
 /// triangles, O(n) once, to complete the vertex-to-triangle map when a segment starts at a vertex
 /// nothing before reached (index segments, polylines without triangles). With zones, the
-/// polylines of each zone go in on a thread of their own, as far as they stay inside it, and
-/// the rest after them on one thread; then an O(n) pass closes up the slots the zones kept.
-/// docs/algorithms.md ("Constrained Delaunay", "Zones") describes the method.
+/// polylines of each band of x go in on a thread of their own as far as they stay inside it,
+/// what they stop short of in bands of y the same way, and the rest on one thread; the slots
+/// the zones reserved and left unused are then filled with the last vertices and triangles
+/// (O(slots)). docs/algorithms.md ("Constrained Delaunay", step 5) describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 
 /// Inserts `points` into `tin` (a constrained Delaunay TIN as insertConstraints makes it) as new
