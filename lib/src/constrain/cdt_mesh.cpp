@@ -48,8 +48,7 @@ std::pair<SlotRange, SlotRange> CdtMesh::appendSlots(std::size_t vertices, std::
     mesh.triangles.resize(3 * (firstTriangle + triangles), 0);
     mesh.neighbours.resize(3 * (firstTriangle + triangles), kNoNeighbour);
     m_arrays->constrained.resize(3 * (firstTriangle + triangles), 0);
-    return {{firstVertex, firstVertex, firstVertex + vertices},
-            {firstTriangle, firstTriangle, firstTriangle + triangles}};
+    return {{firstVertex, firstVertex + vertices}, {firstTriangle, firstTriangle + triangles}};
 }
 
 namespace {

@@ -55,9 +55,8 @@ struct Zone {
     }
 };
 
-/// Slots of the mesh's arrays, [begin, end), and the next one free.
+/// Slots of the mesh's arrays reserved up to `end`, the next free one at `next`.
 struct SlotRange {
-    std::size_t begin = 0;
     std::size_t next = 0;
     std::size_t end = 0;
 };
