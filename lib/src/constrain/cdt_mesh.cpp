@@ -24,11 +24,11 @@ constexpr std::size_t kMaxVertices = std::numeric_limits<std::uint32_t>::max() -
 
 CdtMesh::CdtMesh(TinMesh mesh) : m_own(std::make_unique<Arrays>()), m_arrays(m_own.get()) {
     m_arrays->mesh = std::move(mesh);
-    m_arrays->constrained.assign(m_arrays->mesh.triangles.size(), 0);
-    m_arrays->vertexTriangle.assign(m_arrays->mesh.vertices.size(), kUnknownTriangle);
     // As much room as the mesh has (reserveRoom): growing copies the whole array.
     m_arrays->constrained.reserve(m_arrays->mesh.triangles.capacity());
     m_arrays->vertexTriangle.reserve(m_arrays->mesh.vertices.capacity());
+    m_arrays->constrained.assign(m_arrays->mesh.triangles.size(), 0);
+    m_arrays->vertexTriangle.assign(m_arrays->mesh.vertices.size(), kUnknownTriangle);
 }
 
 CdtMesh::CdtMesh(CdtMesh& shared, Zone zone, SlotRange vertices, SlotRange triangles)

@@ -169,14 +169,16 @@ public:
         const std::vector<std::uint8_t> flat = trianglesWhere(m_rules->unmeasured, *m_tin);
         const std::vector<std::uint8_t> overHole = trianglesOverHoles();
         m_candidateOf.resize(triangles, kNoTriangle);
-        const std::size_t count = everyCell ? m_rules->measuredCells.size() : m_relocated.size();
+        // The first check locates every cell: they are all measured, as with everyCell.
+        const bool allCells = everyCell || m_relocatedAll;
+        const std::size_t count = allCells ? m_rules->measuredCells.size() : m_relocated.size();
         if (squaredErrors != nullptr)
             squaredErrors->assign(count, std::numeric_limits<double>::quiet_NaN());
         const std::vector<std::uint8_t> left = trianglesLeftOut(measure.drop, flat, overHole);
         std::vector<BlockTally> blocks((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
-                const std::size_t i = everyCell ? k : m_relocated[k];
+                const std::size_t i = allCells ? k : m_relocated[k];
                 tally(i, left, blocks[block],
                       squaredErrors != nullptr ? &(*squaredErrors)[i] : nullptr);
             }
@@ -191,13 +193,7 @@ public:
         }
         for (const Candidate& candidate : measure.candidates)
             m_candidateOf[candidate.triangle] = kNoTriangle;
-        measure.overHoleOnly.assign(triangles, 0);
-        for (std::size_t t = 0; t < triangles; ++t)
-            if (overHole[t] != 0 && measure.drop[t] == 0) {
-                measure.drop[t] = 1;
-                measure.overHoleOnly[t] = 1;
-                ++measure.holeTriangles;
-            }
+        dropTrianglesOverHoles(left, measure);
         return measure;
     }
 
@@ -209,16 +205,39 @@ private:
     static constexpr std::uint8_t kOverHole = 4;
 
     /// Per triangle, its kDropped, kFlat and kOverHole bits in one byte: a cell's tally reads
-    /// one byte of its triangle instead of three arrays.
-    static std::vector<std::uint8_t> trianglesLeftOut(const std::vector<std::uint8_t>& drop,
-                                                      const std::vector<std::uint8_t>& flat,
-                                                      const std::vector<std::uint8_t>& overHole) {
+    /// one byte of its triangle instead of three arrays. On the threads: it is a pass over every
+    /// triangle on each check, however few cells the check locates.
+    [[nodiscard]] std::vector<std::uint8_t>
+    trianglesLeftOut(const std::vector<std::uint8_t>& drop, const std::vector<std::uint8_t>& flat,
+                     const std::vector<std::uint8_t>& overHole) const {
         std::vector<std::uint8_t> left(drop.size());
-        for (std::size_t t = 0; t < left.size(); ++t)
-            left[t] = static_cast<std::uint8_t>((drop[t] != 0 ? kDropped : 0) |
-                                                (flat[t] != 0 ? kFlat : 0) |
-                                                (overHole[t] != 0 ? kOverHole : 0));
+        parallelFor(left.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t)
+                left[t] = static_cast<std::uint8_t>((drop[t] != 0 ? kDropped : 0) |
+                                                    (flat[t] != 0 ? kFlat : 0) |
+                                                    (overHole[t] != 0 ? kOverHole : 0));
+        });
         return left;
+    }
+
+    /// Drops the triangles over an open hole that the area keeps, and marks them in
+    /// overHoleOnly and counts them in holeTriangles. On the threads, as trianglesLeftOut.
+    void dropTrianglesOverHoles(const std::vector<std::uint8_t>& left, Measure& measure) const {
+        measure.overHoleOnly.assign(left.size(), 0);
+        std::vector<std::size_t> counts(parallelForThreads(left.size(), m_threads), 0);
+        parallelFor(left.size(), m_threads,
+                    [&](unsigned block, std::size_t begin, std::size_t end) {
+                        std::size_t count = 0;
+                        for (std::size_t t = begin; t < end; ++t)
+                            if ((left[t] & (kOverHole | kDropped)) == kOverHole) {
+                                measure.drop[t] = 1;
+                                measure.overHoleOnly[t] = 1;
+                                ++count;
+                            }
+                        counts[block] = count;
+                    });
+        for (const std::size_t count : counts)
+            measure.holeTriangles += count;
     }
 
     [[nodiscard]] Point2 position(std::size_t cell) const {
@@ -261,7 +280,8 @@ private:
     }
 
     /// Locates again the cells (measured ones, and open holes' ones) of changed triangles; the
-    /// measured ones are listed in m_relocated, in cell order.
+    /// measured ones are listed in m_relocated, in cell order (on the first check, every cell:
+    /// m_relocatedAll, no list).
     void relocate(const std::vector<std::uint8_t>& changed) {
         // The locator is built once and only copied, so that every walk starts from the same
         // state: which triangle a cell on an edge gets does not depend on the threads. Later
@@ -269,12 +289,7 @@ private:
         // triangle near it.
         if (!m_locator)
             m_locator.emplace(m_tin->mesh, m_threads);
-        TinLocator locator = *m_locator;
-        for (std::size_t i = 0; i < m_rules->openHoleCells.size(); ++i)
-            if (stale(m_holeTriangle[i], changed))
-                m_holeTriangle[i] =
-                    locator.locateNearFrom(position(m_rules->openHoleCells[i]), m_holeTriangle[i])
-                        .value_or(kNoTriangle);
+        relocateHoleCells(changed);
         // The measured cells, each block with a fresh copy of the locator (made when the block
         // first needs it: most blocks of a late check have nothing to locate). On the first
         // check the cells at vertices need no walk, and each other cell walks from the
@@ -303,8 +318,29 @@ private:
             }
         });
         m_relocated.clear();
-        for (const std::vector<std::size_t>& cells : relocated)
-            m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
+        m_relocatedAll = first;
+        if (!first)
+            for (const std::vector<std::size_t>& cells : relocated)
+                m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
+    }
+
+    /// Locates again the open holes' cells of changed triangles, in blocks on the threads as
+    /// the measured cells; each walks from its old triangle, or on the first check from the
+    /// locator's start near it.
+    void relocateHoleCells(const std::vector<std::uint8_t>& changed) {
+        const std::vector<std::size_t>& cells = m_rules->openHoleCells;
+        forEachBlock(cells.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
+            std::optional<TinLocator> blockLocator;
+            for (std::size_t i = begin; i < end; ++i) {
+                if (!stale(m_holeTriangle[i], changed))
+                    continue;
+                if (!blockLocator)
+                    blockLocator.emplace(*m_locator);
+                m_holeTriangle[i] =
+                    blockLocator->locateNearFrom(position(cells[i]), m_holeTriangle[i])
+                        .value_or(kNoTriangle);
+            }
+        });
     }
 
     /// Gives each measured cell that is a vertex of the TIN (at the cell's position) the
@@ -444,6 +480,7 @@ private:
     std::vector<std::uint8_t> m_cellAtCorner;
     std::vector<std::uint32_t> m_holeTriangle;
     std::vector<std::size_t> m_relocated;
+    bool m_relocatedAll = false;
     /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
     std::optional<TinLocator> m_locator;
     /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
