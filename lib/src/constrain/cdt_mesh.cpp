@@ -89,6 +89,8 @@ std::vector<std::uint32_t> CdtMesh::compact(std::span<const SlotRange> unusedVer
     std::vector<std::uint32_t>& vertexTriangle = m_arrays->vertexTriangle;
     const std::size_t triangles = fillHoles(
         holesOf(unusedTriangles), mesh.triangleCount(), [&](std::size_t from, std::size_t to) {
+            if (m_written != nullptr) // the slots were both written: the vector holds them
+                (*m_written)[to] = (*m_written)[from];
             for (std::size_t i = 0; i < 3; ++i) {
                 mesh.triangles[3 * to + i] = mesh.triangles[3 * from + i];
                 mesh.neighbours[3 * to + i] = mesh.neighbours[3 * from + i];

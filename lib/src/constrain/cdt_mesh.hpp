@@ -89,6 +89,7 @@ public:
     /// disjoint), which nothing refers to, by moving the last vertices and triangles into them:
     /// O(slots removed) with the degree of each vertex moved. Returns where the vertices moved:
     /// vertex v >= the new vertexCount() is now movedTo[v - vertexCount()]; the others stay.
+    /// A moved triangle takes its recordWrites mark along.
     std::vector<std::uint32_t> compact(std::span<const SlotRange> unusedVertices,
                                        std::span<const SlotRange> unusedTriangles);
     /// The view's slots as far as it used them.

@@ -608,7 +608,7 @@ Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> pos
             cells.push_back(static_cast<std::uint32_t>(candidate.cell));
             near.push_back(candidate.triangle);
         }
-        const std::size_t inserted = insertVertices(tin, points, cells, &changed, near);
+        const std::size_t inserted = insertVertices(tin, points, cells, &changed, near, threads);
         if (rules.afterInsertions)
             rules.afterInsertions(tin);
         result.insertedCells += inserted;

@@ -84,16 +84,19 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
 /// chain of constrained edges and every unconstrained interior edge passes the exact
 /// empty-circle test. A point on a constrained edge splits it; both halves stay constrained and
 /// the chains through that edge get the point. A point with exactly the x and y of a vertex is
-/// skipped. Returns the number of points inserted. Throws InvalidInputError for a point outside
-/// the convex hull or not finite, or sizes that differ (`tin` is unchanged but for the points
-/// before it). With `changedTriangles`, it is resized to the new triangle count and holds 1 for
-/// every triangle whose corners changed or that is new (the others are as they were), else 0.
-/// Sequential; per point a walk and its flips. The walk starts at `near[i]` when given (a
-/// triangle index of `tin` before the call, near point i: where it was located), else at the
-/// previous point's triangle: give the points in spatial order (row by row, say) then.
+/// skipped. Returns the number of points inserted. Throws InvalidInputError for a point not
+/// finite, or sizes that differ (`tin` unchanged), or a point outside the convex hull (`tin`
+/// then holds some of the others, constrained Delaunay). With `changedTriangles`, it is resized
+/// to the new triangle count and holds 1 for every triangle whose corners changed or that is new
+/// (the others are as they were), else 0. Per point a walk and its flips. The walk starts at
+/// `near[i]` when given (a triangle index of `tin` before the call, near point i: where it was
+/// located), else at the previous point's triangle: give the points in spatial order (row by
+/// row, say) then. With `near` and thousands of points, they go in in bands of x on up to
+/// `threads` threads (zoned_vertices.hpp); the bands depend on the points alone, so the result
+/// is the same for any `threads`.
 std::size_t insertVertices(ConstrainedTin& tin, std::span<const Point3> points,
                            std::span<const std::uint32_t> sources,
                            std::vector<std::uint8_t>* changedTriangles = nullptr,
-                           std::span<const std::uint32_t> near = {});
+                           std::span<const std::uint32_t> near = {}, unsigned threads = 1);
 
 } // namespace terratin
