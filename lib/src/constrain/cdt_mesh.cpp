@@ -26,8 +26,12 @@ CdtMesh::CdtMesh(TinMesh mesh) : m_own(std::make_unique<Arrays>()), m_arrays(m_o
     m_arrays->mesh = std::move(mesh);
     // As much room as the mesh has (reserveRoom): growing copies the whole array.
     m_arrays->constrained.reserve(m_arrays->mesh.triangles.capacity());
-    m_arrays->vertexTriangle.reserve(m_arrays->mesh.vertices.capacity());
     m_arrays->constrained.assign(m_arrays->mesh.triangles.size(), 0);
+    startVertexMap();
+}
+
+void CdtMesh::startVertexMap() {
+    m_arrays->vertexTriangle.reserve(m_arrays->mesh.vertices.capacity());
     m_arrays->vertexTriangle.assign(m_arrays->mesh.vertices.size(), kUnknownTriangle);
 }
 
@@ -155,10 +159,13 @@ void CdtMesh::rememberTriangle(std::uint32_t v, std::size_t t) {
         m_arrays->vertexTriangle[v] = static_cast<std::uint32_t>(t);
 }
 
-CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained) : CdtMesh(std::move(mesh)) {
-    if (constrained.size() != m_arrays->constrained.size())
+CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained)
+    : m_own(std::make_unique<Arrays>()), m_arrays(m_own.get()) {
+    if (constrained.size() != mesh.triangles.size())
         throw std::logic_error("CdtMesh: one constrained flag per half-edge expected");
+    m_arrays->mesh = std::move(mesh);
     m_arrays->constrained = std::move(constrained);
+    startVertexMap();
 }
 
 std::size_t CdtMesh::twin(std::size_t h) const {

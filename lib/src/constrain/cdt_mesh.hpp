@@ -260,6 +260,8 @@ private:
         std::vector<std::uint32_t> vertexTriangle;
     };
     static constexpr std::uint32_t kUnknownTriangle = 0xffffffffU;
+    /// Every vertex's triangle unknown, with as much room as the mesh has.
+    void startVertexMap();
     void completeVertexMap() const;
     std::unique_ptr<Arrays> m_own;
     Arrays* m_arrays = nullptr;

@@ -118,8 +118,11 @@ struct Measure {
     double sumSquares = 0.0;
     std::size_t covered = 0;
     std::size_t uncovered = 0;
+    /// The triangles dropped (outside the area, or over an open hole); only from a measure of
+    /// every cell.
     std::vector<std::uint8_t> drop;
-    /// 1 for the triangles dropped only for covering an open hole's cell (holeTriangles).
+    /// 1 for the triangles dropped only for covering an open hole's cell (holeTriangles); only
+    /// from a measure of every cell.
     std::vector<std::uint8_t> overHoleOnly;
     std::size_t holeTriangles = 0;
     std::vector<Candidate> candidates; // at most one per triangle
@@ -132,11 +135,15 @@ constexpr std::uint32_t kNoTriangle = 0xffffffffU;
 /// number of threads.
 constexpr std::size_t kCellBlock = 16384;
 
-/// Per triangle, `decide(tin)`, or zeros without it.
-std::vector<std::uint8_t>
-trianglesWhere(const std::function<std::vector<std::uint8_t>(const ConstrainedTin&)>& decide,
-               const ConstrainedTin& tin) {
-    return decide ? decide(tin) : std::vector<std::uint8_t>(tin.mesh.triangleCount(), 0);
+/// Per triangle, `decide(tin)`, or zeros without it, into `out`: its room is kept from one
+/// check to the next (fresh memory costs a page fault per 4 KiB written).
+void fillTrianglesWhere(
+    const std::function<std::vector<std::uint8_t>(const ConstrainedTin&)>& decide,
+    const ConstrainedTin& tin, std::vector<std::uint8_t>& out) {
+    if (decide)
+        out = decide(tin);
+    else
+        out.assign(tin.mesh.triangleCount(), 0);
 }
 
 /// Measures the constrained TIN against the grid, again after each round of insertions: every
@@ -165,21 +172,21 @@ public:
         relocate(changed);
         const std::size_t triangles = m_tin->mesh.triangleCount();
         Measure measure;
-        measure.drop = trianglesWhere(m_rules->outsideArea, *m_tin);
-        const std::vector<std::uint8_t> flat = trianglesWhere(m_rules->unmeasured, *m_tin);
-        const std::vector<std::uint8_t> overHole = trianglesOverHoles();
+        fillTrianglesWhere(m_rules->outsideArea, *m_tin, m_drop);
+        fillTrianglesWhere(m_rules->unmeasured, *m_tin, m_flat);
+        markTrianglesOverHoles();
         m_candidateOf.resize(triangles, kNoTriangle);
         // The first check locates every cell: they are all measured, as with everyCell.
         const bool allCells = everyCell || m_relocatedAll;
         const std::size_t count = allCells ? m_rules->measuredCells.size() : m_relocated.size();
         if (squaredErrors != nullptr)
             squaredErrors->assign(count, std::numeric_limits<double>::quiet_NaN());
-        const std::vector<std::uint8_t> left = trianglesLeftOut(measure.drop, flat, overHole);
+        markTrianglesLeftOut();
         std::vector<BlockTally> blocks((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 const std::size_t i = allCells ? k : m_relocated[k];
-                tally(i, left, blocks[block],
+                tally(i, m_left, blocks[block],
                       squaredErrors != nullptr ? &(*squaredErrors)[i] : nullptr);
             }
         });
@@ -193,7 +200,11 @@ public:
         }
         for (const Candidate& candidate : measure.candidates)
             m_candidateOf[candidate.triangle] = kNoTriangle;
-        dropTrianglesOverHoles(left, measure);
+        measure.holeTriangles = dropTrianglesOverHoles();
+        if (everyCell) {
+            measure.drop = std::move(m_drop);
+            measure.overHoleOnly = std::move(m_overHoleOnly);
+        }
         return measure;
     }
 
@@ -204,51 +215,51 @@ private:
     static constexpr std::uint8_t kFlat = 2;
     static constexpr std::uint8_t kOverHole = 4;
 
-    /// Per triangle, its kDropped, kFlat and kOverHole bits in one byte: a cell's tally reads
-    /// one byte of its triangle instead of three arrays. On the threads: it is a pass over every
-    /// triangle on each check, however few cells the check locates.
-    [[nodiscard]] std::vector<std::uint8_t>
-    trianglesLeftOut(const std::vector<std::uint8_t>& drop, const std::vector<std::uint8_t>& flat,
-                     const std::vector<std::uint8_t>& overHole) const {
-        std::vector<std::uint8_t> left(drop.size());
-        parallelFor(left.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
+    /// m_left: per triangle, its kDropped, kFlat and kOverHole bits in one byte, so that a
+    /// cell's tally reads one byte of its triangle instead of three arrays. On the threads: it
+    /// is a pass over every triangle on each check, however few cells the check locates.
+    void markTrianglesLeftOut() {
+        m_left.resize(m_drop.size());
+        parallelFor(m_left.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
             for (std::size_t t = begin; t < end; ++t)
-                left[t] = static_cast<std::uint8_t>((drop[t] != 0 ? kDropped : 0) |
-                                                    (flat[t] != 0 ? kFlat : 0) |
-                                                    (overHole[t] != 0 ? kOverHole : 0));
+                m_left[t] = static_cast<std::uint8_t>((m_drop[t] != 0 ? kDropped : 0) |
+                                                      (m_flat[t] != 0 ? kFlat : 0) |
+                                                      (m_overHole[t] != 0 ? kOverHole : 0));
         });
-        return left;
     }
 
-    /// Drops the triangles over an open hole that the area keeps, and marks them in
-    /// overHoleOnly and counts them in holeTriangles. On the threads, as trianglesLeftOut.
-    void dropTrianglesOverHoles(const std::vector<std::uint8_t>& left, Measure& measure) const {
-        measure.overHoleOnly.assign(left.size(), 0);
-        std::vector<std::size_t> counts(parallelForThreads(left.size(), m_threads), 0);
-        parallelFor(left.size(), m_threads,
+    /// Drops (m_drop) the triangles over an open hole that the area keeps, marks them in
+    /// m_overHoleOnly and returns their count. On the threads, as markTrianglesLeftOut.
+    std::size_t dropTrianglesOverHoles() {
+        m_overHoleOnly.assign(m_left.size(), 0);
+        std::vector<std::size_t> counts(parallelForThreads(m_left.size(), m_threads), 0);
+        parallelFor(m_left.size(), m_threads,
                     [&](unsigned block, std::size_t begin, std::size_t end) {
                         std::size_t count = 0;
                         for (std::size_t t = begin; t < end; ++t)
-                            if ((left[t] & (kOverHole | kDropped)) == kOverHole) {
-                                measure.drop[t] = 1;
-                                measure.overHoleOnly[t] = 1;
+                            if ((m_left[t] & (kOverHole | kDropped)) == kOverHole) {
+                                m_drop[t] = 1;
+                                m_overHoleOnly[t] = 1;
                                 ++count;
                             }
                         counts[block] = count;
                     });
+        std::size_t dropped = 0;
         for (const std::size_t count : counts)
-            measure.holeTriangles += count;
+            dropped += count;
+        return dropped;
     }
 
     [[nodiscard]] Point2 position(std::size_t cell) const {
         return cellPosition(*m_grid, m_positions, cell);
     }
 
-    /// 1 for the triangles holding an open hole's cell; a closed triangle covers a cell on its
-    /// edge too, so both sides of such an edge count.
-    [[nodiscard]] std::vector<std::uint8_t> trianglesOverHoles() const {
+    /// m_overHole: 1 for the triangles holding an open hole's cell; a closed triangle covers a
+    /// cell on its edge too, so both sides of such an edge count.
+    void markTrianglesOverHoles() {
         const TinMesh& mesh = m_tin->mesh;
-        std::vector<std::uint8_t> overHole(mesh.triangleCount(), 0);
+        std::vector<std::uint8_t>& overHole = m_overHole;
+        overHole.assign(mesh.triangleCount(), 0);
         for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
             const std::uint32_t t = m_holeTriangle[i];
             if (t == kNoTriangle)
@@ -259,7 +270,6 @@ private:
             if (other != kNoNeighbour)
                 overHole[static_cast<std::size_t>(other)] = 1;
         }
-        return overHole;
     }
 
     /// Whether a cell in triangle `t` must be located again. A cell outside the hull
@@ -411,7 +421,7 @@ private:
 
     /// Counts measured cell i into `block`, and proposes it as its triangle's candidate when it
     /// is over the bound, or lies in a triangle over an open hole, and may be inserted. `left`:
-    /// trianglesLeftOut.
+    /// markTrianglesLeftOut.
     void tally(std::size_t i, const std::vector<std::uint8_t>& left, BlockTally& block,
                double* squaredError) const {
         std::uint32_t t = m_cellTriangle[i];
@@ -483,6 +493,13 @@ private:
     bool m_relocatedAll = false;
     /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
     std::optional<TinLocator> m_locator;
+    /// Per triangle, what keeps its cells from being measured (the rules' answers, the open
+    /// holes, and the three in one byte: markTrianglesLeftOut), kept from one check to the next.
+    std::vector<std::uint8_t> m_drop;
+    std::vector<std::uint8_t> m_flat;
+    std::vector<std::uint8_t> m_overHole;
+    std::vector<std::uint8_t> m_left;
+    std::vector<std::uint8_t> m_overHoleOnly;
     /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
     std::vector<std::uint32_t> m_candidateOf;
 };

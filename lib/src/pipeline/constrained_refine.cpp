@@ -31,6 +31,7 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
                   const RefineOptions& refineOptions, const std::optional<PolygonSet>& erase,
                   const std::optional<PolygonSet>& replace) {
     CellSets sets;
+    sets.measuredCells.reserve(grid.cellCount()); // most cells: growing would copy them
     const std::vector<std::uint8_t> open = openHoleCells(grid, refineOptions);
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
         // The erase and replace areas' cells are no data to the refiner, but no hole: the
@@ -47,6 +48,8 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
 
 std::size_t leaveOutAreaCells(HeightGrid& grid, std::span<const Point2> positions,
                               const ConstraintSources& sources) {
+    if (!sources.erase && !sources.replace)
+        return 0;
     std::optional<PolygonSet> erase;
     std::optional<PolygonSet> replace;
     if (sources.erase)
