@@ -55,6 +55,28 @@ std::pair<SlotRange, SlotRange> CdtMesh::appendSlots(std::size_t vertices, std::
     return {{firstVertex, firstVertex + vertices}, {firstTriangle, firstTriangle + triangles}};
 }
 
+std::vector<Zone> bandsHoldingAsMany(std::vector<double> coordinates, unsigned zones, bool alongY) {
+    std::sort(coordinates.begin(), coordinates.end());
+    std::vector<Zone> bands;
+    double low = -std::numeric_limits<double>::infinity();
+    for (unsigned z = 0; z < zones; ++z) {
+        const double high = z + 1 == zones || coordinates.empty()
+                                ? std::numeric_limits<double>::infinity()
+                                : coordinates[(z + 1) * coordinates.size() / zones];
+        bands.push_back({alongY, low, high});
+        low = high;
+    }
+    return bands;
+}
+
+void renumberMoved(std::span<std::vector<std::uint32_t>> lists, std::size_t kept,
+                   std::span<const std::uint32_t> movedTo) {
+    for (std::vector<std::uint32_t>& list : lists)
+        for (std::uint32_t& v : list)
+            if (v >= kept)
+                v = movedTo[v - kept];
+}
+
 namespace {
 
 /// The slots of `unused` ([next, end) of each range), ascending.
@@ -483,6 +505,14 @@ void CdtMesh::restoreDelaunay(std::vector<std::size_t>& stack) {
         else
             m_pending.push_back({from(h), to(h), h});
     }
+}
+
+void CdtMesh::makePendingFlips(CdtMesh& view) {
+    std::vector<std::size_t> stack;
+    for (const Edge& edge : view.takePending())
+        if (const std::size_t h = find(edge); h != kNoHalfEdge)
+            stack.push_back(h);
+    restoreDelaunay(stack);
 }
 
 void CdtMesh::flip(std::size_t h) {

@@ -55,6 +55,15 @@ struct Zone {
     }
 };
 
+/// `zones` bands of x (or of y, `alongY`) covering the plane, holding about as many of
+/// `coordinates` (the x or the y of what goes into them) each.
+[[nodiscard]] std::vector<Zone> bandsHoldingAsMany(std::vector<double> coordinates, unsigned zones,
+                                                   bool alongY);
+
+/// Replaces every vertex v >= `kept` in `lists` by movedTo[v - kept] (CdtMesh::compact).
+void renumberMoved(std::span<std::vector<std::uint32_t>> lists, std::size_t kept,
+                   std::span<const std::uint32_t> movedTo);
+
 /// Slots of the mesh's arrays reserved up to `end`, the next free one at `next`.
 struct SlotRange {
     std::size_t next = 0;
@@ -205,6 +214,9 @@ public:
     /// The edges a view left not locally Delaunay (flips across its zone's edge), and empties
     /// the list.
     [[nodiscard]] std::vector<Edge> takePending() { return std::move(m_pending); }
+    /// Makes the flips `view` left undone (takePending), once no view works: those of its edges
+    /// that are still edges and not locally Delaunay, and what they lead to.
+    void makePendingFlips(CdtMesh& view);
 
     /// A triangle of a cavity's new triangulation: its corners, counter-clockwise, and for
     /// each edge (corner i to corner (i + 1) % 3) what lies across it: the position of another

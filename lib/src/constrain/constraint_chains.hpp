@@ -3,6 +3,7 @@
 // two ends, and every vertex that splits one of its edges (a vertex on it, a crossing, a point
 // on a constrained edge) goes between that edge's two vertices.
 
+#include "cdt_mesh.hpp"
 #include "constraint_owners.hpp"
 
 #include <cstdint>
@@ -36,10 +37,7 @@ public:
     /// Replaces every vertex v >= `kept` of every chain by movedTo[v - kept]
     /// (CdtMesh::compact).
     void renumber(std::size_t kept, const std::vector<std::uint32_t>& movedTo) {
-        for (std::vector<std::uint32_t>& chain : m_chains)
-            for (std::uint32_t& v : chain)
-                if (v >= kept)
-                    v = movedTo[v - kept];
+        renumberMoved(m_chains, kept, movedTo);
     }
 
 private:

@@ -246,11 +246,7 @@ void ConstraintInserter::absorb(ConstraintInserter& zone) {
     m_owners.addAll(zone.m_owners);
     m_addedPoints += zone.m_addedPoints;
     m_intersections += zone.m_intersections;
-    std::vector<std::size_t> stack;
-    for (const CdtMesh::Edge& edge : zone.m_mesh.takePending())
-        if (const std::size_t h = m_mesh.find(edge); h != kNoHalfEdge)
-            stack.push_back(h);
-    m_mesh.restoreDelaunay(stack);
+    m_mesh.makePendingFlips(zone.m_mesh);
 }
 
 void ConstraintInserter::compact(std::span<const SlotRange> unusedVertices,
@@ -259,10 +255,7 @@ void ConstraintInserter::compact(std::span<const SlotRange> unusedVertices,
     const std::vector<std::uint32_t> movedTo = m_mesh.compact(unusedVertices, unusedTriangles);
     const std::size_t kept = m_mesh.vertexCount();
     m_chains->renumber(kept, movedTo);
-    for (std::vector<std::uint32_t>& list : vertexLists)
-        for (std::uint32_t& v : list)
-            if (v >= kept)
-                v = movedTo[v - kept];
+    renumberMoved(vertexLists, kept, movedTo);
 }
 
 void ConstraintInserter::finish(ConstrainedTin& tin) {

@@ -79,11 +79,7 @@ std::size_t insertInZones(detail::CdtMesh& mesh, ConstrainedTin& tin,
     const auto closeUp = [&] {
         const std::vector<std::uint32_t> movedTo =
             mesh.compact(zoned.unusedVertices, zoned.unusedTriangles);
-        const std::size_t kept = mesh.vertexCount();
-        for (std::vector<std::uint32_t>& chain : tin.chains)
-            for (std::uint32_t& v : chain)
-                if (v >= kept)
-                    v = movedTo[v - kept];
+        detail::renumberMoved(tin.chains, mesh.vertexCount(), movedTo);
     };
     std::size_t inserted = zoned.inserted;
     try {

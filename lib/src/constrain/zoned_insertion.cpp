@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <limits>
 #include <memory>
 
 namespace terratin::detail {
@@ -40,15 +39,10 @@ std::vector<ZoneWork> zoneBands(const ConstraintSet& constraints,
     std::vector<double> at;
     for (const PolylineProgress& progress : todo)
         at.push_back(coordinate(progress));
-    std::sort(at.begin(), at.end());
     std::vector<ZoneWork> works(zones);
-    double low = -std::numeric_limits<double>::infinity();
-    for (unsigned z = 0; z < zones; ++z) {
-        const double high = z + 1 == zones || at.empty() ? std::numeric_limits<double>::infinity()
-                                                         : at[(z + 1) * at.size() / zones];
-        works[z].zone = {alongY, low, high};
-        low = high;
-    }
+    const std::vector<Zone> bands = bandsHoldingAsMany(std::move(at), zones, alongY);
+    for (unsigned z = 0; z < zones; ++z)
+        works[z].zone = bands[z];
     for (PolylineProgress& progress : todo) {
         const double c = coordinate(progress);
         ZoneWork& work = *std::find_if(works.begin(), works.end(),

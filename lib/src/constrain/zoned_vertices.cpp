@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <limits>
 #include <memory>
 
 namespace terratin::detail {
@@ -29,15 +28,10 @@ std::vector<VertexZone> vertexBands(const CdtMesh& mesh, std::span<const Point3>
     std::vector<double> xs;
     for (const Point3& p : points)
         xs.push_back(p.x);
-    std::sort(xs.begin(), xs.end());
     std::vector<VertexZone> bands(zones);
-    double low = -std::numeric_limits<double>::infinity();
-    for (unsigned z = 0; z < zones; ++z) {
-        const double high = z + 1 == zones ? std::numeric_limits<double>::infinity()
-                                           : xs[(z + 1) * xs.size() / zones];
-        bands[z].zone = {false, low, high};
-        low = high;
-    }
+    const std::vector<Zone> bandZones = bandsHoldingAsMany(std::move(xs), zones, false);
+    for (unsigned z = 0; z < zones; ++z)
+        bands[z].zone = bandZones[z];
     for (std::size_t i = 0; i < points.size(); ++i) {
         VertexZone& band = *std::find_if(bands.begin(), bands.end(), [&](const VertexZone& b) {
             return points[i].x < b.zone.high;
@@ -105,12 +99,8 @@ ZonedVertices insertVerticesInZones(CdtMesh& mesh, std::span<const Point3> point
     });
 
     ZonedVertices result;
-    std::vector<std::size_t> stack;
     for (VertexZone& band : bands) {
-        for (const CdtMesh::Edge& edge : band.view->takePending())
-            if (const std::size_t h = mesh.find(edge); h != kNoHalfEdge)
-                stack.push_back(h);
-        mesh.restoreDelaunay(stack);
+        mesh.makePendingFlips(*band.view);
         result.inserted += band.inserted;
         result.unusedVertices.push_back(band.view->vertexSlots());
         result.unusedTriangles.push_back(band.view->triangleSlots());
