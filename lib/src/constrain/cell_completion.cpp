@@ -135,17 +135,6 @@ constexpr std::uint32_t kNoTriangle = 0xffffffffU;
 /// number of threads.
 constexpr std::size_t kCellBlock = 16384;
 
-/// Per triangle, `decide(tin)`, or zeros without it, into `out`: its room is kept from one
-/// check to the next (fresh memory costs a page fault per 4 KiB written).
-void fillTrianglesWhere(
-    const std::function<std::vector<std::uint8_t>(const ConstrainedTin&)>& decide,
-    const ConstrainedTin& tin, std::vector<std::uint8_t>& out) {
-    if (decide)
-        out = decide(tin);
-    else
-        out.assign(tin.mesh.triangleCount(), 0);
-}
-
 /// Measures the constrained TIN against the grid, again after each round of insertions: every
 /// cell is located once, and after that only the cells of the triangles the insertions changed
 /// (the others hold the same cells with the same errors).
@@ -172,16 +161,14 @@ public:
         relocate(changed);
         const std::size_t triangles = m_tin->mesh.triangleCount();
         Measure measure;
-        fillTrianglesWhere(m_rules->outsideArea, *m_tin, m_drop);
-        fillTrianglesWhere(m_rules->unmeasured, *m_tin, m_flat);
         markTrianglesOverHoles();
+        measure.holeTriangles = markTrianglesLeftOut();
         m_candidateOf.resize(triangles, kNoTriangle);
         // The first check locates every cell: they are all measured, as with everyCell.
         const bool allCells = everyCell || m_relocatedAll;
         const std::size_t count = allCells ? m_rules->measuredCells.size() : m_relocated.size();
         if (squaredErrors != nullptr)
             squaredErrors->assign(count, std::numeric_limits<double>::quiet_NaN());
-        markTrianglesLeftOut();
         std::vector<BlockTally> blocks((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
@@ -200,11 +187,8 @@ public:
         }
         for (const Candidate& candidate : measure.candidates)
             m_candidateOf[candidate.triangle] = kNoTriangle;
-        measure.holeTriangles = dropTrianglesOverHoles();
-        if (everyCell) {
-            measure.drop = std::move(m_drop);
-            measure.overHoleOnly = std::move(m_overHoleOnly);
-        }
+        if (everyCell)
+            dropTriangles(measure);
         return measure;
     }
 
@@ -215,39 +199,50 @@ private:
     static constexpr std::uint8_t kFlat = 2;
     static constexpr std::uint8_t kOverHole = 4;
 
-    /// m_left: per triangle, its kDropped, kFlat and kOverHole bits in one byte, so that a
-    /// cell's tally reads one byte of its triangle instead of three arrays. On the threads: it
-    /// is a pass over every triangle on each check, however few cells the check locates.
-    void markTrianglesLeftOut() {
-        m_left.resize(m_drop.size());
-        parallelFor(m_left.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
-            for (std::size_t t = begin; t < end; ++t)
-                m_left[t] = static_cast<std::uint8_t>((m_drop[t] != 0 ? kDropped : 0) |
-                                                      (m_flat[t] != 0 ? kFlat : 0) |
-                                                      (m_overHole[t] != 0 ? kOverHole : 0));
-        });
+    /// m_left: per triangle, its kDropped, kFlat (the rules' answers) and kOverHole bits in one
+    /// byte, so that a cell's tally reads one byte of its triangle instead of three arrays.
+    /// Returns the count of triangles over an open hole that the area keeps (they are dropped
+    /// too). On the threads: it is a pass over every triangle on each check, however few cells
+    /// the check locates; without rules it reads m_overHole alone.
+    std::size_t markTrianglesLeftOut() {
+        const std::vector<std::uint8_t> outside =
+            m_rules->outsideArea ? m_rules->outsideArea(*m_tin) : std::vector<std::uint8_t>{};
+        const std::vector<std::uint8_t> flat =
+            m_rules->unmeasured ? m_rules->unmeasured(*m_tin) : std::vector<std::uint8_t>{};
+        m_left.resize(m_overHole.size());
+        std::vector<std::size_t> counts(parallelForThreads(m_left.size(), m_threads), 0);
+        parallelFor(
+            m_left.size(), m_threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+                std::size_t overHoleOnly = 0;
+                for (std::size_t t = begin; t < end; ++t) {
+                    const bool dropped = !outside.empty() && outside[t] != 0;
+                    const bool isFlat = !flat.empty() && flat[t] != 0;
+                    m_left[t] =
+                        static_cast<std::uint8_t>((dropped ? kDropped : 0) | (isFlat ? kFlat : 0) |
+                                                  (m_overHole[t] != 0 ? kOverHole : 0));
+                    overHoleOnly += m_overHole[t] != 0 && !dropped ? 1 : 0;
+                }
+                counts[block] = overHoleOnly;
+            });
+        std::size_t total = 0;
+        for (const std::size_t count : counts)
+            total += count;
+        return total;
     }
 
-    /// Drops (m_drop) the triangles over an open hole that the area keeps, marks them in
-    /// m_overHoleOnly and returns their count. On the threads, as markTrianglesLeftOut.
-    std::size_t dropTrianglesOverHoles() {
-        m_overHoleOnly.assign(m_left.size(), 0);
-        std::vector<std::size_t> counts(parallelForThreads(m_left.size(), m_threads), 0);
-        parallelFor(m_left.size(), m_threads,
-                    [&](unsigned block, std::size_t begin, std::size_t end) {
-                        std::size_t count = 0;
-                        for (std::size_t t = begin; t < end; ++t)
-                            if ((m_left[t] & (kOverHole | kDropped)) == kOverHole) {
-                                m_drop[t] = 1;
-                                m_overHoleOnly[t] = 1;
-                                ++count;
-                            }
-                        counts[block] = count;
-                    });
-        std::size_t dropped = 0;
-        for (const std::size_t count : counts)
-            dropped += count;
-        return dropped;
+    /// measure.drop: the triangles outside the area or over an open hole; and
+    /// measure.overHoleOnly: those over an open hole that the area keeps. From m_left, on the
+    /// threads.
+    void dropTriangles(Measure& measure) const {
+        measure.drop.resize(m_left.size());
+        measure.overHoleOnly.resize(m_left.size());
+        parallelFor(m_left.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
+                const std::uint8_t left = m_left[t];
+                measure.drop[t] = (left & (kDropped | kOverHole)) != 0 ? 1 : 0;
+                measure.overHoleOnly[t] = (left & (kOverHole | kDropped)) == kOverHole ? 1 : 0;
+            }
+        });
     }
 
     [[nodiscard]] Point2 position(std::size_t cell) const {
@@ -255,20 +250,28 @@ private:
     }
 
     /// m_overHole: 1 for the triangles holding an open hole's cell; a closed triangle covers a
-    /// cell on its edge too, so both sides of such an edge count.
+    /// cell on its edge too, so both sides of such an edge count. The last check's marks are
+    /// cleared one by one: there are few, against a pass over every triangle.
     void markTrianglesOverHoles() {
         const TinMesh& mesh = m_tin->mesh;
         std::vector<std::uint8_t>& overHole = m_overHole;
-        overHole.assign(mesh.triangleCount(), 0);
+        for (const std::uint32_t t : m_overHoleMarked)
+            if (t < overHole.size())
+                overHole[t] = 0;
+        m_overHoleMarked.clear();
+        overHole.resize(mesh.triangleCount(), 0);
         for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
             const std::uint32_t t = m_holeTriangle[i];
             if (t == kNoTriangle)
                 continue;
             overHole[t] = 1;
+            m_overHoleMarked.push_back(t);
             const std::int32_t other =
                 neighbourSharing(mesh, t, position(m_rules->openHoleCells[i]));
-            if (other != kNoNeighbour)
+            if (other != kNoNeighbour) {
                 overHole[static_cast<std::size_t>(other)] = 1;
+                m_overHoleMarked.push_back(static_cast<std::uint32_t>(other));
+            }
         }
     }
 
@@ -299,39 +302,58 @@ private:
         // triangle near it.
         if (!m_locator)
             m_locator.emplace(m_tin->mesh, m_threads);
-        relocateHoleCells(changed);
-        // The measured cells, each block with a fresh copy of the locator (made when the block
-        // first needs it: most blocks of a late check have nothing to locate). On the first
-        // check the cells at vertices need no walk, and each other cell walks from the
-        // triangle of the cell before it.
         const bool first = changed.empty();
         if (first)
             placeVertexCells();
+        relocateHoleCells(changed);
+        if (first)
+            locateEveryCell();
+        else
+            relocateCellsOf(changed);
+    }
+
+    /// The first check: each measured cell that is not a vertex walks from the triangle of the
+    /// cell before it; each block with a fresh copy of the locator, made when the block first
+    /// needs one.
+    void locateEveryCell() {
+        forEachBlock(m_rules->measuredCells.size(),
+                     [&](std::size_t, std::size_t begin, std::size_t end) {
+                         std::optional<TinLocator> blockLocator;
+                         std::uint32_t previous = kNoTriangle;
+                         for (std::size_t i = begin; i < end; ++i) {
+                             if (m_cellTriangle[i] == kNoTriangle) {
+                                 if (!blockLocator)
+                                     blockLocator.emplace(*m_locator);
+                                 measureAt(i, *blockLocator, previous);
+                             }
+                             if (m_cellTriangle[i] != kNoTriangle)
+                                 previous = m_cellTriangle[i];
+                         }
+                     });
+        m_relocated.clear();
+        m_relocatedAll = true;
+    }
+
+    /// A later check: the measured cells of changed triangles walk from their old triangle,
+    /// and are listed in m_relocated.
+    void relocateCellsOf(const std::vector<std::uint8_t>& changed) {
         const std::size_t count = m_rules->measuredCells.size();
         std::vector<std::vector<std::size_t>> relocated((count + kCellBlock - 1) / kCellBlock);
         forEachBlock(count, [&](std::size_t block, std::size_t begin, std::size_t end) {
             std::optional<TinLocator> blockLocator;
-            std::uint32_t previous = kNoTriangle;
             for (std::size_t i = begin; i < end; ++i) {
-                if (first && m_cellTriangle[i] != kNoTriangle) {
-                    previous = m_cellTriangle[i]; // a vertex
-                } else if (stale(m_cellTriangle[i], changed)) {
-                    if (!blockLocator)
-                        blockLocator.emplace(*m_locator);
-                    measureAt(i, *blockLocator, first ? previous : m_cellTriangle[i]);
-                    if (m_cellTriangle[i] != kNoTriangle)
-                        previous = m_cellTriangle[i];
-                } else {
+                if (!stale(m_cellTriangle[i], changed))
                     continue;
-                }
+                if (!blockLocator)
+                    blockLocator.emplace(*m_locator);
+                measureAt(i, *blockLocator, m_cellTriangle[i]);
                 relocated[block].push_back(i);
             }
         });
         m_relocated.clear();
-        m_relocatedAll = first;
-        if (!first)
-            for (const std::vector<std::size_t>& cells : relocated)
-                m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
+        m_relocatedAll = false;
+        for (const std::vector<std::size_t>& cells : relocated)
+            m_relocated.insert(m_relocated.end(), cells.begin(), cells.end());
     }
 
     /// Locates again the open holes' cells of changed triangles, in blocks on the threads as
@@ -493,13 +515,12 @@ private:
     bool m_relocatedAll = false;
     /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
     std::optional<TinLocator> m_locator;
-    /// Per triangle, what keeps its cells from being measured (the rules' answers, the open
-    /// holes, and the three in one byte: markTrianglesLeftOut), kept from one check to the next.
-    std::vector<std::uint8_t> m_drop;
-    std::vector<std::uint8_t> m_flat;
+    /// Per triangle, whether it holds an open hole's cell, and what keeps its cells from being
+    /// measured (markTrianglesLeftOut), kept from one check to the next: fresh memory costs a
+    /// page fault per 4 KiB written. The triangles m_overHole marks, to clear them.
     std::vector<std::uint8_t> m_overHole;
     std::vector<std::uint8_t> m_left;
-    std::vector<std::uint8_t> m_overHoleOnly;
+    std::vector<std::uint32_t> m_overHoleMarked;
     /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
     std::vector<std::uint32_t> m_candidateOf;
 };

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -91,7 +92,8 @@ std::array<Point2, 2> boundsOf(const MeshArray<Point3>& vertices, unsigned threa
 
 TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
     threads = threadsToUse(threads);
-    m_hullEdges = hullEdgesOf(mesh, threads);
+    m_hullEdges = std::make_shared<const std::vector<std::array<std::uint32_t, 2>>>(
+        hullEdgesOf(mesh, threads));
     if (mesh.vertexCount() == 0)
         return;
     const auto [low, high] = boundsOf(mesh.vertices, threads);
@@ -99,20 +101,21 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
     // point of the bucket crosses a few of them.
     constexpr double kTrianglesPerBucket = 16.0;
     const double area = (high.x - low.x) * (high.y - low.y);
-    const double buckets =
+    const double bucketCount =
         std::max(1.0, static_cast<double>(mesh.triangleCount()) / kTrianglesPerBucket);
-    m_bucketSize =
-        area > 0.0 ? std::sqrt(area / buckets) : std::max({high.x - low.x, high.y - low.y, 1.0});
+    m_bucketSize = area > 0.0 ? std::sqrt(area / bucketCount)
+                              : std::max({high.x - low.x, high.y - low.y, 1.0});
     m_origin = low;
     m_columns = static_cast<std::size_t>((high.x - low.x) / m_bucketSize) + 1;
     m_rows = static_cast<std::size_t>((high.y - low.y) / m_bucketSize) + 1;
-    fillBuckets(threads);
-    fillEmptyBuckets();
+    std::vector<std::uint32_t> buckets = fillBuckets(threads);
+    fillEmptyBuckets(buckets);
+    m_buckets = std::make_shared<const std::vector<std::uint32_t>>(std::move(buckets));
 }
 
 // Each bucket gets the first triangle, in index order, whose first corner lies in it: each
 // thread fills a grid from its own range of triangles, and the lowest range's wins.
-void TinLocator::fillBuckets(unsigned threads) {
+std::vector<std::uint32_t> TinLocator::fillBuckets(unsigned threads) const {
     const TinMesh& mesh = *m_mesh;
     const std::size_t count = mesh.triangleCount();
     std::vector<std::vector<std::uint32_t>> perBlock(detail::parallelForThreads(count, threads));
@@ -130,27 +133,28 @@ void TinLocator::fillBuckets(unsigned threads) {
                 bucket = static_cast<std::uint32_t>(t);
         }
     });
-    m_buckets = std::move(perBlock.front());
+    std::vector<std::uint32_t> buckets = std::move(perBlock.front());
     for (std::size_t block = 1; block < perBlock.size(); ++block)
-        for (std::size_t b = 0; b < m_buckets.size(); ++b)
-            if (m_buckets[b] == kNoTriangle)
-                m_buckets[b] = perBlock[block][b];
+        for (std::size_t b = 0; b < buckets.size(); ++b)
+            if (buckets[b] == kNoTriangle)
+                buckets[b] = perBlock[block][b];
+    return buckets;
 }
 
-void TinLocator::fillEmptyBuckets() {
+void TinLocator::fillEmptyBuckets(std::vector<std::uint32_t>& buckets) const {
     // Along each row and then each column, both ways, an empty bucket takes its filled
     // neighbour's triangle: a walk from a bucket outside the hull or inside a large triangle
     // starts a few buckets away, not wherever the last query ended.
     const auto fillLine = [&](std::size_t first, std::size_t count, std::size_t stride) {
         for (std::size_t k = 1; k < count; ++k) {
-            std::uint32_t& bucket = m_buckets[first + k * stride];
+            std::uint32_t& bucket = buckets[first + k * stride];
             if (bucket == kNoTriangle)
-                bucket = m_buckets[first + (k - 1) * stride];
+                bucket = buckets[first + (k - 1) * stride];
         }
         for (std::size_t k = count - 1; k-- > 0;) {
-            std::uint32_t& bucket = m_buckets[first + k * stride];
+            std::uint32_t& bucket = buckets[first + k * stride];
             if (bucket == kNoTriangle)
-                bucket = m_buckets[first + (k + 1) * stride];
+                bucket = buckets[first + (k + 1) * stride];
         }
     };
     for (std::size_t row = 0; row < m_rows; ++row)
@@ -160,14 +164,14 @@ void TinLocator::fillEmptyBuckets() {
 }
 
 std::uint32_t TinLocator::startNear(Point2 point) const {
-    if (m_buckets.empty())
+    if (!m_buckets || m_buckets->empty())
         return m_last;
     const double column =
         std::clamp((point.x - m_origin.x) / m_bucketSize, 0.0, static_cast<double>(m_columns - 1));
     const double row =
         std::clamp((point.y - m_origin.y) / m_bucketSize, 0.0, static_cast<double>(m_rows - 1));
     const std::uint32_t bucket =
-        m_buckets[static_cast<std::size_t>(row) * m_columns + static_cast<std::size_t>(column)];
+        (*m_buckets)[static_cast<std::size_t>(row) * m_columns + static_cast<std::size_t>(column)];
     return bucket != kNoTriangle ? bucket : m_last;
 }
 
@@ -287,7 +291,7 @@ double TinLocator::elevationIn(std::uint32_t triangle, Point2 point) const {
 
 TinLocator::Interval TinLocator::hullInterval(const Point3& a, const Point3& b) const {
     Interval interval;
-    for (const auto& [u, v] : m_hullEdges) {
+    for (const auto& [u, v] : *m_hullEdges) {
         const Point3& from = m_mesh->vertices[u];
         const Point3& to = m_mesh->vertices[v];
         const auto side = [&](const Point3& p) {

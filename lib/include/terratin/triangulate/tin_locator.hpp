@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -107,10 +108,10 @@ private:
                                                         OutsideOf outside);
 
     /// Gives every empty bucket a triangle of a filled bucket near it.
-    void fillEmptyBuckets();
+    void fillEmptyBuckets(std::vector<std::uint32_t>& buckets) const;
 
-    /// Fills each bucket with the first triangle, in index order, whose first corner lies in it.
-    void fillBuckets(unsigned threads);
+    /// Each bucket with the first triangle, in index order, whose first corner lies in it.
+    [[nodiscard]] std::vector<std::uint32_t> fillBuckets(unsigned threads) const;
     /// A triangle near `point` to start a walk from: the bucket grid's.
     [[nodiscard]] std::uint32_t startNear(Point2 point) const;
 
@@ -127,9 +128,11 @@ private:
     double m_bucketSize = 1.0;
     std::size_t m_columns = 0;
     std::size_t m_rows = 0;
-    std::vector<std::uint32_t> m_buckets;
+    /// The buckets and the hull's edges are made once and shared by every copy: a copy, each
+    /// thread's or each block of queries', then costs no memory.
+    std::shared_ptr<const std::vector<std::uint32_t>> m_buckets;
     /// The hull's edges as vertex pairs, counter-clockwise (the mesh's edges with no neighbour).
-    std::vector<std::array<std::uint32_t, 2>> m_hullEdges;
+    std::shared_ptr<const std::vector<std::array<std::uint32_t, 2>>> m_hullEdges;
 };
 
 } // namespace terratin
