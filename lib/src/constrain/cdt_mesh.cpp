@@ -190,21 +190,8 @@ CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained)
     startVertexMap();
 }
 
-std::size_t CdtMesh::twin(std::size_t h) const {
-    const std::int32_t neighbour = m_arrays->mesh.neighbours[h];
-    if (neighbour < 0)
-        return kNoHalfEdge;
-    return 3 * static_cast<std::size_t>(neighbour) + cornerOf(neighbour, to(h));
-}
-
-// Selects rather than branches: which corner it is is a coin toss for the branch predictor.
-std::size_t CdtMesh::cornerOf(std::int32_t triangle, std::uint32_t v) const {
-    const std::uint32_t* corners =
-        &m_arrays->mesh.triangles[3 * static_cast<std::size_t>(triangle)];
-    const std::size_t corner = corners[1] == v ? 1 : (corners[2] == v ? 2 : 0);
-    if (corners[corner] != v)
-        throw std::logic_error("CdtMesh: neighbour links are not mutual");
-    return corner;
+void CdtMesh::throwUnlinked() {
+    throw std::logic_error("CdtMesh: neighbour links are not mutual");
 }
 
 void CdtMesh::relink(std::int32_t outer, std::uint32_t edgeStart, std::size_t triangle) {

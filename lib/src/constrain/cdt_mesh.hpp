@@ -238,6 +238,7 @@ public:
 private:
     /// The corner of `triangle` that is `v` (0, 1 or 2); std::logic_error when none is.
     [[nodiscard]] std::size_t cornerOf(std::int32_t triangle, std::uint32_t v) const;
+    [[noreturn, gnu::cold]] static void throwUnlinked();
     /// Points the half-edge of triangle `outer` that starts at `edgeStart` at `triangle`, its
     /// new neighbour across that edge; nothing when `outer` is kNoNeighbour (the hull).
     void relink(std::int32_t outer, std::uint32_t edgeStart, std::size_t triangle);
@@ -296,6 +297,25 @@ private:
     };
     std::vector<BoundaryEdge> m_cavityBoundary;
 };
+
+// twin and cornerOf are in the header: every step of a walk, a flip or a cavity asks for a
+// twin, from the other files of the constraint code too.
+inline std::size_t CdtMesh::twin(std::size_t h) const {
+    const std::int32_t neighbour = m_arrays->mesh.neighbours[h];
+    if (neighbour < 0)
+        return kNoHalfEdge;
+    return 3 * static_cast<std::size_t>(neighbour) + cornerOf(neighbour, to(h));
+}
+
+// Selects rather than branches: which corner it is is a coin toss for the branch predictor.
+inline std::size_t CdtMesh::cornerOf(std::int32_t triangle, std::uint32_t v) const {
+    const std::uint32_t* corners =
+        &m_arrays->mesh.triangles[3 * static_cast<std::size_t>(triangle)];
+    const std::size_t corner = corners[1] == v ? 1 : (corners[2] == v ? 2 : 0);
+    if (corners[corner] != v)
+        throwUnlinked();
+    return corner;
+}
 
 template <class Visit> void CdtMesh::forEachHalfEdgeAround(std::uint32_t v, Visit&& visit) const {
     const std::size_t start = halfEdgeLeaving(v);

@@ -6,7 +6,6 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -390,13 +389,11 @@ private:
         });
         const TinMesh& mesh = m_tin->mesh;
         std::vector<std::uint32_t> vertexTriangle(mesh.vertexCount(), kNoTriangle);
-        parallelFor(mesh.triangleCount(), m_threads,
-                    [&](unsigned, std::size_t begin, std::size_t end) {
-                        for (std::size_t t = begin; t < end; ++t)
-                            for (std::size_t k = 0; k < 3; ++k)
-                                storeLower(vertexTriangle[mesh.triangles[3 * t + k]],
-                                           static_cast<std::uint32_t>(t));
-                    });
+        // Downwards, so that the lowest triangle writes last: on one thread, where an atomic
+        // minimum per corner on the threads is slower (docs/benchmarks.md).
+        for (std::size_t t = mesh.triangleCount(); t-- > 0;)
+            for (std::size_t k = 0; k < 3; ++k)
+                vertexTriangle[mesh.triangles[3 * t + k]] = static_cast<std::uint32_t>(t);
         parallelFor(mesh.vertexCount(), m_threads,
                     [&](unsigned, std::size_t begin, std::size_t end) {
                         for (std::size_t v = begin; v < end; ++v) {
@@ -415,15 +412,6 @@ private:
                             m_cellAtCorner[i] = 1;
                         }
                     });
-    }
-
-    /// Lowers `slot` to `value` when that is lower, as an atomic minimum.
-    static void storeLower(std::uint32_t& slot, std::uint32_t value) {
-        std::atomic_ref<std::uint32_t> lowest(slot);
-        std::uint32_t seen = lowest.load(std::memory_order_relaxed);
-        while (value < seen &&
-               !lowest.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
-        }
     }
 
     /// Locates measured cell i, walking from triangle `start` (kNoTriangle: from where the

@@ -1,6 +1,7 @@
 #include "constrained_refine.hpp"
 
 #include "../constrain/cell_completion.hpp"
+#include "../refine/valid_hull.hpp"
 #include "constraint_areas.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
 
@@ -18,8 +19,20 @@ struct CellSets {
     /// The valid cells (the erase and replace areas' cells are no data by now,
     /// leaveOutAreaCells; the clip area is decided by the triangle holding the cell).
     std::vector<std::size_t> measuredCells;
+    /// The open holes' cells that a triangle might cover (inside the TIN's hull or on it),
+    /// and the count of all of them, for the report.
     std::vector<std::size_t> openHoleCells;
+    std::size_t allOpenHoleCells = 0;
 };
+
+/// The corners of the refined TIN's hull, the convex hull of the valid cells (the
+/// constraints are clipped to it, and only valid cells are inserted), counter-clockwise.
+std::vector<Point2> tinHull(const HeightGrid& grid, std::span<const Point2> positions) {
+    std::vector<Point2> corners;
+    for (const std::uint32_t cell : validHullCells(grid, positions))
+        corners.push_back(cellPosition(grid, positions, cell));
+    return corners;
+}
 
 /// Whether the cell at `p` lies in an erase or replace polygon.
 bool inLeftOutArea(Point2 p, const std::optional<PolygonSet>& erase,
@@ -33,13 +46,19 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
     CellSets sets;
     sets.measuredCells.reserve(grid.cellCount()); // most cells: growing would copy them
     const std::vector<std::uint8_t> open = openHoleCells(grid, refineOptions);
+    // An open hole's cell outside the hull stays outside every triangle: none is located.
+    const std::vector<Point2> hull = tinHull(grid, positions);
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
         // The erase and replace areas' cells are no data to the refiner, but no hole: the
         // TIN keeps its triangles there (flat ones), or the area drops them.
-        if (open[cell] != 0 && !inLeftOutArea(cellPosition(grid, positions, cell), erase, replace))
-            sets.openHoleCells.push_back(cell);
-        else if (grid.isValid(cell))
+        if (open[cell] != 0 &&
+            !inLeftOutArea(cellPosition(grid, positions, cell), erase, replace)) {
+            ++sets.allOpenHoleCells;
+            if (!outsideConvexPolygon(hull, cellPosition(grid, positions, cell)))
+                sets.openHoleCells.push_back(cell);
+        } else if (grid.isValid(cell)) {
             sets.measuredCells.push_back(cell);
+        }
     }
     return sets;
 }
@@ -106,7 +125,7 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
         };
     // A cell on a ring is on the shore line.
     rules.afterInsertions = [&result](ConstrainedTin&) { flattenReplaceRings(result.build); };
-    result.openHoleCells = rules.openHoleCells.size();
+    result.openHoleCells = cells.allOpenHoleCells;
 
     Completion completion = completeWithCells(grid, positions, result.build.tin, rules,
                                               refineOptions, threads, progress);

@@ -108,4 +108,24 @@ std::vector<std::uint32_t> validHullCells(const HeightGrid& grid,
     return cells;
 }
 
+bool outsideConvexPolygon(std::span<const Point2> corners, Point2 p) {
+    const std::size_t n = corners.size();
+    const Point2 first = corners[0];
+    if (predicates::orient2d(first, corners[1], p) < 0.0 ||
+        predicates::orient2d(first, corners[n - 1], p) > 0.0)
+        return true; // outside the angle at corners[0]
+    // The last corner i in [1, n - 2] with p on the left of, or on, corners[0] -> corners[i]:
+    // along the fan the side changes once.
+    std::size_t low = 1;
+    std::size_t high = n - 2;
+    while (low < high) {
+        const std::size_t middle = (low + high + 1) / 2;
+        if (predicates::orient2d(first, corners[middle], p) >= 0.0)
+            low = middle;
+        else
+            high = middle - 1;
+    }
+    return predicates::orient2d(corners[low], corners[low + 1], p) < 0.0;
+}
+
 } // namespace terratin::detail

@@ -31,4 +31,10 @@ namespace terratin::detail {
 std::vector<std::uint32_t> validHullCells(const HeightGrid& grid,
                                           std::span<const Point2> positions = {});
 
+/// Whether `p` lies strictly outside the convex polygon `corners` (counter-clockwise, at least
+/// three, no three collinear, as validHullCells gives them); a point on its boundary is
+/// inside. Exact orientation tests, O(log corners): the wedge of the fan from corners[0]
+/// that holds p is found by bisection, then p is tested against that wedge's outer edge.
+bool outsideConvexPolygon(std::span<const Point2> corners, Point2 p);
+
 } // namespace terratin::detail
