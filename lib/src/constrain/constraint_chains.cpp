@@ -30,4 +30,31 @@ void ConstraintChains::insertBetween(const ConstraintOwners::Owners& owners, std
     }
 }
 
+void ChainEdits::start(std::uint32_t owner, std::uint32_t a, std::uint32_t b) {
+    m_edits.push_back({a, b, 0, static_cast<std::uint32_t>(m_owners.size()), kStart});
+    m_owners.push_back(owner);
+}
+
+void ChainEdits::insertBetween(const ConstraintOwners::Owners& owners, std::uint32_t x,
+                               std::uint32_t y, std::uint32_t w) {
+    m_edits.push_back({x, y, w, static_cast<std::uint32_t>(m_owners.size()),
+                       static_cast<std::uint32_t>(owners.size())});
+    m_owners.insert(m_owners.end(), owners.begin(), owners.end());
+}
+
+void ChainEdits::applyTo(ConstraintChains& chains) {
+    ConstraintOwners::Owners owners;
+    for (const Edit& edit : m_edits) {
+        if (edit.ownerCount == kStart) {
+            chains.start(m_owners[edit.firstOwner], edit.x, edit.y);
+            continue;
+        }
+        const auto first = m_owners.begin() + static_cast<std::ptrdiff_t>(edit.firstOwner);
+        owners.assign(first, first + static_cast<std::ptrdiff_t>(edit.ownerCount));
+        chains.insertBetween(owners, edit.x, edit.y, edit.w);
+    }
+    m_edits.clear();
+    m_owners.clear();
+}
+
 } // namespace terratin::detail

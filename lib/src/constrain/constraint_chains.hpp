@@ -44,4 +44,31 @@ private:
     std::vector<std::vector<std::uint32_t>> m_chains;
 };
 
+/// start() and insertBetween() calls kept to be made on a ConstraintChains later, in the same
+/// order. A zone's inserter keeps them (ConstraintInserter::absorb makes them): two zones may
+/// split different edges of one earlier segment's chain at once, and the chain is one vector.
+/// Splits of different edges commute, so the chains end the same as if made at once.
+class ChainEdits {
+public:
+    void start(std::uint32_t owner, std::uint32_t a, std::uint32_t b);
+    void insertBetween(const ConstraintOwners::Owners& owners, std::uint32_t x, std::uint32_t y,
+                       std::uint32_t w);
+    /// Makes the calls on `chains`, in order, and forgets them.
+    void applyTo(ConstraintChains& chains);
+
+private:
+    /// A start (ownerCount kStart, the owner in m_owners[firstOwner]) or a split of x -> y at
+    /// w for the ownerCount owners from m_owners[firstOwner]: a pool, not a vector per edit.
+    static constexpr std::uint32_t kStart = 0xffffffffU;
+    struct Edit {
+        std::uint32_t x;
+        std::uint32_t y;
+        std::uint32_t w;
+        std::uint32_t firstOwner;
+        std::uint32_t ownerCount;
+    };
+    std::vector<Edit> m_edits;
+    std::vector<std::uint32_t> m_owners;
+};
+
 } // namespace terratin::detail

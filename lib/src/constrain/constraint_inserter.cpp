@@ -42,28 +42,58 @@ std::optional<std::uint32_t> ConstraintInserter::insertPointFrom(const Point3& p
     return v;
 }
 
-void ConstraintInserter::requireOwnEdge(std::uint32_t a, std::uint32_t b) const {
-    if (m_sharedOwners != nullptr && m_sharedOwners->contains(a, b))
-        throw ZoneRefusal{}; // an earlier round's: another zone may split its segments' chains
+void ConstraintInserter::requireEdgeInZone(std::uint32_t a, std::uint32_t b) const {
+    if (m_sharedOwners != nullptr && (!m_mesh.inZone(a) || !m_mesh.inZone(b)))
+        throw ZoneRefusal{};
+}
+
+ConstraintOwners::Owners ConstraintInserter::takeOwners(std::uint32_t a, std::uint32_t b) {
+    ConstraintOwners::Owners owners = m_owners.take(a, b);
+    if (m_sharedOwners == nullptr || !m_sharedOwners->contains(a, b))
+        return owners;
+    const std::uint32_t low = std::min(a, b);
+    const std::uint32_t high = std::max(a, b);
+    if (!m_takenSharedKeys.insert((std::uint64_t{low} << 32U) | high).second)
+        return owners; // taken before: what it has now is this zone's
+    m_takenShared.push_back({low, high});
+    for (const std::uint32_t owner : m_sharedOwners->ownersOf(a, b))
+        if (std::find(owners.begin(), owners.end(), owner) == owners.end())
+            owners.push_back(owner);
+    return owners;
+}
+
+void ConstraintInserter::startChain(std::uint32_t owner, std::uint32_t a, std::uint32_t b) {
+    if (m_sharedOwners != nullptr)
+        m_chainEdits.start(owner, a, b);
+    else
+        m_chains->start(owner, a, b);
+}
+
+void ConstraintInserter::splitChains(const ConstraintOwners::Owners& owners, std::uint32_t x,
+                                     std::uint32_t y, std::uint32_t w) {
+    if (m_sharedOwners != nullptr)
+        m_chainEdits.insertBetween(owners, x, y, w);
+    else
+        m_chains->insertBetween(owners, x, y, w);
 }
 
 std::uint32_t ConstraintInserter::insertVertex(const Point3& p, std::uint32_t source,
                                                const MeshLocation& where) {
     if (where.kind == MeshLocation::Kind::OnEdge && m_mesh.isConstrained(where.halfEdge))
-        requireOwnEdge(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
+        requireEdgeInZone(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
     const std::uint32_t v = m_mesh.insertPoint(
         p, source, where, [this](std::uint32_t a, std::uint32_t b, std::uint32_t middle) {
-            const ConstraintOwners::Owners owners = m_owners.take(a, b);
+            const ConstraintOwners::Owners owners = takeOwners(a, b);
             m_owners.add(a, middle, owners);
             m_owners.add(middle, b, owners);
-            m_chains->insertBetween(owners, a, b, middle);
+            splitChains(owners, a, b, middle);
         });
     m_hintTriangle = m_mesh.halfEdgeLeaving(v) / 3;
     return v;
 }
 
 void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::uint32_t owner) {
-    m_chains->start(owner, a, b);
+    startChain(owner, a, b);
     m_pieces.push_back({a, b, {owner}});
     insertPendingPieces(owner);
 }
@@ -104,7 +134,7 @@ void ConstraintInserter::insertPiece(Piece& piece) {
         if (start.kind == SegmentStart::Kind::AlongEdge) {
             m_mesh.rememberTriangleOf(start.halfEdge); // the next piece starts at its vertex
             markConstrained(start.halfEdge, piece.owners);
-            m_chains->insertBetween(piece.owners, u, v, start.vertex);
+            splitChains(piece.owners, u, v, start.vertex);
             piece.from = start.vertex;
             continue;
         }
@@ -118,7 +148,7 @@ void ConstraintInserter::insertPiece(Piece& piece) {
         if (segment == kNoHalfEdge)
             segment = flipSegmentIn(m_mesh, u, m_crossed);
         markConstrained(segment, piece.owners);
-        m_chains->insertBetween(piece.owners, u, v, m_crossed.end);
+        splitChains(piece.owners, u, v, m_crossed.end);
         piece.from = m_crossed.end;
     }
 }
@@ -156,7 +186,7 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     if (!near && metBefore)
         near = t <= 0.5 ? c : d;
     if (near) {
-        m_chains->insertBetween(owners, u, v, *near);
+        splitChains(owners, u, v, *near);
         m_pieces.push_back({*near, v, owners});
         m_pieces.push_back({u, *near, owners});
         return;
@@ -181,18 +211,18 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     } else {
         m_mesh.requireInsertable(where);
         if (where.kind == MeshLocation::Kind::OnEdge && m_mesh.isConstrained(where.halfEdge))
-            requireOwnEdge(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
+            requireEdgeInZone(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
     }
-    requireOwnEdge(c, d);
+    requireEdgeInZone(c, d);
 
-    const ConstraintOwners::Owners crossedOwners = m_owners.take(c, d);
+    const ConstraintOwners::Owners crossedOwners = takeOwners(c, d);
     m_mesh.setConstrained(crossed, false);
     if (!w) {
         w = insertVertex(crossing, kIntersectionSource, where);
         ++m_intersections;
     }
-    m_chains->insertBetween(crossedOwners, c, d, *w);
-    m_chains->insertBetween(owners, u, v, *w);
+    splitChains(crossedOwners, c, d, *w);
+    splitChains(owners, u, v, *w);
     // Unmarked, c -> d may be an edge that only its constraint kept (when the crossing fell
     // on another vertex, or off c -> d): flip it if it is not locally Delaunay.
     if (const std::size_t unmarked = m_mesh.findEdge(c, d); unmarked != kNoHalfEdge) {
@@ -243,7 +273,10 @@ std::optional<std::uint32_t> ConstraintInserter::vertexWithinRounding(const Poin
 }
 
 void ConstraintInserter::absorb(ConstraintInserter& zone) {
+    for (const auto& [a, b] : zone.m_takenShared)
+        static_cast<void>(m_owners.take(a, b));
     m_owners.addAll(zone.m_owners);
+    zone.m_chainEdits.applyTo(*m_chains);
     m_addedPoints += zone.m_addedPoints;
     m_intersections += zone.m_intersections;
     m_mesh.makePendingFlips(zone.m_mesh);

@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <unordered_set>
 #include <vector>
 
 namespace terratin::detail {
@@ -28,10 +29,11 @@ public:
         m_owners.reserve(2 * segments);
     }
     /// An inserter for one zone of `shared`'s mesh (CdtMesh's views), with the slots it may
-    /// fill, sharing its chains; about `segments` segments go in through it. Its operations
-    /// throw ZoneRefusal, changing nothing, when they would reach outside the zone: after one
-    /// in insertSegment, takePieces() gives what is left of that segment. Only inserters of
-    /// disjoint zones may work at once.
+    /// fill; about `segments` segments go in through it. Its operations throw ZoneRefusal,
+    /// changing nothing, when they would reach outside the zone: after one in insertSegment,
+    /// takePieces() gives what is left of that segment. Only inserters of disjoint zones may
+    /// work at once. It reads `shared`'s owners (an earlier round's edges) and changes neither
+    /// them nor the chains: absorb() makes its changes to both.
     ConstraintInserter(ConstraintInserter& shared, Zone zone, SlotRange vertices,
                        SlotRange triangles, std::size_t segments)
         : m_mesh(shared.m_mesh, zone, vertices, triangles), m_chains(shared.m_chains),
@@ -68,8 +70,9 @@ public:
     /// Room in the chains for `segments` segments: a zone's inserters may then start theirs
     /// at once.
     void prepareChains(std::size_t segments) { m_chains->prepare(segments); }
-    /// Takes over what a zone's inserter did: its constrained edges' owners, its counts, and
-    /// the flips its zone's edge left (made now). Call after every zone is done.
+    /// Takes over what a zone's inserter did: its constrained edges' owners (those of earlier
+    /// edges it split removed), its chains' starts and splits, its counts, and the flips its
+    /// zone's edge left (made now). Call after every zone is done, in the zones' order.
     void absorb(ConstraintInserter& zone);
     /// Closes up the slots the zones left unused (CdtMesh::compact) and renumbers the vertices
     /// of the chains and of `vertexLists` to match.
@@ -101,9 +104,18 @@ private:
     /// Inserts `piece`, moving its start along as its parts go in.
     void insertPiece(Piece& piece);
     void markConstrained(std::size_t h, const ConstraintOwners::Owners& owners);
-    /// For a zone's inserter: throws ZoneRefusal when the constrained edge {a, b} is not one of
-    /// its own but an earlier round's, whose segments' chains another zone may change too.
-    void requireOwnEdge(std::uint32_t a, std::uint32_t b) const;
+    /// For a zone's inserter: throws ZoneRefusal unless both ends of the constrained edge
+    /// {a, b} lie in the zone, which then alone may change its flags and owners.
+    void requireEdgeInZone(std::uint32_t a, std::uint32_t b) const;
+    /// Removes the constrained edge {a, b} and returns its owners: for a zone's inserter, those
+    /// it gave the edge and, the first time, those of an earlier round (kept in the shared
+    /// owners until absorb).
+    ConstraintOwners::Owners takeOwners(std::uint32_t a, std::uint32_t b);
+    /// ConstraintChains::start and insertBetween on the chains, or for a zone's inserter kept
+    /// for absorb.
+    void startChain(std::uint32_t owner, std::uint32_t a, std::uint32_t b);
+    void splitChains(const ConstraintOwners::Owners& owners, std::uint32_t x, std::uint32_t y,
+                     std::uint32_t w);
     void splitAtCrossing(std::uint32_t u, std::uint32_t v, const ConstraintOwners::Owners& owners,
                          std::size_t crossed);
     [[nodiscard]] std::optional<std::uint32_t> vertexWithinRounding(const Point3& p,
@@ -117,8 +129,13 @@ private:
     ConstraintOwners m_owners;
     ConstraintChains m_ownChains;
     ConstraintChains* m_chains = &m_ownChains; // a zone's inserter: the shared one's
-    /// A zone's inserter: the shared inserter's owners (an earlier round's edges), read only.
+    /// A zone's inserter: the shared inserter's owners (an earlier round's edges), read only;
+    /// the earlier edges it split (keys as ConstraintOwners's, the smaller vertex first); and
+    /// its chains' changes, for absorb.
     const ConstraintOwners* m_sharedOwners = nullptr;
+    std::vector<std::array<std::uint32_t, 2>> m_takenShared;
+    std::unordered_set<std::uint64_t> m_takenSharedKeys;
+    ChainEdits m_chainEdits;
     std::vector<Piece> m_pieces;
     /// The crossings (u, v, c, d) met while inserting the current segment: one met again means
     /// that rounding sends the pieces round in a circle (see splitAtCrossing).

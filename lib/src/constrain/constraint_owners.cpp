@@ -90,10 +90,20 @@ ConstraintOwners::Owners ConstraintOwners::take(std::uint32_t a, std::uint32_t b
     const std::size_t slot = slotOf(key(a, b));
     if (m_slots[slot].key == kEmptyKey)
         return {};
+    Owners owners = ownersOf(a, b);
+    erase(slot);
+    return owners;
+}
+
+ConstraintOwners::Owners ConstraintOwners::ownersOf(std::uint32_t a, std::uint32_t b) const {
+    if (m_slots.empty())
+        return {};
+    const std::size_t slot = slotOf(key(a, b));
     Owners owners;
+    if (m_slots[slot].key == kEmptyKey)
+        return owners;
     for (std::uint32_t n = m_slots[slot].first; n != kEnd; n = m_nodes[n].next)
         owners.push_back(m_nodes[n].owner);
-    erase(slot);
     return owners;
 }
 

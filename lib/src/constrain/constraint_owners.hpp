@@ -18,6 +18,8 @@ public:
     void add(std::uint32_t a, std::uint32_t b, const Owners& owners);
     /// Removes the edge {a, b} and returns its owners (empty when it had none).
     Owners take(std::uint32_t a, std::uint32_t b);
+    /// The owners of the edge {a, b} (empty when it has none), which stays.
+    [[nodiscard]] Owners ownersOf(std::uint32_t a, std::uint32_t b) const;
     /// Adds every edge of `other` with its owners.
     void addAll(const ConstraintOwners& other);
     /// Whether the edge {a, b} has owners here.

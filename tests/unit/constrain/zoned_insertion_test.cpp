@@ -171,5 +171,53 @@ TEST(ZonedInsertion, RegressionRefusedPolylineCrossesAZonesConstrainedEdge) {
     EXPECT_EQ(tin.intersections, 1U);
 }
 
+// The second round's zones split the first round's constrained edges where their polylines
+// cross them (both ends of the edge in the zone): the crossings no longer leave the polylines
+// for afterwards, on one thread. Here only the polyline whose first point sets the second
+// round's border is left; the TIN is constrained Delaunay with the four crossings in the chains.
+TEST(ZonedInsertion, SecondRoundSplitsTheFirstRoundsEdges_InsteadOfRefusingThePolylines) {
+    const TinMesh mesh = gridMesh(41);
+    std::vector<Point3> left;
+    std::vector<Point3> right;
+    for (double y = 2.5; y <= 20.5; y += 2.0) {
+        left.push_back({30.5, y, 0});
+        right.push_back({34.5, y, 0});
+    }
+    const std::vector<std::vector<Point3>> lines{
+        {{2.5, 5.25, 0}, {37.5, 5.25, 0}},   // stopped at x = 20.5, goes on below y = 10.5
+        {{2.5, 15.25, 0}, {37.5, 15.25, 0}}, // the same above it
+        {{20.5, 10.5, 0}, {21.5, 10.5, 0}},  // sets both borders; refused by both rounds
+        left,                                // the first round's, right of x = 20.5
+        right};
+    const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
+    detail::ConstraintInserter inserter(mesh, 64);
+    std::vector<std::uint32_t> firstOwner;
+    std::uint32_t owners = 0;
+    for (const std::vector<Point3>& polyline : constraints.polylines) {
+        firstOwner.push_back(owners);
+        owners += static_cast<std::uint32_t>(polyline.size() - 1);
+    }
+    inserter.prepareChains(owners);
+    std::vector<std::vector<std::uint32_t>> vertices(constraints.polylines.size());
+    const detail::ZonedInsertion zoned =
+        detail::insertInZones(inserter, constraints, 2, 2, firstOwner, vertices);
+    ASSERT_EQ(zoned.refused.size(), 1U);
+    EXPECT_EQ(zoned.refused.front().polyline, 2U);
+    EXPECT_EQ(vertices[0].size(), 2U);
+    EXPECT_EQ(vertices[1].size(), 2U);
+    // Each crossing's vertex is in the chains of both segments it splits.
+    for (const std::uint32_t owner : {firstOwner[0], firstOwner[1]})
+        EXPECT_EQ(inserter.chainOf(owner).size(), 4U) << "segment " << owner;
+
+    for (const unsigned threads : {1U, 2U}) {
+        ConstraintSet whole = constraints;
+        whole.zones = 2;
+        whole.threads = threads;
+        const ConstrainedTin tin = insertConstraints(mesh, whole);
+        test::expectConstrainedDelaunay(tin, mesh, whole);
+        EXPECT_EQ(tin.intersections, 4U) << threads << " threads";
+    }
+}
+
 } // namespace
 } // namespace terratin
