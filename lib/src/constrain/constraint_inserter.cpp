@@ -63,7 +63,7 @@ ConstraintOwners::Owners ConstraintInserter::takeOwners(std::uint32_t a, std::ui
 }
 
 void ConstraintInserter::startChain(std::uint32_t owner, std::uint32_t a, std::uint32_t b) {
-    if (m_sharedOwners != nullptr)
+    if (m_deferChains)
         m_chainEdits.start(owner, a, b);
     else
         m_chains->start(owner, a, b);
@@ -71,7 +71,7 @@ void ConstraintInserter::startChain(std::uint32_t owner, std::uint32_t a, std::u
 
 void ConstraintInserter::splitChains(const ConstraintOwners::Owners& owners, std::uint32_t x,
                                      std::uint32_t y, std::uint32_t w) {
-    if (m_sharedOwners != nullptr)
+    if (m_deferChains)
         m_chainEdits.insertBetween(owners, x, y, w);
     else
         m_chains->insertBetween(owners, x, y, w);

@@ -32,12 +32,12 @@ public:
     /// fill; about `segments` segments go in through it. Its operations throw ZoneRefusal,
     /// changing nothing, when they would reach outside the zone: after one in insertSegment,
     /// takePieces() gives what is left of that segment. Only inserters of disjoint zones may
-    /// work at once. It reads `shared`'s owners (an earlier round's edges) and changes neither
-    /// them nor the chains: absorb() makes its changes to both.
+    /// work at once. It reads `shared`'s owners (an earlier round's edges) without changing
+    /// them, nor then the chains: absorb() makes its changes to both.
     ConstraintInserter(ConstraintInserter& shared, Zone zone, SlotRange vertices,
                        SlotRange triangles, std::size_t segments)
         : m_mesh(shared.m_mesh, zone, vertices, triangles), m_chains(shared.m_chains),
-          m_sharedOwners(&shared.m_owners) {
+          m_sharedOwners(&shared.m_owners), m_deferChains(!shared.m_owners.empty()) {
         m_owners.reserve(2 * segments);
     }
     ConstraintInserter(const ConstraintInserter&) = delete;
@@ -135,6 +135,10 @@ private:
     const ConstraintOwners* m_sharedOwners = nullptr;
     std::vector<std::array<std::uint32_t, 2>> m_takenShared;
     std::unordered_set<std::uint64_t> m_takenSharedKeys;
+    /// Whether the chains' edits wait for absorb: when there are earlier edges, whose
+    /// segments' chains another zone may split too. Without, each zone changes only the chains
+    /// of its own segments, at once.
+    bool m_deferChains = false;
     ChainEdits m_chainEdits;
     std::vector<Piece> m_pieces;
     /// The crossings (u, v, c, d) met while inserting the current segment: one met again means

@@ -22,6 +22,8 @@ public:
     [[nodiscard]] Owners ownersOf(std::uint32_t a, std::uint32_t b) const;
     /// Adds every edge of `other` with its owners.
     void addAll(const ConstraintOwners& other);
+    /// Whether no edge has owners here.
+    [[nodiscard]] bool empty() const { return m_edges == 0; }
     /// Whether the edge {a, b} has owners here.
     [[nodiscard]] bool contains(std::uint32_t a, std::uint32_t b) const {
         return !m_slots.empty() && m_slots[slotOf(key(a, b))].key != kEmptyKey;
