@@ -5,7 +5,8 @@ Makes a road-like network over the DEM (--lines polylines of --segments segments
 walks that turn gently, inside the raster's extent), then runs, in turn, --rounds times:
 `terratin build DEM -o tin.ply` and the same with `--breaklines network.gpkg`, and prints the
 median seconds of each (the JSON report's total and its triangulate phase, which holds the
-constraint insertion) and their ratio, and the median of the constrained runs' `constrain` timing
+constraint insertion), their ratio and the median of each round's own ratio (the two builds of
+a round run side by side), and the median of the constrained runs' `constrain` timing
 (the constraint layers read and inserted), a part of the phase that the triangulation's noise
 does not blur. PLY output (the default) keeps the write phase small, so that the ratio
 measures the triangulation; --format gpkg writes GeoPackages, the run a user makes. Run from the
