@@ -24,6 +24,25 @@ TinMesh gridMesh(int n) {
     return triangulate(points).mesh;
 }
 
+// insertInZones in two bands on two threads on `mesh`: each polyline's segments numbered after
+// the previous polyline's (firstOwner), each polyline's vertices in `vertices`.
+struct TwoZones {
+    explicit TwoZones(const TinMesh& mesh) : inserter(mesh, 64) {}
+    detail::ZonedInsertion run(const ConstraintSet& constraints) {
+        std::uint32_t owners = 0;
+        for (const std::vector<Point3>& polyline : constraints.polylines) {
+            firstOwner.push_back(owners);
+            owners += static_cast<std::uint32_t>(polyline.size() - 1);
+        }
+        inserter.prepareChains(owners);
+        vertices.assign(constraints.polylines.size(), {});
+        return detail::insertInZones(inserter, constraints, 2, 2, firstOwner, vertices);
+    }
+    detail::ConstraintInserter inserter;
+    std::vector<std::uint32_t> firstOwner;
+    std::vector<std::vector<std::uint32_t>> vertices;
+};
+
 class ZonedInsertionDistribution
     : public ::testing::TestWithParam<std::tuple<Distribution, unsigned>> {};
 
@@ -108,21 +127,12 @@ TEST(ZonedInsertion, ZonesInsertThePolylinesInsideThem_AndRefuseThoseAcrossTheBo
     // Its first point puts the border between the zones at x = 20.5; it reaches across.
     lines.push_back({{20.5, 1.25, 0}, {6.5, 38.5, 0}});
     const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
-    detail::ConstraintInserter inserter(mesh, 64);
-    std::vector<std::uint32_t> firstOwner;
-    std::uint32_t owners = 0;
-    for (const std::vector<Point3>& polyline : constraints.polylines) {
-        firstOwner.push_back(owners);
-        owners += static_cast<std::uint32_t>(polyline.size() - 1);
-    }
-    inserter.prepareChains(owners);
-    std::vector<std::vector<std::uint32_t>> vertices(constraints.polylines.size());
-    const detail::ZonedInsertion zoned =
-        detail::insertInZones(inserter, constraints, 2, 2, firstOwner, vertices);
+    TwoZones zones(mesh);
+    const detail::ZonedInsertion zoned = zones.run(constraints);
     ASSERT_EQ(zoned.refused.size(), 1U);
     EXPECT_EQ(zoned.refused.front().polyline, 16U);
     for (std::size_t k = 0; k < 16; ++k)
-        EXPECT_EQ(vertices[k].size(), 3U) << "polyline " << k;
+        EXPECT_EQ(zones.vertices[k].size(), 3U) << "polyline " << k;
 }
 
 // Polylines that all stop at the edge of the first round's bands of x (their first points
@@ -190,24 +200,15 @@ TEST(ZonedInsertion, SecondRoundSplitsTheFirstRoundsEdges_InsteadOfRefusingThePo
         left,                                // the first round's, right of x = 20.5
         right};
     const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
-    detail::ConstraintInserter inserter(mesh, 64);
-    std::vector<std::uint32_t> firstOwner;
-    std::uint32_t owners = 0;
-    for (const std::vector<Point3>& polyline : constraints.polylines) {
-        firstOwner.push_back(owners);
-        owners += static_cast<std::uint32_t>(polyline.size() - 1);
-    }
-    inserter.prepareChains(owners);
-    std::vector<std::vector<std::uint32_t>> vertices(constraints.polylines.size());
-    const detail::ZonedInsertion zoned =
-        detail::insertInZones(inserter, constraints, 2, 2, firstOwner, vertices);
+    TwoZones zones(mesh);
+    const detail::ZonedInsertion zoned = zones.run(constraints);
     ASSERT_EQ(zoned.refused.size(), 1U);
     EXPECT_EQ(zoned.refused.front().polyline, 2U);
-    EXPECT_EQ(vertices[0].size(), 2U);
-    EXPECT_EQ(vertices[1].size(), 2U);
+    EXPECT_EQ(zones.vertices[0].size(), 2U);
+    EXPECT_EQ(zones.vertices[1].size(), 2U);
     // Each crossing's vertex is in the chains of both segments it splits.
-    for (const std::uint32_t owner : {firstOwner[0], firstOwner[1]})
-        EXPECT_EQ(inserter.chainOf(owner).size(), 4U) << "segment " << owner;
+    for (const std::uint32_t owner : {zones.firstOwner[0], zones.firstOwner[1]})
+        EXPECT_EQ(zones.inserter.chainOf(owner).size(), 4U) << "segment " << owner;
 
     for (const unsigned threads : {1U, 2U}) {
         ConstraintSet whole = constraints;
