@@ -51,11 +51,9 @@ ConstraintOwners::Owners ConstraintInserter::takeOwners(std::uint32_t a, std::ui
     ConstraintOwners::Owners owners = m_owners.take(a, b);
     if (m_sharedOwners == nullptr || !m_sharedOwners->contains(a, b))
         return owners;
-    const std::uint32_t low = std::min(a, b);
-    const std::uint32_t high = std::max(a, b);
-    if (!m_takenSharedKeys.insert((std::uint64_t{low} << 32U) | high).second)
+    const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32U) | std::max(a, b);
+    if (!m_takenShared.insert(key).second)
         return owners; // taken before: what it has now is this zone's
-    m_takenShared.push_back({low, high});
     for (const std::uint32_t owner : m_sharedOwners->ownersOf(a, b))
         if (std::find(owners.begin(), owners.end(), owner) == owners.end())
             owners.push_back(owner);
@@ -273,8 +271,10 @@ std::optional<std::uint32_t> ConstraintInserter::vertexWithinRounding(const Poin
 }
 
 void ConstraintInserter::absorb(ConstraintInserter& zone) {
-    for (const auto& [a, b] : zone.m_takenShared)
-        static_cast<void>(m_owners.take(a, b));
+    // In any order: each removal is of a different edge.
+    for (const std::uint64_t key : zone.m_takenShared)
+        static_cast<void>(
+            m_owners.take(static_cast<std::uint32_t>(key >> 32U), static_cast<std::uint32_t>(key)));
     m_owners.addAll(zone.m_owners);
     zone.m_chainEdits.applyTo(*m_chains);
     m_addedPoints += zone.m_addedPoints;

@@ -130,11 +130,10 @@ private:
     ConstraintChains m_ownChains;
     ConstraintChains* m_chains = &m_ownChains; // a zone's inserter: the shared one's
     /// A zone's inserter: the shared inserter's owners (an earlier round's edges), read only;
-    /// the earlier edges it split (keys as ConstraintOwners's, the smaller vertex first); and
-    /// its chains' changes, for absorb.
+    /// the earlier edges it split (the smaller vertex in the high half); and its chains'
+    /// changes, for absorb.
     const ConstraintOwners* m_sharedOwners = nullptr;
-    std::vector<std::array<std::uint32_t, 2>> m_takenShared;
-    std::unordered_set<std::uint64_t> m_takenSharedKeys;
+    std::unordered_set<std::uint64_t> m_takenShared;
     /// Whether the chains' edits wait for absorb: when there are earlier edges, whose
     /// segments' chains another zone may split too. Without, each zone changes only the chains
     /// of its own segments, at once.

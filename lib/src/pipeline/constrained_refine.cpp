@@ -51,14 +51,17 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
     for (std::size_t cell = 0; cell < grid.cellCount(); ++cell) {
         // The erase and replace areas' cells are no data to the refiner, but no hole: the
         // TIN keeps its triangles there (flat ones), or the area drops them.
-        if (open[cell] != 0 &&
-            !inLeftOutArea(cellPosition(grid, positions, cell), erase, replace)) {
-            ++sets.allOpenHoleCells;
-            if (!outsideConvexPolygon(hull, cellPosition(grid, positions, cell)))
-                sets.openHoleCells.push_back(cell);
-        } else if (grid.isValid(cell)) {
-            sets.measuredCells.push_back(cell);
+        if (open[cell] != 0) {
+            const Point2 p = cellPosition(grid, positions, cell);
+            if (!inLeftOutArea(p, erase, replace)) {
+                ++sets.allOpenHoleCells;
+                if (!outsideConvexPolygon(hull, p))
+                    sets.openHoleCells.push_back(cell);
+                continue;
+            }
         }
+        if (grid.isValid(cell))
+            sets.measuredCells.push_back(cell);
     }
     return sets;
 }
