@@ -379,6 +379,37 @@ TEST(BreaklinesPipeline, ABadLayerIsRefusedBeforeTheTinIsBuilt) {
     }
 }
 
+// The layers are read on a thread of their own while the DEM is: a bad DEM is still the error
+// reported first, and a missing layer still gets its own error, at full resolution and
+// simplified.
+TEST(BreaklinesPipeline, LayersReadBesideTheDem_TheDemsErrorComesFirst_AndALayersOwnAfter) {
+    TemporaryDirectory directory;
+    const fs::path missingLayer = directory.path() / "no_such_lines.gpkg";
+    const fs::path missingDem = directory.path() / "no_such_dem.tif";
+    for (const bool simplified : {false, true}) {
+        BuildOptions options = optionsFor(missingLayer, directory.path() / "tin.ply");
+        if (simplified) {
+            options.refine.emplace();
+            options.refine->maxError = 1.0;
+        }
+        const auto errorOf = [&] {
+            try {
+                (void)runBuild(options);
+            } catch (const Error& error) {
+                return std::string(error.what());
+            }
+            return std::string("no error");
+        };
+        const std::string layerError = errorOf();
+        EXPECT_NE(layerError.find("no_such_lines.gpkg"), std::string::npos) << layerError;
+        options.inputs = {missingDem.string()};
+        const std::string demError = errorOf();
+        EXPECT_NE(demError.find("no_such_dem.tif"), std::string::npos) << demError;
+        EXPECT_EQ(demError.find("no_such_lines.gpkg"), std::string::npos) << demError;
+        EXPECT_FALSE(fs::exists(directory.path() / "tin.ply"));
+    }
+}
+
 TEST(BreaklinesPipeline, AnEmptyLayerGivesANotice_AndALayerInAnotherCrsIsReprojected) {
     TemporaryDirectory directory;
     const fs::path empty = directory.path() / "empty.gpkg";

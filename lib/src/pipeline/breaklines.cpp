@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <optional>
 #include <span>
@@ -21,18 +22,23 @@ namespace terratin::detail {
 
 namespace {
 
-/// The lines (or polygon rings) of one source in `crsWkt`; `keyword` names the option it came
-/// from.
-io::LineLayer readInCrs(const std::string& source, std::string_view keyword,
-                        const BuildOptions& options, const std::string& crsWkt,
-                        BuildReport& report) {
+/// The lines (or polygon rings) of one source as read; `keyword` names the option it came from.
+io::LineLayer readLayer(const std::string& source, std::string_view keyword,
+                        const BuildOptions& options) {
     const std::string option = optionName(keyword, options.optionSpelling);
-    io::LineLayer layer =
-        keyword == "breaklines"
-            ? io::readOgrLines(source, options.breaklinesLayer, option)
-            : io::readOgrPolygons(source, "", option,
-                                  keyword == "replace" ? options.replaceZField : std::string());
-    const std::string name = option + " '" + source + "' layer '" + layer.layerName + "'";
+    return keyword == "breaklines"
+               ? io::readOgrLines(source, options.breaklinesLayer, option)
+               : io::readOgrPolygons(source, "", option,
+                                     keyword == "replace" ? options.replaceZField : std::string());
+}
+
+/// `layer`, read from `source` for option `keyword`, in `crsWkt`, with the notices it calls
+/// for.
+io::LineLayer intoCrs(io::LineLayer layer, const std::string& source, std::string_view keyword,
+                      const BuildOptions& options, const std::string& crsWkt,
+                      BuildReport& report) {
+    const std::string name = optionName(keyword, options.optionSpelling) + " '" + source +
+                             "' layer '" + layer.layerName + "'";
     if (layer.lines.empty()) {
         notify(options, report,
                name + (keyword == "breaklines" ? " has no lines" : " has no polygons"));
@@ -192,21 +198,43 @@ std::size_t ConstraintSources::spareVertices() const {
     return 2 * vertices;
 }
 
-ConstraintSources readConstraintSources(const BuildOptions& options, const std::string& crsWkt,
-                                        const HeightGrid* dem, BuildReport& report) {
-    ConstraintSources sources;
+ConstraintLayers readConstraintLayers(const BuildOptions& options) {
+    ConstraintLayers layers;
     if (!options.clip.empty())
-        sources.clip = readInCrs(options.clip, "clip", options, crsWkt, report);
+        layers.clip = readLayer(options.clip, "clip", options);
     if (!options.erase.empty())
-        sources.erase = readInCrs(options.erase, "erase", options, crsWkt, report);
+        layers.erase = readLayer(options.erase, "erase", options);
     if (!options.replace.empty())
-        sources.replace = readInCrs(options.replace, "replace", options, crsWkt, report);
+        layers.replace = readLayer(options.replace, "replace", options);
+    for (const std::string& source : options.breaklines)
+        layers.breaklines.push_back(readLayer(source, "breaklines", options));
+    return layers;
+}
+
+std::future<ConstraintLayers> startReadingConstraintLayers(const BuildOptions& options) {
+    return std::async(std::launch::async, [&options] { return readConstraintLayers(options); });
+}
+
+ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOptions& options,
+                                        const std::string& crsWkt, const HeightGrid* dem,
+                                        BuildReport& report) {
+    ConstraintSources sources;
+    if (layers.clip)
+        sources.clip = intoCrs(std::move(*layers.clip), options.clip, "clip", options, crsWkt,
+                               report);
+    if (layers.erase)
+        sources.erase = intoCrs(std::move(*layers.erase), options.erase, "erase", options,
+                                crsWkt, report);
+    if (layers.replace)
+        sources.replace = intoCrs(std::move(*layers.replace), options.replace, "replace",
+                                  options, crsWkt, report);
     for (std::optional<io::LineLayer>* area : {&sources.clip, &sources.erase})
         if (*area)
             takeSurfaceZ(**area, dem, BreaklineZ::Surface);
-    for (const std::string& source : options.breaklines) {
+    for (std::size_t i = 0; i < layers.breaklines.size(); ++i) {
         io::LineLayer& layer = sources.breaklines.emplace_back(
-            readInCrs(source, "breaklines", options, crsWkt, report));
+            intoCrs(std::move(layers.breaklines[i]), options.breaklines[i], "breaklines", options,
+                    crsWkt, report));
         if (options.breaklineZ == BreaklineZ::Line)
             checkLineZ(layer, options);
         takeSurfaceZ(layer, dem, options.breaklineZ);

@@ -10,6 +10,7 @@
 #include "terratin/pipeline/build_pipeline.hpp"
 
 #include <cstdint>
+#include <future>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,16 +47,34 @@ struct ConstraintSources {
     /// after them.
     [[nodiscard]] std::size_t spareVertices() const;
 };
-/// Reads the sources of `options`' constraints and reprojects them from their layer's CRS into
-/// `crsWkt` (a layer without one is taken to be in `crsWkt`, with a notice; so is a source
-/// without features). The vertices that take the surface's z (breaklines per
+/// The layers of options.clip, options.erase, options.replace and options.breaklines as read
+/// (nullopt where not given), in their own CRS.
+struct ConstraintLayers {
+    std::optional<io::LineLayer> clip;
+    std::optional<io::LineLayer> erase;
+    std::optional<io::LineLayer> replace;
+    std::vector<io::LineLayer> breaklines;
+};
+
+/// Reads the layers of `options`' constraints. Throws what io::readOgrLines and
+/// io::readOgrPolygons throw.
+ConstraintLayers readConstraintLayers(const BuildOptions& options);
+
+/// readConstraintLayers on a thread of its own, so that the read overlaps the inputs' (GDAL
+/// reads different datasets on different threads). `options` must outlive the future.
+std::future<ConstraintLayers> startReadingConstraintLayers(const BuildOptions& options);
+
+/// The constraint sources from `layers` (readConstraintLayers), reprojected from their layer's
+/// CRS into `crsWkt` (a layer without one is taken to be in `crsWkt`, with a notice; so is a
+/// source without features). The vertices that take the surface's z (breaklines per
 /// options.breaklineZ, clip and erase rings) get `dem`'s bilinear elevation where it has one
 /// (bilinearElevation), else NaN, for the TIN's to fill (addConstraints); `dem` is the only
-/// input raster when the TIN's points are its cell centres, else null. Throws what
-/// io::readOgrLines and io::readOgrPolygons throw, and InvalidInputError for a line without z
-/// under BreaklineZ::Line.
-ConstraintSources readConstraintSources(const BuildOptions& options, const std::string& crsWkt,
-                                        const HeightGrid* dem, BuildReport& report);
+/// input raster when the TIN's points are its cell centres, else null. Throws CrsError for a
+/// layer that cannot be reprojected, and InvalidInputError for a line without z under
+/// BreaklineZ::Line.
+ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOptions& options,
+                                        const std::string& crsWkt, const HeightGrid* dem,
+                                        BuildReport& report);
 
 /// `mesh` (the Delaunay TIN of the inputs, in the sources' CRS) with every line and ring of
 /// `sources` inserted: a constrained Delaunay TIN. Lines and rings are clipped to the mesh's

@@ -27,6 +27,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -437,6 +438,10 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
         return runTiledBuild(options, std::move(writeOptions), progress, std::move(report),
                              totalTime);
     checkOneRasterInput(options);
+    // The constraint layers are read while the DEM is.
+    std::future<detail::ConstraintLayers> constraintLayers;
+    if (hasConstraints(options))
+        constraintLayers = detail::startReadingConstraintLayers(options);
     const Stopwatch readTime;
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
@@ -464,8 +469,8 @@ BuildReport runRefineBuild(const BuildOptions& options, io::TinWriteOptions writ
         const Stopwatch constrainTime;
         // A projected (geographic) DEM's cells are no longer on its grid: no bilinear z then.
         sources = detail::readConstraintSources(
-            options, placement.targetWkt, placement.positions.empty() ? &raster.grid : nullptr,
-            report);
+            constraintLayers.get(), options, placement.targetWkt,
+            placement.positions.empty() ? &raster.grid : nullptr, report);
         replacedCells = detail::leaveOutAreaCells(raster.grid, placement.positions, sources);
         refineOptions.spareVertices = sources.spareVertices();
         report.timings.constrain = constrainTime.seconds();
@@ -597,6 +602,10 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     if (options.refine)
         return runRefineBuild(options, writeOptions, progress, std::move(report), totalTime);
 
+    // The constraint layers are read while the inputs are.
+    std::future<detail::ConstraintLayers> constraintLayers;
+    if (hasConstraints(options))
+        constraintLayers = detail::startReadingConstraintLayers(options);
     const Stopwatch readTime;
     detail::GatheredInputs gathered =
         detail::gatherInputs(options, report, phaseProgress(progress, 0.0, kReadShare));
@@ -609,8 +618,8 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     if (hasConstraints(options)) {
         const Stopwatch constrainTime;
         const std::optional<HeightGrid> dem = detail::cellSurface(gathered);
-        sources =
-            detail::readConstraintSources(options, gathered.crsWkt, dem ? &*dem : nullptr, report);
+        sources = detail::readConstraintSources(constraintLayers.get(), options, gathered.crsWkt,
+                                                dem ? &*dem : nullptr, report);
         triangulationOptions.spareVertices = sources->spareVertices();
         report.timings.constrain = constrainTime.seconds();
     }

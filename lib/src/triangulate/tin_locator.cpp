@@ -88,6 +88,23 @@ std::array<Point2, 2> boundsOf(const MeshArray<Point3>& vertices, unsigned threa
     return bounds;
 }
 
+// The bounding box of the hull edges' vertices, as (low, high): every vertex's for a mesh that
+// covers its convex hull, at the cost of the hull alone (where triangles were left out, the box
+// of those kept, which holds all their corners: the buckets need no more). Precondition:
+// `edges` not empty.
+std::array<Point2, 2> boundsOfHull(const TinMesh& mesh,
+                                   const std::vector<std::array<std::uint32_t, 2>>& edges) {
+    const Point3& first = mesh.vertices[edges.front()[0]];
+    Point2 low{first.x, first.y};
+    Point2 high = low;
+    for (const auto& edge : edges) {
+        const Point3& p = mesh.vertices[edge[0]];
+        low = {std::min(low.x, p.x), std::min(low.y, p.y)};
+        high = {std::max(high.x, p.x), std::max(high.y, p.y)};
+    }
+    return {low, high};
+}
+
 } // namespace
 
 TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
@@ -96,7 +113,8 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
         hullEdgesOf(mesh, threads));
     if (mesh.vertexCount() == 0)
         return;
-    const auto [low, high] = boundsOf(mesh.vertices, threads);
+    const auto [low, high] = m_hullEdges->empty() ? boundsOf(mesh.vertices, threads)
+                                                  : boundsOfHull(mesh, *m_hullEdges);
     // About kTrianglesPerBucket triangles per bucket: a walk from a bucket's triangle to any
     // point of the bucket crosses a few of them.
     constexpr double kTrianglesPerBucket = 16.0;
