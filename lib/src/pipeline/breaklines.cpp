@@ -35,8 +35,7 @@ io::LineLayer readLayer(const std::string& source, std::string_view keyword,
 /// `layer`, read from `source` for option `keyword`, in `crsWkt`, with the notices it calls
 /// for.
 io::LineLayer intoCrs(io::LineLayer layer, const std::string& source, std::string_view keyword,
-                      const BuildOptions& options, const std::string& crsWkt,
-                      BuildReport& report) {
+                      const BuildOptions& options, const std::string& crsWkt, BuildReport& report) {
     const std::string name = optionName(keyword, options.optionSpelling) + " '" + source +
                              "' layer '" + layer.layerName + "'";
     if (layer.lines.empty()) {
@@ -220,14 +219,14 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
                                         BuildReport& report) {
     ConstraintSources sources;
     if (layers.clip)
-        sources.clip = intoCrs(std::move(*layers.clip), options.clip, "clip", options, crsWkt,
-                               report);
+        sources.clip =
+            intoCrs(std::move(*layers.clip), options.clip, "clip", options, crsWkt, report);
     if (layers.erase)
-        sources.erase = intoCrs(std::move(*layers.erase), options.erase, "erase", options,
-                                crsWkt, report);
+        sources.erase =
+            intoCrs(std::move(*layers.erase), options.erase, "erase", options, crsWkt, report);
     if (layers.replace)
-        sources.replace = intoCrs(std::move(*layers.replace), options.replace, "replace",
-                                  options, crsWkt, report);
+        sources.replace = intoCrs(std::move(*layers.replace), options.replace, "replace", options,
+                                  crsWkt, report);
     for (std::optional<io::LineLayer>* area : {&sources.clip, &sources.erase})
         if (*area)
             takeSurfaceZ(**area, dem, BreaklineZ::Surface);

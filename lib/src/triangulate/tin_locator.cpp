@@ -113,8 +113,8 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
         hullEdgesOf(mesh, threads));
     if (mesh.vertexCount() == 0)
         return;
-    const auto [low, high] = m_hullEdges->empty() ? boundsOf(mesh.vertices, threads)
-                                                  : boundsOfHull(mesh, *m_hullEdges);
+    const auto [low, high] =
+        m_hullEdges->empty() ? boundsOf(mesh.vertices, threads) : boundsOfHull(mesh, *m_hullEdges);
     // About kTrianglesPerBucket triangles per bucket: a walk from a bucket's triangle to any
     // point of the bucket crosses a few of them.
     constexpr double kTrianglesPerBucket = 16.0;
