@@ -51,8 +51,7 @@ ConstraintOwners::Owners ConstraintInserter::takeOwners(std::uint32_t a, std::ui
     ConstraintOwners::Owners owners = m_owners.take(a, b);
     if (m_sharedOwners == nullptr || !m_sharedOwners->contains(a, b))
         return owners;
-    const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32U) | std::max(a, b);
-    if (!m_takenShared.insert(key).second)
+    if (!m_takenShared.insert(ConstraintOwners::edgeKey(a, b)).second)
         return owners; // taken before: what it has now is this zone's
     for (const std::uint32_t owner : m_sharedOwners->ownersOf(a, b))
         if (std::find(owners.begin(), owners.end(), owner) == owners.end())

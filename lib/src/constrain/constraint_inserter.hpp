@@ -130,8 +130,8 @@ private:
     ConstraintChains m_ownChains;
     ConstraintChains* m_chains = &m_ownChains; // a zone's inserter: the shared one's
     /// A zone's inserter: the shared inserter's owners (an earlier round's edges), read only;
-    /// the earlier edges it split (the smaller vertex in the high half); and its chains'
-    /// changes, for absorb.
+    /// the earlier edges it split (ConstraintOwners::edgeKey); and its chains' changes, for
+    /// absorb.
     const ConstraintOwners* m_sharedOwners = nullptr;
     std::unordered_set<std::uint64_t> m_takenShared;
     /// Whether the chains' edits wait for absorb: when there are earlier edges, whose

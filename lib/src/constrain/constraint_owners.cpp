@@ -63,7 +63,7 @@ void ConstraintOwners::erase(std::size_t slot) {
 void ConstraintOwners::add(std::uint32_t a, std::uint32_t b, const Owners& owners) {
     if (kSlotsPerEdge * (m_edges + 1) > m_slots.size())
         rehash(std::max(kMinimumSlots, 2 * m_slots.size()));
-    const std::uint64_t edge = key(a, b);
+    const std::uint64_t edge = edgeKey(a, b);
     Slot& slot = m_slots[slotOf(edge)];
     if (slot.key == kEmptyKey) {
         slot = {edge, kEnd};
@@ -87,18 +87,20 @@ void ConstraintOwners::add(std::uint32_t a, std::uint32_t b, const Owners& owner
 ConstraintOwners::Owners ConstraintOwners::take(std::uint32_t a, std::uint32_t b) {
     if (m_slots.empty())
         return {};
-    const std::size_t slot = slotOf(key(a, b));
-    if (m_slots[slot].key == kEmptyKey)
-        return {};
-    Owners owners = ownersOf(a, b);
-    erase(slot);
+    const std::size_t slot = slotOf(edgeKey(a, b));
+    Owners owners = ownersAt(slot);
+    if (m_slots[slot].key != kEmptyKey)
+        erase(slot);
     return owners;
 }
 
 ConstraintOwners::Owners ConstraintOwners::ownersOf(std::uint32_t a, std::uint32_t b) const {
     if (m_slots.empty())
         return {};
-    const std::size_t slot = slotOf(key(a, b));
+    return ownersAt(slotOf(edgeKey(a, b)));
+}
+
+ConstraintOwners::Owners ConstraintOwners::ownersAt(std::size_t slot) const {
     Owners owners;
     if (m_slots[slot].key == kEmptyKey)
         return owners;

@@ -26,13 +26,14 @@ public:
     [[nodiscard]] bool empty() const { return m_edges == 0; }
     /// Whether the edge {a, b} has owners here.
     [[nodiscard]] bool contains(std::uint32_t a, std::uint32_t b) const {
-        return !m_slots.empty() && m_slots[slotOf(key(a, b))].key != kEmptyKey;
+        return !m_slots.empty() && m_slots[slotOf(edgeKey(a, b))].key != kEmptyKey;
+    }
+    /// The edge {a, b} (either order) as one number: the smaller vertex in the high half.
+    static std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
+        return a < b ? (std::uint64_t{a} << 32U) | b : (std::uint64_t{b} << 32U) | a;
     }
 
 private:
-    static std::uint64_t key(std::uint32_t a, std::uint32_t b) {
-        return a < b ? (std::uint64_t{a} << 32U) | b : (std::uint64_t{b} << 32U) | a;
-    }
     // The edges are an open-addressing table with linear probing (an edge per insertion and
     // one lookup per split: a node-based map spent more time allocating than looking up).
     // kEmptyKey cannot be an edge's key, whose first half is the smaller vertex.
@@ -48,6 +49,8 @@ private:
     [[nodiscard]] std::size_t home(std::uint64_t edge) const;
     /// The slot holding `edge`, or the empty slot where it would go.
     [[nodiscard]] std::size_t slotOf(std::uint64_t edge) const;
+    /// The owners of the edge in `slot` (empty for a free slot).
+    [[nodiscard]] Owners ownersAt(std::size_t slot) const;
     void rehash(std::size_t slots);
     void erase(std::size_t slot);
 
