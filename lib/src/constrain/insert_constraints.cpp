@@ -28,7 +28,7 @@ void checkPolylineTriangles(const TinMesh& mesh, const ConstraintSet& constraint
                                     " points and " + std::to_string(triangles[k].size()) +
                                     " triangles");
         for (const std::uint32_t t : triangles[k])
-            if (t >= mesh.triangleCount())
+            if (t >= mesh.triangleCount() && t != kFromPreviousPoint)
                 throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) +
                                         " names triangle " + std::to_string(t) + " of a mesh of " +
                                         std::to_string(mesh.triangleCount()) + " triangles");

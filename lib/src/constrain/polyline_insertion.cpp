@@ -21,15 +21,17 @@ std::uint32_t pointVertex(ConstraintInserter& inserter, const ConstraintSet& con
     const std::size_t k = progress.polyline;
     const std::size_t j = progress.nextPoint;
     const Point3& point = constraints.polylines[k][j];
+    const bool given = !start.empty() || !constraints.polylineTriangles.empty();
+    const std::uint32_t from = !start.empty() ? start[j]
+                               : given        ? constraints.polylineTriangles[k][j]
+                                              : kFromPreviousPoint;
     std::optional<std::uint32_t> v;
-    if (!start.empty() && start[j] == kFromPreviousPoint)
-        v = inserter.insertPointFrom(point, inserter.mesh().halfEdgeLeaving(vertices.back()) / 3);
-    else if (!start.empty())
-        v = inserter.insertPointFrom(point, start[j]);
-    else if (!constraints.polylineTriangles.empty())
-        v = inserter.insertPointFrom(point, constraints.polylineTriangles[k][j]);
-    else
+    if (!given || (from == kFromPreviousPoint && vertices.empty()))
         v = inserter.insertPoint(point, j == 0);
+    else if (from == kFromPreviousPoint)
+        v = inserter.insertPointFrom(point, inserter.mesh().halfEdgeLeaving(vertices.back()) / 3);
+    else
+        v = inserter.insertPointFrom(point, from);
     if (!v)
         throw InvalidInputError("insertConstraints: polyline " + std::to_string(k) + ", point " +
                                 std::to_string(j) + " " + pointText(point) +

@@ -56,16 +56,17 @@ std::vector<ZoneWork> zoneBands(const ConstraintSet& constraints,
 }
 
 /// Where each point's search starts in a zone: its triangle in polylineTriangles when a corner
-/// of it now lies in the zone (a triangle the zone may read, however it changes), else the
-/// previous point's vertex.
+/// of it now lies in the zone (a triangle the zone may read, however it changes), else (and for
+/// kFromPreviousPoint) the previous point's vertex.
 std::vector<std::uint32_t> zoneStarts(const CdtMesh& mesh, const ConstraintSet& constraints,
                                       std::size_t k, const Zone& zone) {
     const auto inZone = [&](std::uint32_t v) { return zone.holds(mesh.vertex(v)); };
     std::vector<std::uint32_t> starts;
     for (const std::uint32_t t : constraints.polylineTriangles[k]) {
-        const bool readable = inZone(mesh.from(3 * std::size_t{t})) ||
-                              inZone(mesh.from(3 * std::size_t{t} + 1)) ||
-                              inZone(mesh.from(3 * std::size_t{t} + 2));
+        const bool readable =
+            t != kFromPreviousPoint &&
+            (inZone(mesh.from(3 * std::size_t{t})) || inZone(mesh.from(3 * std::size_t{t} + 1)) ||
+             inZone(mesh.from(3 * std::size_t{t} + 2)));
         starts.push_back(readable ? t : kFromPreviousPoint);
     }
     return starts;

@@ -96,7 +96,9 @@ void takeSurfaceZ(io::LineLayer& layer, const HeightGrid* dem, BreaklineZ zFrom)
 std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, unsigned threads,
                      ConstraintSet& constraints) {
     // Inside the hull after clipping, with the TIN's z where a point still has none; the
-    // triangles found spare insertConstraints a second search.
+    // triangles found spare insertConstraints a second search, and a point not located is
+    // found from the one before it.
+    static_assert(TinLocator::kUnlocated == kFromPreviousPoint);
     std::vector<std::vector<TinLocator::LocatedPolyline>> located =
         locator.clipToSurface(layer.lines, threads);
     std::size_t clipped = 0;

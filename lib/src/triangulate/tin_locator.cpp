@@ -1,5 +1,6 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
+#include "hull_interior.hpp"
 #include "parallel_for.hpp"
 #include "terratin/geometry/predicates.hpp"
 
@@ -126,9 +127,12 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
     m_origin = low;
     m_columns = static_cast<std::size_t>((high.x - low.x) / m_bucketSize) + 1;
     m_rows = static_cast<std::size_t>((high.y - low.y) / m_bucketSize) + 1;
+    m_hullHigh = high;
     std::vector<std::uint32_t> buckets = fillBuckets(threads);
     fillEmptyBuckets(buckets);
     m_buckets = std::make_shared<const std::vector<std::uint32_t>>(std::move(buckets));
+    m_interior = std::make_shared<const detail::HullInterior>(mesh.vertices, *m_hullEdges, m_origin,
+                                                              m_bucketSize, m_rows);
 }
 
 // Each bucket gets the first triangle, in index order, whose first corner lies in it: each
@@ -207,6 +211,11 @@ bool surelyRight(Point2 a, Point2 b, Point2 point) {
 } // namespace
 
 std::optional<std::uint32_t> TinLocator::locate(Point2 point) {
+    // Outside the box of the hull's vertices there is no triangle to walk to (the walk would
+    // go as far as the hull to find that).
+    if (m_buckets && (point.x < m_origin.x || point.y < m_origin.y || point.x > m_hullHigh.x ||
+                      point.y > m_hullHigh.y))
+        return std::nullopt;
     return walk(point,
                 [](Point2 a, Point2 b, Point2 p) { return predicates::orient2d(a, b, p) < 0.0; });
 }
@@ -366,6 +375,11 @@ TinLocator::clipLocated(const std::vector<Point3>& polyline) {
     bool previousInside = false;
     for (std::size_t i = 0; i < polyline.size(); ++i) {
         const Point3& point = polyline[i];
+        if (previousInside && !std::isnan(point.z) && m_interior &&
+            m_interior->holds(planar(point))) {
+            add({point, kUnlocated});
+            continue;
+        }
         const std::optional<std::uint32_t> triangle = locate(planar(point));
         if (triangle) {
             if (i > 0 && !previousInside)

@@ -4,6 +4,7 @@
 #include "point_distributions.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
+#include "terratin/triangulate/tin_locator.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <gtest/gtest.h>
@@ -477,6 +478,40 @@ TEST(InsertConstraints, PolylineTrianglesGiveTheSameTin_AsTheSearchWithout) {
     EXPECT_EQ(withTriangles.mesh.vertices, without.mesh.vertices);
     EXPECT_EQ(withTriangles.chains, without.chains);
     EXPECT_EQ(triangleSet(withTriangles.mesh), triangleSet(without.mesh));
+}
+
+// clipToSurface leaves points inside the hull unlocated (kFromPreviousPoint): found from the
+// previous point's vertex, in zones and on one thread, they give the TIN that every point's own
+// triangle gives; a polyline's first point given as kFromPreviousPoint is searched for
+// anywhere.
+TEST(InsertConstraints, PointsFromThePreviousPoint_GiveTheSameTin_AsEveryPointLocated) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 3000, 22));
+    ConstraintSet fromPrevious = test::walksWithTriangles(mesh, 40, 30, 6);
+    ConstraintSet located = fromPrevious;
+    TinLocator locator(mesh);
+    std::size_t unlocated = 0;
+    for (std::size_t k = 0; k < located.polylines.size(); ++k)
+        for (std::size_t j = 0; j < located.polylines[k].size(); ++j)
+            if (std::uint32_t& t = located.polylineTriangles[k][j]; t == kFromPreviousPoint) {
+                const Point3& p = located.polylines[k][j];
+                t = locator.locate({p.x, p.y}).value();
+                ++unlocated;
+            }
+    ASSERT_GT(unlocated, 500U);
+    for (const unsigned zones : {2U, 1U}) {
+        SCOPED_TRACE(zones);
+        if (zones == 1)
+            for (std::size_t k = 0; k < fromPrevious.polylines.size(); k += 5)
+                fromPrevious.polylineTriangles[k][0] = kFromPreviousPoint;
+        fromPrevious.zones = located.zones = zones;
+        fromPrevious.threads = located.threads = 2;
+        const ConstrainedTin a = constrainAndCheck(mesh, fromPrevious);
+        const ConstrainedTin b = constrainAndCheck(mesh, located);
+        EXPECT_GT(a.intersections, 10U);
+        EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
+        EXPECT_EQ(a.chains, b.chains);
+        EXPECT_EQ(triangleSet(a.mesh), triangleSet(b.mesh));
+    }
 }
 
 // Polylines on a grid's vertices and along its lines, with their triangles: the segments run

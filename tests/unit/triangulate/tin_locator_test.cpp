@@ -151,6 +151,8 @@ bool holds(const TinMesh& mesh, std::uint32_t triangle, const Point3& p) {
     return true;
 }
 
+// A point clipToSurface left unlocated must have had a z, follow a point of its part, and be
+// inside by the exact test.
 TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
     const std::vector<Point3> points = test::generatePoints(test::Distribution::Gauss, 3000, 4);
     const TinMesh mesh = triangulate(points).mesh;
@@ -166,6 +168,7 @@ TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
     const auto three = locator.clipToSurface(lines, 3);
     ASSERT_EQ(one.size(), lines.size());
     std::size_t located = 0;
+    std::size_t unlocated = 0;
     for (std::size_t k = 0; k < lines.size(); ++k) {
         const std::vector<std::vector<Point3>> hull = locator.clipToHull(lines[k]);
         ASSERT_EQ(one[k].size(), hull.size());
@@ -180,6 +183,14 @@ TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
                 EXPECT_EQ(p, three[k][part].points[i]);
                 EXPECT_EQ(p.x, hull[part][i].x);
                 EXPECT_EQ(p.y, hull[part][i].y);
+                if (a.triangles[i] == TinLocator::kUnlocated) {
+                    EXPECT_GT(i, 0U);
+                    EXPECT_FALSE(std::isnan(hull[part][i].z));
+                    EXPECT_TRUE(locator.locate({p.x, p.y}).has_value());
+                    EXPECT_EQ(p.z, hull[part][i].z);
+                    ++unlocated;
+                    continue;
+                }
                 EXPECT_TRUE(holds(mesh, a.triangles[i], p));
                 if (std::isnan(hull[part][i].z))
                     EXPECT_EQ(p.z, locator.elevationIn(a.triangles[i], {p.x, p.y}));
@@ -190,6 +201,7 @@ TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
         }
     }
     EXPECT_GT(located, 200U);
+    EXPECT_GT(unlocated, 0U);
 }
 
 TEST(TinLocator, IsTheSameBuiltOnAnyThreads) {

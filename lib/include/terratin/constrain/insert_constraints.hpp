@@ -13,6 +13,11 @@
 
 namespace terratin {
 
+/// In ConstraintSet::polylineTriangles: the search for the point starts at the previous point's
+/// vertex (for a polyline's first point, anywhere). The value of TinLocator::kUnlocated, so that
+/// clipToSurface's triangles serve as they are.
+inline constexpr std::uint32_t kFromPreviousPoint = 0xffffffffU;
+
 /// The constraints to insert, in the mesh's planar units.
 struct ConstraintSet {
     /// Segments between vertices of the mesh, as vertex indices (TinMesh::vertices).
@@ -22,10 +27,10 @@ struct ConstraintSet {
     std::vector<std::vector<Point3>> polylines;
     /// Optional, for speed: for each polyline, for each of its points, a triangle of the mesh
     /// as given (a TinMesh triangle index) that holds the point or lies near it, where the
-    /// search for the point starts (TinLocator::clipToSurface finds them). Empty, or one list
-    /// per polyline, as long as it. Any triangles give a constrained Delaunay TIN with the
-    /// same vertices; the numbering of its triangles, and the diagonals of cocircular points,
-    /// may depend on them.
+    /// search for the point starts (TinLocator::clipToSurface finds them), or
+    /// kFromPreviousPoint. Empty, or one list per polyline, as long as it. Any triangles give a
+    /// constrained Delaunay TIN with the same vertices; the numbering of its triangles, and the
+    /// diagonals of cocircular points, may depend on them.
     std::vector<std::vector<std::uint32_t>> polylineTriangles;
     /// With polylineTriangles and no index segments: the polylines go in on up to `threads`
     /// threads, in `zones` bands of x at once, then what those stop short of in as many bands
@@ -69,12 +74,12 @@ struct ConstraintSet {
 /// Complexity: an O(n) fill of the flags and of the vertex-to-triangle map; per segment the
 /// degree of its first vertex plus O(k) flips for the k edges it crosses (O(k^2) at worst), per
 /// crossing a point insertion, per polyline point a walk from its triangle in polylineTriangles,
-/// else from the previous point (the first from a bucket grid, O(n) once); a pass over the
-/// triangles, O(n) once, to complete the vertex-to-triangle map when a segment starts at a vertex
-/// nothing before reached (index segments, polylines without triangles). With zones, the
-/// polylines of each band of x go in on a thread of their own as far as they stay inside it,
-/// what they stop short of in bands of y the same way, and the rest on one thread; the slots
-/// the zones reserved and left unused are then filled with the last vertices and triangles
+/// else (or for kFromPreviousPoint) from the previous point (the first from a bucket grid, O(n)
+/// once); a pass over the triangles, O(n) once, to complete the vertex-to-triangle map when a
+/// segment starts at a vertex nothing before reached (index segments, polylines without triangles).
+/// With zones, the polylines of each band of x go in on a thread of their own as far as they stay
+/// inside it, what they stop short of in bands of y the same way, and the rest on one thread; the
+/// slots the zones reserved and left unused are then filled with the last vertices and triangles
 /// (O(slots)). docs/algorithms.md ("Constrained Delaunay", step 5) describes the method.
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
 

@@ -14,6 +14,10 @@
 
 namespace terratin {
 
+namespace detail {
+class HullInterior;
+}
+
 /// Locates points in a TinMesh that covers its convex hull (as triangulate() or
 /// insertConstraints make it) by a remembering stochastic walk (it ends on constrained
 /// triangulations too) from the triangle found last, or from a bucket grid's triangle when that
@@ -27,7 +31,7 @@ public:
     explicit TinLocator(const TinMesh& mesh, unsigned threads = 1);
 
     /// A triangle holding `point` (inside or on its boundary); nullopt when the point lies
-    /// outside the convex hull.
+    /// outside the convex hull (at once outside the hull's bounding box).
     [[nodiscard]] std::optional<std::uint32_t> locate(Point2 point);
 
     /// A triangle holding `point` up to rounding: the side tests are orient2d's floating-point
@@ -59,15 +63,24 @@ public:
     /// corners are stored (so the same for any numbering of the triangles).
     [[nodiscard]] double elevationIn(std::uint32_t triangle, Point2 point) const;
 
+    /// In LocatedPolyline::triangles: no triangle was looked for.
+    static constexpr std::uint32_t kUnlocated = 0xffffffffU;
+
     /// A part of a polyline inside the hull, with the triangle holding each of its points.
     struct LocatedPolyline {
         std::vector<Point3> points;
-        /// triangles[i] holds points[i] (inside or on its boundary), as locate gives it.
+        /// triangles[i] holds points[i] (inside or on its boundary), as locate gives it, or is
+        /// kUnlocated (see clipToSurface).
         std::vector<std::uint32_t> triangles;
     };
 
     /// The parts of clipToHull(polyline), each point with its triangle, and a NaN z replaced by
-    /// the TIN's elevation there (elevationIn): each point is located once.
+    /// the TIN's elevation there (elevationIn): each point is located once. Where the hull is
+    /// one convex cycle (a mesh with no triangle left out), a point that has a z, follows a
+    /// point inside and lies in a box known to be inside the hull (one per row of the bucket
+    /// grid, checked by the exact test) is not located: its triangle is kUnlocated. Such a
+    /// point is inside, and so is its segment from the point before (the hull is convex); a
+    /// search for it may start from that point. The first point of a part is always located.
     [[nodiscard]] std::vector<LocatedPolyline> clipToSurface(const std::vector<Point3>& polyline);
 
     /// clipToSurface of every polyline, on up to `threads` threads (0: all hardware threads).
@@ -133,6 +146,10 @@ private:
     std::shared_ptr<const std::vector<std::uint32_t>> m_buckets;
     /// The hull's edges as vertex pairs, counter-clockwise (the mesh's edges with no neighbour).
     std::shared_ptr<const std::vector<std::array<std::uint32_t, 2>>> m_hullEdges;
+    /// The top right corner of the hull's bounding box (m_origin is its bottom left).
+    Point2 m_hullHigh{};
+    /// Boxes inside the hull, one per row of buckets.
+    std::shared_ptr<const detail::HullInterior> m_interior;
 };
 
 } // namespace terratin
