@@ -135,16 +135,22 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
                                                               m_bucketSize, m_rows);
 }
 
-// Each bucket gets the first triangle, in index order, whose first corner lies in it: each
-// thread fills a grid from its own range of triangles, and the lowest range's wins.
+// Each bucket gets the first triangle, in index order, whose first corner lies in it, of every
+// kBucketSampleStride-th triangle: each thread fills a grid from its own range of triangles, and
+// the lowest range's wins.
 std::vector<std::uint32_t> TinLocator::fillBuckets(unsigned threads) const {
+    // About 4 triangles looked at per bucket (of 16, kTrianglesPerBucket) still
+    // leave few buckets empty, and a walk from any triangle of a bucket is as short; the
+    // corners read at random are the construction's cost.
+    constexpr std::size_t kBucketSampleStride = 4;
     const TinMesh& mesh = *m_mesh;
     const std::size_t count = mesh.triangleCount();
     std::vector<std::vector<std::uint32_t>> perBlock(detail::parallelForThreads(count, threads));
     detail::parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         std::vector<std::uint32_t>& grid = perBlock[block];
         grid.assign(m_columns * m_rows, kNoTriangle);
-        for (std::size_t t = begin; t < end; ++t) {
+        const std::size_t first = (begin + kBucketSampleStride - 1) / kBucketSampleStride;
+        for (std::size_t t = first * kBucketSampleStride; t < end; t += kBucketSampleStride) {
             const Point3& corner = mesh.vertices[mesh.triangles[3 * t]];
             const auto column = std::min(
                 static_cast<std::size_t>((corner.x - m_origin.x) / m_bucketSize), m_columns - 1);
