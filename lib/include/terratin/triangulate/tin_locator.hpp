@@ -123,7 +123,8 @@ private:
     /// Gives every empty bucket a triangle of a filled bucket near it.
     void fillEmptyBuckets(std::vector<std::uint32_t>& buckets) const;
 
-    /// Each bucket with the first triangle, in index order, whose first corner lies in it.
+    /// Each bucket with the first triangle, in index order, whose first corner lies in it, of
+    /// every few triangles.
     [[nodiscard]] std::vector<std::uint32_t> fillBuckets(unsigned threads) const;
     /// A triangle near `point` to start a walk from: the bucket grid's.
     [[nodiscard]] std::uint32_t startNear(Point2 point) const;
