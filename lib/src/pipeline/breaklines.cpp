@@ -1,5 +1,6 @@
 #include "breaklines.hpp"
 
+#include "../triangulate/parallel_for.hpp"
 #include "constraint_areas.hpp"
 #include "gather_inputs.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
@@ -10,6 +11,7 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <future>
 #include <limits>
@@ -82,15 +84,30 @@ void checkLineZ(const io::LineLayer& layer, const BuildOptions& options) {
 
 /// Gives the points of `layer` that take the surface's z (all under BreaklineZ::Surface, those
 /// without one under Auto) `dem`'s bilinear elevation, NaN where it has none or there is no
-/// `dem`.
-void takeSurfaceZ(io::LineLayer& layer, const HeightGrid* dem, BreaklineZ zFrom) {
+/// `dem`; on up to `threads` threads (0: all hardware threads).
+void takeSurfaceZ(io::LineLayer& layer, const HeightGrid* dem, BreaklineZ zFrom, unsigned threads) {
     if (zFrom == BreaklineZ::Line)
         return;
-    for (std::vector<Point3>& line : layer.lines)
+    const auto giveZ = [&](std::vector<Point3>& line) {
         for (Point3& point : line)
             if (zFrom == BreaklineZ::Surface || std::isnan(point.z))
                 point.z = dem != nullptr ? bilinearElevation(*dem, {point.x, point.y})
                                          : std::numeric_limits<double>::quiet_NaN();
+    };
+    // A few lines per chunk, the chunks taken in turn: the lines' lengths differ.
+    constexpr std::size_t kLinesPerChunk = 16;
+    std::vector<std::vector<Point3>>& lines = layer.lines;
+    const std::size_t chunks = (lines.size() + kLinesPerChunk - 1) / kLinesPerChunk;
+    const unsigned threadCount =
+        threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
+    std::atomic<std::size_t> nextChunk{0};
+    runOnThreads(static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, threadCount)),
+                 [&](unsigned) {
+                     for (std::size_t chunk = nextChunk++; chunk < chunks; chunk = nextChunk++)
+                         for (std::size_t i = chunk * kLinesPerChunk;
+                              i < std::min(lines.size(), (chunk + 1) * kLinesPerChunk); ++i)
+                             giveZ(lines[i]);
+                 });
 }
 
 std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, unsigned threads,
@@ -231,14 +248,14 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
                                   crsWkt, report);
     for (std::optional<io::LineLayer>* area : {&sources.clip, &sources.erase})
         if (*area)
-            takeSurfaceZ(**area, dem, BreaklineZ::Surface);
+            takeSurfaceZ(**area, dem, BreaklineZ::Surface, options.triangulation.threads);
     for (std::size_t i = 0; i < layers.breaklines.size(); ++i) {
         io::LineLayer& layer = sources.breaklines.emplace_back(
             intoCrs(std::move(layers.breaklines[i]), options.breaklines[i], "breaklines", options,
                     crsWkt, report));
         if (options.breaklineZ == BreaklineZ::Line)
             checkLineZ(layer, options);
-        takeSurfaceZ(layer, dem, options.breaklineZ);
+        takeSurfaceZ(layer, dem, options.breaklineZ, options.triangulation.threads);
     }
     return sources;
 }

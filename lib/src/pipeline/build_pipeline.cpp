@@ -617,7 +617,8 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     TriangulationOptions triangulationOptions = options.triangulation;
     if (hasConstraints(options)) {
         const Stopwatch constrainTime;
-        const std::optional<HeightGrid> dem = detail::cellSurface(gathered);
+        const std::optional<HeightGrid> dem =
+            detail::cellSurface(gathered, options.triangulation.threads);
         sources = detail::readConstraintSources(constraintLayers.get(), options, gathered.crsWkt,
                                                 dem ? &*dem : nullptr, report);
         triangulationOptions.spareVertices = sources->spareVertices();

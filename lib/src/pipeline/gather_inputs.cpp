@@ -14,6 +14,7 @@
 #include "gather_inputs.hpp"
 
 #include "../stopwatch.hpp"
+#include "../triangulate/parallel_for.hpp"
 
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/crs/utm_zone.hpp"
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <thread>
 
 namespace terratin::detail {
 
@@ -312,7 +314,7 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
     return gathered;
 }
 
-std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered) {
+std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered, unsigned threads) {
     if (gathered.rasterWidth == 0 || gathered.rasterHeight == 0)
         return std::nullopt;
     HeightGrid grid;
@@ -320,8 +322,13 @@ std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered) {
     grid.height = static_cast<int>(gathered.rasterHeight);
     grid.geoTransform = gathered.rasterGeoTransform;
     grid.z.assign(grid.cellCount(), std::numeric_limits<float>::quiet_NaN());
-    for (std::size_t i = 0; i < gathered.cellIndex.size(); ++i)
-        grid.storeElevations(gathered.cellIndex[i], std::span(&gathered.points[i].z, 1));
+    // Each point to its own cell (NaN stays NaN in float32).
+    parallelFor(gathered.cellIndex.size(),
+                threads != 0 ? threads : std::thread::hardware_concurrency(),
+                [&](unsigned, std::size_t begin, std::size_t end) {
+                    for (std::size_t i = begin; i < end; ++i)
+                        grid.z[gathered.cellIndex[i]] = static_cast<float>(gathered.points[i].z);
+                });
     return grid;
 }
 

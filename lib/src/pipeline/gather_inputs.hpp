@@ -37,8 +37,8 @@ struct GatheredInputs {
 
 /// The only input raster's cells as a grid (its points' z, rounded to float32 as the refiner's
 /// grid holds them; NaN where no point is), when `gathered` has one in place (rasterHeight);
-/// nullopt otherwise. O(cells).
-std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered);
+/// nullopt otherwise. O(cells), on up to `threads` threads (0: all hardware threads).
+std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered, unsigned threads);
 
 /// Reads, reprojects and merges options.inputs; fills report.inputs (all but
 /// duplicates), the CRS fields, rasterCells, skippedCells, filteredOut, points, notices and
