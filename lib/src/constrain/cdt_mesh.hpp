@@ -273,6 +273,9 @@ private:
         std::vector<std::uint32_t> vertexTriangle;
     };
     static constexpr std::uint32_t kUnknownTriangle = 0xffffffffU;
+    /// Asks for the triangles across triangle t's edges, and their corners, to be brought into
+    /// cache (a view: those it may read).
+    void prefetchAround(std::size_t t) const;
     /// Every vertex's triangle unknown, with as much room as the mesh has.
     void startVertexMap();
     void completeVertexMap() const;
