@@ -464,20 +464,24 @@ std::vector<std::array<std::uint32_t, 3>> triangleSet(const TinMesh& mesh) {
     return triangles;
 }
 
+// The same vertices, in the same order, the same chains and the same triangles (numbered
+// alike or not), with crossings among the constraints.
+void expectSameTin(const ConstrainedTin& a, const ConstrainedTin& b) {
+    EXPECT_GT(a.intersections, 10U);
+    EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
+    EXPECT_EQ(a.chains, b.chains);
+    EXPECT_EQ(triangleSet(a.mesh), triangleSet(b.mesh));
+}
+
 TEST(InsertConstraints, PolylineTrianglesGiveTheSameTin_AsTheSearchWithout) {
     const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 3000, 21));
     ConstraintSet located = test::walksWithTriangles(mesh, 40, 30, 5);
     ASSERT_GT(located.polylines.size(), 30U);
     ConstraintSet searched = located;
     searched.polylineTriangles.clear();
-    const ConstrainedTin withTriangles = constrainAndCheck(mesh, located);
-    const ConstrainedTin without = constrainAndCheck(mesh, searched);
-    EXPECT_GT(withTriangles.intersections, 10U);
     // Points in general position: one constrained Delaunay triangulation, its vertices made in
     // the same order.
-    EXPECT_EQ(withTriangles.mesh.vertices, without.mesh.vertices);
-    EXPECT_EQ(withTriangles.chains, without.chains);
-    EXPECT_EQ(triangleSet(withTriangles.mesh), triangleSet(without.mesh));
+    expectSameTin(constrainAndCheck(mesh, located), constrainAndCheck(mesh, searched));
 }
 
 // clipToSurface leaves points inside the hull unlocated (kFromPreviousPoint): found from the
@@ -505,12 +509,7 @@ TEST(InsertConstraints, PointsFromThePreviousPoint_GiveTheSameTin_AsEveryPointLo
                 fromPrevious.polylineTriangles[k][0] = kFromPreviousPoint;
         fromPrevious.zones = located.zones = zones;
         fromPrevious.threads = located.threads = 2;
-        const ConstrainedTin a = constrainAndCheck(mesh, fromPrevious);
-        const ConstrainedTin b = constrainAndCheck(mesh, located);
-        EXPECT_GT(a.intersections, 10U);
-        EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
-        EXPECT_EQ(a.chains, b.chains);
-        EXPECT_EQ(triangleSet(a.mesh), triangleSet(b.mesh));
+        expectSameTin(constrainAndCheck(mesh, fromPrevious), constrainAndCheck(mesh, located));
     }
 }
 
