@@ -25,10 +25,11 @@ struct PolylineProgress {
 /// Inserts what is left of polyline `progress.polyline` of `constraints`: its points (an
 /// existing vertex at a point's x and y is used; each point's vertex appended to `vertices`),
 /// then its segments, the j-th as input segment firstOwner + j - 1. The search for point j
-/// starts from triangle start[j], or, with `start` empty, from the polyline's triangle in
-/// `constraints` when it has them (either kFromPreviousPoint: from the previous point's
-/// vertex), else near the previous point (a bucket grid for the first). A zone's inserter throws
-/// ZoneRefusal, `progress` then saying how far the polyline went.
+/// starts from triangle start[j], or, with `start` empty, from the point's triangle in
+/// `constraints` when the polylines have them; kFromPreviousPoint in either says from the
+/// previous point's vertex (for the first point, anywhere). With neither, it starts near the
+/// previous point (a bucket grid for the first). A zone's inserter throws ZoneRefusal,
+/// `progress` then saying how far the polyline went.
 void insertPolyline(ConstraintInserter& inserter, const ConstraintSet& constraints,
                     std::vector<std::uint32_t>& vertices, std::uint32_t firstOwner,
                     PolylineProgress& progress, const std::vector<std::uint32_t>& start = {});

@@ -139,9 +139,9 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
 // kBucketSampleStride-th triangle: each thread fills a grid from its own range of triangles, and
 // the lowest range's wins.
 std::vector<std::uint32_t> TinLocator::fillBuckets(unsigned threads) const {
-    // About 4 triangles looked at per bucket (of 16, kTrianglesPerBucket) still
-    // leave few buckets empty, and a walk from any triangle of a bucket is as short; the
-    // corners read at random are the construction's cost.
+    // About 4 triangles looked at per bucket (of 16, kTrianglesPerBucket) still leave few
+    // buckets empty, and a walk from any triangle of a bucket is as short; the corners read at
+    // random are the construction's cost.
     constexpr std::size_t kBucketSampleStride = 4;
     const TinMesh& mesh = *m_mesh;
     const std::size_t count = mesh.triangleCount();
