@@ -148,7 +148,6 @@ public:
         m_cellError.assign(rules.measuredCells.size(), 0.0);
         m_cellAtCorner.assign(rules.measuredCells.size(), 0);
         m_holeTriangle.assign(rules.openHoleCells.size(), kNoTriangle);
-        m_holeAcross.assign(rules.openHoleCells.size(), kNoNeighbour);
     }
 
     /// Measures the TIN; `changed` (empty: everything) marks the triangles changed since the
@@ -161,7 +160,7 @@ public:
         relocate(changed);
         const std::size_t triangles = m_tin->mesh.triangleCount();
         Measure measure;
-        markTrianglesOverHoles(changed);
+        markTrianglesOverHoles();
         measure.holeTriangles = markTrianglesLeftOut();
         m_candidateOf.resize(triangles, kNoTriangle);
         // The first check locates every cell: they are all measured, as with everyCell.
@@ -251,11 +250,8 @@ private:
 
     /// m_overHole: 1 for the triangles holding an open hole's cell; a closed triangle covers a
     /// cell on its edge too, so both sides of such an edge count. The last check's marks are
-    /// cleared one by one: there are few, against a pass over every triangle. The triangle
-    /// across the edge a cell lies on (m_holeAcross) is found again only where the cell's
-    /// triangle or that one changed (`changed`, empty: all): an unchanged triangle keeps its
-    /// edges, and its neighbour across one is the same slot unless that slot was rewritten.
-    void markTrianglesOverHoles(const std::vector<std::uint8_t>& changed) {
+    /// cleared one by one: there are few, against a pass over every triangle.
+    void markTrianglesOverHoles() {
         const TinMesh& mesh = m_tin->mesh;
         std::vector<std::uint8_t>& overHole = m_overHole;
         for (const std::uint32_t t : m_overHoleMarked)
@@ -269,11 +265,8 @@ private:
                 continue;
             overHole[t] = 1;
             m_overHoleMarked.push_back(t);
-            std::int32_t& other = m_holeAcross[i];
-            if (stale(t, changed) ||
-                (other != kNoNeighbour && static_cast<std::size_t>(other) < changed.size() &&
-                 changed[static_cast<std::size_t>(other)] != 0))
-                other = neighbourSharing(mesh, t, position(m_rules->openHoleCells[i]));
+            const std::int32_t other =
+                neighbourSharing(mesh, t, position(m_rules->openHoleCells[i]));
             if (other != kNoNeighbour) {
                 overHole[static_cast<std::size_t>(other)] = 1;
                 m_overHoleMarked.push_back(static_cast<std::uint32_t>(other));
@@ -506,9 +499,6 @@ private:
     /// 1 for a measured cell at a corner of its triangle (a vertex).
     std::vector<std::uint8_t> m_cellAtCorner;
     std::vector<std::uint32_t> m_holeTriangle;
-    /// Per open hole's cell, the triangle across the edge of its triangle that it lies on
-    /// (kNoNeighbour: none), as markTrianglesOverHoles last found it.
-    std::vector<std::int32_t> m_holeAcross;
     std::vector<std::size_t> m_relocated;
     bool m_relocatedAll = false;
     /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
