@@ -11,7 +11,6 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <future>
 #include <limits>
@@ -96,18 +95,11 @@ void takeSurfaceZ(io::LineLayer& layer, const HeightGrid* dem, BreaklineZ zFrom,
     };
     // A few lines per chunk, the chunks taken in turn: the lines' lengths differ.
     constexpr std::size_t kLinesPerChunk = 16;
-    std::vector<std::vector<Point3>>& lines = layer.lines;
-    const std::size_t chunks = (lines.size() + kLinesPerChunk - 1) / kLinesPerChunk;
-    const unsigned threadCount =
-        threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
-    std::atomic<std::size_t> nextChunk{0};
-    runOnThreads(static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, threadCount)),
-                 [&](unsigned) {
-                     for (std::size_t chunk = nextChunk++; chunk < chunks; chunk = nextChunk++)
-                         for (std::size_t i = chunk * kLinesPerChunk;
-                              i < std::min(lines.size(), (chunk + 1) * kLinesPerChunk); ++i)
-                             giveZ(lines[i]);
-                 });
+    forChunksInTurn(layer.lines.size(), threads, kLinesPerChunk,
+                    [&](std::size_t begin, std::size_t end) {
+                        for (std::size_t i = begin; i < end; ++i)
+                            giveZ(layer.lines[i]);
+                    });
 }
 
 std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, unsigned threads,

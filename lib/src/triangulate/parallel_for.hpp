@@ -77,4 +77,21 @@ void parallelForChunks(std::size_t count, unsigned threads, std::size_t chunk, B
     });
 }
 
+/// Calls body(begin, end) for the chunks of `chunk` elements of [0, count) on up to `threads`
+/// threads (0: all hardware threads; at most one per chunk), which take the chunks in turn: for
+/// a few elements that each cost much and unevenly (polylines), which parallelForChunks would
+/// leave on one thread.
+template <class Body>
+void forChunksInTurn(std::size_t count, unsigned threads, std::size_t chunk, Body&& body) {
+    const std::size_t chunks = (count + chunk - 1) / chunk;
+    const unsigned available =
+        threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
+    std::atomic<std::size_t> next{0};
+    runOnThreads(static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, available)),
+                 [&](unsigned) {
+                     for (std::size_t k = next++; k < chunks; k = next++)
+                         body(k * chunk, std::min(count, (k + 1) * chunk));
+                 });
+}
+
 } // namespace terratin::detail

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -431,25 +430,18 @@ std::vector<std::vector<TinLocator::LocatedPolyline>>
 TinLocator::clipToSurface(const std::vector<std::vector<Point3>>& polylines,
                           unsigned threads) const {
     std::vector<std::vector<LocatedPolyline>> located(polylines.size());
-    const unsigned threadCount = threadsToUse(threads);
     // A few polylines per chunk: their lengths differ, so the threads take chunks in turn, and
     // a chunk of one would have them meet at the counter for every polyline.
     constexpr std::size_t kPolylinesPerChunk = 16;
-    const std::size_t chunks = (polylines.size() + kPolylinesPerChunk - 1) / kPolylinesPerChunk;
-    std::atomic<std::size_t> nextChunk{0};
-    detail::runOnThreads(
-        static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, threadCount)), [&](unsigned) {
-            TinLocator walker = *this; // the walk's state is per thread
-            for (std::size_t chunk = nextChunk++; chunk < chunks; chunk = nextChunk++) {
-                const std::size_t end =
-                    std::min(polylines.size(), (chunk + 1) * kPolylinesPerChunk);
-                for (std::size_t i = chunk * kPolylinesPerChunk; i < end; ++i) {
-                    walker.m_last = 0;
-                    walker.m_random = kWalkSeed;
-                    located[i] = walker.clipToSurface(polylines[i]);
-                }
-            }
-        });
+    detail::forChunksInTurn(polylines.size(), threads, kPolylinesPerChunk,
+                            [&](std::size_t begin, std::size_t end) {
+                                TinLocator walker = *this; // the walk's state is the chunk's
+                                for (std::size_t i = begin; i < end; ++i) {
+                                    walker.m_last = 0;
+                                    walker.m_random = kWalkSeed;
+                                    located[i] = walker.clipToSurface(polylines[i]);
+                                }
+                            });
     return located;
 }
 
