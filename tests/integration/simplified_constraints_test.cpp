@@ -197,6 +197,136 @@ TEST(SimplifiedConstraints, ThePointLimitHoldsForTheDemsPoints) {
     EXPECT_LE(report.vertices, 1500U + report.constraintVertices);
 }
 
+/// A 160 x 120 GeoTIFF (10 m cells, EPSG:32633) of rolling hills with three open holes: a disc,
+/// a long bar and a diagonal band, holes[cell] = 1 in them.
+constexpr int kHoledWidth = 160;
+constexpr int kHoledHeight = 120;
+constexpr double kHoledX0 = 600000.0;
+constexpr double kHoledY0 = 5000000.0;
+
+Point2 holedCellCentre(int column, int row) {
+    return {kHoledX0 + (column + 0.5) * 10.0, kHoledY0 - (row + 0.5) * 10.0};
+}
+
+bool inHoledDemsHole(int column, int row) {
+    const bool disc = (column - 45) * (column - 45) + (row - 40) * (row - 40) <= 64;
+    const bool bar = row >= 80 && row <= 84 && column >= 60 && column <= 130;
+    const bool band = std::abs(column - row - 60) <= 1 && row >= 10 && row <= 50;
+    return disc || bar || band;
+}
+
+void writeHoledDem(const fs::path& path) {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
+    std::unique_ptr<GDALDataset> dem(
+        driver->Create(path.c_str(), kHoledWidth, kHoledHeight, 1, GDT_Float32, nullptr));
+    ASSERT_NE(dem, nullptr);
+    double transform[6] = {kHoledX0, 10.0, 0.0, kHoledY0, 0.0, -10.0};
+    dem->SetGeoTransform(transform);
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32633);
+    dem->SetSpatialRef(&utm);
+    std::vector<float> z(std::size_t{kHoledWidth} * kHoledHeight);
+    for (int row = 0; row < kHoledHeight; ++row)
+        for (int column = 0; column < kHoledWidth; ++column)
+            z[std::size_t(row) * kHoledWidth + column] =
+                inHoledDemsHole(column, row)
+                    ? -9999.0F
+                    : static_cast<float>(300.0 +
+                                         40.0 * std::sin(column / 9.0) * std::cos(row / 7.0) +
+                                         0.5 * column);
+    GDALRasterBand* band = dem->GetRasterBand(1);
+    band->SetNoDataValue(-9999.0);
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, kHoledWidth, kHoledHeight, z.data(), kHoledWidth,
+                             kHoledHeight, GDT_Float32, 0, 0),
+              CE_None);
+}
+
+// The completion's rounds split the triangles over the holes and reuse their numbers: a mark
+// "over a hole" left from an earlier round would drop a triangle that no longer is (or insert
+// its cells for nothing). Roads run along, across and around the holes; in the output no
+// triangle holds a hole's cell (closed, exact), every valid cell is in one within the bound,
+// on one thread and on two.
+TEST(SimplifiedConstraints,
+     OpenHolesStayUncovered_AndEveryValidCellCovered_AsRoundsChangeTheirTriangles) {
+    TemporaryDirectory directory;
+    const fs::path dem = directory.path() / "holed.tif";
+    writeHoledDem(dem);
+    std::vector<std::string> roads;
+    for (int k = 0; k < 12; ++k) {
+        std::vector<Point2> road;
+        for (int step = 0; step <= 30; ++step) {
+            const double column = 3.0 + 5.1 * step + 0.37 * k;
+            const double row = 6.0 + 9.3 * k + 6.0 * std::sin(step * 0.7 + k);
+            road.push_back(holedCellCentre(0, 0));
+            road.back().x += column * 10.0;
+            road.back().y -= row * 10.0;
+        }
+        roads.push_back(test::lineWkt(road));
+    }
+    test::writeVectorLayer(directory.path() / "roads.gpkg", "roads", roads);
+    BuildOptions options;
+    options.inputs = {dem.string()};
+    options.breaklines = {(directory.path() / "roads.gpkg").string()};
+    options.refine.emplace();
+    options.refine->maxError = 0.5;
+    options.validate = true;
+    std::vector<std::string> files;
+    for (const unsigned threads : {1U, 2U}) {
+        options.triangulation.threads = threads;
+        options.output = directory.path() / ("tin" + std::to_string(threads) + ".ply");
+        const BuildReport report = runBuild(options);
+        EXPECT_TRUE(report.validated);
+        EXPECT_GT(report.constraintCells, 0U);
+        EXPECT_GT(report.constraintPasses, 2U);
+        EXPECT_GT(report.holeTriangles, 0U);
+        EXPECT_EQ(report.areaTriangles, 0U); // the holes' triangles alone are dropped
+        std::ifstream in(options.output, std::ios::binary);
+        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    EXPECT_EQ(files[0], files[1]);
+
+    const test::ReadMesh mesh = test::readPly(options.output);
+    const std::vector<float> z = test::readElevations(dem);
+    std::vector<std::uint8_t> covered(z.size(), 0);
+    std::size_t holeCellsCovered = 0;
+    double maxError = 0.0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        const Point3& a = mesh.vertices[mesh.triangles[t]];
+        const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
+        const double area = predicates::orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y});
+        for (int row = 0; row < kHoledHeight; ++row)
+            for (int column = 0; column < kHoledWidth; ++column) {
+                const Point2 p = holedCellCentre(column, row);
+                const double wa = predicates::orient2d({b.x, b.y}, {c.x, c.y}, p);
+                const double wb = predicates::orient2d({c.x, c.y}, {a.x, a.y}, p);
+                const double wc = predicates::orient2d({a.x, a.y}, {b.x, b.y}, p);
+                if (wa < 0.0 || wb < 0.0 || wc < 0.0)
+                    continue;
+                if (inHoledDemsHole(column, row)) {
+                    ++holeCellsCovered;
+                    continue;
+                }
+                const std::size_t cell = std::size_t(row) * kHoledWidth + column;
+                covered[cell] = 1;
+                const double plane = (wa * a.z + wb * b.z + wc * c.z) / area;
+                maxError = std::max(maxError, std::abs(plane - z[cell]));
+            }
+    }
+    std::size_t validUncovered = 0;
+    for (int row = 0; row < kHoledHeight; ++row)
+        for (int column = 0; column < kHoledWidth; ++column)
+            validUncovered += !inHoledDemsHole(column, row) &&
+                                      covered[std::size_t(row) * kHoledWidth + column] == 0
+                                  ? 1
+                                  : 0;
+    EXPECT_EQ(holeCellsCovered, 0U);
+    EXPECT_EQ(validUncovered, 0U);
+    EXPECT_LE(maxError, 0.5 + 1e-6);
+}
+
 // A geographic DEM (Luxembourg, WGS 84, 46 % nodata outside the border) is refined in its UTM
 // zone at its cells' projected positions: a road and an erase area in WGS 84 go into that TIN,
 // and the bound holds at every valid cell's projected position outside the erase area.

@@ -160,7 +160,6 @@ public:
         relocate(changed);
         const std::size_t triangles = m_tin->mesh.triangleCount();
         Measure measure;
-        markTrianglesOverHoles();
         measure.holeTriangles = markTrianglesLeftOut();
         m_candidateOf.resize(triangles, kNoTriangle);
         // The first check locates every cell: they are all measured, as with everyCell.
@@ -201,32 +200,33 @@ private:
     /// m_left: per triangle, its kDropped, kFlat (the rules' answers) and kOverHole bits in one
     /// byte, so that a cell's tally reads one byte of its triangle instead of three arrays.
     /// Returns the count of triangles over an open hole that the area keeps (they are dropped
-    /// too). On the threads: it is a pass over every triangle on each check, however few cells
-    /// the check locates; without rules it reads m_overHole alone.
+    /// too). Only the rules need a pass over every triangle (on the threads): the late checks
+    /// locate a few hundred cells, and without rules they touch only the hole marks.
     std::size_t markTrianglesLeftOut() {
+        for (const std::uint32_t t : m_overHoleMarked)
+            if (t < m_left.size())
+                m_left[t] &= static_cast<std::uint8_t>(~kOverHole);
+        m_overHoleMarked.clear();
+        m_left.resize(m_tin->mesh.triangleCount(), 0);
+        if (m_rules->outsideArea || m_rules->unmeasured)
+            markRulesLeftOut();
+        return markTrianglesOverHoles();
+    }
+
+    /// The kDropped and kFlat bits of every triangle, from the rules.
+    void markRulesLeftOut() {
         const std::vector<std::uint8_t> outside =
             m_rules->outsideArea ? m_rules->outsideArea(*m_tin) : std::vector<std::uint8_t>{};
         const std::vector<std::uint8_t> flat =
             m_rules->unmeasured ? m_rules->unmeasured(*m_tin) : std::vector<std::uint8_t>{};
-        m_left.resize(m_overHole.size());
-        std::vector<std::size_t> counts(parallelForThreads(m_left.size(), m_threads), 0);
-        parallelFor(
-            m_left.size(), m_threads, [&](unsigned block, std::size_t begin, std::size_t end) {
-                std::size_t overHoleOnly = 0;
-                for (std::size_t t = begin; t < end; ++t) {
-                    const bool dropped = !outside.empty() && outside[t] != 0;
-                    const bool isFlat = !flat.empty() && flat[t] != 0;
-                    m_left[t] =
-                        static_cast<std::uint8_t>((dropped ? kDropped : 0) | (isFlat ? kFlat : 0) |
-                                                  (m_overHole[t] != 0 ? kOverHole : 0));
-                    overHoleOnly += m_overHole[t] != 0 && !dropped ? 1 : 0;
-                }
-                counts[block] = overHoleOnly;
-            });
-        std::size_t total = 0;
-        for (const std::size_t count : counts)
-            total += count;
-        return total;
+        parallelFor(m_left.size(), m_threads, [&](unsigned, std::size_t begin, std::size_t end) {
+            for (std::size_t t = begin; t < end; ++t) {
+                const bool dropped = !outside.empty() && outside[t] != 0;
+                const bool isFlat = !flat.empty() && flat[t] != 0;
+                m_left[t] =
+                    static_cast<std::uint8_t>((dropped ? kDropped : 0) | (isFlat ? kFlat : 0));
+            }
+        });
     }
 
     /// measure.drop: the triangles outside the area or over an open hole; and
@@ -248,30 +248,31 @@ private:
         return cellPosition(*m_grid, m_positions, cell);
     }
 
-    /// m_overHole: 1 for the triangles holding an open hole's cell; a closed triangle covers a
-    /// cell on its edge too, so both sides of such an edge count. The last check's marks are
-    /// cleared one by one: there are few, against a pass over every triangle.
-    void markTrianglesOverHoles() {
+    /// The kOverHole bit of the triangles holding an open hole's cell (a closed triangle covers
+    /// a cell on its edge too, so both sides of such an edge count), each listed once in
+    /// m_overHoleMarked, so that the next check clears them one by one: there are few, against
+    /// a pass over every triangle. Returns how many of them the area keeps.
+    std::size_t markTrianglesOverHoles() {
         const TinMesh& mesh = m_tin->mesh;
-        std::vector<std::uint8_t>& overHole = m_overHole;
-        for (const std::uint32_t t : m_overHoleMarked)
-            if (t < overHole.size())
-                overHole[t] = 0;
-        m_overHoleMarked.clear();
-        overHole.resize(mesh.triangleCount(), 0);
+        std::size_t keptByTheArea = 0;
+        const auto mark = [&](std::size_t t) {
+            if ((m_left[t] & kOverHole) != 0)
+                return;
+            m_left[t] |= kOverHole;
+            m_overHoleMarked.push_back(static_cast<std::uint32_t>(t));
+            keptByTheArea += (m_left[t] & kDropped) == 0 ? 1 : 0;
+        };
         for (std::size_t i = 0; i < m_holeTriangle.size(); ++i) {
             const std::uint32_t t = m_holeTriangle[i];
             if (t == kNoTriangle)
                 continue;
-            overHole[t] = 1;
-            m_overHoleMarked.push_back(t);
+            mark(t);
             const std::int32_t other =
                 neighbourSharing(mesh, t, position(m_rules->openHoleCells[i]));
-            if (other != kNoNeighbour) {
-                overHole[static_cast<std::size_t>(other)] = 1;
-                m_overHoleMarked.push_back(static_cast<std::uint32_t>(other));
-            }
+            if (other != kNoNeighbour)
+                mark(static_cast<std::size_t>(other));
         }
+        return keptByTheArea;
     }
 
     /// Whether a cell in triangle `t` must be located again. A cell outside the hull
@@ -503,10 +504,9 @@ private:
     bool m_relocatedAll = false;
     /// Built on the first measure (TinLocator::locateNearFrom may follow insertions).
     std::optional<TinLocator> m_locator;
-    /// Per triangle, whether it holds an open hole's cell, and what keeps its cells from being
-    /// measured (markTrianglesLeftOut), kept from one check to the next: fresh memory costs a
-    /// page fault per 4 KiB written. The triangles m_overHole marks, to clear them.
-    std::vector<std::uint8_t> m_overHole;
+    /// Per triangle, what keeps its cells from being measured (markTrianglesLeftOut), kept
+    /// from one check to the next: fresh memory costs a page fault per 4 KiB written. The
+    /// triangles whose kOverHole bit is set, to clear them.
     std::vector<std::uint8_t> m_left;
     std::vector<std::uint32_t> m_overHoleMarked;
     /// Per triangle, its candidate's place in Measure::candidates while a measure runs.
