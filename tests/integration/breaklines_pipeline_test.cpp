@@ -26,6 +26,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -466,27 +467,12 @@ Point2 saddlePlace(double col, double row) {
 void writeSaddleDem(const fs::path& path) {
     constexpr int kWidth = 40;
     constexpr int kHeight = 30;
-    GDALAllRegister();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-    ASSERT_NE(driver, nullptr);
-    std::unique_ptr<GDALDataset> dem(
-        driver->Create(path.c_str(), kWidth, kHeight, 1, GDT_Float32, nullptr));
-    ASSERT_NE(dem, nullptr);
-    double transform[6] = {kSaddleX0, 10.0, 0.0, kSaddleY0, 0.0, -10.0};
-    dem->SetGeoTransform(transform);
-    OGRSpatialReference utm;
-    utm.importFromEPSG(32633);
-    dem->SetSpatialRef(&utm);
     std::vector<float> z(static_cast<std::size_t>(kWidth * kHeight));
     for (int row = 0; row < kHeight; ++row)
         for (int col = 0; col < kWidth; ++col)
             z[static_cast<std::size_t>(row * kWidth + col)] = static_cast<float>(saddle(col, row));
-    z[20 * kWidth + 30] = -9999.0F;
-    GDALRasterBand* band = dem->GetRasterBand(1);
-    band->SetNoDataValue(-9999.0);
-    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, kWidth, kHeight, z.data(), kWidth, kHeight,
-                             GDT_Float32, 0, 0),
-              CE_None);
+    z[20 * kWidth + 30] = std::numeric_limits<float>::quiet_NaN();
+    test::writeElevations(path, kWidth, kHeight, kSaddleX0, kSaddleY0, 10.0, std::move(z));
 }
 
 // Regression (the wording): a 2D breakline's vertices took the TIN's z, linear in its

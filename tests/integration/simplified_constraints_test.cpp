@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -115,6 +116,33 @@ BuildOptions roadsAndLake(const TemporaryDirectory& directory, double maxError) 
     return options;
 }
 
+/// `dem` refined to `maxError` with the breaklines of `lines`, validated.
+BuildOptions simplifiedWithLines(const fs::path& dem, const fs::path& lines, double maxError) {
+    BuildOptions options;
+    options.inputs = {dem.string()};
+    options.breaklines = {lines.string()};
+    options.refine.emplace();
+    options.refine->maxError = maxError;
+    options.validate = true;
+    return options;
+}
+
+/// Builds `options` on 1 thread and on 2 (tin1.ply, tin2.ply in `directory`; options.output
+/// ends as the second), expects the same bytes from both, and returns the two reports.
+std::vector<BuildReport> buildOnOneAndTwoThreads(BuildOptions& options, const fs::path& directory) {
+    std::vector<BuildReport> reports;
+    std::vector<std::string> files;
+    for (const unsigned threads : {1U, 2U}) {
+        options.triangulation.threads = threads;
+        options.output = directory / ("tin" + std::to_string(threads) + ".ply");
+        reports.push_back(runBuild(options));
+        std::ifstream in(options.output, std::ios::binary);
+        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    EXPECT_EQ(files[0], files[1]);
+    return reports;
+}
+
 TEST(SimplifiedConstraints, RoadsAndALake_BoundHoldsOutsideTheLake_LakeFlat_RoadsInTheTin) {
     TemporaryDirectory directory;
     const BuildOptions options = roadsAndLake(directory, 2.0);
@@ -149,15 +177,7 @@ TEST(SimplifiedConstraints, RoadsAndALake_BoundHoldsOutsideTheLake_LakeFlat_Road
 TEST(SimplifiedConstraints, OneThreadAndTwoGiveTheSameTin) {
     TemporaryDirectory directory;
     BuildOptions options = roadsAndLake(directory, 3.0);
-    std::vector<std::string> files;
-    for (const unsigned threads : {1U, 2U}) {
-        options.triangulation.threads = threads;
-        options.output = directory.path() / ("tin" + std::to_string(threads) + ".ply");
-        (void)runBuild(options);
-        std::ifstream in(options.output, std::ios::binary);
-        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-    EXPECT_EQ(files[0], files[1]);
+    (void)buildOnOneAndTwoThreads(options, directory.path());
 }
 
 TEST(SimplifiedConstraints, ClipKeepsExactlyThePolygon_AndTheBoundHoldsInside) {
@@ -216,31 +236,16 @@ bool inHoledDemsHole(int column, int row) {
 }
 
 void writeHoledDem(const fs::path& path) {
-    GDALAllRegister();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-    ASSERT_NE(driver, nullptr);
-    std::unique_ptr<GDALDataset> dem(
-        driver->Create(path.c_str(), kHoledWidth, kHoledHeight, 1, GDT_Float32, nullptr));
-    ASSERT_NE(dem, nullptr);
-    double transform[6] = {kHoledX0, 10.0, 0.0, kHoledY0, 0.0, -10.0};
-    dem->SetGeoTransform(transform);
-    OGRSpatialReference utm;
-    utm.importFromEPSG(32633);
-    dem->SetSpatialRef(&utm);
     std::vector<float> z(std::size_t{kHoledWidth} * kHoledHeight);
     for (int row = 0; row < kHoledHeight; ++row)
         for (int column = 0; column < kHoledWidth; ++column)
             z[std::size_t(row) * kHoledWidth + column] =
                 inHoledDemsHole(column, row)
-                    ? -9999.0F
+                    ? std::numeric_limits<float>::quiet_NaN()
                     : static_cast<float>(300.0 +
                                          40.0 * std::sin(column / 9.0) * std::cos(row / 7.0) +
                                          0.5 * column);
-    GDALRasterBand* band = dem->GetRasterBand(1);
-    band->SetNoDataValue(-9999.0);
-    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, kHoledWidth, kHoledHeight, z.data(), kHoledWidth,
-                             kHoledHeight, GDT_Float32, 0, 0),
-              CE_None);
+    test::writeElevations(path, kHoledWidth, kHoledHeight, kHoledX0, kHoledY0, 10.0, std::move(z));
 }
 
 // The completion's rounds split the triangles over the holes and reuse their numbers: a mark
@@ -266,26 +271,14 @@ TEST(SimplifiedConstraints,
         roads.push_back(test::lineWkt(road));
     }
     test::writeVectorLayer(directory.path() / "roads.gpkg", "roads", roads);
-    BuildOptions options;
-    options.inputs = {dem.string()};
-    options.breaklines = {(directory.path() / "roads.gpkg").string()};
-    options.refine.emplace();
-    options.refine->maxError = 0.5;
-    options.validate = true;
-    std::vector<std::string> files;
-    for (const unsigned threads : {1U, 2U}) {
-        options.triangulation.threads = threads;
-        options.output = directory.path() / ("tin" + std::to_string(threads) + ".ply");
-        const BuildReport report = runBuild(options);
+    BuildOptions options = simplifiedWithLines(dem, directory.path() / "roads.gpkg", 0.5);
+    for (const BuildReport& report : buildOnOneAndTwoThreads(options, directory.path())) {
         EXPECT_TRUE(report.validated);
         EXPECT_GT(report.constraintCells, 0U);
         EXPECT_GT(report.constraintPasses, 2U);
         EXPECT_GT(report.holeTriangles, 0U);
         EXPECT_EQ(report.areaTriangles, 0U); // the holes' triangles alone are dropped
-        std::ifstream in(options.output, std::ios::binary);
-        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
-    EXPECT_EQ(files[0], files[1]);
 
     const test::ReadMesh mesh = test::readPly(options.output);
     const std::vector<float> z = test::readElevations(dem);
@@ -340,25 +333,13 @@ TEST(SimplifiedConstraints, AGeographicDemWithHoles_RoadAndEraseArea_BoundAtTheP
                            {"LINESTRING (5.9 49.6, 6.1 49.8, 6.3 49.9)"}, 4326);
     test::writeVectorLayer(directory.path() / "erase.gpkg", "erase", {test::polygonWkt(erase)},
                            4326);
-    BuildOptions options;
-    options.inputs = {dem.string()};
-    options.breaklines = {(directory.path() / "road.gpkg").string()};
+    BuildOptions options = simplifiedWithLines(dem, directory.path() / "road.gpkg", 20.0);
     options.erase = (directory.path() / "erase.gpkg").string();
-    options.refine.emplace();
-    options.refine->maxError = 20.0;
-    options.validate = true;
-    std::vector<std::string> files;
-    for (const unsigned threads : {1U, 2U}) {
-        options.triangulation.threads = threads;
-        options.output = directory.path() / ("tin" + std::to_string(threads) + ".ply");
-        const BuildReport report = runBuild(options);
+    for (const BuildReport& report : buildOnOneAndTwoThreads(options, directory.path())) {
         EXPECT_TRUE(report.validated);
         EXPECT_EQ(report.breaklines, 1U);
         EXPECT_GT(report.areaTriangles, 0U);
-        std::ifstream in(options.output, std::ios::binary);
-        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
-    EXPECT_EQ(files[0], files[1]);
 
     const io::HeightGridRaster raster = io::readHeightGrid(dem.string(), {});
     const Point2 centre = raster.grid.extentCentre();

@@ -112,6 +112,33 @@ std::vector<float> readElevations(const std::filesystem::path& raster) {
     return z;
 }
 
+void writeElevations(const std::filesystem::path& path, int width, int height, double x0, double y0,
+                     double cellSize, std::vector<float> z) {
+    initialiseGdal();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    const std::unique_ptr<GDALDataset> dem(
+        driver != nullptr ? driver->Create(path.c_str(), width, height, 1, GDT_Float32, nullptr)
+                          : nullptr);
+    if (!dem) {
+        ADD_FAILURE() << "cannot create " << path;
+        return;
+    }
+    double transform[6] = {x0, cellSize, 0.0, y0, 0.0, -cellSize};
+    dem->SetGeoTransform(transform);
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32633);
+    dem->SetSpatialRef(&utm);
+    constexpr float kNoData = -9999.0F;
+    for (float& value : z)
+        if (std::isnan(value))
+            value = kNoData;
+    GDALRasterBand* band = dem->GetRasterBand(1);
+    band->SetNoDataValue(kNoData);
+    EXPECT_EQ(
+        band->RasterIO(GF_Write, 0, 0, width, height, z.data(), width, height, GDT_Float32, 0, 0),
+        CE_None);
+}
+
 std::vector<Point2> writePlanePoints(const std::filesystem::path& path, int count,
                                      std::uint64_t seed) {
     std::ofstream text(path);

@@ -38,6 +38,12 @@ bool insideRing(const std::vector<Point2>& ring, Point2 p);
 /// Band 1 of a raster as floats, row by row; NaN where it has no data.
 std::vector<float> readElevations(const std::filesystem::path& raster);
 
+/// A Float32 GeoTIFF at `path`, `width` x `height` cells of `cellSize` m from the top left
+/// corner (x0, y0), in EPSG:32633, holding `z` row by row, NaN written as the no-data value
+/// -9999. Fails the test (ADD_FAILURE) when GDAL refuses anything.
+void writeElevations(const std::filesystem::path& path, int width, int height, double x0, double y0,
+                     double cellSize, std::vector<float> z);
+
 /// `count` scattered points (a fixed generator) in [0, 1000)^2 on the plane
 /// z = x / 100 + y / 50, written as "x y z" lines to `path`; returns their x, y.
 std::vector<Point2> writePlanePoints(const std::filesystem::path& path, int count,
