@@ -224,7 +224,8 @@ constexpr int kHoledHeight = 120;
 constexpr double kHoledX0 = 600000.0;
 constexpr double kHoledY0 = 5000000.0;
 
-Point2 holedCellCentre(int column, int row) {
+/// Where (column, row) lies, in cell numbers (a cell's centre at whole numbers).
+Point2 holedCellCentre(double column, double row) {
     return {kHoledX0 + (column + 0.5) * 10.0, kHoledY0 - (row + 0.5) * 10.0};
 }
 
@@ -264,9 +265,7 @@ TEST(SimplifiedConstraints,
         for (int step = 0; step <= 30; ++step) {
             const double column = 3.0 + 5.1 * step + 0.37 * k;
             const double row = 6.0 + 9.3 * k + 6.0 * std::sin(step * 0.7 + k);
-            road.push_back(holedCellCentre(0, 0));
-            road.back().x += column * 10.0;
-            road.back().y -= row * 10.0;
+            road.push_back(holedCellCentre(column, row));
         }
         roads.push_back(test::lineWkt(road));
     }

@@ -17,7 +17,6 @@
 #include <optional>
 #include <span>
 #include <string_view>
-#include <thread>
 
 namespace terratin::detail {
 
@@ -257,9 +256,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
     // Replace rings go in first, so that where a line crosses one the new vertex takes the
     // ring's level.
     ConstraintSet constraints;
-    constraints.threads = options.triangulation.threads != 0
-                              ? options.triangulation.threads
-                              : std::max(std::thread::hardware_concurrency(), 1U);
+    constraints.threads = threadsOrAll(options.triangulation.threads);
     ConstrainedBuild build;
     build.clip = std::move(sources.clip);
     build.erase = std::move(sources.erase);

@@ -17,6 +17,11 @@ namespace terratin::detail {
 /// Below this many elements a loop runs on the calling thread alone.
 inline constexpr std::size_t kParallelForMinimum = std::size_t{1} << 16;
 
+/// `threads`, or every hardware thread for 0.
+inline unsigned threadsOrAll(unsigned threads) {
+    return threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
+}
+
 /// The threads parallelFor uses for `count` elements when allowed `threads`.
 inline unsigned parallelForThreads(std::size_t count, unsigned threads) {
     if (count < kParallelForMinimum)
@@ -84,10 +89,8 @@ void parallelForChunks(std::size_t count, unsigned threads, std::size_t chunk, B
 template <class Body>
 void forChunksInTurn(std::size_t count, unsigned threads, std::size_t chunk, Body&& body) {
     const std::size_t chunks = (count + chunk - 1) / chunk;
-    const unsigned available =
-        threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
     std::atomic<std::size_t> next{0};
-    runOnThreads(static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, available)),
+    runOnThreads(static_cast<unsigned>(std::clamp<std::size_t>(chunks, 1, threadsOrAll(threads))),
                  [&](unsigned) {
                      for (std::size_t k = next++; k < chunks; k = next++)
                          body(k * chunk, std::min(count, (k + 1) * chunk));

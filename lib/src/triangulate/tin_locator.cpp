@@ -10,7 +10,6 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <thread>
 
 namespace terratin {
 
@@ -44,10 +43,6 @@ std::optional<double> elevationOnEdge(const TinMesh& mesh, std::uint32_t a, std:
     const double dy = v.y - u.y;
     const double t = ((point.x - u.x) * dx + (point.y - u.y) * dy) / (dx * dx + dy * dy);
     return u.z + t * (v.z - u.z);
-}
-
-unsigned threadsToUse(unsigned threads) {
-    return threads != 0 ? threads : std::max(1U, std::thread::hardware_concurrency());
 }
 
 // The mesh's edges with no neighbour, in triangle order.
@@ -108,7 +103,7 @@ std::array<Point2, 2> boundsOfHull(const TinMesh& mesh,
 } // namespace
 
 TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
-    threads = threadsToUse(threads);
+    threads = detail::threadsOrAll(threads);
     m_hullEdges = std::make_shared<const std::vector<std::array<std::uint32_t, 2>>>(
         hullEdgesOf(mesh, threads));
     if (mesh.vertexCount() == 0)
