@@ -193,18 +193,27 @@ void flattenReplaceRings(ConstrainedBuild& build) {
             build.tin.mesh.vertices[v].z = build.ringLevels[r];
 }
 
-std::size_t ConstraintSources::spareVertices() const {
-    std::size_t vertices = 0;
-    const auto add = [&](const io::LineLayer& layer) {
-        for (const std::vector<Point3>& line : layer.lines)
-            vertices += line.size();
-    };
+template <class Visit> void ConstraintSources::forEachLayer(Visit&& visit) const {
     for (const std::optional<io::LineLayer>* area : {&clip, &erase, &replace})
         if (*area)
-            add(**area);
+            visit(**area);
     for (const io::LineLayer& layer : breaklines)
-        add(layer);
+        visit(layer);
+}
+
+std::size_t ConstraintSources::spareVertices() const {
+    std::size_t vertices = 0;
+    forEachLayer([&](const io::LineLayer& layer) {
+        for (const std::vector<Point3>& line : layer.lines)
+            vertices += line.size();
+    });
     return 2 * vertices;
+}
+
+std::size_t ConstraintSources::lineCount() const {
+    std::size_t lines = 0;
+    forEachLayer([&](const io::LineLayer& layer) { lines += layer.lines.size(); });
+    return lines;
 }
 
 ConstraintLayers readConstraintLayers(const BuildOptions& options) {
@@ -257,6 +266,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
     // ring's level.
     ConstraintSet constraints;
     constraints.threads = threadsOrAll(options.triangulation.threads);
+    const std::size_t lineCount = sources.lineCount();
     ConstrainedBuild build;
     build.clip = std::move(sources.clip);
     build.erase = std::move(sources.erase);
@@ -264,8 +274,11 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
     std::optional<PolygonSet> replaceAreas;
     std::vector<double> levels; // per replace polygon
     {
-        // The inputs' surface, before any point is left out.
-        TinLocator locator(mesh, options.triangulation.threads);
+        // The inputs' surface, before any point is left out: a mesh triangulate() made, whose
+        // locator serves a jump to each line's first point and walks along the lines.
+        TinLocator locator(mesh, {.threads = options.triangulation.threads,
+                                  .coversConvexHull = true,
+                                  .farQueries = lineCount});
         if (build.replace) {
             replaceAreas.emplace(*build.replace);
             levels = replaceLevels(*build.replace, *replaceAreas, locator, mesh, options);

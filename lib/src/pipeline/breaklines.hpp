@@ -46,6 +46,12 @@ struct ConstraintSources {
     /// vertices of every line and ring, for them and for the crossings and cells inserted
     /// after them.
     [[nodiscard]] std::size_t spareVertices() const;
+    /// How many lines and rings there are in all.
+    [[nodiscard]] std::size_t lineCount() const;
+
+private:
+    /// Calls visit(layer) for every layer given.
+    template <class Visit> void forEachLayer(Visit&& visit) const;
 };
 /// The layers of options.clip, options.erase, options.replace and options.breaklines as read
 /// (nullopt where not given), in their own CRS.

@@ -63,6 +63,109 @@ std::vector<std::array<std::uint32_t, 2>> hullEdgesOf(const TinMesh& mesh, unsig
     return edges;
 }
 
+// The half-edge after h in its triangle.
+std::size_t nextInTriangle(std::size_t h) {
+    return h - h % 3 + (h % 3 + 1) % 3;
+}
+
+// Where a walk ended: in `triangle`, or leaving the mesh by the hull half-edge `exit`; neither
+// when it did not end (a broken mesh).
+struct WalkEnd {
+    std::optional<std::uint32_t> triangle;
+    std::optional<std::size_t> exit;
+};
+
+// Whether `point` lies strictly right of a -> b, by the exact test.
+bool orient2dRight(Point2 a, Point2 b, Point2 point) {
+    return predicates::orient2d(a, b, point) < 0.0;
+}
+
+// A remembering stochastic walk (Devillers, Pion & Teillaud) from triangle t towards `point`,
+// `outside(a, b, p)` saying p lies beyond edge a-b: it never goes back through the edge it came
+// in by and tries the other two in a random order (`random`, a generator's state), so it ends
+// on any triangulation, constrained ones included, where a fixed order may cycle. The bound
+// only guards a broken mesh.
+template <class OutsideOf>
+WalkEnd walkTowards(const TinMesh& mesh, std::uint32_t t, Point2 point, OutsideOf outside,
+                    std::uint64_t& random) {
+    const std::size_t triangles = mesh.triangleCount();
+    std::int32_t previous = kNoNeighbour;
+    for (std::size_t step = 0; step < 16 * triangles + 16; ++step) {
+        random = random * 6364136223846793005ULL + 1442695040888963407ULL;
+        const auto first = static_cast<std::size_t>((random >> 33U) % 3U);
+        int exitEdge = -1;
+        for (std::size_t k = 0; k < 3 && exitEdge < 0; ++k) {
+            const std::size_t i = (k + first) % 3;
+            if (previous != kNoNeighbour && mesh.neighbours[3 * t + i] == previous)
+                continue;
+            const Point2 a = planar(mesh.vertices[mesh.triangles[3 * t + i]]);
+            const Point2 b = planar(mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]]);
+            if (outside(a, b, point))
+                exitEdge = static_cast<int>(i);
+        }
+        if (exitEdge < 0)
+            return {t, std::nullopt};
+        const std::size_t exit = 3 * std::size_t{t} + static_cast<std::size_t>(exitEdge);
+        // Strictly outside a hull edge: outside the convex hull.
+        if (mesh.neighbours[exit] == kNoNeighbour)
+            return {std::nullopt, exit};
+        previous = static_cast<std::int32_t>(t);
+        t = static_cast<std::uint32_t>(mesh.neighbours[exit]);
+    }
+    return {};
+}
+
+// The half-edges as vertex pairs, in triangle order.
+std::vector<std::array<std::uint32_t, 2>> edgesInTriangleOrder(const TinMesh& mesh,
+                                                               std::vector<std::size_t> halfEdges) {
+    std::sort(halfEdges.begin(), halfEdges.end());
+    std::vector<std::array<std::uint32_t, 2>> edges;
+    edges.reserve(halfEdges.size());
+    for (const std::size_t h : halfEdges)
+        edges.push_back({mesh.triangles[h], mesh.triangles[nextInTriangle(h)]});
+    return edges;
+}
+
+// A half-edge of the hull of a mesh that covers its convex hull: the one a walk from triangle
+// 0 towards a point far to the left of vertex 0 leaves the mesh by. Nothing when that point was
+// not far enough to lie outside (a mesh wider than a million times its coordinates).
+std::optional<std::size_t> hullHalfEdgeFromWalk(const TinMesh& mesh) {
+    const Point3& corner = mesh.vertices[mesh.triangles[0]];
+    const Point2 far{corner.x - 1e6 * (1.0 + std::fabs(corner.x) + std::fabs(corner.y)), corner.y};
+    std::uint64_t random = 1; // any state: the walk ends from any
+    return walkTowards(mesh, 0, far, orient2dRight, random).exit;
+}
+
+// The hull edges of a mesh that covers its convex hull, found from `first` (one of them) by
+// turning round each hull vertex to the next hull edge: O(hull vertices x degree). In triangle
+// order, as hullEdgesOf gives them. Nothing when the turns do not come back to `first` (a mesh
+// whose links are broken).
+std::optional<std::vector<std::array<std::uint32_t, 2>>> hullEdgesAround(const TinMesh& mesh,
+                                                                         std::size_t first) {
+    std::vector<std::size_t> halfEdges;
+    std::size_t h = first;
+    for (std::size_t turns = 0; turns <= mesh.triangles.size(); ++turns) {
+        if (mesh.neighbours[h] == kNoNeighbour) {
+            if (!halfEdges.empty() && h == first)
+                return edgesInTriangleOrder(mesh, std::move(halfEdges));
+            halfEdges.push_back(h);
+            h = nextInTriangle(h); // leaves the hull edge's end
+            continue;
+        }
+        // Across h, into the triangle that holds it reversed: its half-edge leaving the same
+        // vertex is one turn further round it.
+        const std::uint32_t vertex = mesh.triangles[h];
+        const std::size_t base = 3 * static_cast<std::size_t>(mesh.neighbours[h]);
+        std::size_t i = 0;
+        while (i < 3 && mesh.triangles[base + i] != vertex)
+            ++i;
+        if (i == 3)
+            return std::nullopt;
+        h = base + i;
+    }
+    return std::nullopt;
+}
+
 // The vertices' bounding box, as (low, high). Precondition: at least one vertex.
 std::array<Point2, 2> boundsOf(const MeshArray<Point3>& vertices, unsigned threads) {
     const Point2 first{vertices[0].x, vertices[0].y};
@@ -102,27 +205,45 @@ std::array<Point2, 2> boundsOfHull(const TinMesh& mesh,
 
 } // namespace
 
-TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
-    threads = detail::threadsOrAll(threads);
+TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : TinLocator(mesh, Use{threads}) {}
+
+TinLocator::TinLocator(const TinMesh& mesh, const Use& use) : m_mesh(&mesh) {
+    const unsigned threads = detail::threadsOrAll(use.threads);
+    std::optional<std::vector<std::array<std::uint32_t, 2>>> hull;
+    if (use.coversConvexHull && mesh.triangleCount() > 0)
+        if (const std::optional<std::size_t> first = hullHalfEdgeFromWalk(mesh))
+            hull = hullEdgesAround(mesh, *first);
     m_hullEdges = std::make_shared<const std::vector<std::array<std::uint32_t, 2>>>(
-        hullEdgesOf(mesh, threads));
+        hull ? std::move(*hull) : hullEdgesOf(mesh, threads));
     if (mesh.vertexCount() == 0)
         return;
     const auto [low, high] =
         m_hullEdges->empty() ? boundsOf(mesh.vertices, threads) : boundsOfHull(mesh, *m_hullEdges);
-    // About kTrianglesPerBucket triangles per bucket: a walk from a bucket's triangle to any
-    // point of the bucket crosses a few of them.
+    // About kTrianglesPerBucket triangles per bucket, where every triangle may be asked for: a
+    // walk from a bucket's triangle to any point of the bucket crosses a few of them. For a
+    // few far queries, a few buckets each.
     constexpr double kTrianglesPerBucket = 16.0;
+    constexpr double kBucketsPerFarQuery = 2.0;
+    constexpr double kFewestBuckets = 256.0;
     const double area = (high.x - low.x) * (high.y - low.y);
-    const double bucketCount =
-        std::max(1.0, static_cast<double>(mesh.triangleCount()) / kTrianglesPerBucket);
+    const double triangles = static_cast<double>(mesh.triangleCount());
+    double bucketCount = std::max(1.0, triangles / kTrianglesPerBucket);
+    if (use.farQueries > 0)
+        bucketCount = std::min(
+            bucketCount,
+            std::max(kFewestBuckets, kBucketsPerFarQuery * static_cast<double>(use.farQueries)));
     m_bucketSize = area > 0.0 ? std::sqrt(area / bucketCount)
                               : std::max({high.x - low.x, high.y - low.y, 1.0});
     m_origin = low;
     m_columns = static_cast<std::size_t>((high.x - low.x) / m_bucketSize) + 1;
     m_rows = static_cast<std::size_t>((high.y - low.y) / m_bucketSize) + 1;
     m_hullHigh = high;
-    std::vector<std::uint32_t> buckets = fillBuckets(threads);
+    // About 4 triangles looked at per bucket still leave few buckets empty, and a walk from
+    // any triangle of a bucket is as short; the corners read at random are the fill's cost.
+    constexpr double kSamplesPerBucket = 4.0;
+    const auto stride =
+        static_cast<std::size_t>(std::max(1.0, triangles / (kSamplesPerBucket * bucketCount)));
+    std::vector<std::uint32_t> buckets = fillBuckets(stride, threads);
     fillEmptyBuckets(buckets);
     m_buckets = std::make_shared<const std::vector<std::uint32_t>>(std::move(buckets));
     m_interior = std::make_shared<const detail::HullInterior>(mesh.vertices, *m_hullEdges, m_origin,
@@ -130,21 +251,16 @@ TinLocator::TinLocator(const TinMesh& mesh, unsigned threads) : m_mesh(&mesh) {
 }
 
 // Each bucket gets the first triangle, in index order, whose first corner lies in it, of every
-// kBucketSampleStride-th triangle: each thread fills a grid from its own range of triangles, and
-// the lowest range's wins.
-std::vector<std::uint32_t> TinLocator::fillBuckets(unsigned threads) const {
-    // About 4 triangles looked at per bucket (of 16, kTrianglesPerBucket) still leave few
-    // buckets empty, and a walk from any triangle of a bucket is as short; the corners read at
-    // random are the construction's cost.
-    constexpr std::size_t kBucketSampleStride = 4;
+// `stride`-th triangle: each thread fills a grid from its own range of triangles, and the
+// lowest range's wins.
+std::vector<std::uint32_t> TinLocator::fillBuckets(std::size_t stride, unsigned threads) const {
     const TinMesh& mesh = *m_mesh;
     const std::size_t count = mesh.triangleCount();
     std::vector<std::vector<std::uint32_t>> perBlock(detail::parallelForThreads(count, threads));
     detail::parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         std::vector<std::uint32_t>& grid = perBlock[block];
         grid.assign(m_columns * m_rows, kNoTriangle);
-        const std::size_t first = (begin + kBucketSampleStride - 1) / kBucketSampleStride;
-        for (std::size_t t = first * kBucketSampleStride; t < end; t += kBucketSampleStride) {
+        for (std::size_t t = (begin + stride - 1) / stride * stride; t < end; t += stride) {
             const Point3& corner = mesh.vertices[mesh.triangles[3 * t]];
             const auto column = std::min(
                 static_cast<std::size_t>((corner.x - m_origin.x) / m_bucketSize), m_columns - 1);
@@ -216,8 +332,7 @@ std::optional<std::uint32_t> TinLocator::locate(Point2 point) {
     if (m_buckets && (point.x < m_origin.x || point.y < m_origin.y || point.x > m_hullHigh.x ||
                       point.y > m_hullHigh.y))
         return std::nullopt;
-    return walk(point,
-                [](Point2 a, Point2 b, Point2 p) { return predicates::orient2d(a, b, p) < 0.0; });
+    return walk(point, orient2dRight);
 }
 
 std::optional<std::uint32_t> TinLocator::locateNear(Point2 point) {
@@ -248,38 +363,10 @@ std::optional<std::uint32_t> TinLocator::locateNearFrom(Point2 point, std::uint3
 template <class OutsideOf>
 std::optional<std::uint32_t> TinLocator::walkFrom(std::uint32_t t, Point2 point,
                                                   OutsideOf outside) {
-    const TinMesh& mesh = *m_mesh;
-    const std::size_t triangles = mesh.triangleCount();
-    // A remembering stochastic walk (Devillers, Pion & Teillaud): it never goes back through
-    // the edge it came in by and tries the other two in a random order, so it ends on any
-    // triangulation, constrained ones included, where a fixed order may cycle. The bound only
-    // guards a broken mesh.
-    std::int32_t previous = kNoNeighbour;
-    for (std::size_t step = 0; step < 16 * triangles + 16; ++step) {
-        m_random = m_random * 6364136223846793005ULL + 1442695040888963407ULL;
-        const auto first = static_cast<std::size_t>((m_random >> 33U) % 3U);
-        int exitEdge = -1;
-        for (std::size_t k = 0; k < 3 && exitEdge < 0; ++k) {
-            const std::size_t i = (k + first) % 3;
-            if (previous != kNoNeighbour && mesh.neighbours[3 * t + i] == previous)
-                continue;
-            const Point2 a = planar(mesh.vertices[mesh.triangles[3 * t + i]]);
-            const Point2 b = planar(mesh.vertices[mesh.triangles[3 * t + (i + 1) % 3]]);
-            if (outside(a, b, point))
-                exitEdge = static_cast<int>(i);
-        }
-        if (exitEdge < 0) {
-            m_last = t;
-            return t;
-        }
-        const std::int32_t next = mesh.neighbours[3 * t + static_cast<std::size_t>(exitEdge)];
-        // Strictly outside a hull edge: outside the convex hull.
-        if (next == kNoNeighbour)
-            return std::nullopt;
-        previous = static_cast<std::int32_t>(t);
-        t = static_cast<std::uint32_t>(next);
-    }
-    return std::nullopt;
+    const WalkEnd end = walkTowards(*m_mesh, t, point, outside, m_random);
+    if (end.triangle)
+        m_last = *end.triangle;
+    return end.triangle;
 }
 
 std::optional<double> TinLocator::elevation(Point2 point) {

@@ -204,6 +204,68 @@ TEST(TinLocator, ClipToSurface_LocatesEachPointOnce_AndIsTheSameOnAnyThreads) {
     EXPECT_GT(unlocated, 0U);
 }
 
+/// Polylines of random points over the box [low, high]^2 and beyond it by half its side.
+std::vector<std::vector<Point3>> randomLinesOver(double low, double high, std::size_t count,
+                                                 std::uint64_t seed) {
+    std::mt19937_64 random(seed);
+    const double margin = (high - low) / 2;
+    std::uniform_real_distribution<double> coordinate(low - margin, high + margin);
+    std::vector<std::vector<Point3>> lines(count);
+    for (std::vector<Point3>& line : lines)
+        for (int i = 0; i < 4; ++i)
+            line.push_back({coordinate(random), coordinate(random), 1.0});
+    return lines;
+}
+
+// The hull found by a walk round it (Use::coversConvexHull) must be the pass's, edge for edge:
+// clipToHull cuts every line at the same bits. A coarse grid for few far queries
+// (Use::farQueries) locates the same points, each in a triangle that holds it.
+TEST(TinLocator, AWalkRoundTheHull_AndACoarseGrid_ClipAndLocateAsThePassAndTheFineGrid) {
+    std::vector<std::vector<Point3>> pointSets;
+    for (const test::Distribution distribution : bench::kAllDistributions)
+        pointSets.push_back(test::generatePoints(distribution, 5000, 21));
+    std::vector<Point3> grid; // collinear points all along the hull
+    for (int row = 0; row < 60; ++row)
+        for (int col = 0; col < 60; ++col)
+            grid.push_back({col / 59.0, row / 59.0, 0.0});
+    pointSets.push_back(grid);
+    pointSets.push_back(
+        test::offset(test::generatePoints(test::Distribution::Uniform, 5000, 22), 1e6, 1e6));
+    for (std::size_t set = 0; set < pointSets.size(); ++set) {
+        SCOPED_TRACE("point set " + std::to_string(set));
+        const TinMesh mesh = triangulate(pointSets[set]).mesh;
+        const double offset = set + 1 == pointSets.size() ? 1e6 : 0.0;
+        const std::vector<std::vector<Point3>> lines =
+            randomLinesOver(offset, offset + 1.0, 300, 23 + set);
+        TinLocator pass(mesh, TinLocator::Use{.threads = 2});
+        TinLocator walked(mesh, {.threads = 2, .coversConvexHull = true, .farQueries = 300});
+        std::size_t cut = 0;
+        for (const std::vector<Point3>& line : lines) {
+            const std::vector<std::vector<Point3>> expected = pass.clipToHull(line);
+            ASSERT_EQ(walked.clipToHull(line), expected);
+            cut += expected.size();
+        }
+        EXPECT_GT(cut, 100U);
+        const auto fine = pass.clipToSurface(lines, 2);
+        const auto coarse = walked.clipToSurface(lines, 2);
+        ASSERT_EQ(coarse.size(), fine.size());
+        for (std::size_t k = 0; k < fine.size(); ++k) {
+            ASSERT_EQ(coarse[k].size(), fine[k].size());
+            for (std::size_t part = 0; part < fine[k].size(); ++part) {
+                ASSERT_EQ(coarse[k][part].points, fine[k][part].points);
+                for (std::size_t i = 0; i < coarse[k][part].points.size(); ++i) {
+                    const std::uint32_t t = coarse[k][part].triangles[i];
+                    if (t == TinLocator::kUnlocated) {
+                        EXPECT_GT(i, 0U); // a part's first point is always located
+                    } else {
+                        EXPECT_TRUE(holds(mesh, t, coarse[k][part].points[i]));
+                    }
+                }
+            }
+        }
+    }
+}
+
 TEST(TinLocator, IsTheSameBuiltOnAnyThreads) {
     // Enough triangles for the construction's loops to run on several threads.
     const std::vector<Point3> points = test::generatePoints(test::Distribution::Uniform, 60000, 6);

@@ -26,9 +26,27 @@ class HullInterior;
 /// which must outlive it and stay unchanged.
 class TinLocator {
 public:
+    /// What the construction may rely on, and how the locator will be used.
+    struct Use {
+        /// Threads for the construction (0: all hardware threads; the result is the same for
+        /// any).
+        unsigned threads = 1;
+        /// The mesh covers its convex hull, as triangulate() and insertConstraints make it (no
+        /// triangle left out): the hull's edges are then found by walking to the hull and
+        /// round it, O(sqrt(n) + hull), instead of a pass over every triangle.
+        bool coversConvexHull = false;
+        /// About how many queries will start far from the one before (each polyline's first
+        /// point, as clipToSurface makes them); 0: about one per triangle. A few thousand need
+        /// a grid of a few buckets each, quicker to fill than one per 16 triangles, whose
+        /// longer walks cost less than the fill saves.
+        std::size_t farQueries = 0;
+    };
+
     /// Reads the mesh's hull edges and fills the bucket grid, on up to `threads` threads (0:
     /// all hardware threads; the result is the same for any). O(n).
     explicit TinLocator(const TinMesh& mesh, unsigned threads = 1);
+    /// The same, as `use` allows.
+    TinLocator(const TinMesh& mesh, const Use& use);
 
     /// A triangle holding `point` (inside or on its boundary); nullopt when the point lies
     /// outside the convex hull (at once outside the hull's bounding box).
@@ -124,8 +142,9 @@ private:
     void fillEmptyBuckets(std::vector<std::uint32_t>& buckets) const;
 
     /// Each bucket with the first triangle, in index order, whose first corner lies in it, of
-    /// every few triangles.
-    [[nodiscard]] std::vector<std::uint32_t> fillBuckets(unsigned threads) const;
+    /// every `stride`-th triangle.
+    [[nodiscard]] std::vector<std::uint32_t> fillBuckets(std::size_t stride,
+                                                         unsigned threads) const;
     /// A triangle near `point` to start a walk from: the bucket grid's.
     [[nodiscard]] std::uint32_t startNear(Point2 point) const;
 
