@@ -111,9 +111,10 @@ runRound(ConstraintInserter& inserter, const ConstraintSet& constraints,
         for (const PolylineProgress& progress : work.todo)
             starts[progress.polyline] =
                 zoneStarts(inserter.mesh(), constraints, progress.polyline, work.zone);
-        // Room for every point and a quarter as many crossings; a zone that runs out refuses
-        // the rest.
-        const std::size_t room = work.points + work.points / 4 + 64;
+        // Room for every point and a crossing on every fourth segment (a polyline the first
+        // round refused has most of its points in and its segments still to go); a zone that
+        // runs out refuses the rest.
+        const std::size_t room = work.points + work.segments / 4 + 64;
         const auto [vertexSlots, triangleSlots] = inserter.appendSlots(room, 2 * room);
         work.inserter = std::make_unique<ConstraintInserter>(inserter, work.zone, vertexSlots,
                                                              triangleSlots, work.segments);
