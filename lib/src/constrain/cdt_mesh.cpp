@@ -112,7 +112,7 @@ std::size_t fillHoles(const std::vector<std::size_t>& holes, std::size_t count, 
 std::vector<std::uint32_t> CdtMesh::compact(std::span<const SlotRange> unusedVertices,
                                             std::span<const SlotRange> unusedTriangles) {
     TinMesh& mesh = m_arrays->mesh;
-    std::vector<std::uint32_t>& vertexTriangle = m_arrays->vertexTriangle;
+    MeshArray<std::uint32_t>& vertexTriangle = m_arrays->vertexTriangle;
     const std::size_t triangles = fillHoles(
         holesOf(unusedTriangles), mesh.triangleCount(), [&](std::size_t from, std::size_t to) {
             if (m_written != nullptr) // the slots were both written: the vector holds them
@@ -181,7 +181,7 @@ void CdtMesh::rememberTriangle(std::uint32_t v, std::size_t t) {
         m_arrays->vertexTriangle[v] = static_cast<std::uint32_t>(t);
 }
 
-CdtMesh::CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained)
+CdtMesh::CdtMesh(TinMesh mesh, MeshArray<std::uint8_t> constrained)
     : m_own(std::make_unique<Arrays>()), m_arrays(m_own.get()) {
     if (constrained.size() != mesh.triangles.size())
         throw std::logic_error("CdtMesh: one constrained flag per half-edge expected");

@@ -85,7 +85,7 @@ public:
     /// Takes the arrays of a valid triangulation.
     explicit CdtMesh(TinMesh mesh);
     /// The same, with the constrained flags of a constrained triangulation (one per half-edge).
-    CdtMesh(TinMesh mesh, std::vector<std::uint8_t> constrained);
+    CdtMesh(TinMesh mesh, MeshArray<std::uint8_t> constrained);
     /// A view of `shared`'s arrays confined to `zone`, its new vertices and triangles taken
     /// from `vertices` and `triangles` (appendSlots). `shared` must outlive it; only views of
     /// disjoint zones may work at once, and `shared` itself only when none does.
@@ -135,7 +135,7 @@ public:
 
     [[nodiscard]] const TinMesh& mesh() const { return m_arrays->mesh; }
     [[nodiscard]] TinMesh takeMesh() { return std::move(m_arrays->mesh); }
-    [[nodiscard]] std::vector<std::uint8_t> takeFlags() { return std::move(m_arrays->constrained); }
+    [[nodiscard]] MeshArray<std::uint8_t> takeFlags() { return std::move(m_arrays->constrained); }
 
     [[nodiscard]] std::size_t vertexCount() const { return m_arrays->mesh.vertices.size(); }
     [[nodiscard]] Point2 xy(std::uint32_t v) const {
@@ -262,15 +262,17 @@ private:
     void splitEdge(std::size_t h, std::uint32_t v, std::vector<std::size_t>& toCheck);
     void legalise(std::uint32_t v, std::vector<std::size_t>& toCheck);
 
-    /// The arrays: the mesh's own, or for a view the shared mesh's.
+    /// The arrays: the mesh's own, or for a view the shared mesh's. The flags and the map are
+    /// on huge pages like the mesh's (MeshArray): set up at every vertex and half-edge, and
+    /// then read along the constraints at random places.
     struct Arrays {
         TinMesh mesh;
-        std::vector<std::uint8_t> constrained;
+        MeshArray<std::uint8_t> constrained;
         /// A triangle holding each vertex, kUnknownTriangle until one is written or found:
         /// the constraints touch few of the vertices, so the map is completed
         /// (completeVertexMap) only when an unknown one is asked for, as index segments and
         /// polylines without triangles do.
-        std::vector<std::uint32_t> vertexTriangle;
+        MeshArray<std::uint32_t> vertexTriangle;
     };
     static constexpr std::uint32_t kUnknownTriangle = 0xffffffffU;
     /// Asks for the triangles across triangle t's edges, and their corners, to be brought into

@@ -100,7 +100,7 @@ bool hasConstraints(const BuildOptions& options) {
 
 // The per-half-edge flags of the triangles `drop` keeps, in order (dropTriangles keeps the
 // kept triangles' order and corners).
-void keepEdgesOfKeptTriangles(std::vector<std::uint8_t>& edgeFlags,
+void keepEdgesOfKeptTriangles(MeshArray<std::uint8_t>& edgeFlags,
                               const std::vector<std::uint8_t>& drop) {
     if (edgeFlags.empty())
         return;

@@ -26,7 +26,8 @@ inline constexpr std::uint32_t kIntersectionSource = std::numeric_limits<std::ui
 /// - `mesh`: the same arrays and conventions as TinMesh; vertices added for constraints come
 ///   after the input's and have sourceIndex kConstraintPointSource or kIntersectionSource.
 /// - `constrained[3t+i]`: 1 when the edge from corner i to corner (i+1)%3 of triangle t is
-///   constrained, else 0; both half-edges of an interior edge carry the same flag.
+///   constrained, else 0; both half-edges of an interior edge carry the same flag. A MeshArray
+///   like the mesh's own arrays: as long as `triangles`, and written at random places.
 /// - `chains[k]`: the vertices input constraint k became, in order from its first point to its
 ///   last (ConstraintSet::segments first, then ConstraintSet::polylines); consecutive vertices
 ///   are joined by a constrained edge. A constraint of zero length is its one vertex. Where
@@ -34,7 +35,7 @@ inline constexpr std::uint32_t kIntersectionSource = std::numeric_limits<std::ui
 ///   of them and back over the same edge (insertConstraints).
 struct ConstrainedTin {
     TinMesh mesh;
-    std::vector<std::uint8_t> constrained;
+    MeshArray<std::uint8_t> constrained;
     std::vector<std::vector<std::uint32_t>> chains;
     /// Vertices added for polyline points and for crossings.
     std::size_t addedPoints = 0;

@@ -66,7 +66,7 @@ struct TinWriteOptions {
     std::vector<RasterCell> vertexCells;
     /// A constrained TIN: constrainedEdges[3t+i] is 1 when the edge from corner i of triangle t
     /// to corner (i+1)%3 lies on a breakline (size = 3 x triangle count); empty: none is.
-    std::vector<std::uint8_t> constrainedEdges;
+    MeshArray<std::uint8_t> constrainedEdges;
     /// LandXML: the breaklines, each as the TIN vertices it runs through, written as
     /// <Breakline> elements of the surface's <SourceData>.
     std::vector<std::vector<Point3>> breaklines;
