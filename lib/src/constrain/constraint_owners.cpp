@@ -34,7 +34,7 @@ std::size_t ConstraintOwners::slotOf(std::uint64_t edge) const {
 }
 
 void ConstraintOwners::rehash(std::size_t slots) {
-    std::vector<Slot> old(slots);
+    HugePageArray<Slot> old(slots);
     old.swap(m_slots);
     m_shift = 64U - static_cast<unsigned>(std::countr_zero(slots));
     for (const Slot& entry : old)

@@ -2,6 +2,8 @@
 // Which input segments each constrained edge belongs to: the segments whose chains must take
 // the vertex that splits the edge (at a crossing, or a polyline point on it).
 
+#include "terratin/huge_pages.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -60,7 +62,7 @@ private:
         std::uint64_t key = kEmptyKey;
         std::uint32_t first = kEnd;
     };
-    std::vector<Slot> m_slots; // a power of two long
+    HugePageArray<Slot> m_slots; // a power of two long; megabytes read at random
     std::size_t m_edges = 0;
     unsigned m_shift = 64; // 64 - log2(slots), for Fibonacci hashing
     std::vector<Node> m_nodes;
