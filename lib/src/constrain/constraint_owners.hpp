@@ -64,7 +64,6 @@ private:
     };
     HugePageArray<Slot> m_slots; // a power of two long; megabytes read at random
     std::size_t m_edges = 0;
-    unsigned m_shift = 64; // 64 - log2(slots), for Fibonacci hashing
     std::vector<Node> m_nodes;
 };
 
