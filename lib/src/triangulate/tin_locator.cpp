@@ -223,7 +223,7 @@ TinLocator::TinLocator(const TinMesh& mesh, const Use& use) : m_mesh(&mesh) {
     // walk from a bucket's triangle to any point of the bucket crosses a few of them. For a
     // few far queries, a few buckets each.
     constexpr double kTrianglesPerBucket = 16.0;
-    constexpr double kBucketsPerFarQuery = 2.0;
+    constexpr double kBucketsPerFarQuery = 4.0;
     constexpr double kFewestBuckets = 256.0;
     const double area = (high.x - low.x) * (high.y - low.y);
     const double triangles = static_cast<double>(mesh.triangleCount());
