@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <memory>
+#include <utility>
 
 namespace terratin::detail {
 
@@ -93,9 +94,31 @@ void runZone(ZoneWork& work, const ConstraintSet& constraints,
     }
 }
 
+/// Slots for a zone of `vertices` and `triangles`: the front of an earlier zone's unused slots
+/// (`result`'s) where both have the room, else new ones at the end of the mesh. The second
+/// round's zones then fill the first round's leftovers, and compact has fewer holes to close
+/// up, each a triangle or a vertex moved and its neighbours relinked.
+std::pair<SlotRange, SlotRange> takeSlots(ConstraintInserter& inserter, std::size_t vertices,
+                                          std::size_t triangles, ZonedInsertion& result) {
+    for (std::size_t i = 0; i < result.unusedVertices.size(); ++i) {
+        SlotRange& vertexSlots = result.unusedVertices[i];
+        SlotRange& triangleSlots = result.unusedTriangles[i];
+        if (vertexSlots.end - vertexSlots.next < vertices ||
+            triangleSlots.end - triangleSlots.next < triangles)
+            continue;
+        const SlotRange zoneVertices{vertexSlots.next, vertexSlots.next + vertices};
+        const SlotRange zoneTriangles{triangleSlots.next, triangleSlots.next + triangles};
+        vertexSlots.next = zoneVertices.end;
+        triangleSlots.next = zoneTriangles.end;
+        return {zoneVertices, zoneTriangles};
+    }
+    return inserter.appendSlots(vertices, triangles);
+}
+
 /// One round: `todo` in `zones` bands of x or of y on up to `threads` threads; the flips held
-/// back at the bands' edges made after. Returns what the zones refused, in polyline order;
-/// adds the slots they left unused to `result`.
+/// back at the bands' edges made after. Returns what the zones refused, in polyline order.
+/// The zones' slots come from those `result` holds unused where they fit (takeSlots); the
+/// slots the zones leave unused go to `result`.
 std::vector<PolylineProgress>
 runRound(ConstraintInserter& inserter, const ConstraintSet& constraints,
          std::vector<PolylineProgress> todo, unsigned zones, bool alongY, unsigned threads,
@@ -115,7 +138,7 @@ runRound(ConstraintInserter& inserter, const ConstraintSet& constraints,
         // round refused has most of its points in and its segments still to go); a zone that
         // runs out refuses the rest.
         const std::size_t room = work.points + work.segments / 4 + 64;
-        const auto [vertexSlots, triangleSlots] = inserter.appendSlots(room, 2 * room);
+        const auto [vertexSlots, triangleSlots] = takeSlots(inserter, room, 2 * room, result);
         work.inserter = std::make_unique<ConstraintInserter>(inserter, work.zone, vertexSlots,
                                                              triangleSlots, work.segments);
     }
