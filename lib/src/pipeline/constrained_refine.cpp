@@ -2,13 +2,13 @@
 
 #include "../constrain/cell_completion.hpp"
 #include "../refine/valid_hull.hpp"
+#include "../triangulate/parallel_for.hpp"
 #include "constraint_areas.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
 
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <thread>
 
 namespace terratin::detail {
 
@@ -99,10 +99,8 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
     const RefineOptions& refineOptions = *options.refine;
     ConstrainedRefinement result;
     result.build = addConstraints(std::move(refined), options, report, std::move(sources));
-    unsigned threads =
-        refineOptions.threads != 0 ? refineOptions.threads : options.triangulation.threads;
-    if (threads == 0)
-        threads = std::thread::hardware_concurrency();
+    const unsigned threads = threadsOrAll(
+        refineOptions.threads != 0 ? refineOptions.threads : options.triangulation.threads);
 
     const ConstrainedBuild& build = result.build;
     std::optional<PolygonSet> clip;

@@ -26,7 +26,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <thread>
 
 namespace terratin::detail {
 
@@ -323,8 +322,7 @@ std::optional<HeightGrid> cellSurface(const GatheredInputs& gathered, unsigned t
     grid.geoTransform = gathered.rasterGeoTransform;
     grid.z.assign(grid.cellCount(), std::numeric_limits<float>::quiet_NaN());
     // Each point to its own cell (NaN stays NaN in float32).
-    parallelFor(gathered.cellIndex.size(),
-                threads != 0 ? threads : std::thread::hardware_concurrency(),
+    parallelFor(gathered.cellIndex.size(), threadsOrAll(threads),
                 [&](unsigned, std::size_t begin, std::size_t end) {
                     for (std::size_t i = begin; i < end; ++i)
                         grid.z[gathered.cellIndex[i]] = static_cast<float>(gathered.points[i].z);
