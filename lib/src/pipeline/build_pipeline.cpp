@@ -158,13 +158,15 @@ BuildReport finishReport(BuildReport report, const io::TinWriteResult& written,
     return report;
 }
 
-// The constrained TIN as the writers take it: its constrained edges and breaklines go into
-// `writeOptions` (the breaklines before any triangle is dropped), and the triangles `drop`
-// marks (none when empty) are removed. Returns how many were removed.
+// The constrained TIN as the writers take it: its constrained edges and, for LandXML (the one
+// format that writes them), its breaklines go into `writeOptions` (the breaklines before any
+// triangle is dropped), and the triangles `drop` marks (none when empty) are removed. Returns
+// how many were removed.
 std::size_t takeConstrainedOutput(ConstrainedTin& tin, const std::vector<std::uint8_t>& drop,
                                   io::TinWriteOptions& writeOptions) {
     writeOptions.constrainedEdges = std::move(tin.constrained);
-    writeOptions.breaklines = chainPoints(tin, tin.mesh);
+    if (writeOptions.format == io::TinFormat::LandXml)
+        writeOptions.breaklines = chainPoints(tin, tin.mesh);
     if (drop.empty())
         return 0;
     keepEdgesOfKeptTriangles(writeOptions.constrainedEdges, drop);
