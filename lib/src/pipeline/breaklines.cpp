@@ -274,8 +274,9 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
     std::optional<PolygonSet> replaceAreas;
     std::vector<double> levels; // per replace polygon
     {
-        // The inputs' surface, before any point is left out: a mesh triangulate() made, whose
-        // locator serves a jump to each line's first point and walks along the lines.
+        // The inputs' surface, before any point is left out: triangulate()'s or the refiner's
+        // mesh (with its triangles over holes), which covers its convex hull; its locator
+        // serves a jump to each line's first point and walks along the lines.
         TinLocator locator(mesh, {.threads = options.triangulation.threads,
                                   .coversConvexHull = true,
                                   .farQueries = lineCount});

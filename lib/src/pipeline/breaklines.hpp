@@ -82,7 +82,8 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
                                         const std::string& crsWkt, const HeightGrid* dem,
                                         BuildReport& report);
 
-/// `mesh` (the Delaunay TIN of the inputs, in the sources' CRS) with every line and ring of
+/// `mesh` (the Delaunay TIN of the inputs, in the sources' CRS, or the refiner's TIN with its
+/// triangles over holes: a mesh that covers its convex hull) with every line and ring of
 /// `sources` inserted: a constrained Delaunay TIN. Lines and rings are clipped to the mesh's
 /// convex hull (with a notice); a vertex still without z (readConstraintSources) takes the
 /// mesh's surface, linear in the triangle holding it. Replace areas are flat: the vertices inside
