@@ -223,14 +223,14 @@ std::vector<std::vector<Point3>> randomLinesOver(double low, double high, std::s
 TEST(TinLocator, AWalkRoundTheHull_AndACoarseGrid_ClipAndLocateAsThePassAndTheFineGrid) {
     std::vector<std::vector<Point3>> pointSets;
     for (const test::Distribution distribution : bench::kAllDistributions)
-        pointSets.push_back(test::generatePoints(distribution, 5000, 21));
+        pointSets.push_back(test::generatePoints(distribution, 20000, 21));
     std::vector<Point3> grid; // collinear points all along the hull
-    for (int row = 0; row < 60; ++row)
-        for (int col = 0; col < 60; ++col)
-            grid.push_back({col / 59.0, row / 59.0, 0.0});
+    for (int row = 0; row < 140; ++row)
+        for (int col = 0; col < 140; ++col)
+            grid.push_back({col / 139.0, row / 139.0, 0.0});
     pointSets.push_back(grid);
     pointSets.push_back(
-        test::offset(test::generatePoints(test::Distribution::Uniform, 5000, 22), 1e6, 1e6));
+        test::offset(test::generatePoints(test::Distribution::Uniform, 20000, 22), 1e6, 1e6));
     for (std::size_t set = 0; set < pointSets.size(); ++set) {
         SCOPED_TRACE("point set " + std::to_string(set));
         const TinMesh mesh = triangulate(pointSets[set]).mesh;
@@ -238,7 +238,8 @@ TEST(TinLocator, AWalkRoundTheHull_AndACoarseGrid_ClipAndLocateAsThePassAndTheFi
         const std::vector<std::vector<Point3>> lines =
             randomLinesOver(offset, offset + 1.0, 300, 23 + set);
         TinLocator pass(mesh, TinLocator::Use{.threads = 2});
-        TinLocator walked(mesh, {.threads = 2, .coversConvexHull = true, .farQueries = 300});
+        // 400 buckets (a far query's four) where the fine grid has about 2,500.
+        TinLocator walked(mesh, {.threads = 2, .coversConvexHull = true, .farQueries = 100});
         std::size_t cut = 0;
         for (const std::vector<Point3>& line : lines) {
             const std::vector<std::vector<Point3>> expected = pass.clipToHull(line);
