@@ -45,24 +45,6 @@ std::optional<double> elevationOnEdge(const TinMesh& mesh, std::uint32_t a, std:
     return u.z + t * (v.z - u.z);
 }
 
-// The mesh's edges with no neighbour, in triangle order.
-std::vector<std::array<std::uint32_t, 2>> hullEdgesOf(const TinMesh& mesh, unsigned threads) {
-    const std::size_t count = mesh.triangleCount();
-    std::vector<std::vector<std::array<std::uint32_t, 2>>> perBlock(
-        detail::parallelForThreads(count, threads));
-    detail::parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
-        for (std::size_t t = begin; t < end; ++t)
-            for (std::size_t i = 0; i < 3; ++i)
-                if (mesh.neighbours[3 * t + i] == kNoNeighbour)
-                    perBlock[block].push_back(
-                        {mesh.triangles[3 * t + i], mesh.triangles[3 * t + (i + 1) % 3]});
-    });
-    std::vector<std::array<std::uint32_t, 2>> edges;
-    for (const auto& block : perBlock)
-        edges.insert(edges.end(), block.begin(), block.end());
-    return edges;
-}
-
 // The half-edge after h in its triangle.
 std::size_t nextInTriangle(std::size_t h) {
     return h - h % 3 + (h % 3 + 1) % 3;
@@ -124,6 +106,21 @@ std::vector<std::array<std::uint32_t, 2>> edgesInTriangleOrder(const TinMesh& me
     for (const std::size_t h : halfEdges)
         edges.push_back({mesh.triangles[h], mesh.triangles[nextInTriangle(h)]});
     return edges;
+}
+
+// The mesh's edges with no neighbour, in triangle order: a pass over every triangle.
+std::vector<std::array<std::uint32_t, 2>> hullEdgesOf(const TinMesh& mesh, unsigned threads) {
+    const std::size_t count = mesh.triangleCount();
+    std::vector<std::vector<std::size_t>> perBlock(detail::parallelForThreads(count, threads));
+    detail::parallelFor(count, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
+        for (std::size_t h = 3 * begin; h < 3 * end; ++h)
+            if (mesh.neighbours[h] == kNoNeighbour)
+                perBlock[block].push_back(h);
+    });
+    std::vector<std::size_t> halfEdges;
+    for (const std::vector<std::size_t>& block : perBlock)
+        halfEdges.insert(halfEdges.end(), block.begin(), block.end());
+    return edgesInTriangleOrder(mesh, std::move(halfEdges));
 }
 
 // A half-edge of the hull of a mesh that covers its convex hull: the one a walk from triangle
