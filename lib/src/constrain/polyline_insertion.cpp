@@ -46,16 +46,28 @@ void insertPolyline(ConstraintInserter& inserter, const ConstraintSet& constrain
                     std::vector<std::uint32_t>& vertices, std::uint32_t firstOwner,
                     PolylineProgress& progress, const std::vector<std::uint32_t>& start) {
     const std::size_t points = constraints.polylines[progress.polyline].size();
-    for (; progress.nextPoint < points; ++progress.nextPoint)
-        vertices.push_back(pointVertex(inserter, constraints, vertices, start, progress));
-    if (!progress.pieces.empty()) {
-        inserter.insertPieces(std::move(progress.pieces));
-        progress.pieces.clear();
-        ++progress.nextSegment;
+    const auto insertSegments = [&] {
+        if (!progress.pieces.empty()) {
+            inserter.insertPieces(std::move(progress.pieces));
+            progress.pieces.clear();
+            ++progress.nextSegment;
+        }
+        for (; progress.nextSegment < vertices.size(); ++progress.nextSegment)
+            inserter.insertSegment(
+                vertices[progress.nextSegment - 1], vertices[progress.nextSegment],
+                firstOwner + static_cast<std::uint32_t>(progress.nextSegment - 1));
+    };
+    try {
+        for (; progress.nextPoint < points; ++progress.nextPoint)
+            vertices.push_back(pointVertex(inserter, constraints, vertices, start, progress));
+    } catch (const ZoneRefusal&) {
+        // The segments between the points in so far go in now, while the mesh around them is
+        // in cache, rather than with the rest of the polyline in the next round, cold. (A
+        // refusal among them leaves its pieces, as any other.)
+        insertSegments();
+        throw;
     }
-    for (; progress.nextSegment < vertices.size(); ++progress.nextSegment)
-        inserter.insertSegment(vertices[progress.nextSegment - 1], vertices[progress.nextSegment],
-                               firstOwner + static_cast<std::uint32_t>(progress.nextSegment - 1));
+    insertSegments();
 }
 
 } // namespace terratin::detail

@@ -29,7 +29,8 @@ struct PolylineProgress {
 /// `constraints` when the polylines have them; kFromPreviousPoint in either says from the
 /// previous point's vertex (for the first point, anywhere). With neither, it starts near the
 /// previous point (a bucket grid for the first). A zone's inserter throws ZoneRefusal,
-/// `progress` then saying how far the polyline went.
+/// `progress` then saying how far the polyline went; when it refuses a point, the segments
+/// between the points before it have gone in first, as far as the zone allows.
 void insertPolyline(ConstraintInserter& inserter, const ConstraintSet& constraints,
                     std::vector<std::uint32_t>& vertices, std::uint32_t firstOwner,
                     PolylineProgress& progress, const std::vector<std::uint32_t>& start = {});

@@ -164,6 +164,40 @@ TEST(ZonedInsertion, PolylinesStoppedAtABandsEdge_GoOnInBandsOfY) {
         }
 }
 
+// A zone that refuses a polyline's point has put in the segments between the points before
+// it, while the mesh there was in cache, rather than leave the whole polyline's segments to the
+// next round.
+TEST(ZonedInsertion, ARefusedPointsPolyline_HasItsSegmentsBeforeThePointIn) {
+    const TinMesh mesh = gridMesh(21);
+    const std::vector<std::vector<Point3>> lines{
+        {{2.5, 4.25, 0}, {6.5, 5.75, 0}, {10.5, 4.25, 0}, {15.5, 5.75, 0}}};
+    const ConstraintSet constraints = test::locatedPolylines(mesh, lines);
+    ASSERT_EQ(constraints.polylines.front().size(), 4U);
+    detail::ConstraintInserter shared(mesh, 8);
+    shared.prepareChains(3);
+    const auto [vertexSlots, triangleSlots] = shared.appendSlots(16, 32);
+    const detail::Zone zone{false, -100.0, 12.0};
+    detail::ConstraintInserter inZone(shared, zone, vertexSlots, triangleSlots, 3);
+    // As zoneStarts gives them: the last point's triangle has no corner in the zone.
+    std::vector<std::uint32_t> starts = constraints.polylineTriangles.front();
+    starts.back() = kFromPreviousPoint;
+    detail::PolylineProgress progress;
+    std::vector<std::uint32_t> vertices;
+    EXPECT_THROW(detail::insertPolyline(inZone, constraints, vertices, 0, progress, starts),
+                 detail::ZoneRefusal);
+    EXPECT_EQ(progress.nextPoint, 3U);
+    EXPECT_EQ(progress.nextSegment, 3U);
+    ASSERT_EQ(vertices.size(), 3U);
+    for (std::size_t j = 1; j < 3; ++j) {
+        const std::size_t edge = inZone.mesh().findEdge(vertices[j - 1], vertices[j]);
+        ASSERT_NE(edge, detail::kNoHalfEdge) << "segment " << j;
+        EXPECT_TRUE(inZone.mesh().isConstrained(edge)) << "segment " << j;
+        EXPECT_EQ(shared.chainOf(static_cast<std::uint32_t>(j - 1)),
+                  (std::vector<std::uint32_t>{vertices[j - 1], vertices[j]}))
+            << "segment " << j;
+    }
+}
+
 // A polyline a zone refused crosses, when it goes in afterwards on one thread, a constrained
 // edge a zone made: the crossing's vertex is inserted by the mesh itself, which has no slots
 // of a zone to run out of (it refused, and the refusal escaped).
