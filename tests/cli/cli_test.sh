@@ -753,6 +753,25 @@ case "$case_name" in
     expect_one_error_line "--append-layer needs a GeoPackage"
     expect_no_leftovers
     ;;
+  append_layer_keeps_another_users_file)
+    # A GeoPackage this user may not write, in a world-writable directory without the sticky
+    # bit: the append is refused and the file keeps its owner and bytes (it was replaced
+    # before, because the directory let the rename through).
+    [ "$(id -u)" -eq 0 ] && command -v setpriv >/dev/null || { echo "skip: needs root and setpriv"; exit 77; }
+    chmod 0755 "$work"
+    mkdir open_dir && chmod 0777 open_dir
+    run 0 build "$sample" -o open_dir/tin.gpkg --no-spatial-index --quiet
+    chmod 0644 open_dir/tin.gpkg
+    before=$(md5sum <open_dir/tin.gpkg)
+    setpriv --reuid=65534 --regid=65534 --clear-groups "$terratin" build "$sample" \
+      -o open_dir/tin.gpkg --layer second --append-layer --quiet >out.txt 2>err.txt
+    status=$?
+    [ "$status" -eq 1 ] || fail "exit status $status, expected 1"
+    expect_one_error_line "read-only for this user"
+    [ "$(stat -c %u open_dir/tin.gpkg)" = 0 ] || fail "the file changed owner"
+    [ "$(md5sum <open_dir/tin.gpkg)" = "$before" ] || fail "the file changed"
+    [ "$(ls -A open_dir)" = tin.gpkg ] || fail "files left beside it: $(ls -A open_dir)"
+    ;;
   gpkg_validates)
     # GDAL's own GeoPackage validator and SQLite's rtreecheck on the fast writer's files: the
     # triangle, node and edge layers, and a layer appended to an existing file.

@@ -225,7 +225,7 @@ void SqliteLimitPeer::prepare(const TinMesh& mesh) {
             io::detail::enclosingRtreeBox(std::min({a.x, b.x, c.x}), std::max({a.x, b.x, c.x}),
                                           std::min({a.y, b.y, c.y}), std::max({a.y, b.y, c.y})));
     }
-    const io::detail::PackedRtree tree(std::move(boxes), io::detail::rtreeNodeCapacity(65536));
+    const io::detail::PackedRtree tree(std::move(boxes), io::detail::RtreeNodeSize::forPage(65536));
     tree.forEachNode([&](const io::detail::PackedRtree::Node& node) {
         prepared->nodes.emplace_back(node.number, node.blob);
         if (node.parent != 0)

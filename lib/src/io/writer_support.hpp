@@ -38,6 +38,8 @@ public:
         if (done % kProgressInterval == 0)
             report(done, message);
     }
+    /// Reports the whole range done.
+    void reportDone(std::string_view message) const { report(m_total, message); }
     void report(std::uint64_t done, std::string_view message) const {
         reportProgress(m_stage, m_progress,
                        m_start + m_share * static_cast<double>(done) / static_cast<double>(m_total),

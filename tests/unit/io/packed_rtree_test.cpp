@@ -46,7 +46,7 @@ struct DecodedNode {
 std::map<std::int64_t, DecodedNode> decode(const PackedRtree& tree) {
     std::map<std::int64_t, DecodedNode> nodes;
     tree.forEachNode([&](const PackedRtree::Node& node) {
-        EXPECT_EQ(node.blob.size(), rtreeNodeBytes(tree.capacity()));
+        EXPECT_EQ(node.blob.size(), tree.nodeBytes());
         DecodedNode& decoded = nodes[node.number];
         decoded.depth = static_cast<int>(bigEndian(node.blob.data(), 2));
         decoded.parent = node.parent;
@@ -169,11 +169,17 @@ TEST(PackedRtree, EnclosingBoxRoundsOutwards_WhenDoublesAreNotFloats) {
     EXPECT_EQ(exact.maxY, 4.0f);
 }
 
-TEST(PackedRtree, NodeCapacityFollowsSqlite_ForPageSizes) {
-    EXPECT_EQ(rtreeNodeCapacity(4096), 51);
-    EXPECT_EQ(rtreeNodeCapacity(65536), 51);
-    EXPECT_EQ(rtreeNodeCapacity(1024), 39); // (1024 - 64 - 4) / 24
-    EXPECT_EQ(rtreeNodeBytes(51), 1228u);
+TEST(PackedRtree, NodeSizeFollowsSqlite_ForPageSizes) {
+    for (const int page : {4096, 65536}) {
+        EXPECT_EQ(RtreeNodeSize::forPage(page).capacity, 51);
+        EXPECT_EQ(RtreeNodeSize::forPage(page).bytes, 1228u); // 4 + 51 * 24
+    }
+    EXPECT_EQ(RtreeNodeSize::forPage(1024).capacity, 39); // (1024 - 64 - 4) / 24
+    EXPECT_EQ(RtreeNodeSize::forPage(1024).bytes, 960u);  // the page less 64, padded
+    // 512-byte pages: SQLite refuses node blobs under 448 bytes, so 18 cells (436 bytes) are
+    // padded to the page less 64.
+    EXPECT_EQ(RtreeNodeSize::forPage(512).capacity, 18);
+    EXPECT_EQ(RtreeNodeSize::forPage(512).bytes, 448u);
 }
 
 } // namespace

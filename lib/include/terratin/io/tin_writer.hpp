@@ -53,8 +53,14 @@ struct TinWriteOptions {
     /// constrained = 1 on a breakline, else 0).
     bool edges = false;
     /// GeoPackage only: add the layers to an existing GeoPackage, leaving its other layers as
-    /// they are (a new file is created when it does not exist).
+    /// they are (a new file is created when it does not exist). The file is changed in place
+    /// in one SQLite transaction, under SQLite's locks and its own journal or WAL, so that
+    /// another program's reads and writes of it are never lost.
     bool appendLayer = false;
+    /// With appendLayer: how long to wait, in seconds in all, for another program's lock on
+    /// the GeoPackage (a writer's open transaction) before giving up with an error. Progress
+    /// is reported while waiting, so a cancellation ends the wait at once.
+    double lockWaitSeconds = 30.0;
     /// GeoPackage only: build the R-tree spatial index (one pass after the inserts). Without it
     /// the file is valid and QGIS reads it, but spatial filters scan every row.
     bool spatialIndex = true;
@@ -114,7 +120,9 @@ void checkTinOutput(const std::filesystem::path& output, const TinWriteOptions& 
 /// Atomicity: every file is written under a temporary name in the output's directory and
 /// renamed into place only when complete; on any failure (or Cancelled) the temporaries are
 /// removed and an existing output is left untouched (with appendLayer the existing GeoPackage
-/// is copied, the copy extended, and renamed over the original). Without `overwrite` the
+/// is extended in place in one SQLite transaction, which a failure rolls back; a GeoPackage
+/// that is read-only, fails SQLite's quick_check or is not a GeoPackage is refused before
+/// anything is written). Without `overwrite` the
 /// final rename refuses atomically an output that another program created during the run.
 /// Throws IoError, InvalidInputError (existing output without `overwrite`, empty mesh, a
 /// Shapefile past its 2 GB limits, contradictory options), CrsError (unusable `crsWkt`),

@@ -50,7 +50,7 @@ public:
           m_temporary(m_temporaries.temporary(".gpkg")) {
         GpkgLayerNames names = gpkgLayerNames(options);
         names.nodeCells = options.nodes; // filled from the pieces' cells
-        createGpkgTinLayers(m_temporary, false, kLargeTin, names, options, m_output);
+        createGpkgTinLayers(m_temporary, kLargeTin, names, options, m_output);
         m_db.emplace(kOgrStage, m_temporary, m_output);
         configureForBulkWriting(*m_db);
         m_db->execute("BEGIN");
@@ -128,12 +128,12 @@ private:
 
     double writeIndexes(const std::vector<StreamedLayer*>& layers, const ProgressTicker& ticker) {
         const terratin::detail::Stopwatch time;
-        const int capacity =
-            rtreeNodeCapacity(static_cast<int>(m_db->queryInteger("PRAGMA page_size")));
+        const RtreeNodeSize nodeSize =
+            RtreeNodeSize::forPage(static_cast<int>(m_db->queryInteger("PRAGMA page_size")));
         std::uint64_t done = 0;
         for (StreamedLayer* layer : layers) {
             const std::size_t count = layer->boxes.size();
-            const PackedRtree tree(std::move(layer->boxes), capacity);
+            const PackedRtree tree(std::move(layer->boxes), nodeSize);
             writeGpkgSpatialIndex(*m_db, {layer->name, "geom", "fid"}, tree,
                                   [&](std::uint64_t stored) {
                                       ticker.report(done + stored, "Building spatial index");

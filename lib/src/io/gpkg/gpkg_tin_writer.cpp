@@ -1,12 +1,11 @@
 #include "gpkg_tin_writer.hpp"
 
-#include "../../stopwatch.hpp"
 #include "../atomic_output.hpp"
 #include "../attribute_columns.hpp"
 #include "../ogr_dataset_support.hpp"
 #include "../writer_support.hpp"
-#include "gpkg_spatial_index.hpp"
-#include "gpkg_tin_layers.hpp"
+#include "gpkg_append.hpp"
+#include "gpkg_layer_jobs.hpp"
 #include "sqlite_connection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
@@ -16,14 +15,12 @@
 #include <cpl_string.h>
 #include <ogrsf_frmts.h>
 
-#include <future>
 #include <optional>
 #include <system_error>
 
 namespace terratin::io::detail {
 
 namespace fs = std::filesystem;
-using terratin::detail::Stopwatch;
 
 namespace {
 
@@ -46,39 +43,6 @@ OGRSpatialReference outputCrs(const std::string& wkt, const fs::path& output) {
     if (undefined.importFromWkt(kUndefinedCartesianWkt) != OGRERR_NONE)
         throwGdalError(kOgrStage, "cannot set up the undefined Cartesian SRS of", output.string());
     return undefined;
-}
-
-/// Opens the copy of an existing GeoPackage for update; refuses anything else.
-GDALDatasetUniquePtr openGeoPackageForUpdate(const fs::path& path, const fs::path& output) {
-    const char* const drivers[] = {"GPKG", nullptr};
-    CPLErrorReset();
-    GDALDatasetUniquePtr dataset(
-        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, drivers));
-    if (!dataset)
-        throw InvalidInputError(std::string(kOgrStage) + ": cannot add layers to " +
-                                quoted(output) + ": it is not a GeoPackage GDAL can update (" +
-                                lastGdalErrorMessage() + ")");
-    return dataset;
-}
-
-/// Removes layer `name` when it exists and options.overwrite allows; refuses otherwise, naming
-/// the options as options.optionName does.
-void makeRoomForLayer(GDALDataset& dataset, const std::string& name, const TinWriteOptions& options,
-                      const fs::path& output) {
-    for (int i = 0; i < dataset.GetLayerCount(); ++i) {
-        OGRLayer* layer = dataset.GetLayer(i);
-        if (layer == nullptr || !EQUAL(layer->GetName(), name.c_str()))
-            continue;
-        if (!options.overwrite)
-            throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
-                                    " already has a layer '" + name + "'; choose another " +
-                                    options.optionName("layer") + " or use " +
-                                    options.optionName("overwrite") + " to replace it");
-        if (dataset.DeleteLayer(i) != OGRERR_NONE)
-            throwGdalError(kOgrStage, "cannot replace the layer '" + name + "' of",
-                           output.string());
-        return;
-    }
 }
 
 /// A feature table with its fields, no spatial index (that comes with the rows).
@@ -134,84 +98,6 @@ int pageBytesFor(std::uint64_t features) {
     return features >= kLargeTableFeatures ? kLargePageBytes : kDefaultPageBytes;
 }
 
-/// One layer's rows and index, in writing order.
-struct LayerJob {
-    std::string name;
-    std::uint64_t features = 0;
-    std::string_view rowMessage;
-    std::function<void(SqliteConnection&, const GpkgFeatureTable&, const RowProgress&)> rows;
-    std::function<std::vector<RtreeBox>()> boxes;
-};
-
-std::vector<LayerJob> layerJobs(const TinMesh& mesh, const TinWriteOptions& options,
-                                const GpkgLayerNames& names) {
-    std::vector<LayerJob> jobs;
-    jobs.push_back(
-        {names.triangles, mesh.triangleCount(), "Writing triangles",
-         [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
-             insertTriangleRows(db, table, mesh, options.attributes, 1, progress);
-         },
-         [&] { return triangleBoxes(mesh); }});
-    if (!names.nodes.empty())
-        jobs.push_back(
-            {names.nodes, mesh.vertexCount(), "Writing nodes",
-             [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
-                 insertNodeRows(db, table, mesh, options.vertexCells, 1, progress);
-             },
-             [&] { return nodeBoxes(mesh); }});
-    if (!names.edges.empty())
-        jobs.push_back(
-            {names.edges, edgeCount(mesh), "Writing edges",
-             [&](SqliteConnection& db, const GpkgFeatureTable& table, const RowProgress& progress) {
-                 insertEdgeRows(db, table, mesh, options.constrainedEdges, progress);
-             },
-             [&] { return edgeBoxes(mesh); }});
-    return jobs;
-}
-
-/// SQLite's part: every layer's rows, then every layer's spatial index, in one transaction.
-/// Returns the seconds each took.
-TinWriteResult fillTables(const fs::path& temporary, const fs::path& output, const TinMesh& mesh,
-                          const std::vector<LayerJob>& jobs, bool spatialIndex,
-                          const ProgressTicker& ticker) {
-    TinWriteResult result;
-    SqliteConnection db(kOgrStage, temporary, output);
-    configureForBulkWriting(db);
-    const int capacity = rtreeNodeCapacity(static_cast<int>(db.queryInteger("PRAGMA page_size")));
-    db.execute("BEGIN");
-
-    // The triangles' tree is packed on another thread while the rows go in.
-    std::future<PackedRtree> firstTree;
-    if (spatialIndex)
-        firstTree = std::async(std::launch::async,
-                               [&] { return PackedRtree(jobs.front().boxes(), capacity); });
-
-    const Extent2d extent = meshExtent(mesh);
-    const Stopwatch rowsTime;
-    std::uint64_t done = 0;
-    for (const auto& job : jobs) {
-        GpkgFeatureTable table(db, job.name);
-        job.rows(db, table,
-                 [&](std::uint64_t rows) { ticker.report(done + rows, job.rowMessage); });
-        table.finish(job.features, extent);
-        done += job.features;
-    }
-    result.rowSeconds = rowsTime.seconds();
-
-    const Stopwatch indexTime;
-    for (std::size_t i = 0; spatialIndex && i < jobs.size(); ++i) {
-        const PackedRtree tree = i == 0 ? firstTree.get() : PackedRtree(jobs[i].boxes(), capacity);
-        writeGpkgSpatialIndex(db, {jobs[i].name, "geom", "fid"}, tree, [&](std::uint64_t entries) {
-            ticker.report(done + entries, "Building spatial index");
-        });
-        done += jobs[i].features;
-    }
-    result.indexSeconds = indexTime.seconds();
-    db.execute("COMMIT");
-    db.close();
-    return result;
-}
-
 } // namespace
 
 GpkgLayerNames gpkgLayerNames(const TinWriteOptions& options) {
@@ -219,17 +105,11 @@ GpkgLayerNames gpkgLayerNames(const TinWriteOptions& options) {
             options.edges ? edgeLayerName(options.layerName) : "", !options.vertexCells.empty()};
 }
 
-void createGpkgTinLayers(const fs::path& temporary, bool appending, std::uint64_t features,
+void createGpkgTinLayers(const fs::path& temporary, std::uint64_t features,
                          const GpkgLayerNames& names, const TinWriteOptions& options,
                          const fs::path& output) {
     OGRSpatialReference srs = outputCrs(options.crsWkt, output);
-    GDALDatasetUniquePtr dataset =
-        appending ? openGeoPackageForUpdate(temporary, output)
-                  : createGeoPackage(temporary, pageBytesFor(features), output);
-    if (appending)
-        for (const std::string* name : {&names.triangles, &names.nodes, &names.edges})
-            if (!name->empty())
-                makeRoomForLayer(*dataset, *name, options, output);
+    GDALDatasetUniquePtr dataset = createGeoPackage(temporary, pageBytesFor(features), output);
 
     std::vector<std::pair<const char*, OGRFieldType>> triangleFields;
     for (const auto& column : attributeColumns(options.attributes))
@@ -271,8 +151,7 @@ void removeStaleJournals(const fs::path& output, bool replacing) {
 TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
                                   const TinWriteOptions& options,
                                   const ProgressCallback& progress) {
-    const GpkgLayerNames names = gpkgLayerNames(options);
-    const std::vector<LayerJob> jobs = layerJobs(mesh, options, names);
+    const std::vector<GpkgLayerJob> jobs = gpkgLayerJobs(mesh, options);
     std::uint64_t features = 0;
     for (const auto& job : jobs)
         features += job.features;
@@ -281,29 +160,32 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     const ProgressTicker ticker(kOgrStage, progress, output, 0.0, kWritingShare, work);
     ticker.report(0, "Creating GeoPackage");
 
-    const bool appending = options.appendLayer && !existingFiles({output}).empty();
-    // The copy extended with new layers replaces the original by design; a new file replaces
-    // only what --overwrite allows, even one that appeared while this run was writing.
-    const AtomicOutput temporaries(kOgrStage, output,
-                                   appending ? ExistingTarget::Replace
-                                             : existingTargetFor(options.overwrite),
+    if (options.appendLayer && !existingFiles({output}).empty()) {
+        TinWriteResult result = appendGeoPackageTin(mesh, output, options, jobs, ticker);
+        result.features = features;
+        return result;
+    }
+    // A new file replaces only what --overwrite allows, even one that appeared while this run
+    // was writing.
+    const AtomicOutput temporaries(kOgrStage, output, existingTargetFor(options.overwrite),
                                    options.optionName);
     const fs::path temporary = temporaries.temporary(".gpkg");
-    if (appending) {
-        std::error_code error;
-        fs::copy_file(output, temporary, error);
-        if (error)
-            throw IoError(std::string(kOgrStage) + ": cannot copy " + quoted(output) +
-                          " to add layers to it: " + error.message());
-    }
-    createGpkgTinLayers(temporary, appending, features, names, options, output);
+    createGpkgTinLayers(temporary, features, gpkgLayerNames(options), options, output);
 
-    TinWriteResult result = fillTables(temporary, output, mesh, jobs, options.spatialIndex, ticker);
+    TinWriteResult result;
+    {
+        SqliteConnection db(kOgrStage, temporary, output);
+        configureForBulkWriting(db);
+        db.execute("BEGIN");
+        result = fillGpkgLayers(db, mesh, jobs, options.spatialIndex, ticker);
+        db.execute("COMMIT");
+        db.close();
+    }
     // The last chance to cancel: a signal that came while SQLite committed and closed must
     // still leave the old output in place.
-    ticker.report(work, "Finishing GeoPackage");
+    ticker.reportDone("Finishing GeoPackage");
 
-    removeStaleJournals(output, appending || options.overwrite);
+    removeStaleJournals(output, options.overwrite);
     temporaries.commit(temporary, output);
     result.features = features;
     return result;

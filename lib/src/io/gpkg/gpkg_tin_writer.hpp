@@ -5,9 +5,9 @@
 /// GDAL 3.6's per-feature inserts and per-entry R*Tree inserts take most of a DEM -> TIN run
 /// otherwise (see docs/benchmarks.md).
 ///
-/// Atomicity: everything is written under a temporary name (see atomic_output.hpp) and renamed
-/// into place when complete; with appendLayer the existing GeoPackage is copied under the
-/// temporary name first and the copy extended, so a failure leaves the original as it was.
+/// Atomicity: a new file is written under a temporary name (see atomic_output.hpp) and renamed
+/// into place when complete. Layers added to an existing GeoPackage (appendLayer) go into the
+/// file itself in one SQLite transaction, under SQLite's locks and journal (gpkg_append.hpp).
 
 #include "sqlite_connection.hpp"
 
@@ -37,20 +37,21 @@ struct GpkgLayerNames {
 /// The layers `options` asks for.
 GpkgLayerNames gpkgLayerNames(const TinWriteOptions& options);
 
-/// OGR's part: the file `temporary` (or, `appending`, the copy of the output being extended),
-/// its layers, their fields and CRS, no row; SQLite pages sized for `features` rows in all.
-void createGpkgTinLayers(const std::filesystem::path& temporary, bool appending,
-                         std::uint64_t features, const GpkgLayerNames& names,
-                         const TinWriteOptions& options, const std::filesystem::path& output);
+/// OGR's part: the new file `temporary`, its layers, their fields and CRS, no row; SQLite
+/// pages sized for `features` rows in all.
+void createGpkgTinLayers(const std::filesystem::path& temporary, std::uint64_t features,
+                         const GpkgLayerNames& names, const TinWriteOptions& options,
+                         const std::filesystem::path& output);
 
 /// Fast settings for a file nobody else sees until it is renamed: no rollback journal (a
 /// failed write deletes the temporary file instead), no fsync per commit, one lock for the run.
 void configureForBulkWriting(SqliteConnection& db);
 
-/// Before the rename: a journal or WAL left by an earlier SQLite session on the old output
-/// would be replayed into the new file under the same name and corrupt it. Removes them when
-/// the output is `replacing` an old one, or there is none; not when the output appeared during
-/// the run (the rename refuses it, and they are its own).
+/// Before a new file is renamed onto `output`: a journal or WAL left by an earlier SQLite
+/// session on the old output would be replayed into the new file under the same name and
+/// corrupt it. Removes them when the new file is `replacing` the old one (overwrite), or there
+/// is none; not when the output appeared during the run (the rename refuses it, and they are
+/// its own). Never used on a file that is updated in place.
 void removeStaleJournals(const std::filesystem::path& output, bool replacing);
 
 } // namespace terratin::io::detail

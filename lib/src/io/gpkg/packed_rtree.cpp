@@ -16,6 +16,8 @@ constexpr int kMaxCells = 51;
 constexpr int kCellBytes = 24;
 /// SQLite's R*Tree leaves this much of a page for the row around the node blob.
 constexpr int kPageReserveBytes = 64;
+/// A node's depth and cell count, two u16.
+constexpr int kNodeHeaderBytes = 4;
 
 float roundedDown(double value) {
     float rounded = static_cast<float>(value);
@@ -104,13 +106,20 @@ RtreeBox enclosingRtreeBox(double minX, double maxX, double minY, double maxY) {
     return {roundedDown(minX), roundedUp(maxX), roundedDown(minY), roundedUp(maxY)};
 }
 
-int rtreeNodeCapacity(int pageBytes) {
-    return std::min(kMaxCells, (pageBytes - kPageReserveBytes - 4) / kCellBytes);
+RtreeNodeSize RtreeNodeSize::forPage(int pageBytes) {
+    const int bytes =
+        std::min(pageBytes - kPageReserveBytes, kNodeHeaderBytes + kMaxCells * kCellBytes);
+    return {(bytes - kNodeHeaderBytes) / kCellBytes, static_cast<std::size_t>(bytes)};
 }
 
-PackedRtree::PackedRtree(std::vector<RtreeBox> boxes, int capacity)
-    : m_boxes(std::move(boxes)), m_capacity(capacity) {
-    if (capacity < 2)
+RtreeNodeSize RtreeNodeSize::forCapacity(int capacity) {
+    return {capacity, static_cast<std::size_t>(kNodeHeaderBytes + capacity * kCellBytes)};
+}
+
+PackedRtree::PackedRtree(std::vector<RtreeBox> boxes, RtreeNodeSize nodeSize)
+    : m_boxes(std::move(boxes)), m_capacity(nodeSize.capacity), m_nodeBytes(nodeSize.bytes) {
+    const int capacity = m_capacity;
+    if (capacity < 2 || m_nodeBytes < RtreeNodeSize::forCapacity(capacity).bytes)
         throw std::invalid_argument("PackedRtree: a node needs room for two cells");
     if (m_boxes.size() > std::numeric_limits<std::uint32_t>::max())
         throw std::invalid_argument("PackedRtree: more than 2^32 entries");
@@ -160,7 +169,7 @@ void PackedRtree::fillNode(std::size_t level, std::size_t node, Node& out) const
     out.parent =
         isRoot ? 0
                : m_levels[level + 1].firstNumber + static_cast<std::int64_t>(here.parentOf[node]);
-    out.blob.assign(rtreeNodeBytes(m_capacity), 0);
+    out.blob.assign(m_nodeBytes, 0);
     putBigEndian16(out.blob.data(), isRoot ? static_cast<std::uint16_t>(level) : 0);
     putBigEndian16(out.blob.data() + 2, static_cast<std::uint16_t>(end - begin));
     std::uint8_t* cell = out.blob.data() + 4;

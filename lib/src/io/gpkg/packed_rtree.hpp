@@ -5,13 +5,14 @@
 /// as SQLite's R*Tree module stores it, so that it can be written straight into the module's
 /// shadow tables instead of being inserted one entry at a time.
 ///
-/// SQLite's format (ext/rtree/rtree.c): a node is a blob of `4 + capacity * 24` bytes, a
-/// big-endian u16 depth (root only; 0 elsewhere) and u16 cell count, then per cell a big-endian
-/// i64 id (feature id in a leaf, child node number above) and minx, maxx, miny, maxy as
-/// big-endian float32. The root is node 1.
+/// SQLite's format (ext/rtree/rtree.c): a node is a blob of the table's node size (at least
+/// `4 + capacity * 24` bytes, the rest zero), a big-endian u16 depth (root only; 0 elsewhere) and
+/// u16 cell count, then per cell a big-endian i64 id (feature id in a leaf, child node number
+/// above) and minx, maxx, miny, maxy as big-endian float32. The root is node 1.
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace terratin::io::detail {
@@ -28,24 +29,35 @@ struct RtreeBox {
 /// The RtreeBox of [minX, maxX] x [minY, maxY]: minima rounded down, maxima up.
 RtreeBox enclosingRtreeBox(double minX, double maxX, double minY, double maxY);
 
-/// Cells per node for a database page of `pageBytes`: as many as fit in a page less 64 bytes,
-/// at most 51 (the limits SQLite's R*Tree module applies when it creates a table).
-int rtreeNodeCapacity(int pageBytes);
+/// The nodes of one R*Tree table: every node blob has the same size, which SQLite reads back
+/// from the root when it opens the table (and refuses under 448 bytes as "undersize RTree
+/// blobs").
+struct RtreeNodeSize {
+    /// Cells per node.
+    int capacity = 0;
+    /// Bytes per node blob.
+    std::size_t bytes = 0;
 
-/// Node bytes for `capacity` cells.
-inline std::size_t rtreeNodeBytes(int capacity) {
-    return 4 + static_cast<std::size_t>(capacity) * 24;
-}
+    /// The size SQLite's R*Tree module gives a new table on pages of `pageBytes`: the page
+    /// less 64 bytes, at most 51 cells (4 + 51 * 24 bytes), and as many cells as fit in that.
+    static RtreeNodeSize forPage(int pageBytes);
+    /// Exactly `capacity` cells, no padding.
+    static RtreeNodeSize forCapacity(int capacity);
+};
 
 /// The packed tree of `boxes`, where boxes[i] is the box of feature id i + 1.
 class PackedRtree {
 public:
-    /// Packs `boxes` (moved in) with `capacity` cells per node (2 or more).
-    PackedRtree(std::vector<RtreeBox> boxes, int capacity);
+    /// Packs `boxes` (moved in) into nodes of `nodeSize` (2 cells or more).
+    PackedRtree(std::vector<RtreeBox> boxes, RtreeNodeSize nodeSize);
+    /// Packs `boxes` with `capacity` cells per node, unpadded.
+    PackedRtree(std::vector<RtreeBox> boxes, int capacity)
+        : PackedRtree(std::move(boxes), RtreeNodeSize::forCapacity(capacity)) {}
 
     [[nodiscard]] std::size_t entryCount() const { return m_boxes.size(); }
     [[nodiscard]] std::size_t nodeCount() const { return m_nodeCount; }
     [[nodiscard]] int capacity() const { return m_capacity; }
+    [[nodiscard]] std::size_t nodeBytes() const { return m_nodeBytes; }
 
     /// One stored node: its number, its blob, and its parent's number (0 for the root).
     struct Node {
@@ -75,6 +87,7 @@ private:
 
     std::vector<RtreeBox> m_boxes;
     int m_capacity;
+    std::size_t m_nodeBytes;
     std::vector<Level> m_levels;
     std::size_t m_nodeCount = 0;
 };

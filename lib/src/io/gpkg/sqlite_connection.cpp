@@ -5,11 +5,16 @@
 
 #include <sqlite3.h>
 
+#include <cstdio>
 #include <utility>
 
 namespace terratin::io::detail {
 
 namespace {
+
+/// Milliseconds between two tries for a lock another connection holds: short enough that a
+/// cancellation is seen at once, long enough that the wait costs no CPU to speak of.
+constexpr int kLockPollMilliseconds = 25;
 
 std::string quoteWith(std::string_view text, char quote) {
     std::string quoted(1, quote);
@@ -79,7 +84,46 @@ void SqliteConnection::close() {
     m_database = nullptr;
 }
 
+void SqliteConnection::waitForLocks(double limitSeconds, std::function<void()> whileWaiting) {
+    m_lockWaitLimitSeconds = limitSeconds;
+    m_whileWaiting = std::move(whileWaiting);
+    sqlite3_busy_handler(m_database, &SqliteConnection::onBusy, this);
+}
+
+int SqliteConnection::onBusy(void* context, int /*attempt*/) {
+    auto& connection = *static_cast<SqliteConnection*>(context);
+    if (connection.m_waitError)
+        return 0;
+    try {
+        if (connection.m_whileWaiting)
+            connection.m_whileWaiting();
+    } catch (...) {
+        // SQLite is C: the exception waits here until the failing call reaches fail().
+        connection.m_waitError = std::current_exception();
+        return 0;
+    }
+    if (connection.m_lockWaitedSeconds >= connection.m_lockWaitLimitSeconds)
+        return 0;
+    sqlite3_sleep(kLockPollMilliseconds);
+    connection.m_lockWaitedSeconds += kLockPollMilliseconds / 1000.0;
+    return 1;
+}
+
+bool SqliteConnection::isReadOnly() const {
+    return sqlite3_db_readonly(m_database, "main") == 1;
+}
+
 void SqliteConnection::fail(std::string_view what) const {
+    if (m_waitError)
+        std::rethrow_exception(m_waitError);
+    const int code = m_database != nullptr ? sqlite3_extended_errcode(m_database) : SQLITE_OK;
+    if ((code & 0xFF) == SQLITE_BUSY || (code & 0xFF) == SQLITE_LOCKED) {
+        char waited[32];
+        std::snprintf(waited, sizeof waited, "%.0f", m_lockWaitedSeconds);
+        throw IoError(m_stage + ": " + std::string(what) + " in " + quoted(m_displayPath) +
+                      ": another program holds a lock on it (waited " + waited +
+                      " s); try again when it has finished");
+    }
     throw IoError(m_stage + ": " + std::string(what) + " in " + quoted(m_displayPath) + ": " +
                   (m_database != nullptr ? sqlite3_errmsg(m_database) : "no database"));
 }

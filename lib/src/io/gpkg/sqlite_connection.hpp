@@ -3,11 +3,14 @@
 /// SqliteConnection and SqliteStatement: the few SQLite calls the GeoPackage writer makes, with
 /// every failure turned into IoError "<stage>: <what> in '<path>': <SQLite's message>".
 ///
-/// This is the one place terratin talks to SQLite directly, and only to write rows and the
-/// R-tree into a GeoPackage that OGR created (see gpkg_tin_writer.cpp for why).
+/// This is the one place terratin talks to SQLite directly: to write rows and the R-tree into
+/// a GeoPackage that OGR created (see gpkg_tin_writer.cpp for why), and to add layers to a
+/// user's GeoPackage under SQLite's own locks and journal (gpkg_append.cpp).
 
 #include <cstdint>
+#include <exception>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -65,14 +68,31 @@ public:
     /// Closes the file, reporting a failure to flush it (which the destructor cannot).
     void close();
 
+    /// Where another connection holds a lock this one needs, waits for it up to `limitSeconds`
+    /// in all, calling `whileWaiting` every few milliseconds: when that throws (Cancelled, say)
+    /// the wait ends and the statement's failure rethrows its exception. Past the limit the
+    /// statement fails with a message saying that another program holds the file.
+    void waitForLocks(double limitSeconds, std::function<void()> whileWaiting);
+    /// Whether SQLite opened the file read-only (it does so, silently, when the file or its
+    /// directory is not writable for this process).
+    [[nodiscard]] bool isReadOnly() const;
+
     /// Throws IoError "<stage>: <what> in '<path>': <SQLite's last message>".
     [[noreturn]] void fail(std::string_view what) const;
     [[nodiscard]] sqlite3* handle() const { return m_database; }
 
 private:
+    /// SQLite's busy handler: `context` is the connection.
+    static int onBusy(void* context, int attempt);
+
     std::string m_stage;
     std::filesystem::path m_displayPath;
     sqlite3* m_database = nullptr;
+    double m_lockWaitLimitSeconds = 0.0;
+    double m_lockWaitedSeconds = 0.0;
+    std::function<void()> m_whileWaiting;
+    /// What whileWaiting threw, rethrown by fail().
+    std::exception_ptr m_waitError;
 };
 
 /// `name` as an SQL identifier: in double quotes, inner quotes doubled.

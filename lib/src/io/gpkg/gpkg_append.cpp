@@ -1,0 +1,98 @@
+#include "gpkg_append.hpp"
+
+#include "../atomic_output.hpp"
+#include "../ogr_dataset_support.hpp"
+#include "gpkg_layer_catalog.hpp"
+#include "gpkg_tin_writer.hpp"
+#include "terratin/error.hpp"
+
+namespace terratin::io::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The schema name of the scratch GeoPackage while it is attached.
+constexpr const char* kScratchSchema = "terratin_scratch";
+/// SQLite page cache of the connection, in KiB (a negative cache_size is KiB), as for a new
+/// file: the B-tree's right edge and the index tables stay in memory.
+constexpr int kPageCacheKiB = 16 * 1024;
+
+std::string cannotAddTo(const fs::path& output) {
+    return std::string(kOgrStage) + ": cannot add layers to " + quoted(output);
+}
+
+void refuseReadOnly(const SqliteConnection& db, const fs::path& output) {
+    if (db.isReadOnly())
+        throw IoError(cannotAddTo(output) +
+                      ": it is read-only for this user (the file or its directory is not "
+                      "writable)");
+}
+
+/// SQLite's quick_check: page structure, free list, record formats and NOT NULL constraints;
+/// not the contents of indexes, which would read every index in full.
+void refuseDamagedFile(SqliteConnection& db, const fs::path& output) {
+    SqliteStatement check(db, "PRAGMA main.quick_check(1)");
+    const std::string verdict = check.nextRow() ? check.textColumn(0) : "no answer";
+    if (verdict != "ok")
+        throw InvalidInputError(cannotAddTo(output) + ": SQLite's quick_check fails on it (" +
+                                verdict + "); repair or replace it first");
+}
+
+/// Removes layer `name` when options.overwrite allows; refuses a layer without it, and a
+/// table of the same name that is no layer in any case.
+void makeRoomForLayer(SqliteConnection& db, const std::string& name, const TinWriteOptions& options,
+                      const fs::path& output) {
+    if (hasLayer(db, name)) {
+        if (!options.overwrite)
+            throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
+                                    " already has a layer '" + name + "'; choose another " +
+                                    options.optionName("layer") + " or use " +
+                                    options.optionName("overwrite") + " to replace it");
+        dropLayer(db, name, output);
+    }
+    if (hasSchemaObject(db, name))
+        throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
+                                " has a table '" + name + "' that is not a layer; choose another " +
+                                options.optionName("layer"));
+}
+
+} // namespace
+
+TinWriteResult appendGeoPackageTin(const TinMesh& mesh, const fs::path& output,
+                                   const TinWriteOptions& options,
+                                   const std::vector<GpkgLayerJob>& jobs,
+                                   const ProgressTicker& ticker) {
+    // The scratch file is this run's own, and removed on every way out (after the
+    // connection, which is closed first).
+    const AtomicOutput scratchFiles(kOgrStage, output, ExistingTarget::Refuse, options.optionName);
+    const fs::path scratch = scratchFiles.temporary(".gpkg");
+    SqliteConnection db(kOgrStage, output, output);
+    refuseReadOnly(db, output);
+    createGpkgTinLayers(scratch, 0, gpkgLayerNames(options), options, output);
+
+    db.waitForLocks(options.lockWaitSeconds, [&] {
+        ticker.report(0, "Waiting for another program's lock on the GeoPackage");
+    });
+    db.execute("PRAGMA main.cache_size = -" + std::to_string(kPageCacheKiB));
+    db.execute("ATTACH DATABASE " + quoteLiteral(scratch.string()) + " AS " + kScratchSchema);
+    // IMMEDIATE takes the write lock now: no other writer can slip in between the checks and
+    // the writes, and no upgrade from a read lock can deadlock with another writer's.
+    db.execute("BEGIN IMMEDIATE");
+    requireGeoPackage(db, output);
+    refuseDamagedFile(db, output);
+    for (const GpkgLayerJob& job : jobs)
+        makeRoomForLayer(db, job.name, options, output);
+    for (const GpkgLayerJob& job : jobs)
+        copyLayerDefinition(db, kScratchSchema, job.name);
+
+    TinWriteResult result = fillGpkgLayers(db, mesh, jobs, options.spatialIndex, ticker);
+    // The last chance to cancel: until COMMIT the file is as it was.
+    ticker.reportDone("Finishing GeoPackage");
+    db.execute("COMMIT");
+    db.execute(std::string("DETACH DATABASE ") + kScratchSchema);
+    db.close();
+    return result;
+}
+
+} // namespace terratin::io::detail
