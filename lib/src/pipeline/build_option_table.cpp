@@ -310,22 +310,26 @@ std::vector<BuildOptionSpec> makeTable() {
              refineOf(o).maxHole = parseCount<std::size_t>(t, n);
          }},
         {"tile_size", "tile-size", 0, Kind::Count, false, "CELLS", "",
-         "simplify in tiles of CELLS cells a side, 2 to " + std::to_string(kMaxTileSize) +
-             ", sharing their border cells: one TIN without cracks (needs --max-error)",
+         "build a DEM's TIN in square tiles of CELLS cells a side, 2 to " +
+             std::to_string(kMaxTileSize) +
+             ", sharing their border cells: one TIN without cracks, simplified with "
+             "--max-error, else at full resolution; no breaklines or areas yet",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              refineOf(o).tileSize = parseCount<std::size_t>(t, n);
          }},
         {"memory_limit", "memory-limit", 0, Kind::Text, false, "SIZE", "",
-         "simplify in tiles within SIZE of memory (2G, 512M: K M G T are powers of 1024): the "
-         "tile size follows from it, the TIN is written tile by tile to a GeoPackage or PLY "
-         "(needs --max-error)",
+         "build a DEM's TIN in tiles within SIZE of memory (2G, 512M: K M G T are powers of "
+         "1024): the tile size follows from it unless --tile-size gives one, and the TIN is "
+         "written tile by tile to -o in any format, simplified with --max-error, else at full "
+         "resolution; not with --edges, --append-layer, breaklines or areas",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              o.memoryLimit = parseByteSize(t, n);
              refineOf(o); // tiles are a simplification's
          }},
         {"tiles_dir", "tiles-dir", 0, Kind::Text, false, "DIR", "",
-         "instead of -o, with --tile-size: each tile's TIN in its own file in DIR "
-         "(tile_ROW_COLUMN.EXT, -f or gpkg) and DIR/tiles.gpkg, their footprints; never joined",
+         "instead of -o, with --tile-size or --memory-limit: each tile's TIN in its own file "
+         "in DIR (tile_ROW_COLUMN.EXT, -f or gpkg) and DIR/tiles.gpkg, their footprints; never "
+         "joined",
          [](BuildOptions& o, const std::string& t, const std::string&) { o.tilesDir = t; }},
         {"fill_holes", "fill-holes", 0, Kind::Flag, false, "", "",
          "simplify: triangulate across every nodata region", applyFillHoles},
@@ -392,7 +396,7 @@ std::vector<BuildOptionSpec> makeTable() {
          [](BuildOptions& o, const std::string& t, const std::string&) { o.inputLayer = t; }},
         {"breaklines", "breaklines", 0, Kind::Repeatable, false, "FILE", "",
          "hard breaklines: an OGR line layer (FILE or FILE|layername=NAME); every segment "
-         "becomes a chain of TIN edges (full-resolution TINs); repeatable",
+         "becomes a chain of TIN edges, in full-resolution and simplified TINs; repeatable",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              if (t.empty())
                  refuse(n + " needs a file name");
