@@ -32,6 +32,7 @@ readonly test_packages=(
   python3-qgis  # tests/qgis: the outputs opened in QGIS, headless
   clang-format  # the test command checks the C++ files against .clang-format
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
+  python3-venv python3-setuptools python3-wheel  # tests: pip install . in a venv, as docs/python.md says
   openmpi-bin libopenmpi-dev  # tiles shared among MPI ranks (mpirun), and their test
 )
 

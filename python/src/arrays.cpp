@@ -155,6 +155,13 @@ PointsView::PointsView(const py::array& points, const std::string& function) {
                                 shapeText(points));
     requireRealDtype(points, function, "points");
     const auto count = static_cast<std::size_t>(points.shape(0));
+    // Rows 0 bytes apart are one point repeated (numpy.broadcast_to): refused before a copy
+    // that could be larger than memory finds a single distinct point.
+    if (count > 1 && points.strides(0) == 0)
+        throw InvalidInputError(function + ": points holds one point repeated " +
+                                std::to_string(count) +
+                                " times (its rows are 0 bytes apart, as numpy.broadcast_to "
+                                "makes them): fewer than three distinct points");
     if (holdsPoint3sInPlace(points)) {
         m_array = points;
         m_points = {static_cast<const Point3*>(points.data()), count};

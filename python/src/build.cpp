@@ -6,6 +6,7 @@
 
 #include "bindings.hpp"
 #include "progress.hpp"
+#include "termination_signals.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
@@ -106,9 +107,18 @@ std::string build(const py::object& inputs, const py::object& output, const py::
                   const py::kwargs& options) {
     const BuildOptions build =
         parseBuildOptions(optionValues(inputs, output, options), OptionSpelling::Keyword);
-    return runWithoutGil(progress, [&](const ProgressCallback& callback) {
-        return toJson(runBuild(build, callback));
-    });
+    const TerminationSignals signals;
+    try {
+        std::string report = runWithoutGil(progress, [&](const ProgressCallback& callback) {
+            return toJson(runBuild(build, signals.cancelling(callback)));
+        });
+        signals.reraiseIfReceived();
+        return report;
+    } catch (const Cancelled&) {
+        // The run has removed its temporaries: now the signal may end the process.
+        signals.reraiseIfReceived();
+        throw;
+    }
 }
 
 } // namespace

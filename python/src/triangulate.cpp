@@ -25,8 +25,18 @@ struct TimedMesh {
     double librarySeconds = 0.0;
 };
 
+/// Each vertex's row in the caller's points, as int64 (NumPy's index type).
+py::array sourceRows(const MeshArray<std::uint32_t>& sourceIndex) {
+    py::array_t<std::int64_t> rows(static_cast<py::ssize_t>(sourceIndex.size()));
+    auto out = rows.mutable_unchecked<1>();
+    for (std::size_t v = 0; v < sourceIndex.size(); ++v)
+        out(static_cast<py::ssize_t>(v)) = sourceIndex[v];
+    return rows;
+}
+
 TimedMesh triangulateArray(const py::array& points, const std::string& method, std::int64_t threads,
-                           std::uint64_t seed, const py::object& progress) {
+                           std::uint64_t seed, const py::object& progress,
+                           bool returnIndex = false) {
     const PointsView view(points, kFunction);
     TriangulationOptions options;
     options.method = methodOption(kFunction, method);
@@ -40,7 +50,11 @@ TimedMesh triangulateArray(const py::array& points, const std::string& method, s
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return triangulation;
     });
-    return {meshArrays(std::move(result.mesh)), librarySeconds};
+    if (!returnIndex)
+        return {meshArrays(std::move(result.mesh)), librarySeconds};
+    py::array rows = sourceRows(result.mesh.sourceIndex);
+    const py::tuple mesh = meshArrays(std::move(result.mesh));
+    return {py::make_tuple(mesh[0], mesh[1], std::move(rows)), librarySeconds};
 }
 
 } // namespace
@@ -50,11 +64,12 @@ void bindTriangulate(py::module_& module) {
     module.def(
         "triangulate",
         [](const py::array& points, const std::string& method, std::int64_t threads,
-           std::uint64_t seed, const py::object& progress) {
-            return triangulateArray(points, method, threads, seed, progress).arrays;
+           std::uint64_t seed, const py::object& progress, bool returnIndex) {
+            return triangulateArray(points, method, threads, seed, progress, returnIndex).arrays;
         },
         "points"_a, "method"_a = "auto", "threads"_a = 0, py::kw_only(), "seed"_a = 1,
-        "progress"_a = py::none(), "Exact Delaunay triangulation; see terratin.triangulate.");
+        "progress"_a = py::none(), "return_index"_a = false,
+        "Exact Delaunay triangulation; see terratin.triangulate.");
     // For python/bench/triangulate_bench.py: the Python call's cost against the library's own,
     // measured in the same call.
     module.def(

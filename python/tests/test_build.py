@@ -65,7 +65,7 @@ def test_tiles_give_the_command_lines_tin(terratin_cli, tmp_path):
     assert report["counts"] == expected["counts"]
     assert report["refine"]["achieved_max_error"] <= 0.5
     assert numpy.array_equal(ply_corners(tmp_path / "python.ply"), ply_corners(tmp_path / "cli.ply"))
-    with pytest.raises(terratin.InvalidInputError, match="tile size must be 2"):
+    with pytest.raises(terratin.InvalidInputError, match="tile_size must be 2 to"):
         terratin.build(SAMPLE, tmp_path / "bad.ply", max_error=0.5, tile_size=1)
 
 

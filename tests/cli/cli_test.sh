@@ -94,7 +94,68 @@ case "$case_name" in
   version_matches_project)
     run 0 --version
     expected="terratin ${TERRATIN_EXPECTED_VERSION:?set by tests/cli/CMakeLists.txt}"
-    [ "$(cat out.txt)" = "$expected" ] || fail "--version is not '$expected'"
+    [ "$(head -1 out.txt)" = "$expected" ] || fail "--version's first line is not '$expected'"
+    # The libraries in use, as GDAL's programs name theirs: GDAL's own, as gdalinfo reports it.
+    gdal=$(gdalinfo --version | sed -n 's/^GDAL \([0-9.]*\).*/\1/p')
+    sed -n 2p out.txt | grep -q "^GDAL $gdal, PROJ [0-9.]*, GeographicLib [0-9.]*, SQLite [0-9.]*$" ||
+      fail "--version's second line does not name GDAL $gdal, PROJ, GeographicLib and SQLite"
+    ;;
+  formats_listed)
+    run 0 --formats
+    for row in "gpkg .gpkg" "shp .shp" "fgb .fgb" "2dm .2dm" "ply .ply" "obj .obj" "landxml .xml .landxml"; do
+      grep -Eq "^  ${row// / +} " out.txt || fail "--formats lacks '$row'"
+    done
+    [ "$(grep -c '^  ' out.txt)" = 7 ] || fail "--formats does not list 7 formats"
+    # Every format listed is one --format takes.
+    for name in $(sed -n 's/^  \([a-z0-9]*\) .*/\1/p' out.txt); do
+      run 2 build "$sample" -o out.any --format "$name" --max-points 1
+      grep -q "unknown output format" err.txt && fail "--format $name is refused"
+    done
+    ;;
+  gdal_style_single_dash_refused)
+    # GDAL users type -of, -t_srs, -overwrite: read as -o f, each would name the output.
+    for words in "-of GPKG" "-t_srs EPSG:3857" "-overwrite" "-ooverwrite.fgb"; do
+      # shellcheck disable=SC2086 # the words are split on purpose
+      run 2 build "$sample" -o tin.gpkg $words
+      expect_one_error_line "an option of one dash is one letter"
+    done
+    run 2 build "$sample" -o tin.gpkg -of GPKG
+    expect_one_error_line "did you mean '--format'"
+    run 2 build "$sample" -o tin.gpkg -t_srs EPSG:3857
+    expect_one_error_line "did you mean '--t_srs'"
+    [ -z "$(ls -A)" ] || [ "$(ls -A | grep -v -e out.txt -e err.txt)" = "" ] || fail "files written: $(ls -A)"
+    # A negative value after an option is a value, not an option.
+    run 2 build "$sample" -o tin.ply --max-edge -5
+    expect_one_error_line "--max-edge must be a positive number"
+    ;;
+  output_dash_refused)
+    run 2 build "$sample" -o - --format ply
+    expect_one_error_line "not standard output"
+    [ ! -e ./- ] || fail "a file named '-' was written"
+    ;;
+  typo_gets_did_you_mean)
+    run 2 build "$sample" -o tin.gpkg --max-eror 3
+    expect_one_error_line "did you mean '--max-error'?"
+    run 2 build "$sample" -o tin.gpkg --no-such-option
+    grep -q "did you mean" err.txt && fail "a suggestion for a name far from every option"
+    ;;
+  contradicting_options_exit_2)
+    run 2 build "$sample" -o tin.gpkg --max-error 3 --tile-size 0
+    expect_one_error_line "--tile-size must be 2 to"
+    run 2 build "$sample" --tiles-dir tiles --max-error 3 --tile-size 0
+    expect_one_error_line "--tile-size must be 2 to"
+    run 2 build "$sample" -o tin.gpkg --max-hole 3 --fill-holes
+    expect_one_error_line "--max-hole and --fill-holes contradict each other"
+    run 2 build "$sample" -o tin.gpkg --memory-limit 64M --edges
+    expect_one_error_line "without --edges"
+    run 2 build "$sample" -o tin.gpkg --memory-limit 64M --append-layer
+    expect_one_error_line "not with --append-layer"
+    run 2 build "$sample" -o tin.gpkg --z-factor 2 --max-error 1
+    expect_one_error_line "does not combine with --z-factor"
+    # Refused from the options alone: the layer file is never looked at.
+    run 2 build "$sample" -o tin.gpkg --tile-size 64 --max-error 1 --breaklines absent.gpkg
+    expect_one_error_line "does not combine with breaklines"
+    [ ! -e tin.gpkg ] && [ ! -e tiles ] || fail "an output was written"
     ;;
   no_arguments)
     run 2
@@ -371,7 +432,7 @@ case "$case_name" in
     # Combinations the refiner cannot honour are refused, not silently ignored.
     run 1 build "$sample" "$sample" -o tin.gpkg --max-error 5 --quiet
     expect_one_error_line "one raster input"
-    run 1 build "$sample" -o tin.gpkg --max-error 5 --z-factor 2 --quiet
+    run 2 build "$sample" -o tin.gpkg --max-error 5 --z-factor 2 --quiet
     expect_one_error_line "z-factor"
     [ ! -e tin.gpkg ] || fail "output written despite a refused combination"
     ;;
@@ -388,7 +449,7 @@ case "$case_name" in
       fail "$tiled vertices in tiles, against $whole untiled"
     [ "$(feature_count tiles.gpkg)" -gt 0 ] || fail "no triangles written"
     run 2 build "$sample" -o bad.gpkg --max-error 1 --tile-size 1
-    expect_one_error_line "tile size"
+    expect_one_error_line "--tile-size must be 2 to"
     # Tiles without --max-error are full resolution: every valid cell a vertex.
     run 0 build "$sample" -o full.ply --tile-size 64 --validate --json --quiet
     valid=$(( $(report_count raster_cells) - $(report_count skipped_cells) ))
@@ -483,7 +544,7 @@ case "$case_name" in
     [ "$(report_count triangles)" = "$joined" ] || fail "--max-edge: other triangles in the tiles"
     run 2 build "$sample" --tiles-dir tiles -o x.ply --max-error 0.5 --tile-size 64
     expect_one_error_line "tiles-dir"
-    run 1 build "$sample" --tiles-dir none --max-error 0.5 --quiet
+    run 2 build "$sample" --tiles-dir none --max-error 0.5 --quiet
     expect_one_error_line "tile-size"
     [ ! -e none ] || fail "a directory was made for a refused run"
     # Cancelled once the first tiles are written: every file and the directory it made go.
@@ -557,7 +618,7 @@ case "$case_name" in
     run 0 build "$sample" -o full_joined.ply --tile-size 64 --threads 1 --quiet
     run 0 build "$sample" -o full_streamed.ply --tile-size 64 --threads 1 --memory-limit 1G --quiet
     cmp -s full_joined.ply full_streamed.ply || fail "the full-resolution PLYs differ"
-    run 1 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 1G --edges --quiet
+    run 2 build "$sample" -o bad.gpkg --max-error 1 --memory-limit 1G --edges --quiet
     expect_one_error_line "edges"
     # The mesh formats too (LandXML's date and time aside).
     for extension in 2dm obj xml; do

@@ -1,10 +1,12 @@
 #include "cli_options.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/io/tin_format.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
 
 #include <boost/program_options.hpp>
 
+#include <cctype>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,7 +18,7 @@ namespace po = boost::program_options;
 namespace {
 
 constexpr const char* kUsage = "Usage: terratin build INPUT... -o OUTPUT [options]\n"
-                               "       terratin --help | --version\n";
+                               "       terratin --help | --version | --formats\n";
 
 constexpr const char* kDescription =
     "Builds an exactly Delaunay TIN from a DEM raster (any format GDAL reads: GeoTIFF, VRT,\n"
@@ -88,6 +90,75 @@ std::vector<OptionValue> tableValues(const po::parsed_options& parsed) {
     return values;
 }
 
+// GDAL's programs spell these with one dash; terratin's long options take two.
+std::string gdalHabit(const std::string& word) {
+    if (word == "of")
+        return "--format";
+    if (word == "a_srs")
+        return "--s_srs";
+    return "";
+}
+
+// The long option a single-dash word means: the same name, a GDAL habit, or a close name.
+std::string meantOption(const std::string& word) {
+    if (const BuildOptionSpec* option = findBuildOption(word, OptionSpelling::CommandLine))
+        return "--" + std::string(option->longFlag);
+    if (std::string habit = gdalHabit(word); !habit.empty())
+        return habit;
+    if (word == "quiet" || word == "json" || word == "help")
+        return "--" + word;
+    return closestBuildOption("--" + word, OptionSpelling::CommandLine);
+}
+
+// Whether `argument`, an option, takes the next argument as its value.
+bool takesNextValue(const std::string& argument) {
+    if (argument.find('=') != std::string::npos)
+        return false;
+    const std::string name = argument.substr(argument.starts_with("--") ? 2 : 1);
+    const BuildOptionSpec* option = nullptr;
+    if (name.size() == 1) {
+        for (const BuildOptionSpec& candidate : buildOptionTable())
+            if (candidate.shortFlag == name.front())
+                option = &candidate;
+    } else {
+        option = findBuildOption(name, OptionSpelling::CommandLine);
+    }
+    return option != nullptr && option->kind != OptionKind::Flag;
+}
+
+// Boost reads "-of GPKG" as "-o f" and "-ooverwrite.fgb" as "-o overwrite.fgb": a habit of GDAL
+// users that would silently name the output. One-letter options and their value are therefore
+// kept apart, and a word after one dash is refused with the option it likely means.
+void refuseSingleDashWords(const std::vector<std::string>& arguments) {
+    bool valueNext = false;
+    for (const std::string& argument : arguments) {
+        if (valueNext) {
+            valueNext = false;
+            continue;
+        }
+        const bool singleDashWord = argument.size() > 2 && argument[0] == '-' &&
+                                    std::isalpha(static_cast<unsigned char>(argument[1])) != 0;
+        if (singleDashWord) {
+            const std::string meant = meantOption(argument.substr(1));
+            throw UsageError("'" + argument +
+                             "': an option of one dash is one letter, with its value after a "
+                             "space (-o FILE); long options take two dashes" +
+                             (meant.empty() ? std::string() : ": did you mean '" + meant + "'?"));
+        }
+        if (argument.starts_with("-"))
+            valueNext = takesNextValue(argument);
+    }
+}
+
+std::string formatsText() {
+    std::ostringstream text;
+    text << "Output formats (--format NAME, or the output's extension):\n";
+    for (const io::TinFormatInfo& format : io::tinFormats())
+        text << "  " << format.name << std::string(9 - format.name.size(), ' ') << format.extensions
+             << std::string(15 - format.extensions.size(), ' ') << format.carries << "\n";
+    return text.str();
+}
+
 std::string helpText(const po::options_description& options) {
     std::ostringstream text;
     text << kUsage << "\n" << kDescription << "\n" << options;
@@ -111,6 +182,11 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
         command.kind = Command::Kind::Version;
         return command;
     }
+    if (verb == "--formats") {
+        command.kind = Command::Kind::Formats;
+        command.helpText = formatsText();
+        return command;
+    }
     if (verb != "build")
         throw UsageError("unknown command '" + verb + "'; try 'terratin --help'");
 
@@ -125,11 +201,17 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     std::vector<OptionValue> given;
     try {
         const std::vector<std::string> rest(arguments.begin() + 1, arguments.end());
+        refuseSingleDashWords(rest);
         const po::parsed_options parsed =
             po::command_line_parser(rest).options(all).positional(positional).run();
         po::store(parsed, values); // refuses an option given twice
         po::notify(values);
         given = tableValues(parsed);
+    } catch (const po::unknown_option& error) {
+        const std::string typed = error.get_option_name();
+        const std::string closest = closestBuildOption(typed, OptionSpelling::CommandLine);
+        throw UsageError(error.what() +
+                         (closest.empty() ? std::string() : "; did you mean '" + closest + "'?"));
     } catch (const po::error& error) {
         throw UsageError(error.what());
     }

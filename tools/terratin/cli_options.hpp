@@ -18,9 +18,9 @@ public:
 
 /// What the user asked for.
 struct Command {
-    enum class Kind { Build, Help, Version };
+    enum class Kind { Build, Help, Version, Formats };
     Kind kind = Kind::Help;
-    /// Text to print for Help.
+    /// Text to print for Help, and for Formats.
     std::string helpText;
     BuildOptions build;
     bool quiet = false;

@@ -9,6 +9,7 @@
 #include "progress_printer.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/io/library_versions.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 #include "terratin/version.hpp"
 
@@ -150,7 +151,12 @@ int main(int argc, char** argv) {
         return kExitOk;
     case terratin::cli::Command::Kind::Version:
         if (speaks)
-            std::printf("terratin %s\n", terratin::version());
+            std::printf("terratin %s\n%s\n", terratin::version(),
+                        terratin::io::libraryVersions().c_str());
+        return kExitOk;
+    case terratin::cli::Command::Kind::Formats:
+        if (speaks)
+            std::printf("%s", command.helpText.c_str());
         return kExitOk;
     case terratin::cli::Command::Kind::Build:
         return launch.size > 1 ? runDistributedBuild(command, argc, argv)

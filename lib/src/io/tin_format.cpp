@@ -40,7 +40,30 @@ constexpr std::array<std::pair<std::string_view, TinFormat>, 8> kExtensions = {{
     {".landxml", TinFormat::LandXml},
 }};
 
+constexpr std::array<TinFormatInfo, 7> kFormats = {{
+    {TinFormat::GeoPackage, "gpkg", ".gpkg",
+     "Polygon Z triangles with attributes, optional node and edge layers, R-tree, CRS; a QGIS "
+     "vector layer; --append-layer adds layers to an existing file"},
+    {TinFormat::Shapefile, "shp", ".shp",
+     "Polygon Z triangles with attributes, CRS in .prj; 2 GB per component"},
+    {TinFormat::FlatGeobuf, "fgb", ".fgb",
+     "Polygon Z triangles with attributes, packed Hilbert R-tree, CRS"},
+    {TinFormat::TwoDm, "2dm", ".2dm",
+     "SMS 2D mesh: nodes and triangles, no CRS; a QGIS mesh layer"},
+    {TinFormat::Ply, "ply", ".ply",
+     "binary PLY mesh: vertices and faces, CRS as a comment; a QGIS mesh layer"},
+    {TinFormat::Obj, "obj", ".obj",
+     "Wavefront OBJ mesh about a local origin, no CRS; for 3D tools (QGIS does not open it)"},
+    {TinFormat::LandXml, "landxml", ".xml .landxml",
+     "LandXML 1.2 TIN surface with units, CRS and breaklines; for civil and CAD tools (QGIS "
+     "does not open it)"},
+}};
+
 } // namespace
+
+std::span<const TinFormatInfo> tinFormats() {
+    return kFormats;
+}
 
 TinFormat parseTinFormat(const std::string& name) {
     const std::string lower = lowercase(name);

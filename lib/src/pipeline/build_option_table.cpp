@@ -229,7 +229,12 @@ std::vector<BuildOptionSpec> makeTable() {
         {"output", "output", 'o', Kind::Text, false, "OUTPUT", "",
          "output file (.gpkg .shp .fgb .2dm .ply .obj .xml); written under a temporary name, "
          "renamed when complete",
-         [](BuildOptions& o, const std::string& t, const std::string&) { o.output = t; }},
+         [](BuildOptions& o, const std::string& t, const std::string& n) {
+             if (t == "-")
+                 refuse(n + " '-': terratin writes files, not standard output; give a file name "
+                            "(./- for a file named '-')");
+             o.output = t;
+         }},
         {"format", "format", 'f', Kind::Text, false, "FORMAT", "",
          "output format: gpkg, shp, fgb, 2dm, ply, obj, landxml (default: from the output's "
          "extension); 2dm has no CRS (QGIS opens it without one): use ply for a QGIS mesh "
@@ -315,7 +320,12 @@ std::vector<BuildOptionSpec> makeTable() {
              ", sharing their border cells: one TIN without cracks, simplified with "
              "--max-error, else at full resolution; no breaklines or areas yet",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
-             refineOf(o).tileSize = parseCount<std::size_t>(t, n);
+             const auto cells = parseCount<std::size_t>(t, n);
+             // 0 would read as "no tiles" further down: refused as 1 is.
+             if (cells < 2 || cells > kMaxTileSize)
+                 refuse(n + " must be 2 to " + std::to_string(kMaxTileSize) + " cells (got " + t +
+                        ")");
+             refineOf(o).tileSize = cells;
          }},
         {"memory_limit", "memory-limit", 0, Kind::Text, false, "SIZE", "",
          "build a DEM's TIN in tiles within SIZE of memory (2G, 512M: K M G T are powers of "
@@ -517,6 +527,14 @@ std::string closestName(std::string_view name, OptionSpelling spelling) {
            (closest.empty() ? std::string() : "; did you mean '" + closest + "'?"));
 }
 
+} // namespace
+
+std::string closestBuildOption(std::string_view name, OptionSpelling spelling) {
+    return closestName(name, spelling);
+}
+
+namespace {
+
 bool given(const std::vector<OptionValue>& values, std::string_view keyword,
            OptionSpelling spelling) {
     return std::any_of(values.begin(), values.end(), [&](const OptionValue& value) {
@@ -563,6 +581,9 @@ void applyBuildOption(BuildOptions& options, const OptionValue& value, OptionSpe
     const BuildOptionSpec* option = findBuildOption(value.name, spelling);
     if (option == nullptr)
         refuseUnknown(value.name, spelling);
+    // A C string ends at a NUL: a path holding one would name another file.
+    if (value.text.find('\0') != std::string::npos)
+        refuse(optionName(*option, spelling) + " holds a NUL character");
     option->apply(options, value.text, optionName(*option, spelling));
 }
 
@@ -585,6 +606,9 @@ BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpe
         applyBuildOption(options, value, spelling);
     if (options.keepGeographic && !options.targetSrs.empty())
         refuse(name("keep_geographic") + " and " + name("t_srs") + " contradict each other");
+    if (options.refine && options.refine->fillHoles && given(values, "max_hole", spelling))
+        refuse(name("max_hole") + " and " + name("fill_holes") +
+               " contradict each other: give one");
     if (!options.format)
         options.format = tiles ? io::TinFormat::GeoPackage
                                : io::tinFormatFromPath(options.output, optionNamer(spelling));

@@ -213,15 +213,25 @@ std::string demOnlyWork(const BuildOptions& options) {
     return "Simplification (" + optionName("max_error", spelling) + "...)";
 }
 
-void checkOneRasterInput(const BuildOptions& options) {
+// What the simplified and tiled builds refuse of the options alone, with the other option
+// checks: contradicting options are a usage error, found before anything is read.
+void checkDemOnlyOptions(const BuildOptions& options) {
     const OptionSpelling spelling = options.optionSpelling;
-    if (options.inputs.size() != 1)
-        throw InvalidInputError(demOnlyWork(options) + " takes exactly one raster input");
     if (options.zFactor != 1.0)
         throw InvalidInputError(demOnlyWork(options) + " does not combine with " +
                                 optionName("z_factor", spelling) +
                                 "; scale the DEM first (gdal_calc)");
-    // The options first, then the file.
+    const bool tiled = options.memoryLimit || options.refine->tileSize > 0;
+    if (tiled && hasConstraints(options))
+        throw InvalidInputError(demOnlyWork(options) +
+                                " does not combine with breaklines, clip, erase or replace "
+                                "polygons yet");
+}
+
+void checkOneRasterInput(const BuildOptions& options) {
+    checkDemOnlyOptions(options);
+    if (options.inputs.size() != 1)
+        throw InvalidInputError(demOnlyWork(options) + " takes exactly one raster input");
     if (io::detectInputKind(options.inputs.front()) != io::InputKind::Raster)
         throw InvalidInputError(demOnlyWork(options) + " takes a DEM raster; '" +
                                 options.inputs.front() +
@@ -329,10 +339,6 @@ BuildReport runTiledBuild(const BuildOptions& options, io::TinWriteOptions write
                           const ProgressCallback& progress, BuildReport report,
                           const Stopwatch& totalTime) {
     checkOneRasterInput(options);
-    if (hasConstraints(options))
-        throw InvalidInputError(demOnlyWork(options) +
-                                " does not combine with breaklines, clip, erase or replace "
-                                "polygons yet");
     io::RasterReadOptions readOptions;
     readOptions.band = options.band;
     io::RasterCells cells(options.inputs.front(), readOptions);
@@ -543,8 +549,21 @@ void checkBuildOptions(const BuildOptions& options) {
                                 " polygons: give them too");
     if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
         throw InvalidInputError("Build: the longest edge kept must be a positive length");
-    if (options.format)
-        io::checkTinWriteOptions(tinWriteOptions(options, *options.format));
+    if (options.refine)
+        checkDemOnlyOptions(options);
+    const bool tilesDir = !options.tilesDir.empty();
+    if (tilesDir && !options.memoryLimit && (!options.refine || options.refine->tileSize == 0))
+        throw InvalidInputError("Build: " + optionName("tiles_dir", options.optionSpelling) +
+                                " writes tiles: give " +
+                                optionName("tile_size", options.optionSpelling) + " or " +
+                                optionName("memory_limit", options.optionSpelling));
+    if (!options.format)
+        return;
+    const io::TinWriteOptions writeOptions = tinWriteOptions(options, *options.format);
+    io::checkTinWriteOptions(writeOptions);
+    if (options.memoryLimit && !tilesDir)
+        io::detail::checkTinStreamOptions(writeOptions,
+                                          optionName("memory_limit", options.optionSpelling));
 }
 
 namespace {

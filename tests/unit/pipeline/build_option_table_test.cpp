@@ -266,19 +266,35 @@ TEST(ParseBuildOptions, SimplificationOptionsSwitchRefineOn) {
     const BuildOptions options = parseBuildOptions(withInputAndOutput({{"max_error", "0.5"},
                                                                        {"max_points", "1000"},
                                                                        {"max_triangles", "2000"},
-                                                                       {"max_hole", "0"},
                                                                        {"fill_holes", "true"}}),
                                                    OptionSpelling::Keyword);
     ASSERT_TRUE(options.refine);
     EXPECT_EQ(options.refine->maxError, 0.5);
     EXPECT_EQ(options.refine->maxPoints, 1000U);
     EXPECT_EQ(options.refine->maxTriangles, 2000U);
-    EXPECT_EQ(options.refine->maxHole, 0U);
     EXPECT_TRUE(options.refine->fillHoles);
+    EXPECT_EQ(parseBuildOptions(withInputAndOutput({{"max_hole", "0"}}), OptionSpelling::Keyword)
+                  .refine->maxHole,
+              0U);
     for (const char* keyword : {"max_error", "max_points", "max_triangles", "max_hole"})
         EXPECT_TRUE(
             parseBuildOptions(withInputAndOutput({{keyword, "7"}}), OptionSpelling::Keyword).refine)
             << keyword;
+}
+
+TEST(ParseBuildOptions, RefusesMaxHoleWithFillHoles_WhichContradictIt) {
+    try {
+        parseBuildOptions(withInputAndOutput({{"max_hole", "3"}, {"fill_holes", "true"}}),
+                          OptionSpelling::Keyword);
+        ADD_FAILURE() << "max_hole with fill_holes was taken";
+    } catch (const InvalidInputError& error) {
+        EXPECT_STREQ(error.what(), "max_hole and fill_holes contradict each other: give one");
+    }
+    // fill_holes=false leaves max_hole its meaning.
+    EXPECT_EQ(parseBuildOptions(withInputAndOutput({{"max_hole", "3"}, {"fill_holes", "false"}}),
+                                OptionSpelling::Keyword)
+                  .refine->maxHole,
+              3U);
 }
 
 TEST(ParseBuildOptions, FlagsTakeFalse_AndFillHolesFalseAloneDoesNotSimplify) {

@@ -5,6 +5,7 @@
 #include "terratin/option_namer.hpp"
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -39,6 +40,20 @@ std::string_view tinFormatName(TinFormat format);
 /// The file extension of a format, with its dot: ".gpkg", ".shp", ".fgb", ".2dm", ".ply",
 /// ".obj", ".xml".
 std::string_view tinFormatExtension(TinFormat format);
+
+/// One output format as `terratin --formats` lists it.
+struct TinFormatInfo {
+    TinFormat format;
+    /// The name --format takes first ("gpkg").
+    std::string_view name;
+    /// The extensions that select it, with their dots (".xml .landxml").
+    std::string_view extensions;
+    /// What a file of it holds, and what opens it.
+    std::string_view carries;
+};
+
+/// Every output format, in the order of TinFormat.
+std::span<const TinFormatInfo> tinFormats();
 
 /// True for the formats written through OGR (GeoPackage, Shapefile, FlatGeobuf).
 bool isOgrFormat(TinFormat format);

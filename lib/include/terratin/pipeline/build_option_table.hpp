@@ -81,6 +81,10 @@ std::span<const BuildOptionSpec> buildOptionTable();
 /// name with or without its dashes ("--max-error", "max-error"). Null when there is none.
 const BuildOptionSpec* findBuildOption(std::string_view name, OptionSpelling spelling);
 
+/// The option name two edits or fewer from `name` (the closest), spelled the `spelling` way,
+/// for "did you mean"; empty when none is that close.
+std::string closestBuildOption(std::string_view name, OptionSpelling spelling);
+
 /// How messages name `option`: "--max-error" / "max_error"; the inputs "INPUT" / "inputs".
 std::string optionName(const BuildOptionSpec& option, OptionSpelling spelling);
 

@@ -6,6 +6,10 @@
 #include "gpkg_tin_writer.hpp"
 #include "terratin/error.hpp"
 
+#include <fstream>
+#include <string>
+#include <string_view>
+
 namespace terratin::io::detail {
 
 namespace fs = std::filesystem;
@@ -20,6 +24,19 @@ constexpr int kPageCacheKiB = 16 * 1024;
 
 std::string cannotAddTo(const fs::path& output) {
     return std::string(kOgrStage) + ": cannot add layers to " + quoted(output);
+}
+
+/// A file that is neither empty nor starts as every SQLite database does ("SQLite format 3"
+/// and a NUL, the header's first 16 bytes): refused before SQLite opens it.
+void refuseNonSqliteFile(const fs::path& output) {
+    constexpr std::string_view kSqliteMagic("SQLite format 3\0", 16);
+    std::ifstream file(output, std::ios::binary);
+    std::string header(kSqliteMagic.size(), '\0');
+    file.read(header.data(), static_cast<std::streamsize>(header.size()));
+    const auto got = static_cast<std::size_t>(file.gcount());
+    if (got > 0 && std::string_view(header.data(), got) != kSqliteMagic.substr(0, got))
+        throw InvalidInputError(cannotAddTo(output) +
+                                ": it is not a GeoPackage (not an SQLite database)");
 }
 
 void refuseReadOnly(const SqliteConnection& db, const fs::path& output) {
@@ -67,6 +84,7 @@ TinWriteResult appendGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     // connection, which is closed first).
     const AtomicOutput scratchFiles(kOgrStage, output, ExistingTarget::Refuse, options.optionName);
     const fs::path scratch = scratchFiles.temporary(".gpkg");
+    refuseNonSqliteFile(output);
     SqliteConnection db(kOgrStage, output, output);
     refuseReadOnly(db, output);
     createGpkgTinLayers(scratch, 0, gpkgLayerNames(options), options, output);
