@@ -120,15 +120,17 @@ void addPolygons(const OGRGeometry& geometry, std::int64_t fid, const std::strin
         throw InvalidInputError(where + "feature " + std::to_string(fid) + " is a " +
                                 OGRGeometryTypeToName(geometry.getGeometryType()) +
                                 ", not a Polygon or MultiPolygon");
+    // The rings first: they refuse a vertex that is not finite, which GEOS would call a
+    // crossing. The layer is dropped whole when a feature is refused.
+    if (type == wkbPolygon) {
+        addPolygon(*geometry.toPolygon(), fid, where, layer);
+    } else {
+        for (const OGRPolygon* part : *geometry.toMultiPolygon())
+            addPolygon(*part, fid, where, layer);
+    }
     if (!geometry.IsValid())
         throw InvalidInputError(where + "feature " + std::to_string(fid) +
                                 " is not a valid polygon (a ring crosses itself or another)");
-    if (type == wkbPolygon) {
-        addPolygon(*geometry.toPolygon(), fid, where, layer);
-        return;
-    }
-    for (const OGRPolygon* part : *geometry.toMultiPolygon())
-        addPolygon(*part, fid, where, layer);
 }
 
 std::string fieldList(const OGRFeatureDefn& definition) {

@@ -18,7 +18,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 
 namespace terratin::io {
@@ -49,6 +51,20 @@ std::string_view trim(std::string_view text) {
 }
 
 /// Parses a whole field as a finite double; false when it is not one.
+/// A number from_chars found out of range: finite when its magnitude is below the smallest
+/// double (1e-999 is 0 to a double, as strtod rounds it), not when it is above the largest.
+bool parseUnderflow(std::string_view field, double& value) {
+    const std::string text(field);
+    char* end = nullptr;
+    errno = 0;
+    const double rounded = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || errno != ERANGE ||
+        !(std::fabs(rounded) <= std::numeric_limits<double>::min()))
+        return false;
+    value = rounded;
+    return true;
+}
+
 bool parseNumber(std::string_view field, double& value) {
     if (!field.empty() && field.front() == '+')
         field.remove_prefix(1);
@@ -56,6 +72,8 @@ bool parseNumber(std::string_view field, double& value) {
         return false;
     const char* end = field.data() + field.size();
     const auto [ptr, error] = std::from_chars(field.data(), end, value);
+    if (error == std::errc::result_out_of_range && ptr == end)
+        return parseUnderflow(field, value);
     return error == std::errc() && ptr == end && std::isfinite(value);
 }
 

@@ -94,6 +94,37 @@ TEST(OgrLineReader, RefusesAPolygonFeature_NamingItsFid) {
     }
 }
 
+TEST(OgrLineReader, APolygonWithANaNVertexIsRefusedAsNotFinite_NotAsACrossing) {
+    TempDir dir;
+    const std::string path = (dir.path() / "nan.gpkg").string();
+    writeLayers(path, {{"areas", {}}});
+    {
+        GDALDatasetUniquePtr dataset(
+            GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+        ASSERT_TRUE(dataset);
+        OGRLayer* layer = dataset->GetLayerByName("areas");
+        OGRLinearRing ring;
+        ring.addPoint(0.0, 0.0);
+        ring.addPoint(10.0, 0.0);
+        ring.addPoint(10.0, std::nan(""));
+        ring.addPoint(0.0, 10.0);
+        ring.closeRings();
+        OGRPolygon polygon;
+        polygon.addRing(&ring);
+        OGRFeature feature(layer->GetLayerDefn());
+        feature.SetGeometry(&polygon);
+        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    }
+    try {
+        (void)readOgrPolygons(path, "", "clip");
+        FAIL() << "a NaN vertex was taken";
+    } catch (const InvalidInputError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("feature 1: point 3 is not finite"), std::string::npos) << message;
+        EXPECT_EQ(message.find("crosses"), std::string::npos) << message;
+    }
+}
+
 TEST(OgrLineReader, AnEmptyLayerGivesNoLines_AndAMissingFileAnIoError) {
     TempDir dir;
     const std::string path = (dir.path() / "empty.gpkg").string();

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <filesystem>
@@ -108,6 +109,20 @@ TEST(TextReader, NamesTheLine_OfEveryBadRecord) {
     EXPECT_NE(rejection("1 2 1e999\n").find("not a finite number"), std::string::npos);
     EXPECT_NE(rejection("1,2,\n").find("line 1"), std::string::npos);
     EXPECT_NE(rejection("1 2 3\n1.2.3 4 5\n").find("line 2"), std::string::npos);
+}
+
+TEST(TextReader, ReadsANumberBelowTheSmallestDouble_AsItsRoundedValue) {
+    // Finite, though from_chars calls it out of range: a double holds it as 0, or as a
+    // subnormal near the smallest one.
+    const PointCloud cloud = parse("1e-999 2 -1e-999\n1 2.5e-320 3\n0 1 1\n");
+    ASSERT_EQ(cloud.points.size(), 3U);
+    EXPECT_EQ(cloud.points[0].x, 0.0);
+    EXPECT_EQ(cloud.points[0].z, 0.0);
+    EXPECT_TRUE(std::signbit(cloud.points[0].z));
+    EXPECT_GT(cloud.points[1].y, 0.0);
+    EXPECT_LT(cloud.points[1].y, 1e-300);
+    // Past the largest double is no number.
+    EXPECT_NE(rejection("1 2 -1e999\n").find("not a finite number"), std::string::npos);
 }
 
 TEST(TextReader, RejectsFilesWithoutPoints_AndBinaryContent) {
