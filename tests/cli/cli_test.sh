@@ -833,6 +833,28 @@ case "$case_name" in
     [ "$(md5sum <open_dir/tin.gpkg)" = "$before" ] || fail "the file changed"
     [ "$(ls -A open_dir)" = tin.gpkg ] || fail "files left beside it: $(ls -A open_dir)"
     ;;
+  huge_declared_raster_refused_before_allocating)
+    # A VRT that declares 10^6 x 10^6 cells: the simplification refuses it from its size
+    # alone, as the other paths do, before it allocates (ulimit: a regression fails, not swaps).
+    gdal_translate -q -of VRT "$sample" small.vrt || fail "gdal_translate failed"
+    sed -e 's/rasterXSize="[0-9]*"/rasterXSize="1000000"/; s/rasterYSize="[0-9]*"/rasterYSize="1000000"/' \
+      small.vrt >huge.vrt
+    ulimit -v 8000000
+    run 1 build huge.vrt -o tin.ply --max-error 1 --quiet
+    expect_one_error_line "1000000 x 1000000 cells, more than one grid holds"
+    [ ! -e tin.ply ] || fail "an output was written"
+    ;;
+  breaklines_layer_stored_without_crs)
+    # A GeoPackage layer without CRS (srs_id 0, which GDAL reports as "Undefined geographic
+    # SRS") is taken in the TIN's CRS with a notice, as a Shapefile without .prj is.
+    roads=$(dirname "$sample")/roads.gpkg
+    cp "$roads" roads.gpkg
+    sqlite3 roads.gpkg "UPDATE gpkg_geometry_columns SET srs_id = 0; UPDATE gpkg_contents SET srs_id = 0" ||
+      fail "sqlite3 failed"
+    run 0 build "$sample" --breaklines roads.gpkg -o tin.ply
+    grep -q "has no CRS: its coordinates are taken to be in the TIN's CRS" err.txt ||
+      fail "no notice of the layer without CRS"
+    ;;
   gpkg_validates)
     # GDAL's own GeoPackage validator and SQLite's rtreecheck on the fast writer's files: the
     # triangle, node and edge layers, and a layer appended to an existing file.
@@ -1090,6 +1112,16 @@ case "$case_name" in
     run 1 build odd.las -o tin.gpkg --quiet
     expect_one_error_line "point data record format 99 is not supported"
     ! grep -q LAZ err.txt || fail "reported as LAZ"
+    ;;
+  las_garbage_wkt_gives_one_error_line)
+    # A LAS 1.4 file whose WKT record holds no WKT: terratin's line alone, without GDAL's own
+    # "ERROR 1: ..." line before it.
+    need_shared pdal__test1_4.las
+    cp "$shared/pdal__test1_4.las" bad_wkt.las && chmod u+w bad_wkt.las
+    # The LASF_Projection record 2112 of that file: 911 bytes of WKT from byte 429.
+    { printf 'garbage'; head -c 904 /dev/zero; } | dd of=bad_wkt.las bs=1 seek=429 conv=notrunc status=none
+    run 1 build bad_wkt.las -o tin.gpkg --quiet
+    expect_one_error_line "WKT CRS record cannot be read"
     ;;
   d20_gpkg_disk_full)
     # A GeoPackage on a full disk said "no such table: gpkg_geometry_columns". Needs a small

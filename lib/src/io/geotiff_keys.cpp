@@ -189,6 +189,9 @@ std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
 }
 
 std::string normaliseWkt(std::string_view wkt, std::string_view stage, std::string_view name) {
+    // GDAL's error handler, terratin's, keeps its message for ours; its default one would print
+    // an "ERROR 1:" line of its own before terratin's.
+    initialiseGdal();
     OGRSpatialReference srs;
     const std::string text(wkt);
     if (srs.importFromWkt(text.c_str()) != OGRERR_NONE)

@@ -7,6 +7,7 @@
 #include "raster_band_reader.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/refine/refine.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,15 @@ HeightGridRaster readHeightGrid(const std::string& path, const RasterReadOptions
     grid.height = static_cast<int>(reader.height());
     grid.geoTransform = reader.geoTransform();
     result.crsWkt = reader.crsWkt();
+    // Before any allocation: a raster that declares more cells than a grid can number (a VRT
+    // of 10^6 x 10^6, say) is refused at once, never zero-filled for hours toward the OOM
+    // killer where the kernel lets any allocation through.
+    if (reader.cellCount() > kMaxRefineCells)
+        throw InvalidInputError(std::string(kStage) + ": " + reader.quotedPath() + " has " +
+                                std::to_string(reader.width()) + " x " +
+                                std::to_string(reader.height()) + " cells, more than one grid " +
+                                "holds (" + std::to_string(kMaxRefineCells) +
+                                "); simplify it in tiles");
     try {
         grid.z.resize(grid.cellCount());
     } catch (const std::bad_alloc&) {

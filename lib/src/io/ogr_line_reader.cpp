@@ -11,6 +11,7 @@
 #include <ogrsf_frmts.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -55,9 +56,18 @@ OGRLayer* chooseLayer(GDALDataset& dataset, const std::string& where, const std:
     return dataset.GetLayer(0);
 }
 
+/// Whether `srs` is what GDAL's GeoPackage driver reports for the specification's srs_id 0
+/// ("Undefined geographic SRS") or -1 ("Undefined Cartesian SRS"): a layer stored without a
+/// CRS, not one in degrees of an unknown datum.
+bool isUndefinedGeoPackageCrs(const OGRSpatialReference& srs) {
+    const char* name = srs.GetName();
+    return name != nullptr && (std::strcmp(name, "Undefined geographic SRS") == 0 ||
+                               std::strcmp(name, "Undefined Cartesian SRS") == 0);
+}
+
 std::string layerCrs(OGRLayer& layer, const std::string& where) {
     const OGRSpatialReference* srs = layer.GetSpatialRef();
-    if (srs == nullptr)
+    if (srs == nullptr || isUndefinedGeoPackageCrs(*srs))
         return {};
     std::string wkt = crs::detail::exportWkt(*srs);
     if (wkt.empty())

@@ -125,6 +125,36 @@ TEST(OgrLineReader, APolygonWithANaNVertexIsRefusedAsNotFinite_NotAsACrossing) {
     }
 }
 
+TEST(OgrLineReader, AGeoPackageLayerStoredWithoutCrs_HasNoCrs_NotAnUndefinedGeographicOne) {
+    TempDir dir;
+    const std::string path = (dir.path() / "nocrs.gpkg").string();
+    initialiseGdal();
+    {
+        GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+        GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+        ASSERT_TRUE(dataset);
+        // No CRS: GDAL files the layer under srs_id 0, "Undefined geographic SRS".
+        OGRLayer* layer = dataset->CreateLayer("lines", nullptr, wkbLineString, nullptr);
+        ASSERT_NE(layer, nullptr);
+        OGRFeature feature(layer->GetLayerDefn());
+        OGRGeometry* line = nullptr;
+        ASSERT_EQ(OGRGeometryFactory::createFromWkt("LINESTRING (455300 5102900, 456000 5103000)",
+                                                    nullptr, &line),
+                  OGRERR_NONE);
+        feature.SetGeometryDirectly(line);
+        ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    }
+    {
+        GDALDatasetUniquePtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+        const OGRSpatialReference* srs = dataset->GetLayer(0)->GetSpatialRef();
+        ASSERT_NE(srs, nullptr) << "GDAL reports no CRS at all: the case is not the one tested";
+        ASSERT_STREQ(srs->GetName(), "Undefined geographic SRS");
+    }
+    const LineLayer lines = readOgrLines(path, "", "breaklines");
+    EXPECT_TRUE(lines.crsWkt.empty()) << lines.crsWkt;
+    ASSERT_EQ(lines.lines.size(), 1U);
+}
+
 TEST(OgrLineReader, AnEmptyLayerGivesNoLines_AndAMissingFileAnIoError) {
     TempDir dir;
     const std::string path = (dir.path() / "empty.gpkg").string();

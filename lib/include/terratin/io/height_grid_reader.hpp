@@ -30,7 +30,8 @@ struct HeightGridRaster {
 /// either, rounded to float32 (exact for integer bands up to 2^24 and Float32 bands). The
 /// geotransform is the raster's (GDAL's default without one), so grid.cellCentre gives the
 /// same centres as readRasterPoints. Throws IoError, InvalidInputError (band out of range,
-/// no valid cell, too large for memory), Cancelled, with the stage "GdalHeightGridReader".
+/// no valid cell, more than kMaxRefineCells cells, too large for memory), Cancelled, with the
+/// stage "GdalHeightGridReader".
 /// O(cells) time; 4 bytes per cell plus one strip of 9 bytes per cell.
 HeightGridRaster readHeightGrid(const std::string& path, const RasterReadOptions& options,
                                 const ProgressCallback& progress = {});
