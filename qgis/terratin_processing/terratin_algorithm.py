@@ -6,16 +6,19 @@ import os
 from qgis.core import (
     QgsProcessing,
     QgsProcessingAlgorithm,
+    QgsProcessingContext,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterBoolean,
     QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
     QgsProcessingParameterField,
+    QgsProcessingParameterFileDestination,
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterNumber,
     QgsProcessingParameterVectorDestination,
     QgsProcessingParameterVectorLayer,
+    QgsProcessingUtils,
 )
 
 from .layer_files import layer_source
@@ -25,7 +28,8 @@ from .terrain_style import apply_terrain_style_on_load
 METHODS = ["auto", "strips", "sequential", "batch", "circumcircle"]
 ATTRIBUTE_SETS = ["all", "basic", "none"]
 # The formats terratin writes that Processing loads as a vector layer (terratin's mesh formats,
-# 2dm ply obj landxml, would come back as a file QGIS opens as no polygon layer).
+# 2dm ply obj landxml, would come back as a file QGIS opens as no polygon layer); the PLY mesh
+# is the MESH output's.
 VECTOR_EXTENSIONS = ["gpkg", "shp", "fgb"]
 
 
@@ -43,6 +47,7 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
     REPLACE = "REPLACE"
     REPLACE_Z_FIELD = "REPLACE_Z_FIELD"
     OUTPUT = "OUTPUT"
+    MESH = "MESH"
     VERTICES = "VERTICES"
     TRIANGLES = "TRIANGLES"
 
@@ -118,6 +123,12 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
                 self.OUTPUT, "TIN", type=QgsProcessing.TypeVectorPolygon
             )
         )
+        self.addParameter(
+            QgsProcessingParameterFileDestination(
+                self.MESH, "TIN as a mesh layer (PLY, with its CRS)",
+                fileFilter="PLY meshes (*.ply)", optional=True, createByDefault=False,
+            )
+        )
         self.addOutput(QgsProcessingOutputNumber(self.VERTICES, "Vertices"))
         self.addOutput(QgsProcessingOutputNumber(self.TRIANGLES, "Triangles"))
 
@@ -149,11 +160,39 @@ class TerratinAlgorithm(QgsProcessingAlgorithm):
             f"in {report['timings']['total']:.2f} s ({report['crs']['name']})"
         )
         self.styledOutput = output if options["qgis_style"] else None
-        return {
+        results = {
             self.OUTPUT: output,
             self.VERTICES: counts["vertices"],
             self.TRIANGLES: counts["triangles"],
         }
+        mesh = self.parameterAsFileOutput(parameters, self.MESH, context)
+        if mesh:
+            results[self.MESH] = self.writeMesh(terratin, inputs, options, mesh, context, feedback)
+        return results
+
+    def writeMesh(self, terratin, inputs, options, mesh, context, feedback):  # noqa: N802
+        """The same TIN as a PLY mesh (terratin builds it again: one build writes one file),
+        loaded as a QGIS mesh layer when the algorithm ends."""
+        if os.path.splitext(mesh)[1].lower() != ".ply":
+            raise QgsProcessingException(
+                f"{self.displayName()}: the mesh output is a PLY file (.ply), not '{mesh}'"
+            )
+        mesh_options = {k: v for k, v in options.items() if k not in ("attributes", "qgis_style")}
+        try:
+            terratin.build(
+                inputs, mesh, progress=progress_of(feedback), overwrite=True, **mesh_options
+            )
+        except terratin.Cancelled:
+            raise QgsProcessingException("terratin: cancelled") from None
+        except terratin.Error as error:
+            raise QgsProcessingException(f"terratin: {error}") from None
+        context.addLayerToLoadOnCompletion(
+            mesh,
+            QgsProcessingContext.LayerDetails(
+                "TIN mesh", context.project(), self.MESH, QgsProcessingUtils.LayerHint.Mesh
+            ),
+        )
+        return mesh
 
     def postProcessAlgorithm(self, context, feedback):  # noqa: N802 (QGIS's name)
         # Here, in the main thread, after the run: the layer details belong to the context.
@@ -200,7 +239,8 @@ def import_terratin():
     except ImportError as error:
         raise QgsProcessingException(
             f"terratin's Python module cannot be imported ({error}): install it with "
-            "terratin's build (cmake --install ... --component python) or put its folder on "
+            "terratin's build (cmake --install build/release --component python, or pip install .) "
+            "or put its folder on "
             "PYTHONPATH; docs/qgis.md says how"
         ) from None
     return terratin

@@ -181,6 +181,29 @@ def test_the_progress_bar_follows_terratins_phases(processing, tmp_path):
     assert len(feedback.texts) == len(set(feedback.texts)), "each phase named once"
 
 
+def test_dem_to_tin_also_writes_a_ply_mesh_layer_with_its_crs(processing, tmp_path):
+    from qgis.core import QgsMeshLayer
+
+    mesh = tmp_path / "tin.ply"
+    result = processing.run(
+        "terratin:demtotin",
+        {"INPUT": str(SAMPLE), "MAX_ERROR": 1.0, "OUTPUT": str(tmp_path / "tin.gpkg"),
+         "MESH": str(mesh)},
+    )
+    assert result["MESH"] == str(mesh)
+    layer = QgsMeshLayer(str(mesh), "mesh", "mdal")
+    assert layer.isValid(), "QGIS cannot open the PLY as a mesh layer"
+    assert layer.crs().authid() == "EPSG:32633"
+    assert layer.dataProvider().faceCount() == result["TRIANGLES"]
+    assert layer.dataProvider().vertexCount() == result["VERTICES"]
+    with pytest.raises(QgsProcessingException, match="the mesh output is a PLY file"):
+        processing.run(
+            "terratin:demtotin",
+            {"INPUT": str(SAMPLE), "MAX_ERROR": 1.0, "OUTPUT": str(tmp_path / "b.gpkg"),
+             "MESH": str(tmp_path / "tin.2dm")},
+        )
+
+
 def test_dem_to_tin_within_a_memory_limit_writes_the_clis_tiled_tin(processing, tmp_path):
     # Issue 25 in the toolbox: the TIN written tile by tile, styled, as the command line's.
     output = tmp_path / "tin.gpkg"
