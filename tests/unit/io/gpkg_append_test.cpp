@@ -90,6 +90,18 @@ template <class Work> void inKilledChild(Work&& work) {
     ASSERT_TRUE(WIFEXITED(status));
 }
 
+/// The message of the InvalidInputError an append to `path` is refused with; a test failure
+/// when it is not refused.
+std::string appendRefusal(const std::filesystem::path& path) {
+    try {
+        writeTin(test::gridTin(4), path, appendOptions("second"));
+    } catch (const InvalidInputError& error) {
+        return error.what();
+    }
+    ADD_FAILURE() << "the append to " << path << " was not refused";
+    return {};
+}
+
 /// What the directory holds besides `keep`.
 std::vector<std::string> otherEntries(const TemporaryDirectory& directory,
                                       const std::filesystem::path& keep) {
@@ -309,13 +321,8 @@ TEST(GeoPackageAppend, RefusesAFileThatFailsSqlitesQuickCheck_AndLeavesItAsItWas
     }
     ASSERT_NE(sqliteText(path, "PRAGMA quick_check"), "ok");
     const std::string damaged = fileBytes(path);
-    try {
-        writeTin(test::gridTin(4), path, appendOptions("second"));
-        ADD_FAILURE() << "a damaged GeoPackage was appended to";
-    } catch (const InvalidInputError& error) {
-        EXPECT_NE(std::string(error.what()).find("quick_check fails"), std::string::npos)
-            << error.what();
-    }
+    const std::string refusal = appendRefusal(path);
+    EXPECT_NE(refusal.find("quick_check fails"), std::string::npos) << refusal;
     EXPECT_EQ(fileBytes(path), damaged);
 }
 
@@ -327,13 +334,8 @@ TEST(GeoPackageAppend, RefusesAnSqliteFileThatIsNoGeoPackage) {
     ASSERT_EQ(execute(db, "CREATE TABLE t (x)"), SQLITE_OK);
     sqlite3_close(db);
     const std::string original = fileBytes(path);
-    try {
-        writeTin(test::gridTin(4), path, appendOptions("second"));
-        ADD_FAILURE() << "an SQLite file without GeoPackage tables was appended to";
-    } catch (const InvalidInputError& error) {
-        EXPECT_NE(std::string(error.what()).find("it is not a GeoPackage"), std::string::npos)
-            << error.what();
-    }
+    const std::string refusal = appendRefusal(path);
+    EXPECT_NE(refusal.find("it is not a GeoPackage"), std::string::npos) << refusal;
     EXPECT_EQ(fileBytes(path), original);
 }
 
