@@ -112,6 +112,17 @@ case "$case_name" in
       grep -q "unknown output format" err.txt && fail "--format $name is refused"
     done
     ;;
+  formats_match_the_readme)
+    # The README's format table lists exactly what the format table does: names, extensions.
+    readme=$(dirname "$(dirname "$sample")")/README.md
+    run 0 --formats
+    awk '/^  [a-z0-9]/ { line = $1; for (i = 2; i <= NF && $i ~ /^\./; ++i) line = line " " $i; print line }' \
+      out.txt | sort >table.txt
+    grep '^| `[a-z0-9]*` | `\.' "$readme" | awk -F'|' '{ gsub(/[`,]/, "", $2); gsub(/[`,]/, "", $3); print $2 $3 }' |
+      sed 's/^ *//; s/  */ /g; s/ *$//' | sort >readme.txt
+    [ "$(wc -l <table.txt)" = 7 ] || fail "--formats lists $(wc -l <table.txt) formats"
+    diff table.txt readme.txt >formats.diff || fail "README's format table differs: $(cat formats.diff)"
+    ;;
   gdal_style_single_dash_refused)
     # GDAL users type -of, -t_srs, -overwrite: read as -o f, each would name the output.
     for words in "-of GPKG" "-t_srs EPSG:3857" "-overwrite" "-ooverwrite.fgb"; do

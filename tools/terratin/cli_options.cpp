@@ -154,8 +154,9 @@ std::string formatsText() {
     std::ostringstream text;
     text << "Output formats (--format NAME, or the output's extension):\n";
     for (const io::TinFormatInfo& format : io::tinFormats())
-        text << "  " << format.name << std::string(9 - format.name.size(), ' ') << format.extensions
-             << std::string(15 - format.extensions.size(), ' ') << format.carries << "\n";
+        text << "  " << format.name() << std::string(9 - format.name().size(), ' ')
+             << format.extensions << std::string(15 - format.extensions.size(), ' ')
+             << format.carries << "\n";
     return text.str();
 }
 

@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
-#include <utility>
 
 namespace terratin::io {
 
@@ -14,50 +12,42 @@ namespace {
 
 constexpr std::string_view kStage = "TinFormat";
 
-constexpr std::array<std::pair<std::string_view, TinFormat>, 12> kNames = {{
-    {"gpkg", TinFormat::GeoPackage},
-    {"geopackage", TinFormat::GeoPackage},
-    {"shp", TinFormat::Shapefile},
-    {"esri shapefile", TinFormat::Shapefile},
-    {"fgb", TinFormat::FlatGeobuf},
-    {"flatgeobuf", TinFormat::FlatGeobuf},
-    {"2dm", TinFormat::TwoDm},
-    {"ply", TinFormat::Ply},
-    {"obj", TinFormat::Obj},
-    {"landxml", TinFormat::LandXml},
-    {"xml", TinFormat::LandXml},
-    {"mesh2d", TinFormat::TwoDm},
-}};
+using Kind = TinFormatKind;
 
-constexpr std::array<std::pair<std::string_view, TinFormat>, 8> kExtensions = {{
-    {".gpkg", TinFormat::GeoPackage},
-    {".shp", TinFormat::Shapefile},
-    {".fgb", TinFormat::FlatGeobuf},
-    {".2dm", TinFormat::TwoDm},
-    {".ply", TinFormat::Ply},
-    {".obj", TinFormat::Obj},
-    {".xml", TinFormat::LandXml},
-    {".landxml", TinFormat::LandXml},
-}};
-
+// The formats, in the order of TinFormat. Fields: format, names, extensions, display name,
+// writer's stage, kind, CRS, node/edge layers and append, optional index, what it carries.
 constexpr std::array<TinFormatInfo, 7> kFormats = {{
-    {TinFormat::GeoPackage, "gpkg", ".gpkg",
+    {TinFormat::GeoPackage, "gpkg geopackage", ".gpkg", "GPKG", "OgrTinWriter", Kind::Vector, true,
+     true, true,
      "Polygon Z triangles with attributes, optional node and edge layers, R-tree, CRS; a QGIS "
      "vector layer; --append-layer adds layers to an existing file"},
-    {TinFormat::Shapefile, "shp", ".shp",
+    {TinFormat::Shapefile, "shp esri_shapefile", ".shp", "ESRI Shapefile", "OgrTinWriter",
+     Kind::Vector, true, false, false,
      "Polygon Z triangles with attributes, CRS in .prj; 2 GB per component"},
-    {TinFormat::FlatGeobuf, "fgb", ".fgb",
-     "Polygon Z triangles with attributes, packed Hilbert R-tree, CRS"},
-    {TinFormat::TwoDm, "2dm", ".2dm",
+    {TinFormat::FlatGeobuf, "fgb flatgeobuf", ".fgb", "FlatGeobuf", "OgrTinWriter", Kind::Vector,
+     true, false, true, "Polygon Z triangles with attributes, packed Hilbert R-tree, CRS"},
+    {TinFormat::TwoDm, "2dm mesh2d", ".2dm", "2DM", "TwoDmWriter", Kind::Mesh, false, false, false,
      "SMS 2D mesh: nodes and triangles, no CRS; a QGIS mesh layer"},
-    {TinFormat::Ply, "ply", ".ply",
+    {TinFormat::Ply, "ply", ".ply", "PLY", "PlyWriter", Kind::Mesh, true, false, false,
      "binary PLY mesh: vertices and faces, CRS as a comment; a QGIS mesh layer"},
-    {TinFormat::Obj, "obj", ".obj",
+    {TinFormat::Obj, "obj", ".obj", "OBJ", "ObjWriter", Kind::Mesh, false, false, false,
      "Wavefront OBJ mesh about a local origin, no CRS; for 3D tools (QGIS does not open it)"},
-    {TinFormat::LandXml, "landxml", ".xml .landxml",
+    {TinFormat::LandXml, "landxml xml", ".xml .landxml", "LandXML", "LandXmlWriter", Kind::Mesh,
+     true, false, false,
      "LandXML 1.2 TIN surface with units, CRS and breaklines; for civil and CAD tools (QGIS "
      "does not open it)"},
 }};
+
+/// Whether `word` is one of the space-separated `words`.
+bool isOneOf(std::string_view word, std::string_view words) {
+    while (!words.empty()) {
+        const std::size_t end = std::min(words.find(' '), words.size());
+        if (words.substr(0, end) == word)
+            return true;
+        words.remove_prefix(std::min(end + 1, words.size()));
+    }
+    return false;
+}
 
 } // namespace
 
@@ -65,69 +55,64 @@ std::span<const TinFormatInfo> tinFormats() {
     return kFormats;
 }
 
+const TinFormatInfo& tinFormatInfo(TinFormat format) {
+    for (const TinFormatInfo& info : kFormats)
+        if (info.format == format)
+            return info;
+    throw Error(std::string(kStage) + ": a format without a row in the table");
+}
+
+std::string tinFormatNameList() {
+    std::string list;
+    for (std::size_t i = 0; i < kFormats.size(); ++i) {
+        if (i > 0)
+            list += i + 1 == kFormats.size() ? " or " : ", ";
+        list += kFormats[i].name();
+    }
+    return list;
+}
+
+std::string tinFormatExtensionList() {
+    std::string list;
+    for (const TinFormatInfo& info : kFormats) {
+        if (!list.empty())
+            list += ' ';
+        list += info.extensions;
+    }
+    return list;
+}
+
 TinFormat parseTinFormat(const std::string& name) {
-    const std::string lower = lowercase(name);
-    for (const auto& [known, format] : kNames)
-        if (lower == known)
-            return format;
-    throw InvalidInputError(std::string(kStage) + ": unknown output format '" + name +
-                            "'; use gpkg, shp, fgb, 2dm, ply, obj or landxml");
+    // "ESRI Shapefile", GDAL's driver name, is spelt with an underscore in the table.
+    std::string lower = lowercase(name);
+    std::replace(lower.begin(), lower.end(), ' ', '_');
+    for (const TinFormatInfo& info : kFormats)
+        if (isOneOf(lower, info.names))
+            return info.format;
+    throw InvalidInputError(std::string(kStage) + ": unknown output format '" + name + "'; use " +
+                            tinFormatNameList());
 }
 
 TinFormat tinFormatFromPath(const std::filesystem::path& path, const OptionNamer& optionName) {
     const std::string extension = lowercase(path.extension().string());
-    for (const auto& [known, format] : kExtensions)
-        if (extension == known)
-            return format;
+    for (const TinFormatInfo& info : kFormats)
+        if (!extension.empty() && isOneOf(extension, info.extensions))
+            return info.format;
     throw InvalidInputError(std::string(kStage) + ": cannot tell the output format of '" +
-                            path.string() +
-                            "' from its extension; use .gpkg .shp .fgb .2dm .ply .obj .xml (or " +
-                            optionName("format") + ")");
+                            path.string() + "' from its extension; use " +
+                            tinFormatExtensionList() + " (or " + optionName("format") + ")");
 }
 
 std::string_view tinFormatName(TinFormat format) {
-    switch (format) {
-    case TinFormat::GeoPackage:
-        return "GPKG";
-    case TinFormat::Shapefile:
-        return "ESRI Shapefile";
-    case TinFormat::FlatGeobuf:
-        return "FlatGeobuf";
-    case TinFormat::TwoDm:
-        return "2DM";
-    case TinFormat::Ply:
-        return "PLY";
-    case TinFormat::Obj:
-        return "OBJ";
-    case TinFormat::LandXml:
-        return "LandXML";
-    }
-    return "unknown";
+    return tinFormatInfo(format).displayName;
 }
 
 std::string_view tinFormatExtension(TinFormat format) {
-    switch (format) {
-    case TinFormat::GeoPackage:
-        return ".gpkg";
-    case TinFormat::Shapefile:
-        return ".shp";
-    case TinFormat::FlatGeobuf:
-        return ".fgb";
-    case TinFormat::TwoDm:
-        return ".2dm";
-    case TinFormat::Ply:
-        return ".ply";
-    case TinFormat::Obj:
-        return ".obj";
-    case TinFormat::LandXml:
-        return ".xml";
-    }
-    return "";
+    return tinFormatInfo(format).extension();
 }
 
 bool isOgrFormat(TinFormat format) {
-    return format == TinFormat::GeoPackage || format == TinFormat::Shapefile ||
-           format == TinFormat::FlatGeobuf;
+    return tinFormatInfo(format).kind == TinFormatKind::Vector;
 }
 
 } // namespace terratin::io

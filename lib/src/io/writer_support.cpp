@@ -60,21 +60,7 @@ CrsSummary summariseCrs(std::string_view stage, const std::string& wkt) {
 }
 
 std::string_view writerStage(TinFormat format) {
-    switch (format) {
-    case TinFormat::GeoPackage:
-    case TinFormat::Shapefile:
-    case TinFormat::FlatGeobuf:
-        return "OgrTinWriter";
-    case TinFormat::TwoDm:
-        return "TwoDmWriter";
-    case TinFormat::Ply:
-        return "PlyWriter";
-    case TinFormat::Obj:
-        return "ObjWriter";
-    case TinFormat::LandXml:
-        return "LandXmlWriter";
-    }
-    return "TinWriter";
+    return tinFormatInfo(format).writerStage;
 }
 
 } // namespace terratin::io::detail

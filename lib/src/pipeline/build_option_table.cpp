@@ -227,8 +227,8 @@ std::vector<BuildOptionSpec> makeTable() {
          "input rasters and point clouds, merged",
          [](BuildOptions& o, const std::string& t, const std::string&) { o.inputs.push_back(t); }},
         {"output", "output", 'o', Kind::Text, false, "OUTPUT", "",
-         "output file (.gpkg .shp .fgb .2dm .ply .obj .xml); written under a temporary name, "
-         "renamed when complete",
+         "output file (" + io::tinFormatExtensionList() +
+             "); written under a temporary name, renamed when complete",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              if (t == "-")
                  refuse(n + " '-': terratin writes files, not standard output; give a file name "
@@ -236,9 +236,9 @@ std::vector<BuildOptionSpec> makeTable() {
              o.output = t;
          }},
         {"format", "format", 'f', Kind::Text, false, "FORMAT", "",
-         "output format: gpkg, shp, fgb, 2dm, ply, obj, landxml (default: from the output's "
-         "extension); 2dm has no CRS (QGIS opens it without one): use ply for a QGIS mesh "
-         "layer with its CRS",
+         "output format: " + io::tinFormatNameList() +
+             " (default: from the output's extension; terratin --formats lists them); 2dm has "
+             "no CRS (QGIS opens it without one): use ply for a QGIS mesh layer with its CRS",
          [](BuildOptions& o, const std::string& t, const std::string&) {
              o.format = io::parseTinFormat(t);
          }},

@@ -123,7 +123,7 @@ TEST(WriterMessages, NameContradictoryOptionsTheCallersWay) {
 TEST(WriterMessages, NameTheFormatOptionTheCallersWay_WhenTheExtensionIsUnknown) {
     for (const Naming& naming : namings())
         expectSpelled(refusal([&] { tinFormatFromPath("hood.stl", naming.namer); }),
-                      "use .gpkg .shp .fgb .2dm .ply .obj .xml (or {format})", naming);
+                      "use .gpkg .shp .fgb .2dm .ply .obj .xml .landxml (or {format})", naming);
     // Without a namer: the keyword.
     EXPECT_NE(refusal([] { tinFormatFromPath("hood.stl"); }).find("(or format)"),
               std::string::npos);

@@ -487,9 +487,9 @@ TEST(ParseBuildOptions, WriterMessagesFollowTheSpelling) {
          "TinWriter: qgis_style colours by z_mean: it needs attributes basic or all"},
         {{{"inputs", "dem.tif"}, {"output", "tin.stl"}},
          "TinFormat: cannot tell the output format of 'tin.stl' from its extension; use .gpkg "
-         ".shp .fgb .2dm .ply .obj .xml (or --format)",
+         ".shp .fgb .2dm .ply .obj .xml .landxml (or --format)",
          "TinFormat: cannot tell the output format of 'tin.stl' from its extension; use .gpkg "
-         ".shp .fgb .2dm .ply .obj .xml (or format)"},
+         ".shp .fgb .2dm .ply .obj .xml .landxml (or format)"},
         {{{"inputs", "dem.tif"}, {"output", existing}},
          "OgrTinWriter: the output '" + existing + "' exists; use --overwrite",
          "OgrTinWriter: the output '" + existing + "' exists; use overwrite"},

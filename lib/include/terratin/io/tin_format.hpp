@@ -41,19 +41,56 @@ std::string_view tinFormatName(TinFormat format);
 /// ".obj", ".xml".
 std::string_view tinFormatExtension(TinFormat format);
 
-/// One output format as `terratin --formats` lists it.
+/// How a format holds a TIN.
+enum class TinFormatKind {
+    /// One Polygon Z feature per triangle, with attributes, written through OGR.
+    Vector,
+    /// Vertices and faces, written by terratin itself.
+    Mesh,
+};
+
+/// One output format: the one row that says what the format is, for the parser, the writers'
+/// checks, `terratin --formats` and the help.
 struct TinFormatInfo {
     TinFormat format;
-    /// The name --format takes first ("gpkg").
-    std::string_view name;
-    /// The extensions that select it, with their dots (".xml .landxml").
+    /// The names --format takes, the first the usual one ("gpkg geopackage"), lower case.
+    std::string_view names;
+    /// The extensions that select it, with their dots, the first the one written (".xml
+    /// .landxml").
     std::string_view extensions;
+    /// What messages call it: GDAL's driver name for the vector formats ("GPKG").
+    std::string_view displayName;
+    /// The stage its writer's messages start with ("PlyWriter").
+    std::string_view writerStage;
+    TinFormatKind kind;
+    /// Whether a file of it records the CRS.
+    bool carriesCrs;
+    /// Whether it takes the node and edge layers and --append-layer (GeoPackage alone).
+    bool takesExtraLayers;
+    /// Whether it can leave out its spatial index (the indexed vector formats).
+    bool hasOptionalIndex;
     /// What a file of it holds, and what opens it.
     std::string_view carries;
+
+    /// The first of `names`.
+    [[nodiscard]] std::string_view name() const { return names.substr(0, names.find(' ')); }
+    /// The first of `extensions`.
+    [[nodiscard]] std::string_view extension() const {
+        return extensions.substr(0, extensions.find(' '));
+    }
 };
 
 /// Every output format, in the order of TinFormat.
 std::span<const TinFormatInfo> tinFormats();
+
+/// The row of `format`.
+const TinFormatInfo& tinFormatInfo(TinFormat format);
+
+/// "gpkg, shp, fgb, 2dm, ply, obj or landxml": every format's usual name, for messages.
+std::string tinFormatNameList();
+
+/// ".gpkg .shp .fgb .2dm .ply .obj .xml .landxml": every extension, for messages.
+std::string tinFormatExtensionList();
 
 /// True for the formats written through OGR (GeoPackage, Shapefile, FlatGeobuf).
 bool isOgrFormat(TinFormat format);
