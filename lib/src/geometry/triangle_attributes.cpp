@@ -33,8 +33,8 @@ constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 // known to about an ulp of its coordinates (a cell centre from a geotransform is off its
 // exact position by two or three roundings, a reprojected point by more), so three points
 // that are collinear in exact arithmetic come out with a height of a few ulps at most. A
-// rotated grid's border gives such slivers (issue 22, D19: heights of 1e-11 m at UTM
-// northings, 1.3e15 % slope). 64 ulps leaves a margin over those roundings and is still
+// rotated grid's border gives such slivers (heights of 1e-11 m at UTM northings, 1.3e15 %
+// slope). 64 ulps leaves a margin over those roundings and is still
 // 3e-8 m at a northing of 5e6 m, far below any real triangle of terrain.
 constexpr double kFlatHeightUlps = 64.0;
 

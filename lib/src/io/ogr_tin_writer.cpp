@@ -85,7 +85,7 @@ constexpr std::uint64_t kFgbInMemoryRamDivisor = 4;
 /// they describe the old data set (CRS, encoding, spatial indexes, metadata, QGIS's style)
 /// and are stale once it is replaced. Each one counts as the output existing: without
 /// --overwrite none is touched, even when it belongs to a raster of the same name (an ESRI
-/// grid's .prj; issue 22, D1).
+/// grid's .prj).
 constexpr std::array<std::string_view, 12> kShapefileSidecars = {".prj", ".cpg", ".qix", ".sbn",
                                                                  ".sbx", ".fix", ".qpj", ".shp.xml",
                                                                  ".aih", ".ain", ".atx", ".qml"};
@@ -259,7 +259,8 @@ std::vector<fs::path> ogrOutputFiles(const fs::path& output, TinFormat format) {
     std::vector<fs::path> files{output};
     if (format != TinFormat::Shapefile)
         return files;
-    // Every component and sidecar, in both cases (issue 22, D1).
+    // Every component and sidecar, in both cases: any of them present means the output exists,
+    // even one that belongs to another data set of the same name.
     const auto add = [&](const fs::path& file) {
         if (std::find(files.begin(), files.end(), file) == files.end())
             files.push_back(file);

@@ -2,9 +2,9 @@
 /// @file
 /// --qgis-style's terrain style (.qml) beside a vector output, written as one with the data:
 /// to a temporary before the data is put in place, renamed after it, and the data this run
-/// created taken back when the style cannot follow (one that another program created
-/// meanwhile, without overwrite: issue 22, D5). Used by writeTin and by the TIN written tile
-/// by tile (tin_stream.hpp).
+/// created taken back when the style cannot follow (another program created one there
+/// meanwhile, and there is no overwrite). Used by writeTin and by the TIN written tile by tile
+/// (tin_stream.hpp).
 
 #include "atomic_output.hpp"
 #include "terratin/io/tin_writer.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// One TIN file written piece by piece, as the tiles of a tiled build are done (issue 25's
-/// bounded memory): each piece's vertices and triangles go to disk at once, and only what the
+/// One TIN file written piece by piece, as the tiles of a tiled build are done, so that memory
+/// stays bounded: each piece's vertices and triangles go to disk at once, and only what the
 /// file's end needs stays in memory (the GeoPackage's index boxes, GDAL's FlatGeobuf index
 /// entries, a mesh format's counts and figures). Every format of writeTin
 /// (gpkg/gpkg_tin_stream.hpp, ogr_tin_stream.hpp, mesh_stream.hpp).

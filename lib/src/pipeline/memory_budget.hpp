@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `--memory-limit` (issue 25): how a tiled simplification shares its memory out. The limit
+/// `--memory-limit`: how a tiled simplification shares its memory out. The limit
 /// holds the process itself (code, GDAL, PROJ), GDAL's block cache, the writer's share (the
 /// GeoPackage's index boxes, the vertices on tile sides) and the one tile being refined,
 /// counted at its worst: every cell of it, margin included, a vertex of the TIN. The bytes

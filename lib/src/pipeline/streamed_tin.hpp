@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `--memory-limit` (issue 25): a tiled build's TIN written to one file as its tiles are done,
+/// `--memory-limit`: a tiled build's TIN written to one file as its tiles are done,
 /// never joined in memory. Its vertices are numbered as the joined TIN numbers them, so the file
 /// holds the same TIN (a PLY the same bytes) as one written after joining. Internal to the
 /// build pipeline.

@@ -204,7 +204,8 @@ void GreedyRefiner::startFromHull() {
     const std::vector<std::uint32_t> hull = validHullCells(*m_grid, m_positions);
     m_hullPoints = hull.size();
     // Every valid cell stays covered, so the hull's corners are the fewest points and
-    // (corners - 2) the fewest triangles: a smaller limit could not hold (issue 22, D13).
+    // (corners - 2) the fewest triangles: a smaller limit could not hold, so it is refused, never
+    // exceeded.
     if (m_options.maxPoints && *m_options.maxPoints < hull.size())
         throw InvalidInputError("Refiner: the convex hull of the valid cells has " +
                                 std::to_string(hull.size()) +

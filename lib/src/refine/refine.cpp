@@ -44,7 +44,7 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
     if (static_cast<std::uint64_t>(grid.cellCount()) > kMaxRefineCells)
         throw InvalidInputError("Refiner: more than 2^32 - 5 cells; split the raster");
     // NaN marks nodata; an infinite elevation is a value no TIN can carry (the full-resolution
-    // path refuses it too, issue 22, D7).
+    // path refuses it too, so both paths give the same answer).
     const auto infinite =
         std::find_if(grid.z.begin(), grid.z.end(), [](float z) { return std::isinf(z); });
     if (infinite != grid.z.end()) {
@@ -233,7 +233,8 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     // common line by an ulp or so. The pixel-space scans then disagree with the TIN, which is
     // built at the rounded centres, about the cells on its border: the hull's corners include
     // border cells the rounding pushed out, and a cell on a pixel-space edge may lie in the
-    // sliver beside it (issue 22, D6: "a point outside the hull", then cells left unchecked).
+    // sliver beside it (the triangulator then finds "a point outside the hull", and cells are
+    // left unchecked).
     // The path for reprojected grids locates every cell exactly at its position, so the
     // rotated grid takes it with the centres as positions (16 bytes per cell).
     if (options.tileSize > 0) {

@@ -5,8 +5,8 @@
 /// uncovered, although a TIN can often cover it (a cell hanging into a hole, with valid
 /// neighbours beside it, is the corner of a small triangle over no hole cell). The refiner
 /// never inserts those neighbours by itself: the triangles over the hole hold no valid cell
-/// that is not a vertex, and the neighbours' own triangles are within the bound. Found on Mt
-/// Hood (issue 25's closing note): one such cell untiled, more in small tiles.
+/// that is not a vertex, and the neighbours' own triangles are within the bound. Mt Hood has
+/// such cells: one untiled, more in small tiles.
 ///
 /// The cure: each stranded vertex's valid neighbours become vertices too, the refinement goes
 /// on, and the check is repeated until it finds none to add.

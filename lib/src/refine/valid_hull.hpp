@@ -20,12 +20,12 @@ namespace terratin::detail {
 /// candidates by Andrew's monotone chain with exact orientation tests. A rotated geotransform
 /// (GT[2] or GT[4] != 0) rounds the centres of a row off their common line, by an ulp or so,
 /// and a middle cell of the first or last row may then lie outside the segment between the
-/// row's ends (issue 22, D6: "a point outside the hull"); there, as with positions (a
-/// projection, which bends rows), the candidates are the valid cells with a 4-neighbour
-/// outside the grid or without data: any other cell lies inside the quadrilateral of its
-/// four neighbours' positions, by half a cell, for any map that is nearly affine at the
-/// scale of a cell, as every map projection is at DEM resolutions. The hull is then the
-/// exact hull of the rounded centres, whose border cells may be corners of it.
+/// row's ends (a hull of the row ends would leave it "a point outside the hull"); there, as
+/// with positions (a projection, which bends rows), the candidates are the valid cells with a
+/// 4-neighbour outside the grid or without data: any other cell lies inside the quadrilateral
+/// of its four neighbours' positions, by half a cell, for any map that is nearly affine at the
+/// scale of a cell, as every map projection is at DEM resolutions. The hull is then the exact
+/// hull of the rounded centres, whose border cells may be corners of it.
 /// Throws InvalidInputError when there is no valid cell or all valid centres are collinear.
 /// O(cells) to find the candidates.
 std::vector<std::uint32_t> validHullCells(const HeightGrid& grid,

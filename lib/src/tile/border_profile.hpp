@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The vertices a tile border gets (issue 25's seam-free tiles): chosen once from that
+/// The vertices a tile border gets, which keep tiles seam-free: chosen once from that
 /// border's cells alone, so that the two tiles sharing it put exactly the same vertices on it.
 
 #include <cstdint>

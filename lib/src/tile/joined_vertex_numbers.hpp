@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The numbers the vertices of tiles get in the TIN they join into (issue 25's seam-free
-/// tiles), worked out tile by tile without holding that TIN: the TileMeshMerger numbers its
-/// vertices with it, and a TIN written tile by tile numbers them the same way.
+/// The numbers the vertices of seam-free tiles get in the TIN they join into, worked out tile by
+/// tile without holding that TIN: the TileMeshMerger numbers its vertices with it, and a TIN
+/// written tile by tile numbers them the same way.
 
 #include "tile_grid.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Tiles of a rotated grid (issue 25). A rotated geotransform rounds the centres of a tile
+/// Tiles of a rotated grid. A rotated geotransform rounds the centres of a tile
 /// side's cells off their common line, so the sides of two tiles would no longer be the same
 /// straight chain of hull edges. Such a grid's tiles are therefore refined in its pixel frame,
 /// where every cell centre is exact (x = column + 0.5, y = +-(row + 0.5)), and each joined

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// How a DEM is cut into tiles (issue 25's seam-free tiles): along each axis, ranges of cells
+/// How a DEM is cut into seam-free tiles: along each axis, ranges of cells
 /// that share their end cells with the neighbouring range, so that the cell line on a border
 /// belongs to both tiles and its vertices are decided once (border_profile.hpp).
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// One TIN from the TINs of tiles that share their border vertices (issue 25's seam-free
-/// tiles): a border vertex is one vertex, and two triangles of neighbouring tiles on the same
+/// One TIN from the TINs of tiles that share their border vertices (seam-free tiles): a
+/// border vertex is one vertex, and two triangles of neighbouring tiles on the same
 /// border edge become neighbours.
 
 #include "joined_vertex_numbers.hpp"

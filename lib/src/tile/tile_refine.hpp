@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// refine() in tiles (RefineOptions::tileSize, issue 25): the grid cut as TileGrid cuts it,
+/// refine() in tiles (RefineOptions::tileSize): the grid cut as TileGrid cuts it,
 /// each tile refined on its own (one_tile.hpp), the TINs joined into one without cracks.
 ///
 /// Seam-free by construction: the cells on a tile's four sides are never candidates; instead

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// One tile's refined TIN and figures, and their bytes for another process (issue 25's MPI
-/// ranks, refine/tile_distribution.hpp).
+/// One tile's refined TIN and figures, and their bytes for another process (an MPI rank that
+/// refined it, refine/tile_distribution.hpp).
 
 #include "terratin/refine/refine.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"

@@ -4,9 +4,9 @@
 /// a watch function every kWatchInterval until they have all returned. The parallel methods
 /// pass a watch that calls the progress callback, so that a cancel (the callback returning
 /// false, Ctrl-C in the CLI) is seen within that interval however long the workers insert or
-/// wait for one another, and however many of them share few cores (issue 22: with the calling
-/// thread among the workers, a cancel waited for its next report, and that thread could be
-/// stuck in a wait, or descheduled among thousands of spinning threads, for minutes).
+/// wait for one another, and however many of them share few cores. The calling thread is not
+/// one of the workers because a worker reports only between its own steps, and can be stuck in
+/// a wait, or descheduled among thousands of spinning threads, for minutes.
 /// The callback is still called from the calling thread only.
 
 #include <chrono>

@@ -35,7 +35,7 @@ struct HeightGrid {
     /// them a triangle's rows at a time, all over the raster.
     std::vector<float, HugePageAllocator<float>> z;
     /// Where this grid's first cell lies in the raster the geotransform describes: 0, 0 for a
-    /// whole raster; a tile's first row and column for a window of it (issue 25), so that a
+    /// whole raster; a tile's first row and column for a window of it (a tiled read), so that a
     /// cell has bit for bit the centre it has in the whole raster, whichever tile holds it.
     int firstRow = 0;
     int firstColumn = 0;

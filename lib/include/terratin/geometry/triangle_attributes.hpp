@@ -39,7 +39,7 @@ struct TriangleAttributes {
 /// corners are collinear in 3D as well.
 /// A sliver, a triangle whose height over its longest edge (x, y) is at most 64 ulps of its
 /// largest coordinate (points collinear in exact arithmetic that rounding moved apart: the
-/// border of a rotated raster's TIN, issue 22 D19), gets slope 0, slope_pct 0 and aspect -1
+/// border of a rotated raster's TIN), gets slope 0, slope_pct 0 and aspect -1
 /// as well: its slope would only measure the rounding (up to 1e15 %). Its area_2d (tiny,
 /// positive), area_3d and normal are computed as for any triangle, so the areas still sum to
 /// the hull's. The TIN keeps such triangles: they are exactly Delaunay, and the hull of the

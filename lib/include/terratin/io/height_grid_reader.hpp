@@ -40,7 +40,7 @@ namespace detail {
 class RasterBandReader;
 }
 
-/// Band `options.band` of the raster at `path`, read a window at a time (issue 25's tiles):
+/// Band `options.band` of the raster at `path`, read a window at a time (a tile's cells):
 /// only the cells asked for are held. Validity and elevations as readHeightGrid's, so a window
 /// holds bit for bit the cells readHeightGrid would. Opening throws as readHeightGrid does;
 /// window() throws IoError when GDAL cannot read the cells, InvalidInputError for an infinite

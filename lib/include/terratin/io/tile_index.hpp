@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The index of a directory of tiles (`terratin build --tiles-dir`, issue 25): a GeoPackage
+/// The index of a directory of tiles (`terratin build --tiles-dir`): a GeoPackage
 /// layer "tiles" with one polygon per tile written, its footprint, and where its TIN is.
 
 #include "terratin/option_namer.hpp"

@@ -40,9 +40,9 @@ struct BuildOptions {
     std::filesystem::path output;
     /// Instead of `output`, with a tiled simplification: the directory that gets each tile's
     /// TIN as its own file, tile_ROW_COLUMN.EXT in `format` (default GeoPackage), and
-    /// tiles.gpkg, the index of the tiles' footprints; the TIN is never joined (issue 25).
+    /// tiles.gpkg, the index of the tiles' footprints; the TIN is never joined.
     std::filesystem::path tilesDir;
-    /// Bytes of memory a tiled simplification stays under (--memory-limit; issue 25): the tile
+    /// Bytes of memory a tiled simplification stays under (--memory-limit): the tile
     /// size follows from it unless refine->tileSize is given (refused when that size would
     /// not fit), and `output` is written tile by tile, a GeoPackage or a PLY, the TIN never
     /// held whole. Needs refine->maxError. With tileDistribution, each process's limit.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Where a tiled refinement reads its cells (refineTiles, issue 25): a window at a time, so
+/// Where a tiled refinement reads its cells (refineTiles): a window at a time, so
 /// that a raster read through GDAL (io::RasterCells) never has to be held whole.
 
 #include "terratin/geometry/height_grid.hpp"

@@ -81,7 +81,7 @@ struct RefineOptions {
     /// terratin::Error when it is not exactly Delaunay (with tiles: each tile's TIN).
     bool validate = false;
     /// Refine in tiles of this many cell intervals along each axis, 2 to kMaxTileSize, that
-    /// share their border cells (issue 25); 0 = the whole grid at once. The tiles' TINs join
+    /// share their border cells; 0 = the whole grid at once. The tiles' TINs join
     /// without cracks: each border's vertices are chosen from its cells alone, within
     /// maxError (docs/algorithms.md, "Tiles"), and each tile's TIN is exactly Delaunay, the
     /// whole only within tiles; a rotated grid's tiles are Delaunay in its pixel frame and then

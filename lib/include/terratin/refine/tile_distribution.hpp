@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Tiles refined by other processes (issue 25's MPI ranks): what the tiled refiner asks of a
+/// Tiles refined by other processes (MPI ranks): what the tiled refiner asks of a
 /// transport. terratin's command line implements it with MPI (tools/terratin/mpi_tiles.hpp);
 /// the library only packs a tile's TIN into bytes and unpacks it, and joins the tiles in tile
 /// order whatever order they come back in, so the TIN is the same as in one process.

@@ -3,9 +3,9 @@
 /// For a TileDistribution's coordinator: which tile to hand out next. Tiles go out in order,
 /// and are joined in order; one that comes back before its turn waits for it in the
 /// coordinator's memory. TileHandout counts those early tiles' bytes and hands out no more
-/// tiles while they hold more than a bound (issue 25: --memory-limit over MPI ranks), and says
-/// which tiles may come back within it (accepts). The first tile not back yet is always out in
-/// work and always accepted, so a pause always ends.
+/// tiles while they hold more than a bound (so that the coordinator keeps to --memory-limit),
+/// and says which tiles may come back within it (accepts). The first tile not back yet is
+/// always out in work and always accepted, so a pause always ends.
 
 #include <cstddef>
 #include <cstdint>
