@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A DEM's TIN with breaklines against the same TIN without, side by side (issue 24).
+"""A DEM's TIN with breaklines against the same TIN without, side by side.
 
 Makes a road-like network over the DEM (--lines polylines of --segments segments each: random
 walks that turn gently, inside the raster's extent), then runs, in turn, --rounds times:

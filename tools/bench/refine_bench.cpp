@@ -36,9 +36,9 @@ struct RefineCase {
     bool inUtmZone = false;
 };
 
-// The table: SRTM3 N44W072 (White Mountains) and Mt Hood (UTM 30 m, nodata frame);
-// then the geographic DEMs the way the build refines them: N44W072 and Everest (voids) in
-// their UTM zones.
+// The refinement table of docs/benchmarks.md: SRTM3 N44W072 (White Mountains) and Mt Hood
+// (UTM 30 m, nodata frame); then the geographic DEMs the way the build refines them: N44W072
+// and Everest (voids) in their UTM zones.
 const std::vector<RefineCase>& refineCases() {
     static const std::vector<RefineCase> cases = {
         {"N44W072", "srtmpy__N44W072/N44W072.hgt", {1.0, 5.0, 10.0}},

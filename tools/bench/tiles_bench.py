@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A DEM simplified whole against the same DEM simplified in tiles, side by side (issue 25).
+"""A DEM simplified whole against the same DEM simplified in tiles, side by side.
 
 Runs, --rounds times, `terratin build DEM -o tin.ply --max-error E` and the same with
 `--tile-size T` for each T given, with `--memory-limit L` for each L given (the TIN written tile

@@ -17,10 +17,10 @@ namespace terratin::bench {
 /// Whether the GDAL + CGAL + OGR script can run (terratin-bench built with CGAL).
 bool scriptPeerBuilt();
 
-/// The 70-line script of the issue: GDAL reads the band's valid cell centres, CGAL's
-/// Delaunay_triangulation_2 triangulates them, OGR writes one Polygon Z per triangle with one
-/// z_mean field, in one transaction, with GDAL's default spatial index. Returns the triangles
-/// written. Throws terratin::Error on failure or when built without CGAL.
+/// The 70-line script a user would write instead of terratin: GDAL reads the band's valid cell
+/// centres, CGAL's Delaunay_triangulation_2 triangulates them, OGR writes one Polygon Z per
+/// triangle with one z_mean field, in one transaction, with GDAL's default spatial index. Returns
+/// the triangles written. Throws terratin::Error on failure or when built without CGAL.
 std::size_t runGdalCgalOgrScript(const std::string& dem, const std::filesystem::path& output);
 
 /// A plain OGR loop over `triangles`: one CreateFeature per triangle with terratin's 14

@@ -6,7 +6,8 @@
 
 With --outline, the polygons are drawn on top (blue, no fill), the view is their extent scaled
 by --zoom, and the triangles whose centroid lies inside them are counted, with how many are
-flat (z_min == z_max): a replace area's triangles all are. For the closing notes of issue 24.
+flat (z_min == z_max): a replace area's triangles all are, so the count shows whether an area
+was replaced.
 """
 
 import argparse

@@ -26,13 +26,11 @@ public:
     void finish();
 
     /// Ends a half-printed line with " - failed." so that the error message that follows is
-    /// stderr's last line, whole, and no bare fragment ("0...10") is left before it (issue 22,
-    /// D21).
+    /// stderr's last line, whole, and no bare fragment ("0...10") is left before it.
     void fail();
 
     /// Prints `text` as a line of its own (a notice); while a progress line is under way it
-    /// waits for the line's end, so that no fragment ("0...") is ever left on a line of its
-    /// own (issue 22, D21).
+    /// waits for the line's end, so that no fragment ("0...") is ever left on a line of its own.
     void printLine(std::string_view text);
 
     ProgressCallback callback() {
