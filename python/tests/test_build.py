@@ -57,7 +57,7 @@ def test_same_tin_and_counts_as_the_command_line(terratin_cli, tmp_path):
 
 
 def test_tiles_give_the_command_lines_tin(terratin_cli, tmp_path):
-    # Issue 25: tile_size is the CLI's --tile-size, seam-free tiles within the bound.
+    # tile_size is the CLI's --tile-size: seam-free tiles within the bound.
     report = terratin.build(SAMPLE, tmp_path / "python.ply", max_error=0.5, tile_size=64)
     expected = cli_report(
         terratin_cli, [SAMPLE], tmp_path / "cli.ply", "--max-error", "0.5", "--tile-size", "64"
@@ -81,7 +81,7 @@ def test_tiles_dir_takes_the_place_of_the_output(tmp_path):
 
 
 def test_memory_limit_writes_the_tiled_tin_tile_by_tile(tmp_path):
-    # Issue 25: memory_limit is --memory-limit: the joined TIN's file, written as tiles come
+    # memory_limit is --memory-limit: the joined TIN's file, written as tiles come
     # (one thread, so that a tile's triangles come in one order).
     joined = terratin.build(SAMPLE, tmp_path / "joined.ply", max_error=0.5, tile_size=64, threads=1)
     streamed = terratin.build(

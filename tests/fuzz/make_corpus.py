@@ -109,7 +109,7 @@ def main():
     struct.pack_into("<I", lying, 107, 1000)
     write("las", "lying_count.las", bytes(lying))
     write("las", "empty_points.las", las(2, 0, []))
-    # Issue 22, D20: format 99 (bit 6 without LASzip's bit 7) was taken for LAZ.
+    # Format 99 (bit 6 without LASzip's bit 7) is an unknown format, not LAZ.
     write("las", "point_format_99.las", las(2, 3, POINTS[:1], format_byte=99))
 
     write("text", "space.xyz", "500000.5 4900000.25 101.5\n500010 4900000 99\n500005 4900010 120.75\n")
@@ -125,7 +125,7 @@ def main():
     write("text", "short_line.xyz", "1 2 3\n4 5\n")
     write("text", "signs.xyz", "+1 -2 +3.5e+2\n-0 .5 5.\n")
     write("text", "no_newline.xyz", "1 2 3\n4 5 6")
-    # Issue 22, D20: a UTF-8 byte order mark was read as part of the first number.
+    # A UTF-8 byte order mark is skipped, not read as part of the first number.
     write("text", "utf8_bom.csv", "\ufeffx,y,z\r\n1,2,3\r\n4,5,6\r\n")
     write("text", "utf8_bom.xyz", "\ufeff1 2 3\n4 5 6\n")
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Something happens while a run is under way (issue 22): a signal (SIGINT, SIGTERM, SIGHUP:
-# D8) or another program creating the output (D5), at a chosen phase of a Mt Hood run.
+# Something happens while a run is under way: a signal (SIGINT, SIGTERM, SIGHUP) or another
+# program creating the output, at a chosen phase of a Mt Hood run.
 #   during_run_test.sh EVENT PHASE FORMAT TERRATIN_BINARY [SHARED_DEMS]
 #   EVENT:  INT | TERM | HUP  (signal the run; an old output is there, --overwrite)
 #           appear            (create the output; none was there, no --overwrite)
@@ -60,7 +60,7 @@ esac
 output=hood.$format
 arguments=(build "$input" -o "$output")
 if [ "$event" = appear ]; then
-  # The command line's spelling of the option (issue 23).
+  # The command line's spelling of the option: the CLI's messages name its flags.
   expected='appeared while this run was writing; it was left as it is \(use --overwrite to replace it\)'
 else
   # The old output: every file of it must come through intact.

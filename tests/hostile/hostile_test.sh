@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The hostile-input suite (issue 22): one case of cases.tsv per call.
+# The hostile-input suite: one case of cases.tsv per call.
 #   hostile_test.sh CASE TERRATIN_BINARY SAMPLE_DEM CASES_TSV [SHARED_DEMS]
 #   hostile_test.sh --list CASES_TSV          (the case names, for CTest)
 #

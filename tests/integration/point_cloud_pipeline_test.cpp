@@ -309,7 +309,7 @@ TEST(PointCloudPipeline, DemandsSourceSrs_WhenAnInputHasNoCrs) {
     EXPECT_EQ(report.points, report.inputs[0].points + 3U);
 }
 
-// Issue 23: the readers' and the writer's messages, reached through runBuild, name options the
+// The readers' and the writer's messages, reached through runBuild, name options the
 // way its caller does: "--columns" for the command line, "columns" for a keyword caller.
 TEST(PointCloudPipeline, ReaderAndWriterMessagesNameOptionsAsTheCallerDoes) {
     TempDir dir;

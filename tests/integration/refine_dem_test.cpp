@@ -98,7 +98,7 @@ TEST(RefineDem, GridReaderMatchesPointReader_CellByCell) {
     }
 }
 
-// Issue 25: a raster read a window at a time holds bit for bit readHeightGrid's cells, and the
+// A raster read a window at a time holds bit for bit readHeightGrid's cells, and the
 // tiles refined from its windows are the tiles refined from the whole grid.
 TEST(RefineDem, RasterWindowsHoldTheGridsCells_AndGiveItsTiledTin) {
     const std::string path = std::string(TERRATIN_SAMPLE_DEMS) + "/ridges_utm.tif";

@@ -205,7 +205,7 @@ def test_dem_to_tin_also_writes_a_ply_mesh_layer_with_its_crs(processing, tmp_pa
 
 
 def test_dem_to_tin_within_a_memory_limit_writes_the_clis_tiled_tin(processing, tmp_path):
-    # Issue 25 in the toolbox: the TIN written tile by tile, styled, as the command line's.
+    # --memory-limit in the toolbox: the TIN written tile by tile, styled, as the command line's.
     output = tmp_path / "tin.gpkg"
     feedback = ProgressRecorder()
     result = processing.run(

@@ -245,9 +245,9 @@ Point3 rotatedRowCentre(int col) {
     return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5], 100.0 + 3.0 * col};
 }
 
-// Issue 22, D19: border slivers of a rotated raster's TIN (corners collinear but for
-// rounding) had slopes of 1e15 %; they now get the slope and aspect of a triangle without
-// planimetric extent, and keep their tiny positive area.
+// Border slivers of a rotated raster's TIN (corners collinear but for rounding) get the slope
+// and aspect of a triangle without planimetric extent, not slopes of up to 1e15 %, and keep
+// their tiny positive area.
 TEST(TriangleAttributes, SliverOfRoundedCollinearCentresHasNoSlope_D19) {
     int slivers = 0;
     for (int i = 0; i < 40; ++i)

@@ -222,7 +222,8 @@ TEST(LasReader, ThrowsCrsError_ForMalformedGeoKeys) {
     file.vlrs.push_back(keys);
     EXPECT_THROW(readBytes(file.bytes()), CrsError);
 
-    // Issue 22, D20: keys GDAL derives no CRS from ended in "unknown GDAL error".
+    // Keys GDAL derives no CRS from get a message that names the cause, not GDAL's "unknown
+    // GDAL error".
     LasTestFile other;
     other.points = samplePoints();
     other.vlrs.push_back(test::geoKeysForProjectedEpsg(7)); // no CRS has code 7
@@ -337,8 +338,8 @@ TEST(LasReader, RejectsLaz_ByExtensionAndByLaszipRecord) {
     }
 }
 
-// Issue 22, D20: point format 99 (bits 6, 5, 1 and 0) was reported as "LAZ is compressed"
-// because bit 6 was taken alone as the LASzip mark; LASzip always sets bit 7.
+// Point format 99 (bits 6, 5, 1 and 0) is an unknown format, not "LAZ is compressed": bit 6
+// alone is no LASzip mark, since LASzip always sets bit 7 too.
 TEST(LasReader, ReportsAnUnknownPointFormat_NotLaz_D20) {
     LasTestFile file;
     file.points = samplePoints();

@@ -116,7 +116,7 @@ TEST(OgrPointReader, ReadsGeoJsonPoints_WithZFromAField) {
     EXPECT_TRUE(crs::describeCrs(cloud.crsWkt).geographic);
 
     // 2D points without a z field: a clear error, naming the option by its keyword for a
-    // library caller (issue 23) and as the caller names it otherwise (the pipeline: --z-field
+    // library caller and as the caller names it otherwise (the pipeline: --z-field
     // for the command line).
     try {
         readOgrPoints(path);

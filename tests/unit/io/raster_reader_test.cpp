@@ -498,8 +498,8 @@ std::string readError(const std::string& path) {
     return {};
 }
 
-// Issue 22, D20: a NaN or huge geotransform reached the triangulator, which then reported the
-// points as "collinear".
+// A NaN or huge geotransform is refused by the reader, with the geotransform in the message;
+// past it, the triangulator would report the points as "collinear".
 TEST(GdalRasterReader, RefusesAnUnusableGeoTransform_WithItsOwnMessage_D20) {
     TempDir dir;
     const std::array<std::array<double, 6>, 3> transforms{{
@@ -540,8 +540,8 @@ TEST(GdalRasterReader, RefusesAnUnusableGeoTransform_WithItsOwnMessage_D20) {
     EXPECT_NE(message.find("(nan, 1, 0, 0, 0, -1)"), std::string::npos) << message;
 }
 
-// Issue 22, D16: the error for a GeoPackage of two rasters advised "its SUBDATASET name", and
-// that name then failed as "no such file or directory".
+// The error for a GeoPackage of two rasters names each raster's subdataset as GDAL opens it
+// (GPKG:path:table), and the name it gives opens, not "no such file or directory".
 TEST(GdalRasterReader, AdvisesSubdatasetNamesThatOpen_ForATwoRasterGeoPackage_D16) {
     TempDir dir;
     const std::string gpkg = dir.file("two.gpkg");
@@ -573,8 +573,8 @@ TEST(GdalRasterReader, AdvisesSubdatasetNamesThatOpen_ForATwoRasterGeoPackage_D1
     EXPECT_EQ(b.points.size(), 12u);
 }
 
-// Issue 22, D20: an ASCII ("plain", P2) PGM, which GDAL 3.6 cannot read, was read as text and
-// reported as the bad number "P2". It is a heightfield without georeferencing.
+// An ASCII ("plain", P2) PGM, which GDAL 3.6 cannot read, is read as a heightfield without
+// georeferencing, not as text with the bad number "P2".
 TEST(GdalRasterReader, ReadsAPlainPgm_AsAGridWithoutGeoreferencing_D20) {
     TempDir dir;
     const std::string path = dir.file("small.pgm");
@@ -612,7 +612,7 @@ TEST(GdalRasterReader, ReadsAPlainPgm_AsAGridWithoutGeoreferencing_D20) {
     }
 }
 
-// Issue 22, D20: a GDAL message with a line break made the CLI's error two lines.
+// A GDAL message with a line break stays one line, so that the CLI's error is one line.
 TEST(GdalError, KeepsMessagesOnOneLine_D20) {
     terratin::initialiseGdal();
     CPLErrorReset();

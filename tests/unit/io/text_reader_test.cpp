@@ -150,8 +150,8 @@ std::string spelled(std::string pattern, const std::string& name) {
     return pattern;
 }
 
-// Issue 23: a library caller gave `columns`, not the command line's --columns; the pipeline
-// names it the command line's way through options.optionName.
+// A library caller's message names `columns`, the keyword it gave, not the command line's
+// --columns; the pipeline names it the command line's way through options.optionName.
 TEST(TextReader, NamesTheColumnsOptionByKeyword_UnlessTheCallerNamesItOtherwise) {
     struct Case {
         std::vector<std::string> columns;
@@ -233,7 +233,7 @@ TEST(TextReader, ReadsLinesAcrossBufferBoundaries_FromAFile) {
     }
 }
 
-// Issue 22, D20: a UTF-8 byte order mark at the start of a file was read as part of the first
+// A UTF-8 byte order mark at the start of a file is skipped, not read as part of the first
 // field ("column 1 is not a finite number").
 TEST(TextReader, SkipsAUtf8ByteOrderMark_D20) {
     const PointCloud cloud = parse("\xEF\xBB\xBF"

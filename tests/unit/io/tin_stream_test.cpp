@@ -1,4 +1,4 @@
-// A TIN written piece by piece (issue 25's --memory-limit) is the TIN written whole: the same
+// A TIN written piece by piece (--memory-limit) is the TIN written whole: the same
 // PLY and Shapefile bytes, the same GeoPackage rows with a sound spatial index, the same
 // FlatGeobuf features; what cannot be streamed is refused before anything is written, and a
 // stream never finished leaves no file.

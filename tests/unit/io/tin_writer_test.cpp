@@ -335,7 +335,7 @@ TEST_F(OgrTinWriter,
             writeTin(gridMesh(5), path(name), optionsFor(format));
             FAIL() << "an existing " << name << " was overwritten without overwrite";
         } catch (const InvalidInputError& error) {
-            // A library caller is pointed to the option by its keyword (issue 23).
+            // A library caller is pointed to the option by its keyword, not by a command-line flag.
             EXPECT_NE(std::string(error.what()).find("exists; use overwrite"), std::string::npos)
                 << error.what();
             EXPECT_EQ(std::string(error.what()).rfind("OgrTinWriter: ", 0), 0u);

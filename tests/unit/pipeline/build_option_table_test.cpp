@@ -461,8 +461,8 @@ TEST(ParseBuildOptions, RunBuildMessagesFollowTheSpelling) {
               "first (gdal_calc)");
 }
 
-// Issue 23: the writer's messages (io, below the pipeline) name options the way
-// parseBuildOptions was called, through BuildOptions::optionSpelling.
+// The writer's messages (io, below the pipeline) name options the way parseBuildOptions was
+// called, through BuildOptions::optionSpelling.
 TEST(ParseBuildOptions, WriterMessagesFollowTheSpelling) {
     test::TemporaryDirectory directory;
     const std::string existing = (directory.path() / "tin.gpkg").string();

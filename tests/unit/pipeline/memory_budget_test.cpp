@@ -1,4 +1,4 @@
-// --memory-limit's shares (issue 25): the tile chosen is the largest that fits the limit at
+// --memory-limit's shares: the tile chosen is the largest that fits the limit at
 // its worst, a tile size given is refused when it does not fit, and the least limit a refusal
 // names is one that fits.
 

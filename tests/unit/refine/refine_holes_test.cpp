@@ -134,9 +134,10 @@ namespace terratin {
 namespace {
 
 TEST(RefineHoles, AValidCellHangingIntoAnOpenHole_IsCovered) {
-    // Regression: "a refined TIN may leave a valid cell uncovered next to a large open hole"
-    // (issue 25's closing note). The full-resolution TIN covers every peninsula (each is the
-    // corner of a half-cell triangle with two cells above it); the simplified TIN must too.
+    // A refined TIN covers a valid cell next to a large open hole, where dropping the
+    // triangles over the hole could leave it uncovered. The full-resolution TIN covers every
+    // peninsula (each is the corner of a half-cell triangle with two cells above it); the
+    // simplified TIN must too.
     std::size_t peninsulas = 0;
     for (std::uint32_t seed = 1; seed <= 6; ++seed)
         for (const double maxError : {0.5, 2.0, 8.0}) {

@@ -172,7 +172,7 @@ TEST(Refine, FirstLimitReachedStops) {
     EXPECT_EQ(result.mesh.vertexCount(), 40U);
 }
 
-// Issue 22, D13: "at most N" holds or is refused. The hull's 4 corners are the fewest points
+// "At most N" holds or is refused. The hull's 4 corners are the fewest points
 // (2 triangles); a smaller limit is refused with that count, the hull's own is met exactly.
 TEST(Refine, LimitBelowTheHullIsRefused_D13) {
     const HeightGrid grid = test::roughTerrain(30, 30, 1);
@@ -200,7 +200,7 @@ TEST(Refine, LimitBelowTheHullIsRefused_D13) {
     EXPECT_EQ(result.stop, RefineStop::TriangleLimit);
 }
 
-// D13: whatever the limit, the TIN has at most that many points and triangles, on one
+// Whatever the limit, the TIN has at most that many points and triangles, on one
 // thread and on several, with a ragged nodata border (a hull of many corners).
 TEST(Refine, LimitsHoldForEveryValue_D13) {
     HeightGrid grid = test::roughTerrain(48, 40, 5);
@@ -230,7 +230,7 @@ TEST(Refine, LimitsHoldForEveryValue_D13) {
         }
 }
 
-// D12: the options' ranges, checked before anything runs, in words that name no CLI flag.
+// The options' ranges, checked before anything runs, in words that name no CLI flag.
 TEST(RefineOptionsCheck, RefusesValuesOutOfRange_D12) {
     const auto expectRefused = [](const RefineOptions& options, const std::string& word) {
         try {
@@ -295,8 +295,9 @@ TEST(Refine, Throws_WhenTheInputIsUnusable) {
     EXPECT_THROW(refine(fine, withError(-1.0)), InvalidInputError);
 }
 
-// Issue 22, D7: an infinite elevation is refused as the full-resolution path refuses it
-// (one infinite cell used to collapse the TIN to a few points; all infinite gave z = Inf).
+// An infinite elevation is refused as the full-resolution path refuses it, wherever it lies
+// and on a rotated grid too: one infinite cell would collapse the TIN to a few points, all
+// infinite would give z = Inf.
 TEST(Refine, RefusesInfiniteElevations_D7) {
     const auto expectRefused = [](const HeightGrid& grid, const std::string& where) {
         RefineOptions options;
@@ -321,8 +322,8 @@ TEST(Refine, RefusesInfiniteElevations_D7) {
     expectRefused(rotated, "row 4, column 5");
 }
 
-// Issue 22, D6: a rotated geotransform used to fail with "a point outside the hull" (the
-// rounded centres of the first row were not on one line). Every limit, UTM-sized
+// A rotated geotransform is simplified without "a point outside the hull", although the
+// rounded centres of the first row are not on one line. Every limit, UTM-sized
 // coordinates, square and non-square cells, 30 degrees and a shear; each cell checked.
 TEST(Refine, SimplifiesRotatedGrids_D6) {
     const double angle = 30.0 * std::numbers::pi / 180.0;

@@ -1,4 +1,4 @@
-// TileHandout (issue 25, --memory-limit over MPI ranks): tiles go out in order; those back
+// TileHandout (--memory-limit over MPI ranks): tiles go out in order; those back
 // before their turn are counted until their turn comes, and no tile goes out while they hold
 // more than the bound; a pause always ends, since the tile in turn is always out in work.
 

@@ -1,4 +1,4 @@
-// Refinement in tiles (issue 25): the joined TIN is conforming (no crack, no T-junction, no
+// Refinement in tiles: the joined TIN is conforming (no crack, no T-junction, no
 // overlap), each tile side carries exactly the vertices chosen from its own cells, every valid
 // cell is within the bound (checked by a scan that shares no code with the refiner), and the
 // TIN does not depend on the thread count.
@@ -195,8 +195,8 @@ TEST(TiledRefine, HolesAcrossSides_DecidedFromTheTilesMarginsAsFromTheWholeGrid)
 }
 
 TEST(TiledRefine, AValidCellHangingIntoAnOpenHole_IsCovered) {
-    // Regression (issue 25's closing note): a tile's vertex that only triangles over an open
-    // hole use gets its valid neighbours, as untiled (stranded_cells.hpp).
+    // A tile's vertex that only triangles over an open hole use gets its valid neighbours as
+    // vertices, as untiled (stranded_cells.hpp), so the valid cell beside the hole is covered.
     for (std::uint32_t seed = 1; seed <= 6; ++seed) {
         SCOPED_TRACE("seed " + std::to_string(seed));
         const HeightGrid grid = test::shoreWithPeninsulas(seed);
@@ -440,7 +440,7 @@ RefineOptions everyCell(std::size_t tileSize, unsigned threads = 1) {
 }
 
 TEST(TiledRefine, EveryCellInTiles_EachValidCellAVertex_OneConformingTin) {
-    // Full resolution in tiles (issue 25): every valid cell a vertex, each tile exactly
+    // Full resolution in tiles: every valid cell a vertex, each tile exactly
     // Delaunay (validated), the tiles joined without cracks; nodata across sides, an open hole
     // and filled single cells, a last tile one cell wide.
     const HeightGrid grid = test::makeGrid(42, 46, [](int row, int col) {

@@ -1,8 +1,8 @@
-// Issue 22 (hostile conditions): the parallel methods with more threads than cores must stop
-// when the progress callback asks them to (Ctrl-C in the CLI), from every waiting loop, and
-// refuse thread, searcher and queue counts that make no sense (D2, D3, D4, D12). No timing is
-// asserted: a method that ignored the cancel would run to the end and fail the expectations
-// (or, stuck in a wait, hit the test's timeout).
+// Hostile conditions: the parallel methods with more threads than cores must stop when the
+// progress callback asks them to (Ctrl-C in the CLI), from every waiting loop, and refuse
+// thread, searcher and queue counts that make no sense (zero, wrapped, over the bounds). No
+// timing is asserted: a method that ignored the cancel would run to the end and fail the
+// expectations (or, stuck in a wait, hit the test's timeout).
 
 #include "terratin/triangulate/triangulate.hpp"
 
@@ -127,8 +127,9 @@ TEST(ParallelCancellation, CompletesEveryMethod_WhenCallbackNeverCancels) {
     }
 }
 
-// D2, D3, D4, D12: counts out of range are refused before anything runs, with a message that
-// names the quantity (not a command-line flag).
+// Queue lengths, searcher and thread counts out of range (a wrapped "-1" included) are refused
+// before anything runs, with a message that names the quantity (not a command-line flag); the
+// bounds themselves are accepted.
 TEST(TriangulationOptionsCheck, RefusesCountsOutOfRange_D2_D3_D4_D12) {
     const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 100, 1);
     const auto expectRefused = [&](const TriangulationOptions& options, const std::string& word) {
