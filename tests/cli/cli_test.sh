@@ -1240,6 +1240,59 @@ case "$case_name" in
     [ ! -e tin2.gpkg ] && [ ! -e tin5.gpkg ] && [ ! -e tin9.gpkg ] && [ ! -e tin11.gpkg ] &&
       [ ! -e tin10.gpkg ] || fail "an output written after an error"
     ;;
+  mpi_lost_rank_leaves_no_temporary)
+    # A rank killed (kill -9), or the run interrupted (SIGINT to mpirun) while a rank is stopped:
+    # mpirun ends the others with SIGTERM. Rank 0 must leave off waiting for the lost rank's
+    # tile, remove its temporary GeoPackage and say why in one line of its own.
+    command -v mpirun >/dev/null || { echo "skip [$case_name]: no mpirun"; exit 77; }
+    need_shared gdalraster__lf_elev_220_mt_hood_utm.tif
+    mpi=(mpirun --allow-run-as-root --oversubscribe)
+    # rank_pid LAUNCHER RANK: the pid of rank RANK among the launcher's children.
+    rank_pid() {
+      local child
+      for child in $(ps -o pid= --ppid "$1"); do
+        tr '\0' '\n' <"/proc/$child/environ" 2>/dev/null |
+          grep -qx "OMPI_COMM_WORLD_RANK=$2" && { echo "$child"; return 0; }
+      done
+      return 1
+    }
+    for how in kill interrupt; do
+      mkdir "$how" && cd "$how" || fail "cannot make $how"
+      "${mpi[@]}" -np 3 "$terratin" build "$shared/gdalraster__lf_elev_220_mt_hood_utm.tif" \
+        --max-error 0.5 --memory-limit 256M --tile-size 64 -o out.gpkg --quiet >out.txt 2>err.txt &
+      launcher=$!
+      # Rank 0 makes its temporary once every rank has started; the tiles take seconds more.
+      # They are small, so that rank 0 writes each in far less than the second mpirun leaves
+      # between SIGTERM and SIGKILL.
+      for _ in $(seq 600); do
+        compgen -G '.out.tmp-*' >/dev/null || ! kill -0 "$launcher" 2>/dev/null && break
+        sleep 0.05
+      done
+      compgen -G '.out.tmp-*' >/dev/null || fail "$how: rank 0 made no temporary"
+      worker=$(rank_pid "$launcher" 1) || fail "$how: no rank 1 among the launcher's children"
+      if [ "$how" = kill ]; then
+        kill -KILL "$worker"
+      else
+        kill -STOP "$worker"
+        kill -INT "$launcher"
+      fi
+      for _ in $(seq 600); do
+        kill -0 "$launcher" 2>/dev/null || break
+        sleep 0.05
+      done
+      if kill -0 "$launcher" 2>/dev/null; then
+        for child in $(ps -o pid= --ppid "$launcher"); do kill -KILL "$child"; done
+        kill -KILL "$launcher"
+        fail "$how: mpirun did not end"
+      fi
+      wait "$launcher" && fail "$how: the run succeeded"
+      [ "$(grep -c '^terratin: ' err.txt)" -eq 1 ] || fail "$how: not one terratin line"
+      grep -Eq '^terratin: .*(stopped|lost)' err.txt || fail "$how: the line does not say why"
+      [ ! -e out.gpkg ] || fail "$how: output written"
+      expect_no_leftovers
+      cd ..
+    done
+    ;;
   *)
     fail "unknown case"
     ;;

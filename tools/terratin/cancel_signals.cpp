@@ -2,14 +2,20 @@
 
 #include <signal.h>
 
+#include <string>
+
 namespace terratin::cli {
 
 namespace {
 
 std::atomic<bool> g_cancelRequested{false};
+std::atomic<int> g_firstSignal{0};
 static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
-extern "C" void requestCancel(int) {
+extern "C" void requestCancel(int signal) {
+    int none = 0;
+    g_firstSignal.compare_exchange_strong(none, signal);
     g_cancelRequested.store(true);
 }
 
@@ -40,6 +46,19 @@ void installCancelSignals() {
 
 const std::atomic<bool>& cancelledBySignal() {
     return g_cancelRequested;
+}
+
+std::string cancellingSignalName() {
+    switch (g_firstSignal.load()) {
+    case SIGINT:
+        return "SIGINT";
+    case SIGTERM:
+        return "SIGTERM";
+    case SIGHUP:
+        return "SIGHUP";
+    default:
+        return {};
+    }
 }
 
 } // namespace terratin::cli

@@ -4,6 +4,7 @@
 // it half-way through writing are turned into ordinary write errors.
 
 #include <atomic>
+#include <string>
 
 namespace terratin::cli {
 
@@ -15,5 +16,9 @@ void installCancelSignals();
 /// True once one of the cancelling signals has arrived. Async-signal-safe to set, lock-free
 /// to read.
 const std::atomic<bool>& cancelledBySignal();
+
+/// The first cancelling signal that arrived, for messages: "SIGINT", "SIGTERM" or "SIGHUP";
+/// empty while none has.
+std::string cancellingSignalName();
 
 } // namespace terratin::cli

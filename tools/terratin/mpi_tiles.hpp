@@ -4,12 +4,20 @@
 // the DEM itself, from a filesystem they share.
 //
 // The protocol: a rank that refines sends Request, then after each tile Result (the tile's
-// number and its packed TIN) or Failure (a message); every message it sends gets exactly one
-// reply, Tile (a number) or Stop; the reply to a Result waits while the tiles that came back
-// before their turn hold more than rank 0's share of --memory-limit (TileHandout). Rank 0 sends
-// each other rank exactly one Stop: when no tile is left, at the first failure (it then answers
-// every message with Stop), or, when rank 0 fails before it gathers, from releaseAll(). So no rank
-// waits for a message that never comes.
+// number and its packed TIN), Failure (a message) or Stopped (the signal that cancelled it);
+// every message it sends gets exactly one reply, Tile (a number) or Stop; the reply to a Result
+// waits while the tiles that came back before their turn hold more than rank 0's share of
+// --memory-limit (TileHandout). Rank 0 sends each other rank exactly one Stop: when no tile is
+// left, at the first failure (it then answers every message with Stop), or, when rank 0 fails
+// before it gathers, from releaseAll(). So no rank waits for a message that never comes, with
+// one exception: rank 0 stopped by a signal.
+//
+// A signal under mpirun: mpirun sends SIGTERM to every process when one of them dies or is
+// killed, or when mpirun itself is interrupted, and SIGKILL a second later or as soon as one of
+// them exits. Every wait polls (MPI_Iprobe, MPI_Test) so that rank 0 sees the signal even while
+// the rank it waits for is gone; rank 0 then waits no longer and tells no rank to stop, removes
+// its temporaries, prints why, and exits without MPI_Finalize; the other ranks keep waiting for
+// rank 0, so that no exit of theirs brings mpirun's SIGKILL first, and are ended by mpirun.
 
 #include "terratin/refine/tile_distribution.hpp"
 
@@ -44,7 +52,8 @@ public:
                 const std::function<bool()>& keepGoing, std::uint64_t earlyBytes) override;
     void serve(const std::function<std::vector<std::byte>(std::size_t)>& refine) override;
 
-    /// Rank 0, failing before or outside gather: sends Stop to every rank not stopped yet.
+    /// Rank 0, failing before or outside gather: sends Stop to every rank not stopped yet;
+    /// nothing once a signal has arrived (see above). Never throws.
     void releaseAll();
     /// Another rank, failing outside serve: tells rank 0 why and waits for its Stop.
     void abandon(const std::string& message);
