@@ -29,6 +29,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -297,6 +298,139 @@ TEST(ConstraintAreas, ClipKeepsExactlyThePolygon_AndEraseCutsItOut) {
     options.output = directory.path() / "erased.ply";
     (void)runBuild(options);
     EXPECT_NEAR(twiceTinArea(options.output), whole - twicePentagonArea(), 1e-6 * whole);
+}
+
+/// A TIN's planimetric area and where its triangles lie against a ring: by their centroids
+/// (insideRing), which for a triangle wholly inside the ring is inside.
+struct TinAgainstRing {
+    double area = 0.0;
+    std::size_t centroidsInside = 0;
+    std::size_t triangles = 0;
+};
+
+TinAgainstRing tinAgainstRing(const fs::path& ply, const std::vector<Point2>& ring) {
+    const test::ReadMesh mesh = test::readPly(ply);
+    TinAgainstRing result;
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        const Point3& a = mesh.vertices[mesh.triangles[t]];
+        const Point3& b = mesh.vertices[mesh.triangles[t + 1]];
+        const Point3& c = mesh.vertices[mesh.triangles[t + 2]];
+        result.area += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+        const Point2 centroid{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
+        result.centroidsInside += test::insideRing(ring, centroid) ? 1 : 0;
+        ++result.triangles;
+    }
+    return result;
+}
+
+/// 48 x 36 cells of 10 m whose lower left corner is no data below a staircase: the valid cells
+/// (column c, s = 35 - row) are those with 3c + 7s >= 60, so the data's convex hull runs along
+/// the slanted line through the cells (20, 0), (13, 3) and (6, 6). Cell (c, s) is centred at
+/// (x0 + 5 + 10c, y0 - 355 + 10s).
+void writeSlantedDem(const fs::path& path, double x0 = 500000.0, double y0 = 5000360.0) {
+    std::vector<float> z;
+    for (int row = 0; row < 36; ++row)
+        for (int column = 0; column < 48; ++column)
+            z.push_back(3 * column + 7 * (35 - row) >= 60
+                            ? static_cast<float>(100 + column - row)
+                            : std::numeric_limits<float>::quiet_NaN());
+    test::writeElevations(path, 48, 36, x0, y0, 10.0, std::move(z));
+}
+
+/// A rectangle half outside that DEM's data: its sides cross the slanted part of the hull.
+const std::vector<Point2> kAcrossTheSlant{
+    {500128.3, 4999983.1}, {500201.7, 4999983.1}, {500201.7, 5000046.9}, {500128.3, 5000046.9}};
+
+/// Builds `dem` with `ring` as clip and as erase area (simplified to maxError when given), and
+/// checks each TIN against the overlap of the ring and the data's hull computed by GEOS: the
+/// clipped TIN is that overlap, the erased one the hull without it, with no triangle inside.
+void expectClipAndEraseCutTheOverlap(const fs::path& dem, const std::vector<Point2>& ring,
+                                     std::optional<double> maxError = std::nullopt) {
+    TemporaryDirectory directory;
+    const fs::path area = directory.path() / "area.gpkg";
+    test::writeVectorLayer(area, "area", {test::polygonWkt(ring)}, 0); // in the DEM's CRS
+    const test::HullOverlap expected = test::hullOverlap(test::validCellCentres(dem), ring);
+    ASSERT_GT(expected.overlap, 0.0);
+    ASSERT_LT(expected.overlap, expected.hull);
+    BuildOptions options;
+    options.inputs = {dem.string()};
+    options.validate = true;
+    if (maxError) {
+        options.refine.emplace();
+        options.refine->maxError = *maxError;
+    }
+
+    options.erase = area.string();
+    options.output = directory.path() / "erased.ply";
+    (void)runBuild(options);
+    const TinAgainstRing erased = tinAgainstRing(options.output, ring);
+    EXPECT_EQ(erased.centroidsInside, 0U) << "triangles left inside the erase area";
+    EXPECT_NEAR(erased.area, expected.hull - expected.overlap, 1e-9 * expected.hull);
+
+    options.erase.clear();
+    options.clip = area.string();
+    options.output = directory.path() / "clipped.ply";
+    const BuildReport clipped = runBuild(options);
+    EXPECT_GT(clipped.areaTriangles, 0U);
+    const TinAgainstRing kept = tinAgainstRing(options.output, ring);
+    EXPECT_EQ(kept.centroidsInside, kept.triangles) << "triangles kept outside the clip area";
+    EXPECT_NEAR(kept.area, expected.overlap, 1e-9 * expected.hull);
+}
+
+// A polygon that leaves the data through a slanted hull edge is cut off there a few ulps inside
+// the hull; the TIN's region inside it once leaked round that end of its boundary into the rest:
+// erase then dropped nothing and clip everything.
+TEST(ConstraintAreas, ClipAndEraseAcrossASlantedHullEdge_CutExactlyTheOverlapWithTheHull) {
+    TemporaryDirectory directory;
+    const fs::path dem = directory.path() / "slanted.tif";
+    writeSlantedDem(dem);
+    expectClipAndEraseCutTheOverlap(dem, kAcrossTheSlant);
+}
+
+TEST(ConstraintAreas, ClipAndEraseAcrossASlantedHullEdge_CutExactlyTheOverlap_WhenSimplified) {
+    TemporaryDirectory directory;
+    const fs::path dem = directory.path() / "slanted.tif";
+    writeSlantedDem(dem);
+    expectClipAndEraseCutTheOverlap(dem, kAcrossTheSlant, 0.5);
+}
+
+// Sides along the cell centres' lines: the left one runs through the hull's corner at cell
+// (13, 3) and through vertices all the way, the right one crosses a slanted hull edge between
+// two of them, and a diagonal corner crosses it off the grid.
+TEST(ConstraintAreas, ClipAndEraseAlongTheGridThroughAHullCorner_CutExactlyTheOverlapWithTheHull) {
+    TemporaryDirectory directory;
+    const fs::path dem = directory.path() / "slanted.tif";
+    writeSlantedDem(dem);
+    const auto cell = [](double column, double s) {
+        return Point2{500005.0 + 10.0 * column, 5000005.0 + 10.0 * s};
+    };
+    expectClipAndEraseCutTheOverlap(
+        dem, {cell(13, -2), cell(19, -2), cell(19, 5), cell(16, 8), cell(13, 5)});
+    expectClipAndEraseCutTheOverlap(dem, {cell(4, -3), cell(12, 5), cell(4, 9)});
+}
+
+// Near the origin the cut point of a side through the hull's corner rounds to a few ulps
+// beyond it, inside the hull, onto the column's edge: the rest of the side runs along that edge
+// to the corner and leaves there.
+TEST(ConstraintAreas, ClipAndEraseThroughAHullCornerNearTheOrigin_CutExactlyTheOverlapWithTheHull) {
+    TemporaryDirectory directory;
+    const fs::path dem = directory.path() / "slanted.tif";
+    writeSlantedDem(dem, 0.0, 360.0);
+    expectClipAndEraseCutTheOverlap(dem,
+                                    {{135.0, -21.9}, {195.5, -21.9}, {195.5, 56.8}, {135.0, 56.8}});
+    expectClipAndEraseCutTheOverlap(dem,
+                                    {{135.0, 21.7}, {195.5, 21.7}, {195.5, 59.8}, {135.0, 59.8}});
+}
+
+// The same on a real DEM's jagged nodata border: its bottom hull edge runs from cell centre
+// (323851.07, 5101976.98) to (326011.07, 5101916.98).
+TEST(ConstraintAreas, ClipAndEraseAcrossARealDemsJaggedBorder_CutExactlyTheOverlapWithTheHull) {
+    const fs::path dem = fs::path(TERRATIN_SHARED_DEMS) / "gdalraster__storml_elev_orig.tif";
+    if (!fs::exists(dem))
+        GTEST_SKIP() << dem << " is absent";
+    const std::vector<Point2> ring{
+        {324500.5, 5101700.5}, {325500.5, 5101700.5}, {325500.5, 5102500.5}, {324500.5, 5102500.5}};
+    expectClipAndEraseCutTheOverlap(dem, ring);
 }
 
 TEST(ConstraintAreas, ABowTieOrALineIsRefused) {

@@ -3,6 +3,7 @@
 #include "terratin/gdal_error.hpp"
 
 #include <gdal_priv.h>
+#include <ogr_api.h>
 #include <ogrsf_frmts.h>
 
 #include <gtest/gtest.h>
@@ -110,6 +111,52 @@ std::vector<float> readElevations(const std::filesystem::path& raster) {
             if (value == static_cast<float>(noData))
                 value = std::numeric_limits<float>::quiet_NaN();
     return z;
+}
+
+std::vector<Point2> validCellCentres(const std::filesystem::path& raster) {
+    const std::vector<float> z = readElevations(raster);
+    initialiseGdal();
+    const std::unique_ptr<GDALDataset> dataset(
+        GDALDataset::Open(raster.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    if (!dataset)
+        return {};
+    double transform[6] = {};
+    EXPECT_EQ(dataset->GetGeoTransform(transform), CE_None);
+    const int width = dataset->GetRasterXSize();
+    std::vector<Point2> centres;
+    for (std::size_t cell = 0; cell < z.size(); ++cell)
+        if (!std::isnan(z[cell])) {
+            const auto column = static_cast<double>(cell % static_cast<std::size_t>(width));
+            const auto row = static_cast<double>(cell / static_cast<std::size_t>(width));
+            centres.push_back({transform[0] + (column + 0.5) * transform[1],
+                               transform[3] + (row + 0.5) * transform[5]});
+        }
+    return centres;
+}
+
+HullOverlap hullOverlap(const std::vector<Point2>& points, const std::vector<Point2>& ring) {
+    if (!OGRGeometryFactory::haveGEOS()) {
+        ADD_FAILURE() << "GDAL has no GEOS";
+        return {};
+    }
+    OGRMultiPoint cloud;
+    for (const Point2& p : points) {
+        OGRPoint point(p.x, p.y);
+        cloud.addGeometry(&point);
+    }
+    const std::unique_ptr<OGRGeometry> hull(cloud.ConvexHull());
+    OGRLinearRing boundary;
+    for (std::size_t i = 0; i <= ring.size(); ++i)
+        boundary.addPoint(ring[i % ring.size()].x, ring[i % ring.size()].y);
+    OGRPolygon polygon;
+    polygon.addRing(&boundary);
+    const std::unique_ptr<OGRGeometry> overlap(polygon.Intersection(hull.get()));
+    if (!hull || !overlap) {
+        ADD_FAILURE() << "GEOS failed on the hull or its intersection";
+        return {};
+    }
+    return {OGR_G_Area(OGRGeometry::ToHandle(hull.get())),
+            OGR_G_Area(OGRGeometry::ToHandle(overlap.get()))};
 }
 
 void writeElevations(const std::filesystem::path& path, int width, int height, double x0, double y0,

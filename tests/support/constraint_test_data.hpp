@@ -44,6 +44,19 @@ std::vector<float> readElevations(const std::filesystem::path& raster);
 void writeElevations(const std::filesystem::path& path, int width, int height, double x0, double y0,
                      double cellSize, std::vector<float> z);
 
+/// The centres of the valid cells of band 1 of `raster` (not its no-data value, not NaN), in
+/// its CRS, from its geotransform (north up).
+std::vector<Point2> validCellCentres(const std::filesystem::path& raster);
+
+/// Computed by GEOS (through OGR), apart from the library: the area of the convex hull of
+/// `points` and that of its intersection with the polygon `ring` (given without its closing
+/// point), in the square of the points' unit. Fails the test (ADD_FAILURE) without GEOS.
+struct HullOverlap {
+    double hull = 0.0;
+    double overlap = 0.0;
+};
+HullOverlap hullOverlap(const std::vector<Point2>& points, const std::vector<Point2>& ring);
+
 /// `count` scattered points (a fixed generator) in [0, 1000)^2 on the plane
 /// z = x / 100 + y / 50, written as "x y z" lines to `path`; returns their x, y.
 std::vector<Point2> writePlanePoints(const std::filesystem::path& path, int count,

@@ -2,6 +2,7 @@
 
 #include "../triangulate/parallel_for.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
+#include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 #include "terratin/triangulate/tin_locator.hpp"
 
@@ -604,9 +605,9 @@ Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> pos
         return check.measure(changed, true, rules.keepCellErrors ? &result.squaredErrors : nullptr);
     };
     for (;;) {
-        if (progress)
-            progress(1.0 - 1.0 / static_cast<double>(result.passes + 1),
-                     "inserting cells over the bound");
+        if (progress && !progress(1.0 - 1.0 / static_cast<double>(result.passes + 1),
+                                  "inserting cells over the bound"))
+            throw Cancelled("Constrained refiner: cancelled");
         measure = everyCell ? finalMeasure() : check.measure(changed, false);
         ++result.passes;
         std::vector<Candidate> candidates =

@@ -79,8 +79,8 @@ struct Completion {
 /// triangle over an open hole, inserts the worst insertable cell of each triangle
 /// (insertVertices: constrained edges are never flipped) and measures again the cells of the
 /// triangles that changed, then every cell once more before it stops. Stops at
-/// options.maxPoints and maxTriangles. Calls `progress` (which may throw Cancelled) before every
-/// check. The result is the same for any number of `threads`.
+/// options.maxPoints and maxTriangles. Calls `progress` before every check, and throws Cancelled
+/// when it returns false. The result is the same for any number of `threads`.
 Completion completeWithCells(const HeightGrid& grid, std::span<const Point2> positions,
                              ConstrainedTin& tin, const CompletionRules& rules,
                              const RefineOptions& options, unsigned threads,

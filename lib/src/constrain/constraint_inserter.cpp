@@ -31,6 +31,7 @@ std::optional<std::uint32_t> ConstraintInserter::insertPoint(const Point3& p, bo
 
 std::optional<std::uint32_t> ConstraintInserter::insertPointFrom(const Point3& p,
                                                                  std::size_t triangle) {
+    m_poll.step();
     const MeshLocation where = m_mesh.locate({p.x, p.y}, triangle);
     if (where.kind == MeshLocation::Kind::OutsideHull)
         return std::nullopt;
@@ -93,6 +94,7 @@ void ConstraintInserter::insertSegment(std::uint32_t a, std::uint32_t b, std::ui
     startChain(owner, a, b);
     m_pieces.push_back({a, b, {owner}});
     insertPendingPieces(owner);
+    ++m_segmentsInserted;
 }
 
 void ConstraintInserter::insertPieces(std::vector<Piece> pieces) {
@@ -101,6 +103,7 @@ void ConstraintInserter::insertPieces(std::vector<Piece> pieces) {
     const std::uint32_t owner = pieces.front().owners.front();
     m_pieces = std::move(pieces);
     insertPendingPieces(owner);
+    ++m_segmentsInserted;
 }
 
 void ConstraintInserter::insertPendingPieces(std::uint32_t owner) {
@@ -112,6 +115,7 @@ void ConstraintInserter::insertPendingPieces(std::uint32_t owner) {
         if (pieces > maxPieces)
             throw std::logic_error("insertConstraints: segment " + std::to_string(owner) +
                                    " does not converge");
+        m_poll.step(); // a segment that many others cross goes in as many pieces
         Piece piece = std::move(m_pieces.back());
         m_pieces.pop_back();
         try {
@@ -278,6 +282,7 @@ void ConstraintInserter::absorb(ConstraintInserter& zone) {
     zone.m_chainEdits.applyTo(*m_chains);
     m_addedPoints += zone.m_addedPoints;
     m_intersections += zone.m_intersections;
+    m_segmentsInserted += zone.m_segmentsInserted;
     m_mesh.makePendingFlips(zone.m_mesh);
 }
 

@@ -5,6 +5,7 @@
 #include "cdt_mesh.hpp"
 #include "constraint_chains.hpp"
 #include "constraint_owners.hpp"
+#include "insertion_poll.hpp"
 #include "segment_cavity.hpp"
 #include "segment_flips.hpp"
 #include "terratin/constrain/constrained_tin.hpp"
@@ -25,7 +26,8 @@ namespace terratin::detail {
 class ConstraintInserter {
 public:
     /// `segments`: how many segments will be inserted (to size the tables).
-    ConstraintInserter(TinMesh mesh, std::size_t segments) : m_mesh(std::move(mesh)) {
+    ConstraintInserter(TinMesh mesh, std::size_t segments)
+        : m_mesh(std::move(mesh)), m_segmentCount(segments) {
         m_owners.reserve(2 * segments);
     }
     /// An inserter for one zone of `shared`'s mesh (CdtMesh's views), with the slots it may
@@ -37,11 +39,23 @@ public:
     ConstraintInserter(ConstraintInserter& shared, Zone zone, SlotRange vertices,
                        SlotRange triangles, std::size_t segments)
         : m_mesh(shared.m_mesh, zone, vertices, triangles), m_chains(shared.m_chains),
-          m_sharedOwners(&shared.m_owners), m_deferChains(!shared.m_owners.empty()) {
+          m_sharedOwners(&shared.m_owners), m_deferChains(!shared.m_owners.empty()),
+          m_segmentCount(segments) {
         m_owners.reserve(2 * segments);
     }
     ConstraintInserter(const ConstraintInserter&) = delete;
     ConstraintInserter& operator=(const ConstraintInserter&) = delete;
+
+    /// From now on every point and every piece of a segment is a step of `poll`, whose check
+    /// may throw to stop the insertion (insertion_poll.hpp).
+    void setPoll(InsertionPoll poll) { m_poll = std::move(poll); }
+    /// The share of the segments given to the constructor that have gone in, here and in the
+    /// zones absorbed (0 to 1).
+    [[nodiscard]] double fractionInserted() const {
+        return m_segmentCount == 0
+                   ? 1.0
+                   : static_cast<double>(m_segmentsInserted) / static_cast<double>(m_segmentCount);
+    }
 
     /// The vertex at `p`'s x and y: an existing one, or a new one (sourceIndex
     /// kConstraintPointSource); nothing when `p` lies outside the convex hull. The search
@@ -91,8 +105,12 @@ public:
 
     /// The vertices of segment `owner`'s chain, from its first vertex to its last (final once
     /// every segment is inserted).
-    [[nodiscard]] const std::vector<std::uint32_t>& chainOf(std::uint32_t owner) const {
+    [[nodiscard]] std::vector<std::uint32_t> chainOf(std::uint32_t owner) const {
         return m_chains->chain(owner);
+    }
+    /// Appends chainOf(owner) less its first vertex to `out`.
+    void appendChainAfterFirst(std::uint32_t owner, std::vector<std::uint32_t>& out) const {
+        m_chains->appendAfterFirst(owner, out);
     }
 
     /// Moves the mesh and the flags into `tin`, with the counts of added vertices.
@@ -149,6 +167,9 @@ private:
     std::size_t m_hintTriangle = 0;
     std::size_t m_addedPoints = 0;
     std::size_t m_intersections = 0;
+    InsertionPoll m_poll;
+    std::size_t m_segmentCount = 0;
+    std::size_t m_segmentsInserted = 0;
 };
 
 } // namespace terratin::detail

@@ -21,17 +21,13 @@ void ConstraintOwners::reserve(std::size_t edges) {
     m_nodes.reserve(edges);
 }
 
-// By the edge's smaller vertex, kSlotsPerEdge slots each, and within a few slots of those by
-// the larger one (its Fibonacci hash's top bits): consecutive edges of a polyline join vertices
-// numbered one after another, so their slots lie side by side and an insertion along a
-// polyline finds its slot in cache, where a hash of the whole key sends each edge to a random
-// place. The spread keeps the edges of one vertex from sharing a single slot.
+// A hash of the whole edge: the slots of a run of new vertices (the crossings, numbered one
+// after another) spread over the table. A slot picked by the smaller vertex alone packs the
+// edges of such a run, about two per vertex, into two slots per vertex: the probes then run
+// through one cluster as long as the run, and the crossings' insertion grows with their square.
+// The high bits of Fibonacci hashing's product depend on every bit of the key.
 std::size_t ConstraintOwners::home(std::uint64_t edge) const {
-    constexpr unsigned kSpreadBits = 3;
-    const std::uint64_t smaller = edge >> 32U;
-    const std::uint64_t spread =
-        ((edge & 0xffffffffULL) * 0x9e3779b97f4a7c15ULL) >> (64U - kSpreadBits);
-    return static_cast<std::size_t>((kSlotsPerEdge * smaller + spread) & (m_slots.size() - 1));
+    return static_cast<std::size_t>((edge * 0x9e3779b97f4a7c15ULL) >> m_shift);
 }
 
 std::size_t ConstraintOwners::slotOf(std::uint64_t edge) const {
@@ -45,6 +41,7 @@ std::size_t ConstraintOwners::slotOf(std::uint64_t edge) const {
 void ConstraintOwners::rehash(std::size_t slots) {
     HugePageArray<Slot> old(slots);
     old.swap(m_slots);
+    m_shift = 64U - static_cast<unsigned>(std::countr_zero(slots));
     for (const Slot& entry : old)
         if (entry.key != kEmptyKey)
             m_slots[slotOf(entry.key)] = entry;

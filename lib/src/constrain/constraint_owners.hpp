@@ -63,6 +63,8 @@ private:
         std::uint32_t first = kEnd;
     };
     HugePageArray<Slot> m_slots; // a power of two long; megabytes read at random
+    /// 64 - log2(m_slots.size()): home() keeps the hash's top bits.
+    unsigned m_shift = 64;
     std::size_t m_edges = 0;
     std::vector<Node> m_nodes;
 };

@@ -8,10 +8,14 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 
 namespace terratin {
 
 namespace {
+
+constexpr std::string_view kInsertingConstraints = "inserting constraints";
+constexpr const char* kCancelled = "insertConstraints: cancelled";
 
 void checkPolylineTriangles(const TinMesh& mesh, const ConstraintSet& constraints) {
     const std::vector<std::vector<std::uint32_t>>& triangles = constraints.polylineTriangles;
@@ -66,9 +70,18 @@ std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constrain
 
 } // namespace
 
-ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints) {
+ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints,
+                                 const ProgressCallback& progress) {
     const std::size_t segmentCount = checkConstraints(mesh, constraints);
     detail::ConstraintInserter inserter(std::move(mesh), segmentCount);
+    const auto keepGoing = [&] {
+        return !progress || progress(inserter.fractionInserted(), kInsertingConstraints);
+    };
+    if (progress)
+        inserter.setPoll(detail::InsertionPoll([&] {
+            if (!keepGoing())
+                throw Cancelled(kCancelled);
+        }));
 
     // The index segments, then each polyline: its points (a point on a constrained edge splits
     // it), then its segments, while the mesh around them is still in cache. Every input segment
@@ -94,15 +107,15 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
     detail::ZonedInsertion zoned;
     if (zones > 1) {
         zoned = detail::insertInZones(inserter, constraints, zones, constraints.threads, firstOwner,
-                                      polylines);
+                                      polylines, keepGoing);
     } else {
         zoned.refused.resize(constraints.polylines.size());
         for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
             zoned.refused[k].polyline = k;
     }
-    for (detail::PolylineProgress& progress : zoned.refused)
-        detail::insertPolyline(inserter, constraints, polylines[progress.polyline],
-                               firstOwner[progress.polyline], progress);
+    for (detail::PolylineProgress& left : zoned.refused)
+        detail::insertPolyline(inserter, constraints, polylines[left.polyline],
+                               firstOwner[left.polyline], left);
     if (zones > 1)
         inserter.compact(zoned.unusedVertices, zoned.unusedTriangles, polylines);
 
@@ -114,11 +127,8 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints)
         std::vector<std::uint32_t> chain;
         if (!polyline.empty())
             chain.push_back(polyline.front());
-        for (std::size_t j = 1; j < polyline.size(); ++j, ++owner) {
-            const std::vector<std::uint32_t>& piece =
-                inserter.chainOf(static_cast<std::uint32_t>(owner));
-            chain.insert(chain.end(), piece.begin() + 1, piece.end());
-        }
+        for (std::size_t j = 1; j < polyline.size(); ++j, ++owner)
+            inserter.appendChainAfterFirst(static_cast<std::uint32_t>(owner), chain);
         tin.chains.push_back(std::move(chain));
     }
     inserter.finish(tin);

@@ -1,8 +1,11 @@
 #include "zoned_insertion.hpp"
 
 #include "../triangulate/parallel_for.hpp"
+#include "../triangulate/watched_threads.hpp"
+#include "terratin/error.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <memory>
 #include <utility>
@@ -123,9 +126,11 @@ std::vector<PolylineProgress>
 runRound(ConstraintInserter& inserter, const ConstraintSet& constraints,
          std::vector<PolylineProgress> todo, unsigned zones, bool alongY, unsigned threads,
          const std::vector<std::uint32_t>& firstOwner,
-         std::vector<std::vector<std::uint32_t>>& vertices, ZonedInsertion& result) {
+         std::vector<std::vector<std::uint32_t>>& vertices, ZonedInsertion& result,
+         const std::function<bool()>& keepGoing) {
     if (todo.empty())
         return {};
+    std::atomic<bool> stop{false};
     std::vector<ZoneWork> works = zoneBands(constraints, std::move(todo), zones, alongY);
     std::vector<std::vector<std::uint32_t>> starts(constraints.polylines.size());
     for (ZoneWork& work : works) {
@@ -141,12 +146,23 @@ runRound(ConstraintInserter& inserter, const ConstraintSet& constraints,
         const auto [vertexSlots, triangleSlots] = takeSlots(inserter, room, 2 * room, result);
         work.inserter = std::make_unique<ConstraintInserter>(inserter, work.zone, vertexSlots,
                                                              triangleSlots, work.segments);
+        work.inserter->setPoll(InsertionPoll([&stop] {
+            if (stop.load(std::memory_order_relaxed))
+                throw Cancelled("insertConstraints: cancelled");
+        }));
     }
+    // The zones on threads of their own; this one watches the progress callback meanwhile.
     const unsigned workers = std::clamp(threads, 1U, zones);
-    runOnThreads(workers, [&](unsigned worker) {
-        for (std::size_t z = worker; z < works.size(); z += workers)
-            runZone(works[z], constraints, starts, firstOwner, vertices);
-    });
+    const bool finished = runWatched(
+        workers,
+        [&](unsigned worker) {
+            for (std::size_t z = worker; z < works.size(); z += workers)
+                runZone(works[z], constraints, starts, firstOwner, vertices);
+        },
+        [&keepGoing] { return !keepGoing || keepGoing(); },
+        [&stop] { stop.store(true, std::memory_order_relaxed); });
+    if (!finished)
+        throw Cancelled("insertConstraints: cancelled");
 
     std::vector<PolylineProgress> refused;
     for (ZoneWork& work : works) {
@@ -180,7 +196,8 @@ unsigned zoneCount(const ConstraintSet& constraints) {
 ZonedInsertion insertInZones(ConstraintInserter& inserter, const ConstraintSet& constraints,
                              unsigned zones, unsigned threads,
                              const std::vector<std::uint32_t>& firstOwner,
-                             std::vector<std::vector<std::uint32_t>>& vertices) {
+                             std::vector<std::vector<std::uint32_t>>& vertices,
+                             const std::function<bool()>& keepGoing) {
     std::vector<PolylineProgress> todo;
     for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
         if (!constraints.polylines[k].empty()) {
@@ -190,10 +207,11 @@ ZonedInsertion insertInZones(ConstraintInserter& inserter, const ConstraintSet& 
     ZonedInsertion result;
     // Bands of x, then, for what stopped at their edges (polylines near a line x = c), bands
     // of y.
-    std::vector<PolylineProgress> refused = runRound(inserter, constraints, std::move(todo), zones,
-                                                     false, threads, firstOwner, vertices, result);
+    std::vector<PolylineProgress> refused =
+        runRound(inserter, constraints, std::move(todo), zones, false, threads, firstOwner,
+                 vertices, result, keepGoing);
     result.refused = runRound(inserter, constraints, std::move(refused), zones, true, threads,
-                              firstOwner, vertices, result);
+                              firstOwner, vertices, result, keepGoing);
     return result;
 }
 

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace terratin::detail {
@@ -35,10 +36,14 @@ struct ZonedInsertion {
 /// x, then what they refused in `zones` bands of y, on up to `threads` threads; polyline k's
 /// vertices go to vertices[k], its j-th segment is input segment firstOwner[k] + j - 1 (the chains
 /// must have room for them: prepareChains). Then makes the flips the zones' edges held back. Call
-/// before anything else changed the mesh, which polylineTriangles describe.
+/// before anything else changed the mesh, which polylineTriangles describe. While the zones
+/// work, this thread calls `keepGoing` (when given) every kWatchInterval (watched_threads.hpp);
+/// once it returns false the zones stop within kStepsPerPoll steps each, and this throws Cancelled
+/// (as it does when a zone's inserter fails with it).
 ZonedInsertion insertInZones(ConstraintInserter& inserter, const ConstraintSet& constraints,
                              unsigned zones, unsigned threads,
                              const std::vector<std::uint32_t>& firstOwner,
-                             std::vector<std::vector<std::uint32_t>>& vertices);
+                             std::vector<std::vector<std::uint32_t>>& vertices,
+                             const std::function<bool()>& keepGoing = {});
 
 } // namespace terratin::detail

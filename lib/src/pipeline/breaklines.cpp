@@ -101,8 +101,24 @@ void takeSurfaceZ(io::LineLayer& layer, const HeightGrid* dem, BreaklineZ zFrom,
                     });
 }
 
+/// Adds `part` to `constraints`, and to `openEnds` (when given) its ends cut at the hull.
+void addPart(TinLocator::LocatedPolyline part, ConstraintSet& constraints,
+             std::vector<OpenRingEnd>* openEnds) {
+    const std::size_t chain = constraints.polylines.size();
+    if (openEnds != nullptr) {
+        if (part.enteredFrom)
+            openEnds->push_back({chain, false, *part.enteredFrom});
+        if (part.leftTowards)
+            openEnds->push_back({chain, true, *part.leftTowards});
+    }
+    constraints.polylines.push_back(std::move(part.points));
+    constraints.polylineTriangles.push_back(std::move(part.triangles));
+}
+
+/// The lines of `layer` clipped to the hull into `constraints`; an area's rings note where they
+/// were cut in `openEnds`. Returns how many lines were clipped.
 std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, unsigned threads,
-                     ConstraintSet& constraints) {
+                     ConstraintSet& constraints, std::vector<OpenRingEnd>* openEnds = nullptr) {
     // Inside the hull after clipping, with the TIN's z where a point still has none; the
     // triangles found spare insertConstraints a second search, and a point not located is
     // found from the one before it.
@@ -113,10 +129,8 @@ std::size_t addLines(io::LineLayer& layer, const TinLocator& locator, unsigned t
     for (std::size_t i = 0; i < located.size(); ++i) {
         std::vector<TinLocator::LocatedPolyline>& parts = located[i];
         clipped += parts.size() != 1 || !samePlaces(parts.front().points, layer.lines[i]) ? 1 : 0;
-        for (TinLocator::LocatedPolyline& part : parts) {
-            constraints.polylines.push_back(std::move(part.points));
-            constraints.polylineTriangles.push_back(std::move(part.triangles));
-        }
+        for (TinLocator::LocatedPolyline& part : parts)
+            addPart(std::move(part), constraints, openEnds);
     }
     return clipped;
 }
@@ -159,17 +173,17 @@ std::vector<double> replaceLevels(const io::LineLayer& rings, const PolygonSet& 
     return levels;
 }
 
-/// The replace rings as constraints at their polygon's level, clipped to the hull; returns the
-/// level of each polyline added.
+/// The replace rings as constraints at their polygon's level, clipped to the hull, their cut
+/// ends noted in `openEnds`; returns the level of each polyline added.
 std::vector<double> addFlatRings(io::LineLayer& rings, const std::vector<double>& levels,
-                                 TinLocator& locator, ConstraintSet& constraints) {
+                                 TinLocator& locator, ConstraintSet& constraints,
+                                 std::vector<OpenRingEnd>& openEnds) {
     std::vector<double> ringLevels;
     for (std::size_t r = 0; r < rings.lines.size(); ++r) {
         for (Point3& point : rings.lines[r])
             point.z = levels[rings.polygonOf[r]];
         for (TinLocator::LocatedPolyline& part : locator.clipToSurface(rings.lines[r])) {
-            constraints.polylines.push_back(std::move(part.points));
-            constraints.polylineTriangles.push_back(std::move(part.triangles));
+            addPart(std::move(part), constraints, &openEnds);
             ringLevels.push_back(levels[rings.polygonOf[r]]);
         }
     }
@@ -261,7 +275,7 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
 }
 
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, BuildReport& report,
-                                ConstraintSources sources) {
+                                ConstraintSources sources, const ProgressCallback& progress) {
     // Replace rings go in first, so that where a line crosses one the new vertex takes the
     // ring's level.
     ConstraintSet constraints;
@@ -283,7 +297,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
         if (build.replace) {
             replaceAreas.emplace(*build.replace);
             levels = replaceLevels(*build.replace, *replaceAreas, locator, mesh, options);
-            build.ringLevels = addFlatRings(*build.replace, levels, locator, constraints);
+            build.ringLevels =
+                addFlatRings(*build.replace, levels, locator, constraints, build.openRingEnds);
             report.replacePolygons = levels.size();
         }
         const std::size_t firstBreakline = constraints.polylines.size();
@@ -299,7 +314,8 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
         for (std::optional<io::LineLayer>* area : {&build.clip, &build.erase})
             if (*area)
                 notifyClipped(options, report, (*area)->source,
-                              addLines(**area, locator, options.triangulation.threads, constraints),
+                              addLines(**area, locator, options.triangulation.threads, constraints,
+                                       &build.openRingEnds),
                               (*area)->lines.size());
         if (replaceAreas)
             flattenPointsInside(std::span(constraints.polylines).subspan(firstBreakline),
@@ -312,7 +328,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
             constraints.polylineTriangles.clear(); // they were the old mesh's
         report.replacedPoints = removed;
     }
-    build.tin = insertConstraints(std::move(mesh), constraints);
+    build.tin = insertConstraints(std::move(mesh), constraints, progress);
     flattenReplaceRings(build);
     report.constraintVertices = build.tin.addedPoints + build.tin.intersections;
     report.constraintCrossings = build.tin.intersections;
@@ -321,8 +337,9 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
             build.clip ? std::optional<PolygonSet>(*build.clip) : std::nullopt;
         const std::optional<PolygonSet> eraseArea =
             build.erase ? std::optional<PolygonSet>(*build.erase) : std::nullopt;
-        build.outsideArea = trianglesOutsideArea(build.tin, clipArea ? &*clipArea : nullptr,
-                                                 eraseArea ? &*eraseArea : nullptr);
+        build.outsideArea =
+            trianglesOutsideArea(build.tin, build.openRingEnds, clipArea ? &*clipArea : nullptr,
+                                 eraseArea ? &*eraseArea : nullptr);
     }
     return build;
 }

@@ -4,6 +4,7 @@
 /// replace areas) read, put into the TIN's CRS, clipped to its hull, given elevations, and inserted
 /// as constraints (docs/cli.md, --breaklines, --clip, --erase).
 
+#include "constraint_areas.hpp"
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/ogr_line_reader.hpp"
@@ -30,6 +31,8 @@ struct ConstrainedBuild {
     std::optional<io::LineLayer> replace;
     /// The replace rings are tin.chains[0 .. ringLevels.size()), ring r flat at ringLevels[r].
     std::vector<double> ringLevels;
+    /// Where the areas' rings (clip, erase and replace) were cut at the hull: for regionsWhere.
+    std::vector<OpenRingEnd> openRingEnds;
 };
 
 /// The polygons of options.clip, options.erase and options.replace (nullopt where not given)
@@ -90,10 +93,12 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
 /// one are left out (those on the convex hull stay, at its level) and every constraint vertex on or
 /// inside one takes its level (options.replaceZField, else the lowest surface elevation on its
 /// boundary). Fills report.breaklines, clippedBreaklines, constraintVertices, constraintCrossings,
-/// replacePolygons and replacedPoints. Throws what insertConstraints throws, and
-/// InvalidInputError for a replace polygon outside the data without a level.
+/// replacePolygons and replacedPoints. `progress` goes to insertConstraints, which calls it
+/// every few milliseconds and throws Cancelled when it returns false. Throws what
+/// insertConstraints throws, and InvalidInputError for a replace polygon outside the data
+/// without a level.
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, BuildReport& report,
-                                ConstraintSources sources);
+                                ConstraintSources sources, const ProgressCallback& progress = {});
 
 /// Every vertex of a replace ring's chain at the ring's level: vertices lying on a ring (input
 /// points, or points inserted later) are on the lake's shore line.

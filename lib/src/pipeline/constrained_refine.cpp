@@ -98,7 +98,9 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
                                             BuildReport& report, const ProgressCallback& progress) {
     const RefineOptions& refineOptions = *options.refine;
     ConstrainedRefinement result;
-    result.build = addConstraints(std::move(refined), options, report, std::move(sources));
+    // The constraints have the first half of the phase's progress, the cells the second.
+    result.build = addConstraints(std::move(refined), options, report, std::move(sources),
+                                  phaseProgress(progress, 0.0, 0.5));
     const unsigned threads = threadsOrAll(
         refineOptions.threads != 0 ? refineOptions.threads : options.triangulation.threads);
 
@@ -118,18 +120,21 @@ ConstrainedRefinement refineWithConstraints(const HeightGrid& grid,
     rules.openHoleCells = std::move(cells.openHoleCells);
     if (clip || erase)
         rules.outsideArea = [&](const ConstrainedTin& tin) {
-            return trianglesOutsideArea(tin, clip ? &*clip : nullptr, erase ? &*erase : nullptr);
+            return trianglesOutsideArea(tin, build.openRingEnds, clip ? &*clip : nullptr,
+                                        erase ? &*erase : nullptr);
         };
     if (replace)
         rules.unmeasured = [&](const ConstrainedTin& tin) {
-            return regionsWhere(tin, [&](Point2 p) { return replace->holds(p); });
+            return regionsWhere(tin, build.openRingEnds,
+                                [&](Point2 p) { return replace->holds(p); });
         };
     // A cell on a ring is on the shore line.
     rules.afterInsertions = [&result](ConstrainedTin&) { flattenReplaceRings(result.build); };
     result.openHoleCells = cells.allOpenHoleCells;
 
-    Completion completion = completeWithCells(grid, positions, result.build.tin, rules,
-                                              refineOptions, threads, progress);
+    Completion completion =
+        completeWithCells(grid, positions, result.build.tin, rules, refineOptions, threads,
+                          phaseProgress(progress, 0.5, 0.5));
     result.maxError = completion.maxError;
     result.rmse = completion.rmse;
     result.uncoveredCells = completion.uncoveredCells;

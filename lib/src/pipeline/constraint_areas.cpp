@@ -1,10 +1,13 @@
 #include "constraint_areas.hpp"
 
 #include "terratin/error.hpp"
+#include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <utility>
 
 namespace terratin::detail {
 
@@ -12,6 +15,9 @@ namespace {
 
 /// A triangle's region not visited yet (0: kept, 1: dropped).
 constexpr std::uint8_t kUndecided = 2;
+
+/// No half-edge, no triangle.
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
 /// Whether a ray from `point` towards +x crosses `ring` an odd number of times.
 bool oddCrossings(const std::vector<Point3>& ring, Point2 point) {
@@ -54,6 +60,183 @@ void fillRegion(const ConstrainedTin& tin, std::size_t seed, std::uint8_t value,
     }
 }
 
+Point2 xyOf(const TinMesh& mesh, std::uint32_t v) {
+    return {mesh.vertices[v].x, mesh.vertices[v].y};
+}
+
+/// The corner of triangle t that is vertex v.
+std::size_t cornerOf(const TinMesh& mesh, std::size_t t, std::uint32_t v) {
+    for (std::size_t k = 0; k < 3; ++k)
+        if (mesh.triangles[3 * t + k] == v)
+            return k;
+    throw std::logic_error("Constraint areas: a vertex is not a corner of its triangle");
+}
+
+/// The triangles around vertex v, from triangle t (one of them): counter-clockwise (across the
+/// edge into v), then, where the hull stops that turn, clockwise from t.
+void trianglesAround(const TinMesh& mesh, std::uint32_t v, std::size_t t,
+                     std::vector<std::size_t>& fan) {
+    fan.assign(1, t);
+    const std::size_t most = mesh.triangleCount(); // only a broken mesh has more
+    for (std::size_t u = t;;) {
+        const std::int32_t next = mesh.neighbours[3 * u + (cornerOf(mesh, u, v) + 2) % 3];
+        if (next == kNoNeighbour)
+            break;
+        u = static_cast<std::size_t>(next);
+        if (u == t)
+            return; // all the way round
+        fan.push_back(u);
+        if (fan.size() > most)
+            throw std::logic_error("Constraint areas: no end to the triangles round a vertex");
+    }
+    for (std::size_t u = t;;) {
+        const std::int32_t next = mesh.neighbours[3 * u + cornerOf(mesh, u, v)];
+        if (next == kNoNeighbour)
+            return;
+        u = static_cast<std::size_t>(next);
+        fan.push_back(u);
+        if (fan.size() > most)
+            throw std::logic_error("Constraint areas: no end to the triangles round a vertex");
+    }
+}
+
+/// For w exactly on the line through u and v (w != u): whether w lies on the ray from u
+/// through v. Decided by comparisons alone, so exactly.
+bool onRayFrom(Point2 u, Point2 v, Point2 w) {
+    if (u.x != v.x)
+        return (w.x > u.x) == (v.x > u.x) && w.x != u.x;
+    return (w.y > u.y) == (v.y > u.y) && w.y != u.y;
+}
+
+/// Calls wall(t) for every triangle that the segment from vertex `from` (a corner of triangle
+/// `start`) towards `towards` (outside the mesh) passes through before it leaves the mesh, and for
+/// the triangles on both sides of an edge it runs along. Every side test is orient2d's, against
+/// the one line from `from` to `towards`, so the triangles found hold the whole segment inside
+/// the mesh.
+template <class Wall>
+void trianglesOnTheWayOut(const TinMesh& mesh, std::uint32_t from, std::size_t start,
+                          Point2 towards, Wall&& wall) {
+    const Point2 origin = xyOf(mesh, from);
+    const auto side = [&](std::uint32_t w) {
+        return predicates::orient2d(origin, towards, xyOf(mesh, w));
+    };
+    const auto wallAcross = [&](std::size_t h) {
+        if (mesh.neighbours[h] != kNoNeighbour)
+            wall(static_cast<std::size_t>(mesh.neighbours[h]));
+    };
+    std::vector<std::size_t> fan;
+    std::uint32_t v = from;
+    std::size_t t = start;
+    // Each step goes on along the segment, past a vertex or through a triangle; the bound only
+    // guards a broken mesh.
+    std::size_t steps = 0;
+    const auto step = [&] {
+        if (++steps > 2 * mesh.triangleCount() + 2)
+            throw std::logic_error("Constraint areas: no end to a walk out of the mesh");
+    };
+    for (;;) {
+        step();
+        // At vertex v (on the line): the triangle whose angle at v the segment enters (its
+        // corner a right of the line, b left), or an edge the segment runs along.
+        trianglesAround(mesh, v, t, fan);
+        std::size_t exit = kNone;
+        std::optional<std::uint32_t> along;
+        const Point2 pv = xyOf(mesh, v);
+        for (const std::size_t u : fan) {
+            const std::size_t k = cornerOf(mesh, u, v);
+            const std::uint32_t a = mesh.triangles[3 * u + (k + 1) % 3];
+            const std::uint32_t b = mesh.triangles[3 * u + (k + 2) % 3];
+            const double sideA = side(a);
+            const double sideB = side(b);
+            if (sideA == 0.0 && onRayFrom(pv, towards, xyOf(mesh, a))) {
+                wall(u);
+                wallAcross(3 * u + k);
+                along = a;
+            } else if (sideB == 0.0 && onRayFrom(pv, towards, xyOf(mesh, b))) {
+                wall(u);
+                wallAcross(3 * u + (k + 2) % 3);
+                along = b;
+            } else if (sideA < 0.0 && sideB > 0.0) {
+                wall(u);
+                exit = 3 * u + (k + 1) % 3;
+            } else {
+                continue;
+            }
+            t = u;
+            break;
+        }
+        if (along) {
+            v = *along;
+            continue;
+        }
+        if (exit == kNone)
+            return; // the segment leaves the mesh at v
+        // Through triangles, each entered by an edge from its vertex right of the line to the
+        // one left of it, until the segment reaches a vertex or leaves the mesh.
+        for (;;) {
+            step();
+            if (mesh.neighbours[exit] == kNoNeighbour)
+                return;
+            const std::uint32_t left = mesh.triangles[exit - exit % 3 + (exit % 3 + 1) % 3];
+            const auto u = static_cast<std::size_t>(mesh.neighbours[exit]);
+            wall(u);
+            const std::size_t k = cornerOf(mesh, u, left); // u is (left, right, w)
+            const std::uint32_t w = mesh.triangles[3 * u + (k + 2) % 3];
+            const double sideW = side(w);
+            if (sideW == 0.0) {
+                v = w;
+                t = u;
+                break;
+            }
+            exit = sideW > 0.0 ? 3 * u + (k + 1) % 3  // right -> w
+                               : 3 * u + (k + 2) % 3; // w -> left
+        }
+    }
+}
+
+/// Decides on its own, by its centroid, every triangle on the way out of the hull from each of
+/// `openEnds` (trianglesOnTheWayOut): no region is filled through them.
+void decideOpenEnds(const ConstrainedTin& tin, std::span<const OpenRingEnd> openEnds,
+                    const std::function<bool(Point2)>& inRegion,
+                    std::vector<std::uint8_t>& region) {
+    const TinMesh& mesh = tin.mesh;
+    // The ends' vertices, sorted, each with a triangle of its found in one pass.
+    std::vector<std::pair<std::uint32_t, std::size_t>> ends;
+    for (std::size_t i = 0; i < openEnds.size(); ++i) {
+        const std::vector<std::uint32_t>& chain = tin.chains.at(openEnds[i].chain);
+        if (!chain.empty())
+            ends.emplace_back(openEnds[i].atLast ? chain.back() : chain.front(), i);
+    }
+    if (ends.empty())
+        return;
+    std::sort(ends.begin(), ends.end());
+    std::vector<std::size_t> triangleOf(ends.size(), kNone);
+    std::size_t found = 0;
+    for (std::size_t t = 0; t < mesh.triangleCount() && found < ends.size(); ++t)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t c = mesh.triangles[3 * t + k];
+            if (c < ends.front().first || c > ends.back().first)
+                continue;
+            for (auto e = std::lower_bound(ends.begin(), ends.end(), std::pair{c, std::size_t{0}});
+                 e != ends.end() && e->first == c; ++e) {
+                std::size_t& slot = triangleOf[static_cast<std::size_t>(e - ends.begin())];
+                if (slot == kNone) {
+                    slot = t;
+                    ++found;
+                }
+            }
+        }
+    for (std::size_t e = 0; e < ends.size(); ++e) {
+        if (triangleOf[e] == kNone)
+            throw std::logic_error("Constraint areas: a ring's end is in no triangle");
+        trianglesOnTheWayOut(mesh, ends[e].first, triangleOf[e], openEnds[ends[e].second].outside,
+                             [&](std::size_t t) {
+                                 if (region[t] == kUndecided)
+                                     region[t] = inRegion(centroid(mesh, t)) ? 1 : 0;
+                             });
+    }
+}
+
 } // namespace
 
 PolygonSet::PolygonSet(const io::LineLayer& rings) : m_rings(&rings) {
@@ -91,8 +274,10 @@ std::optional<std::size_t> PolygonSet::polygonHolding(Point2 point) const {
 }
 
 std::vector<std::uint8_t> regionsWhere(const ConstrainedTin& tin,
+                                       std::span<const OpenRingEnd> openEnds,
                                        const std::function<bool(Point2)>& inRegion) {
     std::vector<std::uint8_t> region(tin.mesh.triangleCount(), kUndecided);
+    decideOpenEnds(tin, openEnds, inRegion, region);
     std::vector<std::size_t> stack;
     for (std::size_t t = 0; t < region.size(); ++t)
         if (region[t] == kUndecided)
@@ -100,9 +285,10 @@ std::vector<std::uint8_t> regionsWhere(const ConstrainedTin& tin,
     return region;
 }
 
-std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin, const PolygonSet* clip,
-                                               const PolygonSet* erase) {
-    return regionsWhere(tin, [&](Point2 inner) {
+std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin,
+                                               std::span<const OpenRingEnd> openEnds,
+                                               const PolygonSet* clip, const PolygonSet* erase) {
+    return regionsWhere(tin, openEnds, [&](Point2 inner) {
         return (clip != nullptr && !clip->holds(inner)) ||
                (erase != nullptr && erase->holds(inner));
     });

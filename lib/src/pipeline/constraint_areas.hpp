@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace terratin::detail {
@@ -42,16 +43,32 @@ private:
     std::vector<Box> m_boxes;
 };
 
+/// Where an area's ring, clipped to the convex hull (TinLocator::clipToSurface), stops short of
+/// it: the first vertex of chain `chain` of the TIN (its last with `atLast`) is a cut point, and
+/// the ring's segment went on from there to `outside`, a point outside the hull.
+struct OpenRingEnd {
+    std::size_t chain = 0;
+    bool atLast = false;
+    Point2 outside{};
+};
+
 /// 1 for every triangle of `tin` in a region that `inRegion` accepts at one of its triangles'
 /// centroid, else 0. A region is a set of triangles joined across unconstrained edges; the
 /// areas' rings are constrained chains, so no region straddles one, and each region is decided
-/// once. O(triangles) plus one call per region.
+/// once. A ring cut at the hull ends a few ulps inside it, and a region would reach round that
+/// end: so the triangles that the rest of its segment passes through on its way out of the hull
+/// (from each of `openEnds`, exactly by orient2d, with those on both sides of an edge it runs
+/// along) are decided one by one, and no region reaches through them. O(triangles) plus one call
+/// per region, and per open end a walk as long as the rest of its segment.
 std::vector<std::uint8_t> regionsWhere(const ConstrainedTin& tin,
+                                       std::span<const OpenRingEnd> openEnds,
                                        const std::function<bool(Point2)>& inRegion);
 
-/// 1 for every triangle of `tin` outside `clip` (when given) or inside `erase` (when given).
-std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin, const PolygonSet* clip,
-                                               const PolygonSet* erase);
+/// 1 for every triangle of `tin` outside `clip` (when given) or inside `erase` (when given)
+/// (regionsWhere).
+std::vector<std::uint8_t> trianglesOutsideArea(const ConstrainedTin& tin,
+                                               std::span<const OpenRingEnd> openEnds,
+                                               const PolygonSet* clip, const PolygonSet* erase);
 
 /// Each replace polygon's flat level: the lowest elevation of `locator`'s surface on the
 /// polygon's rings, sampled at every ring point and every `step` along each segment (only where

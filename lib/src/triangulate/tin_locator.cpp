@@ -466,17 +466,22 @@ TinLocator::clipLocated(const std::vector<Point3>& polyline) {
         }
         const std::optional<std::uint32_t> triangle = locate(planar(point));
         if (triangle) {
-            if (i > 0 && !previousInside)
-                add(cutPoint(point, polyline[i - 1])); // entering the hull
+            if (i > 0 && !previousInside) { // entering the hull
+                add(cutPoint(point, polyline[i - 1]));
+                part.enteredFrom = planar(polyline[i - 1]);
+            }
             add({point, *triangle});
         } else if (previousInside) {
             add(cutPoint(polyline[i - 1], point)); // leaving it
+            part.leftTowards = planar(point);
             closePart();
         } else if (i > 0) {
             // Both ends outside: the segment may still cross the hull.
             if (const std::optional<Point3> middle = pointInside(polyline[i - 1], point)) {
                 add(cutPoint(*middle, polyline[i - 1]));
                 add(cutPoint(*middle, point));
+                part.enteredFrom = planar(polyline[i - 1]);
+                part.leftTowards = planar(point);
                 closePart();
             }
         }

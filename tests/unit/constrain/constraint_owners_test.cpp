@@ -1,6 +1,9 @@
 // ConstraintOwners, the open-addressing table of constrained edges' owners, against std::map
-// under random adds and takes (takes empty probe chains through backward shifts).
+// under random adds and takes (takes empty probe chains through backward shifts); and
+// ConstraintChains, whose chains are made from their splits at the end, against chains split at
+// once.
 
+#include "constraint_chains.hpp"
 #include "constraint_owners.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <random>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -59,6 +63,82 @@ TEST(ConstraintOwners, AgreesWithAMap_UnderRandomAddsAndTakes) {
         EXPECT_EQ(taken, sortedKnown);
     }
     EXPECT_TRUE(owners.take(1, 2).empty());
+}
+
+// The edges of a run of new vertices, about two per vertex by its smaller end, as the crossings
+// of many lines make them: a table that placed them by that vertex alone probed through one
+// cluster as long as the run. It must still agree with the map.
+TEST(ConstraintOwners, AgreesWithAMap_ForTheEdgesOfARunOfNewVertices) {
+    ConstraintOwners owners;
+    std::map<Edge, std::vector<std::uint32_t>> expected;
+    constexpr std::uint32_t kFirst = 1000000;
+    for (std::uint32_t v = kFirst; v < kFirst + 30000; ++v)
+        for (const std::uint32_t other : {v + 1, v + 7}) {
+            owners.add(v, other, {v % 5});
+            expected[ordered(v, other)] = {v % 5};
+        }
+    for (const auto& [edge, known] : expected)
+        ASSERT_EQ(owners.take(edge.second, edge.first), known);
+    EXPECT_TRUE(owners.empty());
+}
+
+/// A chain split at once: w goes between x and y wherever they are consecutive.
+void splitAtOnce(std::vector<std::uint32_t>& chain, std::uint32_t x, std::uint32_t y,
+                 std::uint32_t w) {
+    if (w == x || w == y)
+        return;
+    for (std::size_t k = 1; k < chain.size(); ++k)
+        if ((chain[k - 1] == x && chain[k] == y) || (chain[k - 1] == y && chain[k] == x)) {
+            chain.insert(chain.begin() + static_cast<std::ptrdiff_t>(k), w);
+            ++k;
+        }
+}
+
+// Chains of a few splits and of thousands (made through the table of pairs), some splits putting
+// back a vertex already on the chain, so that a pair comes twice (rounding among crowded
+// crossings does that) and every place of it is split from then on: the same as at once.
+TEST(ConstraintChains, MadeFromTheirSplits_AgreeWithChainsSplitAtOnce_WhenPairsComeBack) {
+    std::mt19937_64 random(11);
+    for (const std::size_t splits :
+         {std::size_t{3}, std::size_t{16}, std::size_t{17}, std::size_t{200}, std::size_t{5000}}) {
+        for (const bool comeBack : {false, true}) {
+            ConstraintChains chains;
+            chains.prepare(2);
+            chains.start(0, 1, 2);
+            chains.start(1, 2, 1); // another owner of the same edge, the other way round
+            std::vector<std::uint32_t> expected{1, 2};
+            std::uint32_t next = 3;
+            for (std::size_t s = 0; s < splits; ++s) {
+                const std::size_t k = 1 + random() % (expected.size() - 1);
+                const std::uint32_t x = expected[k - 1];
+                const std::uint32_t y = expected[k];
+                std::uint32_t w = next++;
+                if (comeBack && random() % 8 == 0)
+                    w = expected[random() % expected.size()];
+                chains.insertBetween({0}, x, y, w);
+                splitAtOnce(expected, x, y, w);
+            }
+            EXPECT_EQ(chains.chain(0), expected) << splits << " splits";
+            std::vector<std::uint32_t> joined{1};
+            chains.appendAfterFirst(0, joined);
+            EXPECT_EQ(joined, expected);
+            EXPECT_EQ(chains.chain(1), (std::vector<std::uint32_t>{2, 1}));
+        }
+    }
+}
+
+TEST(ConstraintChains, Throws_WhenASplitPairIsNotOnTheChain) {
+    for (const std::size_t before : {std::size_t{0}, std::size_t{40}}) {
+        ConstraintChains chains;
+        chains.start(0, 1, 2);
+        std::uint32_t last = 1;
+        for (std::uint32_t w = 3; w < 3 + before; ++w) {
+            chains.insertBetween({0}, last, 2, w);
+            last = w;
+        }
+        chains.insertBetween({0}, 1, 7000, 9000);
+        EXPECT_THROW((void)chains.chain(0), std::logic_error) << before << " splits before";
+    }
 }
 
 } // namespace

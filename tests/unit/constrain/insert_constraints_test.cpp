@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <tuple>
 
 namespace terratin {
@@ -372,6 +373,69 @@ TEST(InsertConstraints, RegressionCrowdOfCrossingsDoesNotLoop) {
     ConstraintSet constraints;
     constraints.polylines = linesThroughTheMiddle(mesh, 0.1);
     constrainAndCheck(mesh, constraints);
+}
+
+// `count` lines between vertices of a Uniform cloud drawn at random: about a quarter of the
+// pairs cross, so a few hundred lines make tens of thousands of crossings.
+ConstraintSet crossingLines(const TinMesh& mesh, std::size_t count, std::uint64_t seed) {
+    ConstraintSet constraints;
+    for (const auto& [a, b] : test::randomSegments(mesh.vertexCount(), count, seed))
+        constraints.polylines.push_back({mesh.vertices[a], mesh.vertices[b]});
+    return constraints;
+}
+
+// The progress callback is polled all along the insertion of many crossing lines, most of whose
+// work is their crossings, and a false answer ends it at once: no further call, Cancelled thrown
+// though most lines are still to go in.
+TEST(InsertConstraints, ACancelDuringManyCrossingLines_ThrowsCancelledAtTheCallThatSaidStop) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 3000, 31));
+    const ConstraintSet constraints = crossingLines(mesh, 300, 8);
+    std::size_t calls = 0;
+    double lastFraction = -1.0;
+    const ConstrainedTin tin =
+        insertConstraints(mesh, constraints, [&](double fraction, std::string_view message) {
+            ++calls;
+            EXPECT_EQ(message, "inserting constraints");
+            EXPECT_GE(fraction, lastFraction);
+            EXPECT_LE(fraction, 1.0);
+            lastFraction = fraction;
+            return true;
+        });
+    test::expectConstrainedDelaunay(tin, mesh, constraints);
+    ASSERT_GT(tin.intersections, 5000U);
+    // Each crossing splits the segment going in: a piece, a step, per crossing at least.
+    EXPECT_GE(calls, tin.intersections / 64);
+
+    const std::size_t stopAt = calls / 4;
+    std::size_t callsMade = 0;
+    double stoppedAt = 1.0;
+    EXPECT_THROW((void)insertConstraints(mesh, constraints,
+                                         [&](double fraction, std::string_view) {
+                                             ++callsMade;
+                                             stoppedAt = fraction;
+                                             return callsMade < stopAt;
+                                         }),
+                 Cancelled);
+    EXPECT_EQ(callsMade, stopAt);
+    EXPECT_LT(stoppedAt, 0.9); // most of the lines were still to go in
+}
+
+// With zones the calling thread watches the callback while the zones' threads insert, and what
+// the zones leave goes in on it, polled as above: a cancel is honoured there too.
+TEST(InsertConstraints, ACancelDuringZonedInsertion_ThrowsCancelledAtTheCallThatSaidStop) {
+    const TinMesh mesh = delaunayOf(test::generatePoints(Distribution::Uniform, 3000, 32));
+    std::vector<std::vector<Point3>> lines = crossingLines(mesh, 300, 9).polylines;
+    ConstraintSet constraints = test::locatedPolylines(mesh, lines);
+    constraints.zones = 4;
+    constraints.threads = 4;
+    std::size_t calls = 0;
+    EXPECT_THROW((void)insertConstraints(mesh, constraints,
+                                         [&](double, std::string_view) {
+                                             ++calls;
+                                             return false;
+                                         }),
+                 Cancelled);
+    EXPECT_EQ(calls, 1U);
 }
 
 TEST(InsertConstraints, SegmentAlongTheHull) {

@@ -4,6 +4,7 @@
 
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/geometry/point.hpp"
+#include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>
@@ -81,7 +82,13 @@ struct ConstraintSet {
 /// inside it, what they stop short of in bands of y the same way, and the rest on one thread; the
 /// slots the zones reserved and left unused are then filled with the last vertices and triangles
 /// (O(slots)). docs/algorithms.md ("Constrained Delaunay", step 5) describes the method.
-ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints);
+/// `progress` (when given) is called from this thread with the share of the segments in so far
+/// and "inserting constraints": every 64 steps (a polyline point inserted, a piece of a segment
+/// between two crossings inserted), and every 20 ms while the zones work on other threads.
+/// When it returns false the insertion stops within those 64 steps (each zone's) and throws
+/// Cancelled.
+ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints,
+                                 const ProgressCallback& progress = {});
 
 /// Inserts `points` into `tin` (a constrained Delaunay TIN as insertConstraints makes it) as new
 /// vertices, point i with sourceIndex `sources[i]`, and restores the constrained Delaunay

@@ -90,6 +90,14 @@ public:
         /// triangles[i] holds points[i] (inside or on its boundary), as locate gives it, or is
         /// kUnlocated (see clipToSurface).
         std::vector<std::uint32_t> triangles;
+        /// Where the part was cut (clipToHull): the polyline's point outside the hull that the
+        /// segment cut at points.front() came from, and the one that the segment cut at
+        /// points.back() went on to; nullopt at an end that is the polyline's own. A cut point
+        /// lies inside the hull, or on it, up to a few units in the last place short of where
+        /// the segment crosses it: a polygon's ring cut so does not reach the hull, and what
+        /// closes the polygon there is the rest of that segment.
+        std::optional<Point2> enteredFrom;
+        std::optional<Point2> leftTowards;
     };
 
     /// The parts of clipToHull(polyline), each point with its triangle, and a NaN z replaced by
