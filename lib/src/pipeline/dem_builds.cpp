@@ -1,0 +1,331 @@
+#include "builds.hpp"
+#include "constrained_refine.hpp"
+#include "memory_budget.hpp"
+#include "refine_placement.hpp"
+#include "streamed_tin.hpp"
+#include "terratin/constrain/constrained_validation.hpp"
+#include "terratin/crs/grid_projection.hpp"
+#include "terratin/io/height_grid_reader.hpp"
+#include "terratin/io/input_reader.hpp"
+#include "terratin/pipeline/build_option_table.hpp"
+#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/refine/tile_distribution.hpp"
+#include "tile_files.hpp"
+
+#include <algorithm>
+#include <future>
+#include <optional>
+#include <utility>
+
+namespace terratin::detail {
+
+namespace {
+
+// What takes a DEM alone, as its options name it: tiling, or a simplification.
+std::string demOnlyWork(const BuildOptions& options) {
+    const OptionSpelling spelling = options.optionSpelling;
+    if (options.memoryLimit)
+        return "Tiling (" + optionName("memory_limit", spelling) + ")";
+    if (options.refine && options.refine->tileSize > 0)
+        return "Tiling (" + optionName("tile_size", spelling) + ")";
+    return "Simplification (" + optionName("max_error", spelling) + "...)";
+}
+
+// The refiner works on one raster's grid.
+void checkOneRasterInput(const BuildOptions& options) {
+    checkDemOnlyOptions(options);
+    if (options.inputs.size() != 1)
+        throw InvalidInputError(demOnlyWork(options) + " takes exactly one raster input");
+    if (io::detectInputKind(options.inputs.front()) != io::InputKind::Raster)
+        throw InvalidInputError(demOnlyWork(options) + " takes a DEM raster; '" +
+                                options.inputs.front() +
+                                "' is a point cloud or vector layer: triangulate it without " +
+                                "those options, or grid it first (gdal_grid)");
+}
+
+RefineOptions refineOptionsOf(const BuildOptions& options) {
+    RefineOptions refineOptions = *options.refine;
+    if (refineOptions.threads == 0)
+        refineOptions.threads = options.triangulation.threads;
+    refineOptions.validate = options.validate;
+    refineOptions.distribution = options.tileDistribution;
+    return refineOptions;
+}
+
+/// `points`: the TIN's, which result.mesh holds unless the tiles went to a sink.
+void reportRefinement(const RefineResult& result, const RefineOptions& refineOptions,
+                      std::size_t points, BuildReport& report) {
+    report.refined = true;
+    report.targetMaxError = refineOptions.maxError;
+    report.achievedMaxError = result.maxError;
+    report.rmse = result.rmse;
+    report.refineStop = toString(result.stop);
+    report.openHoleCells = result.openHoleCells;
+    report.holeTriangles = result.droppedTriangles;
+    report.uncoveredCells = result.uncoveredCells;
+    report.validated = result.validated;
+    report.method = "refine";
+    report.threads = result.threads;
+    report.meshBytesPerPoint = static_cast<double>(result.meshBytes) /
+                               static_cast<double>(std::max<std::size_t>(points, 1));
+}
+
+// The simplified constrained TIN for the writers (validated when asked), and its figures in
+// the report in place of the refiner's.
+TinMesh takeConstrainedMesh(ConstrainedRefinement corrected, BuildRun& run) {
+    const BuildOptions& options = run.options();
+    BuildReport& report = run.report();
+    if (options.validate) {
+        checkValid(validateConstrainedDelaunay(corrected.build.tin), "constrained Delaunay");
+        report.validated = true;
+    }
+    report.achievedMaxError = corrected.maxError;
+    report.rmse = corrected.rmse;
+    report.uncoveredCells = corrected.uncoveredCells;
+    report.holeTriangles = corrected.holeTriangles;
+    report.openHoleCells = corrected.openHoleCells;
+    report.constraintPasses = corrected.passes;
+    report.constraintCells = corrected.insertedCells;
+    if (corrected.limitReached)
+        report.refineStop = options.refine->maxPoints ? toString(RefineStop::PointLimit)
+                                                      : toString(RefineStop::TriangleLimit);
+    report.areaTriangles =
+        takeConstrainedOutput(corrected.build.tin, corrected.drop, run.writeOptions()) -
+        corrected.holeTriangles;
+    return std::move(corrected.build.tin.mesh);
+}
+
+// The refined TIN, whose sourceIndex is the grid's cell index, for the whole-file sink.
+TinProduct refinedProduct(TinMesh mesh, int gridWidth, const std::string& crsWkt,
+                          BuildReport& report) {
+    report.points = mesh.vertexCount();
+    report.vertices = mesh.vertexCount();
+    TinProduct product{std::move(mesh), crsWkt, {}, static_cast<std::uint64_t>(gridWidth)};
+    product.cellOf = [](std::uint32_t cell) { return std::uint64_t{cell}; };
+    return product;
+}
+
+// The counts of a TIN whose tiles went to files as they came, never joined.
+void reportTileCounts(std::uint64_t points, std::uint64_t triangles, const Stopwatch& refineTime,
+                      BuildReport& report) {
+    report.points = points;
+    report.vertices = points;
+    report.triangles = triangles;
+    report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
+}
+
+// --tiles-dir: the tiles are written as they came; the index last, which keeps them all.
+BuildReport commitTileFiles(TileFiles& files, BuildRun& run, const Stopwatch& refineTime) {
+    reportTileCounts(files.points(), files.triangles(), refineTime, run.report());
+    const Stopwatch writeTime;
+    files.commit();
+    io::TinWriteResult written;
+    written.features = files.features();
+    return run.finish(written, writeTime);
+}
+
+// --memory-limit: the tiles went to the output as they came; its end (the spatial index) now.
+BuildReport finishStreamedTin(StreamedTin& tin, const std::uint64_t writerBytes, BuildRun& run,
+                              const Stopwatch& refineTime) {
+    const BuildOptions& options = run.options();
+    reportTileCounts(tin.points(), tin.triangles(), refineTime, run.report());
+    if (tin.heldBytes() > writerBytes)
+        run.notify("the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +
+                   " MiB, more than the share of " +
+                   optionName("memory_limit", options.optionSpelling) +
+                   " set aside for it; give a larger limit or " +
+                   optionName("no_spatial_index", options.optionSpelling));
+    const Stopwatch writeTime;
+    const io::TinWriteResult written =
+        tin.finish(run.phase(kReadShare + kTriangulateShare, kWriteShare));
+    return run.finish(written, writeTime);
+}
+
+// --memory-limit: the tile size within the budget (sized again where cells move, as they
+// take more memory a cell), the GDAL cache capped, and a notice.
+MemoryBudget planMemory(BuildRun& run, RefineOptions& refineOptions, const RefineCrs& crs,
+                        bool coordinates) {
+    const BuildOptions& options = run.options();
+    const std::size_t margin = refineOptions.fillHoles ? 0 : refineOptions.maxHole;
+    const OptionNamer namer = optionNamer(options.optionSpelling);
+    // planTiles sized the tiles before the CRS was known.
+    if (crs.movesCells() &&
+        refineOptions.tileSize == memoryBudget(*options.memoryLimit, margin, 0, namer).tileSize)
+        refineOptions.tileSize = 0;
+    MemoryBudget budget =
+        memoryBudget(*options.memoryLimit, margin, refineOptions.tileSize, namer, crs.movesCells());
+    refineOptions.tileSize = budget.tileSize;
+    refineOptions.earlyTileBytes = budget.tileBytes;
+    if (coordinates)
+        run.notify("tiles of " + std::to_string(budget.tileSize) + " cells a side within " +
+                   optionName("memory_limit", options.optionSpelling));
+    return budget;
+}
+
+// Tiles (--tile-size): the raster read a tile's window at a time, never whole.
+BuildReport buildTiledTin(BuildRun& run) {
+    const BuildOptions& options = run.options();
+    BuildReport& report = run.report();
+    checkOneRasterInput(options);
+    io::RasterReadOptions readOptions;
+    readOptions.band = options.band;
+    io::RasterCells cells(options.inputs.front(), readOptions);
+    HeightGrid extent; // the raster's shape, without its cells
+    extent.width = cells.width();
+    extent.height = cells.height();
+    extent.geoTransform = cells.geoTransform();
+    const RefineCrs crs = chooseRefineCrs(options, extent.extentCentre(), cells.crsWkt(), report);
+    describeCrs(crs.target, report);
+    report.rasterCells = extent.cellCount();
+
+    // Reading is part of the refinement: each tile reads its own cells.
+    const Stopwatch refineTime;
+    RefineOptions refineOptions = refineOptionsOf(options);
+    if (crs.movesCells()) {
+        // A geographic DEM is refined in its UTM zone, each tile at its cells' positions.
+        refineOptions.cellPositions = [source = crs.source,
+                                       target = crs.target](const HeightGrid& window) {
+            return crs::projectCellCentres(window, source, target);
+        };
+        report.reprojected = true;
+    }
+    const bool coordinates =
+        options.tileDistribution == nullptr || options.tileDistribution->coordinates();
+    std::optional<MemoryBudget> budget;
+    std::optional<GdalCacheCap> gdalCache;
+    if (options.memoryLimit) {
+        budget = planMemory(run, refineOptions, crs, coordinates);
+        gdalCache.emplace(budget->gdalCacheBytes);
+    }
+    io::TinWriteOptions& writeOptions = run.writeOptions();
+    writeOptions.crsWkt = crs.target;
+    const auto keptTriangles = [&](TinMesh& tin) {
+        if (options.maxEdge)
+            report.longEdgeTriangles += dropLongEdgeTriangles(tin, *options.maxEdge);
+        return tin.triangleCount() > 0;
+    };
+    const auto cellsOfTile = [&](const TinMesh& tin) {
+        return options.nodes ? gridVertexCells(tin, static_cast<std::uint64_t>(extent.width))
+                             : std::vector<io::RasterCell>{};
+    };
+    std::optional<TileFiles> files;
+    std::optional<StreamedTin> streamed;
+    if (!options.tilesDir.empty() && coordinates) {
+        files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions,
+                      refineOptions.cellPositions);
+        refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
+            if (!keptTriangles(tin))
+                return; // every triangle too long: no file
+            files->write(tile, tin, cellsOfTile(tin));
+        };
+    } else if (options.memoryLimit && coordinates) {
+        streamed.emplace(options.output, writeOptions, extent.width, extent.height,
+                         refineOptions.tileSize,
+                         optionName("memory_limit", options.optionSpelling));
+        refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
+            keptTriangles(tin); // a tile's vertices stay, as in the joined TIN
+            streamed->write(tile, tin, cellsOfTile(tin));
+        };
+    }
+    RefineResult result =
+        refineTiles(cells, refineOptions, run.phase(0.0, kReadShare + kTriangulateShare));
+    if (!coordinates) {
+        report.servedTiles = true;
+        return report;
+    }
+    report.skippedCells = report.rasterCells - result.validCells;
+    reportRefinement(result, refineOptions,
+                     files      ? files->points()
+                     : streamed ? streamed->points()
+                                : result.mesh.vertexCount(),
+                     report);
+    if (files)
+        return commitTileFiles(*files, run, refineTime);
+    if (streamed)
+        return finishStreamedTin(*streamed, budget->writerBytes, run, refineTime);
+    TinProduct product = refinedProduct(std::move(result.mesh), extent.width, crs.target, report);
+    report.timings.triangulate = refineTime.seconds();
+    return run.write(std::move(product));
+}
+
+} // namespace
+
+void checkDemOnlyOptions(const BuildOptions& options) {
+    const OptionSpelling spelling = options.optionSpelling;
+    if (options.zFactor != 1.0)
+        throw InvalidInputError(demOnlyWork(options) + " does not combine with " +
+                                optionName("z_factor", spelling) +
+                                "; scale the DEM first (gdal_calc)");
+    const bool tiled = options.memoryLimit || options.refine->tileSize > 0;
+    if (tiled && hasConstraints(options))
+        throw InvalidInputError(demOnlyWork(options) +
+                                " does not combine with breaklines, clip, erase or replace "
+                                "polygons yet");
+}
+
+BuildReport buildRefinedTin(BuildRun& run) {
+    const BuildOptions& options = run.options();
+    BuildReport& report = run.report();
+    if (options.refine->tileSize > 0)
+        return buildTiledTin(run);
+    checkOneRasterInput(options);
+    // The constraint layers are read while the DEM is.
+    std::future<ConstraintLayers> constraintLayers;
+    const bool constrained = hasConstraints(options);
+    if (constrained)
+        constraintLayers = startReadingConstraintLayers(options);
+    const Stopwatch readTime;
+    io::RasterReadOptions readOptions;
+    readOptions.band = options.band;
+    io::HeightGridRaster raster =
+        io::readHeightGrid(options.inputs.front(), readOptions, run.phase(0.0, kReadShare));
+    report.rasterCells = raster.grid.cellCount();
+    report.skippedCells = raster.skippedCells;
+    report.timings.read = readTime.seconds();
+    // A geographic raster is refined in its UTM zone, at its cells' projected positions.
+    const RefinePlacement placement =
+        placeRefinedCells(options, raster.grid, raster.crsWkt, report);
+    describeCrs(placement.targetWkt, report);
+
+    const Stopwatch refineTime;
+    RefineOptions refineOptions = refineOptionsOf(options);
+    refineOptions.keepHoleTriangles = constrained;
+    refineOptions.measure = !constrained; // refineWithConstraints measures every cell
+    // With constraints, the refiner has most of the phase and the cells' insertion the rest.
+    const double refineShare = constrained ? 0.8 * kTriangulateShare : kTriangulateShare;
+    ConstraintSources sources;
+    std::size_t replacedCells = 0;
+    if (constrained) {
+        const Stopwatch constrainTime;
+        // A projected (geographic) DEM's cells are no longer on its grid: no bilinear z then.
+        sources =
+            readConstraintSources(constraintLayers.get(), options, placement.targetWkt,
+                                  placement.positions.empty() ? &raster.grid : nullptr, report);
+        replacedCells = leaveOutAreaCells(raster.grid, placement.positions, sources);
+        refineOptions.spareVertices = sources.spareVertices();
+        report.timings.constrain = constrainTime.seconds();
+    }
+    const ProgressCallback refineProgress = run.phase(kReadShare, refineShare);
+    RefineResult result =
+        placement.positions.empty()
+            ? refine(raster.grid, refineOptions, refineProgress)
+            : refine(raster.grid, placement.positions, refineOptions, refineProgress);
+    reportRefinement(result, refineOptions, result.mesh.vertexCount(), report);
+    TinMesh mesh = std::move(result.mesh);
+    if (constrained) {
+        const Stopwatch constrainTime;
+        ConstrainedRefinement corrected = refineWithConstraints(
+            raster.grid, placement.positions, std::move(mesh), options, std::move(sources), report,
+            run.phase(kReadShare + refineShare, kTriangulateShare - refineShare));
+        mesh = takeConstrainedMesh(std::move(corrected), run);
+        report.replacedPoints += replacedCells;
+        report.timings.constrain += constrainTime.seconds();
+    }
+    const int gridWidth = raster.grid.width;
+    raster.grid = {}; // the mesh holds its own vertices
+    TinProduct product = refinedProduct(std::move(mesh), gridWidth, placement.targetWkt, report);
+    report.timings.triangulate = refineTime.seconds();
+    return run.write(std::move(product));
+}
+
+} // namespace terratin::detail
