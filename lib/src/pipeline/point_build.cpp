@@ -78,8 +78,10 @@ BuildReport buildPointTin(BuildRun& run) {
     std::optional<ConstrainedBuild> constrained;
     if (sources) {
         const Stopwatch constrainTime;
+        // The constraints' insertion polls the progress, so that a cancel reaches it.
         constrained =
-            addConstraints(std::move(triangulation.mesh), options, report, std::move(*sources));
+            addConstraints(std::move(triangulation.mesh), options, report, std::move(*sources),
+                           run.phase(kReadShare + kTriangulateShare, 0.0));
         report.timings.constrain += constrainTime.seconds();
         report.vertices = constrained->tin.mesh.vertexCount();
     }
