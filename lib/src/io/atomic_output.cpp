@@ -2,6 +2,7 @@
 
 #include "terratin/error.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -13,6 +14,7 @@
 #include <random>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 namespace terratin::io::detail {
 
@@ -129,17 +131,74 @@ std::string utf8Prefix(const std::string& text, std::size_t bytes) {
     return text.substr(0, cut);
 }
 
-/// Moves `from` to `to` unless `to` exists, as one atomic step. Returns 0 or an errno value
-/// (EEXIST when `to` exists).
-int renameNoReplace(const fs::path& from, const fs::path& to) {
-    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0)
+/// The levels a temporary has: a file (1), or a directory of files (2: a Shapefile's
+/// components); its removal goes no deeper.
+constexpr int kTemporaryDepth = 2;
+
+/// Whether the directory open as `fd` is the one `path` names now (same device and inode).
+bool sameDirectory(int fd, const fs::path& path) {
+    struct stat held {};
+    struct stat named {};
+    return ::fstat(fd, &held) == 0 && ::stat(path.c_str(), &named) == 0 &&
+           held.st_dev == named.st_dev && held.st_ino == named.st_ino;
+}
+
+/// The names in the directory open as `directory` ("." and ".." left out); empty when it
+/// cannot be read.
+std::vector<std::string> entryNames(int directory) {
+    std::vector<std::string> names;
+    // A descriptor of its own: fdopendir takes it over, and reads from its own position.
+    const int listing = ::openat(directory, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (listing < 0)
+        return names;
+    DIR* const stream = ::fdopendir(listing);
+    if (stream == nullptr) {
+        ::close(listing);
+        return names;
+    }
+    while (const dirent* entry = ::readdir(stream)) {
+        const std::string name = entry->d_name;
+        if (name != "." && name != "..")
+            names.push_back(name);
+    }
+    ::closedir(stream);
+    return names;
+}
+
+/// Removes `name` in `directory`, and for a directory what it holds, `depth` levels down.
+void removeTree(int directory, const std::string& name, int depth) {
+    if (::unlinkat(directory, name.c_str(), 0) == 0 || errno == ENOENT)
+        return;
+    if ((errno != EISDIR && errno != EPERM) || depth <= 1)
+        return;
+    const int inner =
+        ::openat(directory, name.c_str(), O_PATH | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (inner < 0)
+        return;
+    for (const std::string& entry : entryNames(inner))
+        removeTree(inner, entry, depth - 1);
+    ::close(inner);
+    ::unlinkat(directory, name.c_str(), AT_REMOVEDIR);
+}
+
+/// Removes every entry of `directory` whose name starts with `prefix`.
+void removeStartingWith(int directory, const std::string& prefix) {
+    for (const std::string& name : entryNames(directory))
+        if (name.starts_with(prefix))
+            removeTree(directory, name, kTemporaryDepth);
+}
+
+/// Moves `from` to `to` (each a directory descriptor and a name in it) unless `to` exists, as
+/// one atomic step. Returns 0 or an errno value (EEXIST when `to` exists).
+int renameNoReplace(int fromDirectory, const char* from, int toDirectory, const char* to) {
+    if (::renameat2(fromDirectory, from, toDirectory, to, RENAME_NOREPLACE) == 0)
         return 0;
     if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP)
         return errno;
     // No RENAME_NOREPLACE on this file system (some NFS and FUSE ones): link(2) refuses an
     // existing name just as atomically; the temporary name is removed afterwards.
-    if (::link(from.c_str(), to.c_str()) == 0) {
-        ::unlink(from.c_str());
+    if (::linkat(fromDirectory, from, toDirectory, to, 0) == 0) {
+        ::unlinkat(fromDirectory, from, 0);
         return 0;
     }
     if (errno != EPERM && errno != EOPNOTSUPP && errno != EMLINK)
@@ -147,9 +206,9 @@ int renameNoReplace(const fs::path& from, const fs::path& to) {
     // No hard links either (FAT, some FUSE): check, then rename. Another program can still
     // slip in between the two; no atomic way is left on such a file system.
     struct stat status {};
-    if (::lstat(to.c_str(), &status) == 0)
+    if (::fstatat(toDirectory, to, &status, AT_SYMLINK_NOFOLLOW) == 0)
         return EEXIST;
-    return ::rename(from.c_str(), to.c_str()) == 0 ? 0 : errno;
+    return ::renameat(fromDirectory, from, toDirectory, to) == 0 ? 0 : errno;
 }
 
 } // namespace
@@ -172,10 +231,35 @@ AtomicOutput::AtomicOutput(std::string_view stage, const fs::path& output, Exist
     std::ostringstream prefix;
     prefix << '.' << utf8Prefix(output.stem().string(), stemBytes) << unique.str();
     m_prefix = prefix.str();
+    // O_PATH: only search permission is needed, and the *at calls take it as their directory.
+    const int directory = ::open(m_directory.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (directory >= 0)
+        m_directoryFd = directory;
 }
 
 AtomicOutput::~AtomicOutput() {
     removeAll();
+    if (m_directoryFd)
+        ::close(*m_directoryFd);
+}
+
+AtomicOutput::Location AtomicOutput::locate(const fs::path& path) const {
+    if (m_directoryFd) {
+        const fs::path inside = path.lexically_relative(m_directory);
+        if (!inside.empty() && *inside.begin() != ".." && *inside.begin() != ".")
+            return {*m_directoryFd, inside.string()};
+    }
+    return {AT_FDCWD, path.string()};
+}
+
+void AtomicOutput::refuseMovedDirectory(const fs::path& target) const {
+    // Checked before the rename, so a move between the two still lands the output in the moved
+    // directory: nothing closes that gap, as a directory cannot be locked against a rename.
+    if (!m_directoryFd || sameDirectory(*m_directoryFd, m_directory))
+        return;
+    throw IoError(m_stage + ": the output directory " + quoted(m_directory) +
+                  " was moved or replaced while this run was writing; " + quoted(target) +
+                  " was not written");
 }
 
 fs::path AtomicOutput::temporary(std::string_view suffix) const {
@@ -183,15 +267,18 @@ fs::path AtomicOutput::temporary(std::string_view suffix) const {
 }
 
 void AtomicOutput::commit(const fs::path& temporary, const fs::path& target) const {
+    refuseMovedDirectory(target);
+    const Location from = locate(temporary);
+    const Location to = locate(target);
     if (m_existing == ExistingTarget::Replace) {
-        std::error_code error;
-        fs::rename(temporary, target, error);
-        if (error)
-            throw IoError(m_stage + ": cannot move the finished file to " + quoted(target) + ": " +
-                          error.message());
-        return;
+        if (::renameat(from.directory, from.name.c_str(), to.directory, to.name.c_str()) == 0)
+            return;
+        const int error = errno;
+        throw IoError(m_stage + ": cannot move the finished file to " + quoted(target) + ": " +
+                      std::strerror(error));
     }
-    const int error = renameNoReplace(temporary, target);
+    const int error =
+        renameNoReplace(from.directory, from.name.c_str(), to.directory, to.name.c_str());
     if (error == EEXIST || error == ENOTEMPTY)
         throw InvalidInputError(m_stage + ": the output " + quoted(target) +
                                 " appeared while this run was writing; it was left as it is "
@@ -212,8 +299,8 @@ void AtomicOutput::commitAll(const std::vector<std::pair<fs::path, fs::path>>& m
         // own and go again. Replace: the old files are gone already; nothing to restore.
         if (m_existing == ExistingTarget::Refuse)
             for (std::size_t i = 0; i < done; ++i) {
-                std::error_code ignored;
-                fs::remove(moves[i].second, ignored);
+                const Location put = locate(moves[i].second);
+                removeTree(put.directory, put.name, 1);
             }
         throw;
     }
@@ -222,15 +309,18 @@ void AtomicOutput::commitAll(const std::vector<std::pair<fs::path, fs::path>>& m
 // Never throws: it runs while an exception may already be propagating.
 void AtomicOutput::removeAll() noexcept {
     try {
-        std::error_code error;
-        std::vector<fs::path> doomed;
-        for (fs::directory_iterator it(m_directory, error), end; !error && it != end;
-             it.increment(error)) {
-            if (it->path().filename().string().starts_with(m_prefix))
-                doomed.push_back(it->path());
+        if (m_directoryFd)
+            removeStartingWith(*m_directoryFd, m_prefix);
+        // What GDAL or SQLite created by path after the directory moved (a journal) went to
+        // whatever has that path now. The prefix holds this process's id and 64 random bits:
+        // only this run's files start with it.
+        if (!m_directoryFd || !sameDirectory(*m_directoryFd, m_directory)) {
+            const int named = ::open(m_directory.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+            if (named >= 0) {
+                removeStartingWith(named, m_prefix);
+                ::close(named);
+            }
         }
-        for (const auto& entry : doomed)
-            fs::remove_all(entry, error);
     } catch (...) {
         // Out of memory while listing: nothing sensible left to do in a destructor.
     }

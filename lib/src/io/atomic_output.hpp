@@ -10,10 +10,16 @@
 /// An output that is not to be replaced is checked before the first byte is written
 /// (refuseExistingOutputs), and again, atomically, by the final rename: one that another
 /// program created while the run was writing is left as it is (issue 22, D5).
+///
+/// The output's directory is held open from the start, and the final rename and the removal go
+/// through it (renameat, unlinkat): a directory renamed while the run writes (by a user, a sync
+/// tool) keeps nothing of the run, wherever it went, and the final rename refuses it rather
+/// than put the output where it was not asked for.
 
 #include "terratin/option_namer.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -79,8 +85,9 @@ public:
     [[nodiscard]] std::filesystem::path temporary(std::string_view suffix) const;
 
     /// Renames `temporary` onto `target` as one atomic step. With ExistingTarget::Refuse an
-    /// existing `target` is left untouched and InvalidInputError is thrown; IoError on any
-    /// other failure.
+    /// existing `target` is left untouched and InvalidInputError is thrown; IoError when the
+    /// output directory is no longer where it was (moved or replaced since construction) and
+    /// on any other failure.
     void commit(const std::filesystem::path& temporary, const std::filesystem::path& target) const;
 
     /// commit() for each (temporary, target) in order. With ExistingTarget::Refuse, a failure
@@ -90,10 +97,22 @@ public:
         const std::vector<std::pair<std::filesystem::path, std::filesystem::path>>& moves) const;
 
 private:
+    /// Where `path` is for the *at calls: its name in the held directory, or the path itself
+    /// (relative to the working directory) when it is not in it or the directory is not held.
+    struct Location {
+        int directory;
+        std::string name;
+    };
+    [[nodiscard]] Location locate(const std::filesystem::path& path) const;
+    /// IoError naming `target` when m_directory no longer names the held directory.
+    void refuseMovedDirectory(const std::filesystem::path& target) const;
     void removeAll() noexcept;
 
     std::string m_stage;
     std::filesystem::path m_directory;
+    /// m_directory, opened at construction; nullopt when it could not be opened (no file
+    /// descriptor left, or the directory gone already): then every step goes by path.
+    std::optional<int> m_directoryFd;
     std::string m_prefix;
     ExistingTarget m_existing;
     /// "overwrite" or "--overwrite", for the message of a refused target.

@@ -172,6 +172,38 @@ TEST(HostileOutput, D5_RefusesAStyleThatAppearsDuringTheRun_AndTakesTheDataBack)
               (std::map<std::string, std::string>{{"tin.qml", "someone's style"}}));
 }
 
+TEST(HostileOutput, LeavesNoTemporary_WhenTheOutputDirectoryIsRenamedDuringTheRun) {
+    // Someone (a user, a sync tool) renames the output's directory once the run has started
+    // writing: the run fails, and its temporaries go from the directory wherever it went. The
+    // GeoPackage fails at the final rename, which says why; other formats may fail before, in
+    // GDAL, with GDAL's reason.
+    for (const auto& [format, extension] : everyFormat()) {
+        const TemporaryDirectory root;
+        fs::create_directory(root / "out");
+        bool moved = false;
+        const auto moveTheDirectory = [&](double fraction, std::string_view) {
+            if (!moved && fraction > 0.0) { // the temporary exists by then
+                fs::rename(root / "out", root / "moved");
+                moved = true;
+            }
+            return true;
+        };
+        try {
+            writeTin(test::gridTin(5), root / "out" / ("tin" + extension), optionsFor(format),
+                     moveTheDirectory);
+            ADD_FAILURE() << extension << ": written although its directory was moved";
+        } catch (const Error& error) {
+            if (format == TinFormat::GeoPackage)
+                EXPECT_NE(std::string(error.what()).find("was moved"), std::string::npos)
+                    << error.what();
+        }
+        ASSERT_TRUE(moved) << extension;
+        EXPECT_EQ(TemporaryDirectory::entriesOf(root / "moved"), std::set<std::string>{})
+            << extension;
+        EXPECT_EQ(root.entries(), std::set<std::string>{"moved"}) << extension;
+    }
+}
+
 TEST(HostileOutput, D17_WritesAnOutputNamedWith255Bytes_ForEveryFormat) {
     // 255 bytes is the longest legal name; the temporary name must not need more.
     for (const auto& [format, extension] : everyFormat()) {
