@@ -1293,6 +1293,23 @@ case "$case_name" in
       cd ..
     done
     ;;
+  layer_not_utf8_refused)
+    # A layer name that is not UTF-8 (Latin-1, as a script may pass it) would be a GeoPackage
+    # table name no reader can show and LandXML that is not well-formed: refused before anything
+    # is written, naming the byte. A UTF-8 name of the same word works.
+    small_sample
+    for format in xml gpkg obj; do
+      run 2 build small.tif -o "out.$format" --layer "$(printf 'caf\351')"
+      expect_one_error_line "layer name is not valid UTF-8 (0xE9 at byte 4)"
+      [ ! -e "out.$format" ] || fail "out.$format written despite the name"
+    done
+    expect_no_leftovers
+    run 0 build small.tif -o tin.xml --layer "$(printf 'caf\303\251')" --quiet
+    xmllint --noout tin.xml || fail "not well-formed XML with a UTF-8 name"
+    run 0 build small.tif -o tin.gpkg --layer "$(printf 'caf\303\251')" --quiet
+    ogrinfo -ro -q tin.gpkg "$(printf 'caf\303\251')" >/dev/null ||
+      fail "no layer of the UTF-8 name"
+    ;;
   *)
     fail "unknown case"
     ;;

@@ -127,6 +127,46 @@ std::vector<fs::path> outputFiles(const fs::path& output, const TinWriteOptions&
     return outputs;
 }
 
+/// The character of `text` that starts at byte `at`, and `at` moved past it; nullopt (and `at`
+/// left) when the bytes there are not one well-formed UTF-8 character (RFC 3629: the shortest
+/// form, no UTF-16 surrogate, nothing past U+10FFFF).
+std::optional<char32_t> nextUtf8Character(std::string_view text, std::size_t& at) {
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+    const unsigned char lead = byte(at);
+    if (lead < 0x80) {
+        ++at;
+        return lead;
+    }
+    // The length a lead byte announces, and the range its second byte must fall in: narrower
+    // than 0x80..0xBF after E0 and F0 (overlong forms), ED (surrogates) and F4 (past U+10FFFF).
+    std::size_t length = 0;
+    unsigned char low = 0x80;
+    unsigned char high = 0xBF;
+    if (lead >= 0xC2 && lead <= 0xDF) {
+        length = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+        length = 3;
+        low = lead == 0xE0 ? 0xA0 : 0x80;
+        high = lead == 0xED ? 0x9F : 0xBF;
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+        length = 4;
+        low = lead == 0xF0 ? 0x90 : 0x80;
+        high = lead == 0xF4 ? 0x8F : 0xBF;
+    } else {
+        return std::nullopt; // a continuation byte, 0xC0 or 0xC1 (overlong), or 0xF5..0xFF
+    }
+    if (at + length > text.size() || byte(at + 1) < low || byte(at + 1) > high)
+        return std::nullopt;
+    char32_t character = lead & (0xFFU >> (length + 1));
+    for (std::size_t i = 1; i < length; ++i) {
+        if ((byte(at + i) & 0xC0U) != 0x80U)
+            return std::nullopt;
+        character = (character << 6U) | (byte(at + i) & 0x3FU);
+    }
+    at += length;
+    return character;
+}
+
 } // namespace
 
 std::string nodeLayerName(const std::string& layerName) {
@@ -172,6 +212,28 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
                                  " at byte " +
                                  std::to_string(control - options.layerName.begin() + 1) +
                                  "); use printable characters only");
+    }
+    // A GeoPackage table name is UTF-8 text to SQLite and to every reader, and LandXML says
+    // encoding="UTF-8": other bytes (Latin-1 from a script, a name cut mid-character) make an
+    // unreadable table name and XML that is not well-formed. U+FFFE and U+FFFF are UTF-8 but
+    // no characters, and XML 1.0 cannot hold them.
+    for (std::size_t at = 0; at < options.layerName.size();) {
+        const std::size_t start = at;
+        const std::optional<char32_t> character = nextUtf8Character(options.layerName, at);
+        char code[16];
+        if (!character) {
+            std::snprintf(code, sizeof code, "0x%02X",
+                          static_cast<unsigned char>(options.layerName[start]));
+            throwInvalid(kStage, "the layer name is not valid UTF-8 (" + std::string(code) +
+                                     " at byte " + std::to_string(start + 1) +
+                                     "); give it in UTF-8");
+        }
+        if (*character == 0xFFFE || *character == 0xFFFF) {
+            std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(*character));
+            throwInvalid(kStage, "the layer name holds " + std::string(code) + " at byte " +
+                                     std::to_string(start + 1) +
+                                     ", which is no character; use printable characters only");
+        }
     }
     if (geoPackage && (options.nodes || options.edges) &&
         (nodeLayerName(options.layerName) == options.layerName ||

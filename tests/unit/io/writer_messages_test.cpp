@@ -16,8 +16,10 @@
 #include <cstddef>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace terratin::io {
@@ -171,6 +173,46 @@ TEST(WriterMessages, NameTheLayerAndOverwriteOptionsTheCallersWay_WhenAnAppended
                       "already has a layer 'tin'; choose another {layer} or use {overwrite} to "
                       "replace it",
                       naming);
+    }
+}
+
+TEST(WriterMessages, RefuseALayerNameThatIsNotUtf8_NamingTheByte) {
+    // A GeoPackage table name and a LandXML attribute must be UTF-8: the message names the
+    // first byte that starts no UTF-8 character, and nothing is written, whatever the format.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"caf\xE9", "(0xE9 at byte 4)"},          // Latin-1, as a script may pass it
+        {"ab\xE2\x82", "(0xE2 at byte 3)"},       // cut in the middle of a character
+        {"\x80xyz", "(0x80 at byte 1)"},          // a continuation byte without its lead
+        {"\xC0\xAF", "(0xC0 at byte 1)"},         // an overlong '/'
+        {"x\xED\xA0\x80", "(0xED at byte 2)"},    // a UTF-16 surrogate, U+D800
+        {"\xF4\x90\x80\x80", "(0xF4 at byte 1)"}, // past U+10FFFF
+    };
+    for (const auto& [format, extension] :
+         std::vector<std::pair<TinFormat, std::string>>{{TinFormat::GeoPackage, ".gpkg"},
+                                                        {TinFormat::LandXml, ".xml"},
+                                                        {TinFormat::Shapefile, ".shp"},
+                                                        {TinFormat::Obj, ".obj"}}) {
+        for (const auto& [name, where] : cases) {
+            const TemporaryDirectory directory;
+            TinWriteOptions options = optionsFor(format, namings().front());
+            options.layerName = name;
+            const std::string message = refusal(
+                [&] { writeTin(test::gridTin(3), directory / ("tin" + extension), options); });
+            EXPECT_NE(message.find("the layer name is not valid UTF-8 " + where), std::string::npos)
+                << extension << ": " << message;
+            EXPECT_EQ(directory.entries(), std::set<std::string>{}) << extension;
+        }
+    }
+    // U+FFFF is UTF-8 but no character, and XML cannot hold it.
+    TinWriteOptions options = optionsFor(TinFormat::LandXml, namings().front());
+    options.layerName = "a\xEF\xBF\xBF";
+    EXPECT_NE(refusal([&] { checkTinWriteOptions(options); }).find("U+FFFF at byte 2"),
+              std::string::npos);
+    // Characters of two, three and four bytes pass, U+FFFD and U+10FFFF among them.
+    for (const std::string name : {"Mt Hood \xE2\x80\x93 1 m", "\xE5\xB1\xB1", "\xF0\x9F\x98\x80",
+                                   "\xEF\xBF\xBD", "\xF4\x8F\xBF\xBF", "caf\xC3\xA9"}) {
+        options.layerName = name;
+        EXPECT_EQ(refusal([&] { checkTinWriteOptions(options); }), "") << name;
     }
 }
 
