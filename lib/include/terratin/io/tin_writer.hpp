@@ -40,8 +40,9 @@ struct TinWriteOptions {
     std::string crsWkt;
     /// Name of the triangle layer (GeoPackage; FlatGeobuf and Shapefile name the layer after
     /// the file). The node and edge layers are "nodes" and "edges" when it is "tin", else
-    /// "<layerName>_nodes" and "<layerName>_edges". No control characters (U+0000 to U+001F,
-    /// U+007F): checkTinWriteOptions refuses them.
+    /// "<layerName>_nodes" and "<layerName>_edges". Well-formed UTF-8 without control
+    /// characters (U+0000 to U+001F, U+007F) or U+FFFE / U+FFFF (which XML cannot hold):
+    /// checkTinWriteOptions refuses anything else.
     std::string layerName = "tin";
     /// Attribute columns of the triangles (vector formats; the mesh formats carry none).
     AttributeSet attributes = AttributeSet::All;
@@ -99,7 +100,8 @@ struct TinWriteResult {
 /// Throws InvalidInputError when the options contradict each other or the format (nodes,
 /// edges, appendLayer or spatialIndex=false outside GeoPackage; qgisStyle with a mesh format
 /// or without attributes; a layer name holding a control character, such as a newline, which
-/// would corrupt the text formats; vertexCells of the wrong size is checked by writeTin). The
+/// would corrupt the text formats, or bytes that are not UTF-8; vertexCells of the wrong size
+/// is checked by writeTin). The
 /// message names the options as options.optionName does: "nodes needs a GeoPackage output".
 void checkTinWriteOptions(const TinWriteOptions& options);
 

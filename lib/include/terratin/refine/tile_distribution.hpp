@@ -26,8 +26,10 @@ public:
     /// in the coordinator: while they hold more than `earlyBytes` bytes (0: no bound) it hands
     /// out no more (tile_handout.hpp keeps that count). Calls `keepGoing` while it waits and
     /// stops when it returns false. Throws terratin::Error naming the process and its message
-    /// when one fails (take's exceptions too), and Cancelled when keepGoing stopped it; every
-    /// other process is released first either way.
+    /// when one fails (take's exceptions too), and Cancelled when keepGoing stopped it. Every
+    /// other process is released first, except where a signal stopped the run: then the
+    /// implementation may leave them (an MPI launcher that lost a process ends them itself,
+    /// and a process waiting to be told would never hear).
     virtual void
     gather(std::size_t tileCount,
            const std::function<void(std::size_t tile, std::vector<std::byte> tin)>& take,
