@@ -21,13 +21,26 @@ void ConstraintOwners::reserve(std::size_t edges) {
     m_nodes.reserve(edges);
 }
 
-// A hash of the whole edge: the slots of a run of new vertices (the crossings, numbered one
-// after another) spread over the table. A slot picked by the smaller vertex alone packs the
-// edges of such a run, about two per vertex, into two slots per vertex: the probes then run
-// through one cluster as long as the run, and the crossings' insertion grows with their square.
-// The high bits of Fibonacci hashing's product depend on every bit of the key.
+// By the edge's smaller vertex, in blocks of 8 consecutive vertices: a block's 16 slots (two
+// per vertex) lie side by side at a place hashed from the block, and within 8 slots of its
+// vertex's two the edge's slot is picked by a hash of the larger vertex (so that one vertex's
+// edges do not share a slot). Consecutive edges of a polyline join vertices numbered one after
+// another, so eight of them find their slots in a few cache lines, where a hash of the whole
+// edge sends each one to a random place of a table of megabytes. The blocks lie at random
+// places: a run of new vertices with more edges each than their two slots (crossings, about two
+// each by their smaller end) spills from a block into the slots after it, which mostly belong to
+// no block of the run. Slots by the smaller vertex alone, in order, laid such a run over one
+// stretch of the table, full, and the probes ran through a cluster as long as the run: the
+// crossings' insertion grew with their square.
 std::size_t ConstraintOwners::home(std::uint64_t edge) const {
-    return static_cast<std::size_t>((edge * 0x9e3779b97f4a7c15ULL) >> m_shift);
+    constexpr std::uint64_t kGolden = 0x9e3779b97f4a7c15ULL;
+    constexpr unsigned kBlockBits = 3;
+    constexpr unsigned kSpreadBits = 3;
+    const std::uint64_t smaller = edge >> 32U;
+    const std::uint64_t block = ((smaller >> kBlockBits) * kGolden) >> m_shift;
+    const std::uint64_t within = kSlotsPerEdge * (smaller & ((1U << kBlockBits) - 1U));
+    const std::uint64_t spread = ((edge & 0xffffffffULL) * kGolden) >> (64U - kSpreadBits);
+    return static_cast<std::size_t>((block + within + spread) & (m_slots.size() - 1));
 }
 
 std::size_t ConstraintOwners::slotOf(std::uint64_t edge) const {

@@ -65,15 +65,16 @@ TEST(ConstraintOwners, AgreesWithAMap_UnderRandomAddsAndTakes) {
     EXPECT_TRUE(owners.take(1, 2).empty());
 }
 
-// The edges of a run of new vertices, about two per vertex by its smaller end, as the crossings
-// of many lines make them: a table that placed them by that vertex alone probed through one
-// cluster as long as the run. It must still agree with the map.
+// The edges of a run of new vertices, two and more per vertex by its smaller end, as the
+// crossings of many lines make them: more than the two slots a vertex has, so they spill, and
+// must still agree with the map (slots in the vertices' order once made one cluster of the whole
+// run, which this would walk through at every probe).
 TEST(ConstraintOwners, AgreesWithAMap_ForTheEdgesOfARunOfNewVertices) {
     ConstraintOwners owners;
     std::map<Edge, std::vector<std::uint32_t>> expected;
     constexpr std::uint32_t kFirst = 1000000;
     for (std::uint32_t v = kFirst; v < kFirst + 30000; ++v)
-        for (const std::uint32_t other : {v + 1, v + 7}) {
+        for (const std::uint32_t other : {v + 1, v + 7, v + 30}) {
             owners.add(v, other, {v % 5});
             expected[ordered(v, other)] = {v % 5};
         }
