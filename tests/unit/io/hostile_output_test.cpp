@@ -193,9 +193,10 @@ TEST(HostileOutput, LeavesNoTemporary_WhenTheOutputDirectoryIsRenamedDuringTheRu
                      moveTheDirectory);
             ADD_FAILURE() << extension << ": written although its directory was moved";
         } catch (const Error& error) {
-            if (format == TinFormat::GeoPackage)
+            if (format == TinFormat::GeoPackage) {
                 EXPECT_NE(std::string(error.what()).find("was moved"), std::string::npos)
                     << error.what();
+            }
         }
         ASSERT_TRUE(moved) << extension;
         EXPECT_EQ(TemporaryDirectory::entriesOf(root / "moved"), std::set<std::string>{})
