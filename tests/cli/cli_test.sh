@@ -399,7 +399,7 @@ case "$case_name" in
     run 2 build "$sample" -o out.gpkg --keep-geographic --t_srs EPSG:3857
     expect_one_error_line "--keep-geographic"
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
-    # The readers' own refusals name the options as the command line does (issue 23).
+    # The readers' own refusals name the options as the command line does.
     printf '456003 5104000 100\n456100 5104100 101\n456200 5104000 99\n' >spots.xyz
     run 1 build spots.xyz -o out.gpkg --columns x,y,z
     expect_one_error_line "the columns named in --columns"
@@ -448,7 +448,7 @@ case "$case_name" in
     [ ! -e tin.gpkg ] || fail "output written despite a refused combination"
     ;;
   refine_tiles)
-    # Issue 25: a simplified TIN built tile by tile, each tile exactly Delaunay (--validate),
+    # A simplified TIN built tile by tile, each tile exactly Delaunay (--validate),
     # within the bound over every cell, about as many points as untiled.
     run 0 build "$sample" -o whole.ply --max-error 0.5 --json --quiet
     whole=$(report_count vertices)
@@ -520,7 +520,7 @@ case "$case_name" in
     expect_no_leftovers
     ;;
   tiles_dir)
-    # Issue 25: --tiles-dir writes each tile's TIN as its own file and an index of footprints;
+    # --tiles-dir writes each tile's TIN as its own file and an index of footprints;
     # the tiles hold the joined TIN's triangles, no more, no fewer.
     run 0 build "$sample" -o joined.ply --max-error 0.5 --tile-size 64 --json --quiet
     joined=$(report_count triangles)
@@ -573,7 +573,7 @@ case "$case_name" in
     expect_no_leftovers
     ;;
   memory_limit)
-    # Issue 25: --memory-limit writes the TIN tile by tile into one file, the same TIN as joined
+    # --memory-limit writes the TIN tile by tile into one file, the same TIN as joined
     # (one thread: a tile's triangles then come in one order).
     run 0 build "$sample" -o joined.ply --max-error 0.5 --tile-size 64 --threads 1 --quiet
     run 0 build "$sample" -o streamed.ply --max-error 0.5 --tile-size 64 --threads 1 \
@@ -666,7 +666,7 @@ case "$case_name" in
     expect_no_leftovers
     ;;
   mpi_tiles)
-    # Issue 25: mpirun shares the tiles among ranks; rank 0 coordinates and writes. The TIN is
+    # mpirun shares the tiles among ranks; rank 0 coordinates and writes. The TIN is
     # the one process's for 1 and 2 ranks that refine: the same vertices in the same order, the
     # same triangles (their order within a tile follows the threads a rank runs, as in one
     # process; mpirun may bind a rank to one core).
@@ -906,7 +906,7 @@ case "$case_name" in
     [ ! -e tin.shp ] && [ ! -e tin.2dm ] && [ ! -e tin.ply ] ||
       fail "output written despite the usage error"
     ;;
-  # Issue 22: every count option bounded, refused with status 2 and one line before reading.
+  # Every count option bounded, refused with status 2 and one line before reading.
   d2_queue_length_bounded)
     for value in -1 0 1048577 4294967295 18446744073709551617 9223372036854775809; do
       run 2 build "$sample" -o out.gpkg --method batch --queue-length "$value"
@@ -1058,7 +1058,7 @@ case "$case_name" in
       'SELECT COUNT(*) AS n FROM tin WHERE area_2d < 1e-3 AND slope_deg = 0 AND aspect_deg = -1' >sql.txt
     [ "$(sed -n 's/.*n (Integer) = //p' sql.txt)" = "$slivers" ] || fail "a sliver has a slope"
     ;;
-  # Issue 22: regression cases named after the defects of its audit.
+  # Regression cases of an audit of hostile input, named d<N>_ after its defects.
   d10_out_of_memory)
     # A segfault inside GDAL's RasterIO under an address-space limit; now one line. Around
     # 200 MB the limit falls in the raster read; the others land before or after it.
@@ -1192,7 +1192,7 @@ case "$case_name" in
     ! grep -q "unknown GDAL error" err.txt || fail "unknown GDAL error for --s_srs garbage"
     ;;
   breaklines)
-    # Issue 24: a breakline layer through the command line; its segment is an edge of the TIN.
+    # A breakline layer through the command line; its segment is an edge of the TIN.
     printf 'WKT;id\n"LINESTRING (455501.3 5104003.7, 456700.9 5103100.2)";1\n' >lines.csv
     ogr2ogr -q -f GPKG lines.gpkg lines.csv -oo GEOM_POSSIBLE_NAMES=WKT -a_srs EPSG:32633 \
       -nlt LINESTRING -nln roads || fail "ogr2ogr failed"
@@ -1210,7 +1210,7 @@ case "$case_name" in
       --validate
     grep -q '"validated": true' out.txt || fail "simplified: not validated"
     [ "$(report_count check_passes)" -ge 1 ] || fail "simplified: no check pass"
-    # Issue 24: clip and erase areas; a line layer is not one.
+    # Clip and erase areas; a line layer is not one.
     run 1 build "$sample" --clip lines.gpkg -o tin5.gpkg --quiet
     expect_one_error_line "not a Polygon"
     printf 'WKT;id\n"POLYGON ((455600.5 5103000.25,457200.75 5102800.5,456500.5 5104700.25,455600.5 5103000.25))";1\n' >area.csv
@@ -1221,7 +1221,7 @@ case "$case_name" in
     [ ! -e tin6.gpkg ] || fail "an output written with no triangle"
     run 0 build "$sample" --erase area.gpkg -o tin7.gpkg --quiet --json
     [ "$(report_count area_triangles)" -gt 0 ] || fail "nothing erased"
-    # Issue 24: a replace polygon (a lake) flattened to its field's level.
+    # A replace polygon (a lake) flattened to its field's level.
     printf 'WKT;level\n"POLYGON ((456100.5 5103300.25,457000.75 5103150.5,456600.5 5104400.25,456100.5 5103300.25))";812.5\n' >lake.csv
     ogr2ogr -q -f GPKG lake.gpkg lake.csv -oo GEOM_POSSIBLE_NAMES=WKT -oo AUTODETECT_TYPE=YES \
       -a_srs EPSG:32633 -nlt POLYGON || fail "ogr2ogr failed"

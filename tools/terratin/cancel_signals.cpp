@@ -34,11 +34,11 @@ void installCancelSignals() {
     sigemptyset(&cancel.sa_mask);
     cancel.sa_flags = SA_RESTART;
     // SIGHUP (the terminal was closed) like Ctrl-C and kill: no hidden temporary is left
-    // behind (issue 22, D8).
+    // behind.
     for (const int signal : {SIGINT, SIGTERM, SIGHUP})
         sigaction(signal, &cancel, nullptr);
-    // Past `ulimit -f` the write fails with EFBIG instead of the run dying without a word
-    // (issue 22, D9); a closed stdout or stderr pipe fails its write with EPIPE instead of
+    // Past `ulimit -f` the write fails with EFBIG instead of the run dying without a word;
+    // a closed stdout or stderr pipe fails its write with EPIPE instead of
     // killing the run in the middle of writing its output.
     ignore(SIGXFSZ);
     ignore(SIGPIPE);

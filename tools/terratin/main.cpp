@@ -37,7 +37,7 @@ void printError(const std::string& text) {
 }
 
 // Writes `text` and a newline to stdout. The report is the run's result: one that cannot be
-// written (a full disk, a closed pipe) is an error, not a silent success (issue 22, D15).
+// written (a full disk, a closed pipe) is an error, not a silent success.
 bool writeReport(const std::string& text) {
     if (text.empty())
         return true;

@@ -1,5 +1,5 @@
 #pragma once
-// terratin's tiles over MPI (issue 25): rank 0 coordinates (hands tiles out as the others ask,
+// terratin's tiles over MPI: rank 0 coordinates (hands tiles out as the others ask,
 // joins their TINs, writes); every other rank refines the tiles it is handed. Each rank reads
 // the DEM itself, from a filesystem they share.
 //

@@ -90,8 +90,8 @@ std::string crsFromUserInput(const std::string& definition, std::string_view opt
                                             "string or file of one"));
     }
     // The TIN is triangulated in x, y of this CRS: a vertical-only CRS has no x, y, and a
-    // geocentric one's x, y are a slice through the Earth (issue 22, D11: both used to be
-    // accepted and label nonsense). A compound CRS brings its horizontal part.
+    // geocentric one's x, y are a slice through the Earth: either would label a TIN with
+    // nonsense. A compound CRS brings its horizontal part.
     if (!srs.IsProjected() && !srs.IsGeographic() && !srs.IsLocal()) {
         const char* kind = srs.IsGeocentric() ? "geocentric (x, y, z from the Earth's centre)"
                            : srs.IsVertical() ? "vertical only (heights, no x, y)"

@@ -224,7 +224,7 @@ AtomicOutput::AtomicOutput(std::string_view stage, const fs::path& output, Exist
     unique << ".tmp-" << ::getpid() << '-' << std::hex << random;
     // The longest temporary is the prefix plus the output's extension (temporary()'s contract),
     // and side files add to it: a legal output name of up to 255 bytes must still give legal
-    // temporary names (issue 22, D17), so the stem gives way.
+    // temporary names, so the stem gives way.
     const std::size_t fixed =
         1 + unique.str().size() + output.extension().string().size() + kSideFileBytes;
     const std::size_t stemBytes = fixed < kMaxNameBytes ? kMaxNameBytes - fixed : 0;

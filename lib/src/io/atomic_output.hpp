@@ -9,7 +9,7 @@
 ///
 /// An output that is not to be replaced is checked before the first byte is written
 /// (refuseExistingOutputs), and again, atomically, by the final rename: one that another
-/// program created while the run was writing is left as it is (issue 22, D5).
+/// program created while the run was writing is left as it is.
 ///
 /// The output's directory is held open from the start, and the final rename and the removal go
 /// through it (renameat, unlinkat): a directory renamed while the run writes (by a user, a sync
@@ -43,7 +43,7 @@ existingFiles(const std::vector<std::filesystem::path>& candidates);
 
 /// IoError when one of `candidates` exists and is not a regular file: a directory, a symbolic
 /// link (even to a regular file: replacing it would cut the link, not write its target), a
-/// character or block device (/dev/null), a FIFO or a socket (issue 22, D18).
+/// character or block device (/dev/null), a FIFO or a socket.
 void refuseIrregularOutputs(std::string_view stage,
                             const std::vector<std::filesystem::path>& candidates);
 

@@ -201,8 +201,8 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
     if (geoPackage && options.layerName.empty())
         throwInvalid(kStage, "the layer name is empty");
     // The mesh formats write the name raw into a line of text (2DM MESHNAME, OBJ "o"): a
-    // newline in it starts a record of its own and shifts every index after it (issue 22,
-    // D14). No format has a use for control characters in a name, so every one refuses them.
+    // newline in it starts a record of its own and shifts every index after it. No format has
+    // a use for control characters in a name, so every one refuses them.
     const auto control = std::find_if(options.layerName.begin(), options.layerName.end(),
                                       [](unsigned char ch) { return ch < 0x20 || ch == 0x7F; });
     if (control != options.layerName.end()) {
@@ -246,7 +246,7 @@ void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {
     const std::string_view stage = detail::writerStage(options.format);
     detail::checkOutputLocation(stage, output);
     std::vector<fs::path> outputs = outputFiles(output, options);
-    // Not even --overwrite replaces a device, a FIFO or a symbolic link (issue 22, D18).
+    // Not even --overwrite replaces a device, a FIFO or a symbolic link.
     detail::refuseIrregularOutputs(stage, outputs);
     // Appending to an existing GeoPackage is what --append-layer asks for; its layers are
     // checked when the copy is opened.

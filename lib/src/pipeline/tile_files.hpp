@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `--tiles-dir` (issue 25): each tile's TIN written to its own file as it is done, never
+/// `--tiles-dir`: each tile's TIN written to its own file as it is done, never
 /// joined, and an index of the tiles' footprints. Internal to the build pipeline.
 
 #include "../tile/tile_grid.hpp"

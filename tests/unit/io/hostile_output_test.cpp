@@ -1,6 +1,6 @@
-// Outputs under hostile conditions (issue 22): files of the same name that belong to someone
-// else (D1), outputs that appear while a run is writing (D5), the longest legal names (D17)
-// and outputs that are not regular files (D18). Every test checks that what was there before
+// Outputs under hostile conditions: files of the same name that belong to someone else,
+// outputs that appear while a run is writing, the longest legal names and outputs that are
+// not regular files. Every test checks that what was there before
 // is byte-identical afterwards and that no temporary is left.
 
 #include "terratin/io/tin_writer.hpp"

@@ -1,4 +1,4 @@
-// Issue 23: the writer's messages name options the caller's way. A C++ caller who never set
+// The writer's messages name options the caller's way. A C++ caller who never set
 // TinWriteOptions::optionName reads keywords ("overwrite"), never a command-line flag; a caller
 // with its own OptionNamer (runBuild: "--overwrite" for the command line) reads its names.
 
