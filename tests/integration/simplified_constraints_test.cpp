@@ -47,9 +47,21 @@ const std::vector<Point2> kRoadA = {
     {455501.3, 5104003.7}, {456700.9, 5102700.2}, {457800.1, 5104500.3}};
 const std::vector<Point2> kRoadB = {{455300.7, 5102900.1}, {458000.3, 5104400.9}};
 
+/// Whether `p` lies exactly on a side of the closed `ring`.
+bool onRing(const std::vector<Point2>& ring, Point2 p) {
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+        const Point2 a = ring[j];
+        const Point2 b = ring[i];
+        if (p.x >= std::min(a.x, b.x) && p.x <= std::max(a.x, b.x) && p.y >= std::min(a.y, b.y) &&
+            p.y <= std::max(a.y, b.y) && predicates::orient2d(a, b, p) == 0.0)
+            return true;
+    }
+    return false;
+}
+
 /// The TIN in `ply` against the sample, every triangle against every cell centre it holds
-/// (closed, exact): the largest error of a valid cell the `skip` ring does not hold, and the
-/// valid cells in no triangle.
+/// (closed, exact): the largest error of a valid cell outside the closed `skip` ring (a replace
+/// area's shore is flattened with it), and the valid cells in no triangle.
 struct Coverage {
     double maxError = 0.0;
     std::size_t uncovered = 0;
@@ -83,7 +95,7 @@ Coverage coverage(const fs::path& ply, const std::vector<Point2>& skip) {
                 if (wa < 0.0 || wb < 0.0 || wc < 0.0 || std::isnan(z[cell]))
                     continue;
                 covered[cell] = 1;
-                if (!skip.empty() && insideRing(skip, p))
+                if (!skip.empty() && (insideRing(skip, p) || onRing(skip, p)))
                     continue;
                 const double plane = (wa * a.z + wb * b.z + wc * c.z) / area;
                 result.maxError = std::max(result.maxError, std::abs(plane - z[cell]));
@@ -172,6 +184,27 @@ TEST(SimplifiedConstraints, RoadsAndALake_BoundHoldsOutsideTheLake_LakeFlat_Road
         for (std::size_t i = 0; i < 3; ++i)
             EXPECT_EQ(mesh.vertices[mesh.triangles[t + i]].z, 812.25);
     }
+}
+
+TEST(SimplifiedConstraints, ALakeWhoseShoreRunsThroughCellCentres_BoundHoldsOnEveryCellOutside) {
+    // A diamond on a slope whose sides run through cell centres: those cells lie on the shore,
+    // at the lake's level with it, and are not measured; every other valid cell is within the
+    // bound, and the report says so.
+    TemporaryDirectory directory;
+    const std::vector<Point2> diamond = {sampleCellCentre(100, 60), sampleCellCentre(130, 90),
+                                         sampleCellCentre(100, 120), sampleCellCentre(70, 90)};
+    test::writeVectorLayer(directory.path() / "lake.gpkg", "lake", {test::polygonWkt(diamond)});
+    BuildOptions options;
+    options.inputs = {kSample.string()};
+    options.output = directory.path() / "tin.ply";
+    options.replace = (directory.path() / "lake.gpkg").string();
+    options.refine.emplace();
+    options.refine->maxError = 1.0;
+    const BuildReport report = runBuild(options);
+    EXPECT_LE(report.achievedMaxError, 1.0);
+    const Coverage check = coverage(options.output, diamond);
+    EXPECT_LE(check.maxError, 1.0 + 1e-9);
+    EXPECT_EQ(check.uncovered, report.uncoveredCells);
 }
 
 TEST(SimplifiedConstraints, OneThreadAndTwoGiveTheSameTin) {

@@ -60,7 +60,10 @@ CellSets cellSets(const HeightGrid& grid, std::span<const Point2> positions,
                 continue;
             }
         }
-        if (grid.isValid(cell))
+        // A cell on a replace ring is on the lake's shore: the TIN's vertex there is the
+        // ring's, at the lake's level, so the cell is not measured, as those inside are not.
+        if (grid.isValid(cell) &&
+            !(replace && replace->onRing(cellPosition(grid, positions, cell))))
             sets.measuredCells.push_back(cell);
     }
     return sets;

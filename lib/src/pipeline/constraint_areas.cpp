@@ -30,6 +30,20 @@ bool oddCrossings(const std::vector<Point3>& ring, Point2 point) {
     return odd;
 }
 
+/// Whether `point` lies on a segment of `ring` (closed or not), exactly.
+bool onPolyline(const std::vector<Point3>& ring, Point2 point) {
+    for (std::size_t i = 1; i < ring.size(); ++i) {
+        const Point2 a{ring[i - 1].x, ring[i - 1].y};
+        const Point2 b{ring[i].x, ring[i].y};
+        if (point.x < std::min(a.x, b.x) || point.x > std::max(a.x, b.x) ||
+            point.y < std::min(a.y, b.y) || point.y > std::max(a.y, b.y))
+            continue;
+        if (predicates::orient2d(a, b, point) == 0.0)
+            return true;
+    }
+    return false;
+}
+
 Point2 centroid(const TinMesh& mesh, std::size_t t) {
     Point2 sum{0.0, 0.0};
     for (std::size_t i = 0; i < 3; ++i) {
@@ -271,6 +285,18 @@ std::optional<std::size_t> PolygonSet::polygonHolding(Point2 point) const {
             return k;
     }
     return std::nullopt;
+}
+
+bool PolygonSet::onRing(Point2 point) const {
+    for (std::size_t k = 0; k < m_boxes.size(); ++k) {
+        const Box& box = m_boxes[k];
+        if (point.x < box.minX || point.x > box.maxX || point.y < box.minY || point.y > box.maxY)
+            continue;
+        for (std::size_t r = m_firstRing[k]; r < m_firstRing[k + 1]; ++r)
+            if (onPolyline(m_rings->lines[r], point))
+                return true;
+    }
+    return false;
 }
 
 std::vector<std::uint8_t> regionsWhere(const ConstrainedTin& tin,

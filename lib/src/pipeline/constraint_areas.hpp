@@ -29,6 +29,8 @@ public:
     /// a hole's inside is outside); nullopt for none. A point on a ring may count either way.
     [[nodiscard]] std::optional<std::size_t> polygonHolding(Point2 point) const;
     [[nodiscard]] bool holds(Point2 point) const { return polygonHolding(point).has_value(); }
+    /// Whether `point` lies exactly on a ring of a polygon (orient2d, exact).
+    [[nodiscard]] bool onRing(Point2 point) const;
 
     [[nodiscard]] std::size_t polygonCount() const { return m_boxes.size(); }
     [[nodiscard]] const io::LineLayer& layer() const { return *m_rings; }
