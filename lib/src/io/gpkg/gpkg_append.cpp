@@ -18,9 +18,6 @@ namespace {
 
 /// The schema name of the scratch GeoPackage while it is attached.
 constexpr const char* kScratchSchema = "terratin_scratch";
-/// SQLite page cache of the connection, in KiB (a negative cache_size is KiB), as for a new
-/// file: the B-tree's right edge and the index tables stay in memory.
-constexpr int kPageCacheKiB = 16 * 1024;
 
 std::string cannotAddTo(const fs::path& output) {
     return std::string(kOgrStage) + ": cannot add layers to " + quoted(output);
@@ -92,7 +89,7 @@ TinWriteResult appendGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     db.waitForLocks(options.lockWaitSeconds, [&] {
         ticker.report(0, "Waiting for another program's lock on the GeoPackage");
     });
-    db.execute("PRAGMA main.cache_size = -" + std::to_string(kPageCacheKiB));
+    db.execute("PRAGMA main.cache_size = -" + std::to_string(kGpkgPageCacheKiB));
     db.execute("ATTACH DATABASE " + quoteLiteral(scratch.string()) + " AS " + kScratchSchema);
     // IMMEDIATE takes the write lock now: no other writer can slip in between the checks and
     // the writes, and no upgrade from a read lock can deadlock with another writer's.

@@ -28,9 +28,6 @@ namespace {
 constexpr const char* kUndefinedCartesianWkt = "LOCAL_CS[\"Undefined Cartesian SRS\"]";
 /// Share of the writer's progress range for rows and index; the rest is closing and renaming.
 constexpr double kWritingShare = 0.98;
-/// SQLite page cache while writing, in KiB (a negative cache_size is KiB): enough for the
-/// B-tree's right edge and the index tables; the rows themselves are written once.
-constexpr int kPageCacheKiB = 16 * 1024;
 
 /// Without a CRS, GDAL 3.6 files a GeoPackage layer under srs_id 0, "Undefined geographic
 /// SRS", which tells readers the easting/northing are degrees. The GeoPackage spec's srs_id
@@ -136,7 +133,7 @@ void createGpkgTinLayers(const fs::path& temporary, std::uint64_t features,
 void configureForBulkWriting(SqliteConnection& db) {
     db.execute("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF; "
                "PRAGMA locking_mode = EXCLUSIVE; PRAGMA cache_size = -" +
-               std::to_string(kPageCacheKiB));
+               std::to_string(kGpkgPageCacheKiB));
 }
 
 void removeStaleJournals(const fs::path& output, bool replacing) {

@@ -19,6 +19,10 @@
 
 namespace terratin::io::detail {
 
+/// SQLite page cache while writing a TIN, in KiB (a negative cache_size is KiB): enough for the
+/// B-tree's right edge and the index tables; the rows themselves are written once.
+inline constexpr int kGpkgPageCacheKiB = 16 * 1024;
+
 /// Writes the triangle layer (and the node and edge layers when asked) with their spatial
 /// indexes. Preconditions are checked by writeTin. Throws IoError, InvalidInputError (an
 /// existing layer without overwrite), Cancelled.
