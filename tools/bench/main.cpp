@@ -103,6 +103,7 @@ TimedJob terratinJob(std::span<const Point3> points, const BenchOptions& bench,
     options.searchers = bench.searchers;
     options.queueLength = bench.queueLength;
     options.searchersHelpWhenQueueFull = bench.helpWhenFull;
+    options.collectDiagnostics = true; // the batch method's searchers and helped locations
 
     row.points = points.size();
     row.method = method.name;
@@ -118,8 +119,8 @@ TimedJob terratinJob(std::span<const Point3> points, const BenchOptions& bench,
     job.afterRun = [points, result, &row] {
         const TriangulationResult& done = **result;
         row.threadsUsed = done.threads;
-        row.searchers = done.searchers;
-        row.helpedLocations = done.helpedLocations;
+        row.searchers = done.diagnostics->searchers;
+        row.helpedLocations = done.diagnostics->helpedLocations;
         row.triangles = done.mesh.triangleCount();
         row.historyBytesPerPoint =
             static_cast<double>(done.historyBytes) / static_cast<double>(points.size());

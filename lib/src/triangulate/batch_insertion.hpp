@@ -30,7 +30,7 @@ struct BatchSettings {
     bool walk = false;
 };
 
-/// Counters that TriangulationResult reports and terratin-bench prints.
+/// Counters that MethodDiagnostics (triangulate.hpp) reports and terratin-bench prints.
 struct BatchStatistics {
     /// Elements whose location a searcher completed because the queue was full.
     std::size_t helpedLocations = 0;

@@ -13,7 +13,7 @@
 
 namespace terratin::detail {
 
-/// Counters that TriangulationResult reports and terratin-bench prints.
+/// Counters that MethodDiagnostics (triangulate.hpp) reports and terratin-bench prints.
 struct CircumcircleStatistics {
     /// Times a worker waited for another (geometric conflict or held triangle).
     std::size_t waits = 0;

@@ -107,6 +107,7 @@ void insertWithDag(InsertionPlan& plan, const TriangulationOptions& options, uns
     HugePageArray<VertexId> vertices(count - 1);
     std::iota(vertices.begin(), vertices.end(), VertexId{1});
     const std::span<const VertexId> order(vertices);
+    MethodDiagnostics diagnostics;
     switch (result.method) {
     case TriangulationMethod::Batch: {
         detail::BatchSettings settings;
@@ -117,20 +118,20 @@ void insertWithDag(InsertionPlan& plan, const TriangulationOptions& options, uns
         const detail::BatchStatistics statistics =
             detail::insertWithBatchMethod(triangulator, order, settings, progress);
         result.threads = settings.searchers + 1;
-        result.searchers = settings.searchers;
-        result.helpedLocations = statistics.helpedLocations;
+        diagnostics.searchers = settings.searchers;
+        diagnostics.helpedLocations = statistics.helpedLocations;
         break;
     }
     case TriangulationMethod::Circumcircle: {
         const detail::CircumcircleStatistics statistics = detail::insertWithCircumcircleMethod(
             triangulator, order, plan.roundStarts, threads, walk, progress);
         result.threads = threads;
-        result.waits = statistics.waits;
-        result.overrides = statistics.overrides;
-        result.backOffs = statistics.backOffs;
-        result.deferredEdges = statistics.deferredEdges;
-        result.repairs = statistics.repairs;
-        result.repairFlips = statistics.repairFlips;
+        diagnostics.waits = statistics.waits;
+        diagnostics.overrides = statistics.overrides;
+        diagnostics.backOffs = statistics.backOffs;
+        diagnostics.deferredEdges = statistics.deferredEdges;
+        diagnostics.repairs = statistics.repairs;
+        diagnostics.repairFlips = statistics.repairFlips;
         break;
     }
     default: // sequential (its walk keeps no history: see insertWithoutHistory)
@@ -139,8 +140,10 @@ void insertWithDag(InsertionPlan& plan, const TriangulationOptions& options, uns
         break;
     }
     result.seconds.insert = lap(phase);
-    result.historyNodes = triangulator.nodeCount();
+    diagnostics.historyNodes = triangulator.nodeCount();
     result.historyBytes = triangulator.memoryBytes();
+    if (options.collectDiagnostics)
+        result.diagnostics = diagnostics;
     const unsigned extractThreads = result.method == TriangulationMethod::Sequential ? 1 : threads;
     // As in insertWithoutHistory: the extraction reads the DAG alone.
     HugePageArray<VertexId>().swap(vertices);
@@ -151,7 +154,8 @@ void insertWithDag(InsertionPlan& plan, const TriangulationOptions& options, uns
 
 // Inserts with the history-free Bowyer-Watson core (strip method, or sequential walk) and
 // extracts the mesh. Frees plan.local on the way.
-void insertWithoutHistory(InsertionPlan& plan, unsigned threads, const ProgressCallback& progress,
+void insertWithoutHistory(InsertionPlan& plan, const TriangulationOptions& options,
+                          unsigned threads, const ProgressCallback& progress,
                           TriangulationResult& result) {
     Clock::time_point phase = Clock::now();
     // Every vertex, the DAG's auxiliary corner (vertex 0) first: no auxiliary triangle here.
@@ -164,8 +168,11 @@ void insertWithoutHistory(InsertionPlan& plan, unsigned threads, const ProgressC
     triangulator.insertAll(order, roundStarts, progress);
     result.seconds.insert = lap(phase);
     result.threads = triangulator.strips();
-    result.deferredPoints = triangulator.deferredPoints();
     result.historyBytes = triangulator.memoryBytes();
+    if (options.collectDiagnostics) {
+        result.diagnostics.emplace();
+        result.diagnostics->deferredPoints = triangulator.deferredPoints();
+    }
     // The extraction reads the mesh alone: freed first, the order and the points lend their
     // pages to the output arrays.
     HugePageArray<VertexId>().swap(order);
@@ -233,7 +240,7 @@ TriangulationResult triangulate(std::span<const Point3> points, const Triangulat
     const bool historyFree = result.method == TriangulationMethod::Strips ||
                              (result.method == TriangulationMethod::Sequential && walk);
     if (historyFree)
-        insertWithoutHistory(plan, phaseThreads, progress, result);
+        insertWithoutHistory(plan, options, phaseThreads, progress, result);
     else
         insertWithDag(plan, options, threads, progress, result);
     result.inputPoints = points.size();

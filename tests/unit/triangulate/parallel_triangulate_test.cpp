@@ -29,6 +29,7 @@ TriangulationOptions parallelOptions(TriangulationMethod method, unsigned thread
     options.method = method;
     options.threads = threads;
     options.locate = locate;
+    options.collectDiagnostics = true;
     return options;
 }
 
@@ -159,8 +160,10 @@ TEST(StripMethod, RunsItsStripsInParallel_OnALargeInput) {
         const TriangulationResult result =
             triangulate(points, parallelOptions(TriangulationMethod::Strips, 2));
         EXPECT_EQ(result.threads, 2U);
-        EXPECT_GT(result.deferredPoints, 0U);
-        EXPECT_LT(result.deferredPoints, points.size() / 20) << test::toString(distribution);
+        ASSERT_TRUE(result.diagnostics);
+        EXPECT_GT(result.diagnostics->deferredPoints, 0U);
+        EXPECT_LT(result.diagnostics->deferredPoints, points.size() / 20)
+            << test::toString(distribution);
         test::expectExactDelaunayOf(result.mesh, points);
     }
 }
@@ -171,7 +174,8 @@ TEST(StripMethod, IsWhatAutoChooses_WithTheBrioOrder) {
         const TriangulationResult result =
             triangulate(points, parallelOptions(TriangulationMethod::Auto, threads));
         EXPECT_EQ(result.method, TriangulationMethod::Strips);
-        EXPECT_EQ(result.historyNodes, 0U);
+        ASSERT_TRUE(result.diagnostics);
+        EXPECT_EQ(result.diagnostics->historyNodes, 0U);
         test::expectExactDelaunayOf(result.mesh, points);
     }
     // A random order makes walks long: auto then descends the DAG.
@@ -179,7 +183,8 @@ TEST(StripMethod, IsWhatAutoChooses_WithTheBrioOrder) {
     random.order = InsertionOrder::Random;
     const TriangulationResult result = triangulate(points, random);
     EXPECT_EQ(result.method, TriangulationMethod::Sequential);
-    EXPECT_GT(result.historyNodes, 0U);
+    ASSERT_TRUE(result.diagnostics);
+    EXPECT_GT(result.diagnostics->historyNodes, 0U);
 }
 
 TEST(StripMethod, ThrowsCancelled) {
@@ -204,9 +209,11 @@ TEST(CircumcircleMethod, IsExactlyDelaunay_WhenThreadsCrowdOneCircle) {
             EXPECT_EQ(result.threads, threads);
             test::expectExactDelaunayOf(result.mesh, points);
             // Every override is followed by a repair; several may share one.
-            EXPECT_EQ(result.repairs > 0, result.overrides > 0);
-            EXPECT_LE(result.repairs, result.overrides);
-            overrides += result.overrides;
+            ASSERT_TRUE(result.diagnostics);
+            const MethodDiagnostics& counted = *result.diagnostics;
+            EXPECT_EQ(counted.repairs > 0, counted.overrides > 0);
+            EXPECT_LE(counted.repairs, counted.overrides);
+            overrides += counted.overrides;
         }
     }
     EXPECT_GT(overrides, 0U) << "the input no longer provokes overrides";
@@ -242,10 +249,11 @@ TEST(BatchMethod, IsExactlyDelaunay_WhenSearchersHelpOnAFullQueue) {
     options.queueLength = 4; // tiny: the queue is full almost always
     options.searchersHelpWhenQueueFull = true;
     const TriangulationResult result = triangulate(points, options);
-    EXPECT_EQ(result.searchers, 4U);
+    ASSERT_TRUE(result.diagnostics);
+    EXPECT_EQ(result.diagnostics->searchers, 4U);
     // Only locations that really advanced count: at most one per point and queue pass, not
     // the endless re-queueing of already complete locations.
-    EXPECT_LE(result.helpedLocations, 20U * points.size());
+    EXPECT_LE(result.diagnostics->helpedLocations, 20U * points.size());
     test::expectExactDelaunayOf(result.mesh, points);
 }
 
@@ -255,7 +263,8 @@ TEST(BatchMethod, UsesRequestedSearchersAndQueue) {
     options.searchers = 6;
     options.queueLength = 3;
     const TriangulationResult result = triangulate(points, options);
-    EXPECT_EQ(result.searchers, 6U);
+    ASSERT_TRUE(result.diagnostics);
+    EXPECT_EQ(result.diagnostics->searchers, 6U);
     EXPECT_EQ(result.threads, 7U);
     test::expectExactDelaunayOf(result.mesh, points);
 }

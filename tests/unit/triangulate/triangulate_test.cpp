@@ -147,6 +147,26 @@ TEST(Triangulate, GivesSameMesh_ForSameSeed) {
     EXPECT_EQ(first.neighbours, second.neighbours);
 }
 
+TEST(Triangulate, FillsDiagnostics_OnlyWhenAsked) {
+    const std::vector<Point3> points = test::generatePoints(Distribution::Uniform, 2000, 3);
+    for (const TriangulationMethod method :
+         {TriangulationMethod::Sequential, TriangulationMethod::Batch,
+          TriangulationMethod::Circumcircle, TriangulationMethod::Strips}) {
+        TriangulationOptions options;
+        options.method = method;
+        options.threads = 2;
+        EXPECT_FALSE(triangulate(points, options).diagnostics) << toString(method);
+        options.collectDiagnostics = true;
+        const TriangulationResult result = triangulate(points, options);
+        ASSERT_TRUE(result.diagnostics) << toString(method);
+        // The DAG methods keep a history; the strip method none.
+        EXPECT_EQ(result.diagnostics->historyNodes > 0, method != TriangulationMethod::Strips)
+            << toString(method);
+        EXPECT_EQ(result.diagnostics->searchers > 0, method == TriangulationMethod::Batch)
+            << toString(method);
+    }
+}
+
 TEST(Triangulate, IsTheSameExactlyDelaunayTin_ForEverySeedAndOrderOnAGrid) {
     // Every cell of a grid is cocircular: the ties are broken by the points alone, so neither
     // the seed nor the order changes a diagonal.

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 namespace terratin {
@@ -64,7 +65,8 @@ inline constexpr std::size_t kMaxQueueLength = std::size_t{1} << 20;
 /// How to triangulate. checkTriangulationOptions states the ranges.
 struct TriangulationOptions {
     /// Seed of the random insertion order. Every seed gives the same triangles (cocircular ties
-    /// are broken by the points alone); the same seed also numbers them the same way.
+    /// are broken by the points alone); the same seed, method and thread count also number
+    /// them the same way, except with the batch and circum-circle methods (see triangulate()).
     std::uint64_t seed = 1;
     InsertionOrder order = InsertionOrder::Brio;
     /// Which elevation survives for points sharing exactly the same (x, y).
@@ -88,6 +90,9 @@ struct TriangulationOptions {
     /// be inserted later (insertConstraints, insertVertices): a full array grows by a copy of
     /// all of it. The room is address space until it is used.
     std::size_t spareVertices = 0;
+    /// Fill TriangulationResult::diagnostics. The methods count either way (one increment
+    /// per event, in thread-local counters); this only copies the counts into the result.
+    bool collectDiagnostics = false;
 };
 
 /// Wall-clock seconds of the triangulation's phases.
@@ -102,19 +107,13 @@ struct TriangulationPhases {
     double extract = 0.0;
 };
 
-/// A TIN and what it took to build it.
-struct TriangulationResult {
-    TinMesh mesh;
-    std::size_t inputPoints = 0;
-    /// Input points merged into another with exactly the same (x, y).
-    std::size_t duplicatePoints = 0;
-    /// Nodes in the point-location history (triangles ever created).
+/// What a method did on its way, for research and tuning (terratin-bench prints it):
+/// counters of the paper's mechanisms, not properties of the TIN. A counter stays 0 where the
+/// method that ran has no such mechanism.
+struct MethodDiagnostics {
+    /// Nodes in the point-location history (triangles ever created); 0 for the history-free
+    /// insertion (the strip method, the sequential walk).
     std::size_t historyNodes = 0;
-    /// Bytes reserved for the history.
-    std::size_t historyBytes = 0;
-    /// The method that ran (never Auto) and with how many threads in all.
-    TriangulationMethod method = TriangulationMethod::Sequential;
-    unsigned threads = 1;
     /// Batch method: searching threads, and locations they completed on a full queue.
     unsigned searchers = 0;
     std::size_t helpedLocations = 0;
@@ -127,9 +126,25 @@ struct TriangulationResult {
     std::size_t deferredEdges = 0;
     std::size_t repairs = 0;
     std::size_t repairFlips = 0;
-    /// Strip method: points left to the single-threaded phase (near a strip boundary).
+    /// Strip method: points left to the merged levels (near a strip boundary).
     std::size_t deferredPoints = 0;
+};
+
+/// A TIN and what it took to build it.
+struct TriangulationResult {
+    TinMesh mesh;
+    std::size_t inputPoints = 0;
+    /// Input points merged into another with exactly the same (x, y).
+    std::size_t duplicatePoints = 0;
+    /// Bytes reserved for the method's own structure besides the mesh: the point-location
+    /// history (DAG), or the history-free insertion's working mesh.
+    std::size_t historyBytes = 0;
+    /// The method that ran (never Auto) and with how many threads in all.
+    TriangulationMethod method = TriangulationMethod::Sequential;
+    unsigned threads = 1;
     TriangulationPhases seconds;
+    /// Only when TriangulationOptions::collectDiagnostics asked for it.
+    std::optional<MethodDiagnostics> diagnostics;
 };
 
 /// Throws InvalidInputError, naming the option and its range, when `threads`, `searchers` or
@@ -145,15 +160,18 @@ const char* toString(TriangulationMethod method);
 ///
 /// Postconditions: the triangles cover exactly the convex hull of the distinct points; every
 /// distinct point is a vertex; across every interior edge the opposite vertex is never strictly
-/// inside a triangle's circumcircle, decided with exact predicates (so the result is exactly
-/// Delaunay; among cocircular points, as on grids, the diagonal choice follows the insertion
-/// order). Throws InvalidInputError (options out of range, see checkTriangulationOptions;
+/// inside a triangle's circumcircle, decided with exact predicates, so the result is exactly
+/// Delaunay. Among cocircular points (every cell of a grid) the diagonal is chosen by the four
+/// points alone (predicates::incircleTieBroken), so the set of triangles, each as its three
+/// input points, is the same for every method, thread count, seed and insertion order. The
+/// numbering of vertices and triangles, and which corner of a triangle comes first, follow the
+/// insertion: they may differ between methods, thread counts and seeds, and with the batch and
+/// circum-circle methods, whose threads' timing orders the insertions, between runs.
+/// Throws InvalidInputError (options out of range, see checkTriangulationOptions;
 /// non-finite values, fewer than three non-collinear points, too many points) and Cancelled
 /// when `progress` returns false; every method, the parallel ones included, polls `progress`
 /// a few times a second from the calling thread and stops within a fraction of a second,
 /// however many threads run.
-/// The parallel methods give an equally exact result; among cocircular points the diagonals
-/// may differ from run to run, as the insertion order does.
 /// Complexity: expected O(n log n) time, O(n) memory (the DAG methods: about 9 history nodes
 /// of 32 bytes per point besides the mesh).
 TriangulationResult triangulate(std::span<const Point3> points,
