@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace terratin::io::detail {
 
@@ -18,6 +20,15 @@ constexpr double kUnitTolerance = 1e-9;
 
 constexpr double kInternationalFootM = 0.3048;
 constexpr double kUsSurveyFootM = 1200.0 / 3937.0;
+
+/// The Definition element's figures: the TIN's 2D and 3D areas (summed in triangle order) and
+/// its elevations' range.
+struct LandXmlSurface {
+    double area2d = 0.0;
+    double area3d = 0.0;
+    double elevMin = std::numeric_limits<double>::infinity();
+    double elevMax = -std::numeric_limits<double>::infinity();
+};
 
 std::string unitsElement(const CrsSummary& crs) {
     const auto near = [&](double metres) {
@@ -87,15 +98,9 @@ void writeBreaklines(const MeshFileInfo& info, BufferedFile& file) {
     file.text("</Breaklines>\n</SourceData>\n");
 }
 
-} // namespace
-
-void LandXmlSurface::addTriangle(const Point3& a, const Point3& b, const Point3& c) {
-    const TriangleAttributes attributes = computeTriangleAttributes(a, b, c);
-    area2d += attributes.area2d;
-    area3d += attributes.area3d;
-}
-
-void putLandXmlHead(BufferedFile& file, const MeshFileInfo& info, const LandXmlSurface& surface) {
+/// Everything before the first point: the header, the surface's Definition with `surface`'s
+/// figures, "<Pnts>".
+void putHead(BufferedFile& file, const MeshFileInfo& info, const LandXmlSurface& surface) {
     const std::time_t now = std::time(nullptr);
     std::tm utc{};
     gmtime_r(&now, &utc);
@@ -145,52 +150,62 @@ void putLandXmlHead(BufferedFile& file, const MeshFileInfo& info, const LandXmlS
     file.text("\">\n<Pnts>\n");
 }
 
-void putLandXmlPoint(BufferedFile& file, std::uint64_t number, const Point3& p) {
-    file.text("<P id=\"");
-    file.number(number + 1);
-    file.text("\">");
-    file.number(p.y);
-    file.put(' ');
-    file.number(p.x);
-    file.put(' ');
-    file.number(p.z);
-    file.text("</P>\n");
-}
+class LandXmlFormat : public MeshFormatBase {
+public:
+    static constexpr std::string_view kVertexMessage = "Writing points";
+    static constexpr std::string_view kFaceMessage = "Writing faces";
 
-void putLandXmlFace(BufferedFile& file, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    file.text("<F>");
-    file.number(std::uint64_t{a} + 1);
-    file.put(' ');
-    file.number(std::uint64_t{b} + 1);
-    file.put(' ');
-    file.number(std::uint64_t{c} + 1);
-    file.text("</F>\n");
-}
+    void addVertex(const Point3& p) {
+        m_surface.elevMin = std::min(m_surface.elevMin, p.z);
+        m_surface.elevMax = std::max(m_surface.elevMax, p.z);
+    }
+    void addTriangle(const Point3& a, const Point3& b, const Point3& c) {
+        const TriangleAttributes attributes = computeTriangleAttributes(a, b, c);
+        m_surface.area2d += attributes.area2d;
+        m_surface.area3d += attributes.area3d;
+    }
 
-std::uint64_t writeLandXml(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
-                           const ProgressTicker& ticker) {
-    const std::uint64_t vertexCount = mesh.vertexCount();
-    const std::uint64_t triangleCount = mesh.triangleCount();
-    LandXmlSurface surface;
-    for (const Point3& p : mesh.vertices)
-        surface.addVertex(p);
-    for (std::uint64_t t = 0; t < triangleCount; ++t)
-        surface.addTriangle(mesh.vertices[mesh.triangles[3 * t]],
-                            mesh.vertices[mesh.triangles[3 * t + 1]],
-                            mesh.vertices[mesh.triangles[3 * t + 2]]);
-    putLandXmlHead(file, info, surface);
-    for (std::uint64_t v = 0; v < vertexCount; ++v) {
-        ticker.tick(v, "Writing points");
-        putLandXmlPoint(file, v, mesh.vertices[v]);
+    void head(BufferedFile& file, const MeshFileInfo& info, std::uint64_t, std::uint64_t) {
+        putHead(file, info, m_surface);
     }
-    file.text(kLandXmlBetween);
-    for (std::uint64_t t = 0; t < triangleCount; ++t) {
-        ticker.tick(vertexCount + t, "Writing faces");
-        putLandXmlFace(file, mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                       mesh.triangles[3 * t + 2]);
+
+    /// Point ids count from 1; northing before easting.
+    void vertex(BufferedFile& file, std::uint64_t number, const Point3& p) {
+        file.text("<P id=\"");
+        file.number(number + 1);
+        file.text("\">");
+        file.number(p.y);
+        file.put(' ');
+        file.number(p.x);
+        file.put(' ');
+        file.number(p.z);
+        file.text("</P>\n");
     }
-    file.text(kLandXmlEnd);
-    return vertexCount + triangleCount;
-}
+
+    void between(BufferedFile& file) { file.text("</Pnts>\n<Faces>\n"); }
+
+    /// Point ids count from 1.
+    void face(BufferedFile& file, std::uint64_t, std::uint32_t a, std::uint32_t b,
+              std::uint32_t c) {
+        file.text("<F>");
+        file.number(std::uint64_t{a} + 1);
+        file.put(' ');
+        file.number(std::uint64_t{b} + 1);
+        file.put(' ');
+        file.number(std::uint64_t{c} + 1);
+        file.text("</F>\n");
+    }
+
+    void trailer(BufferedFile& file) {
+        file.text("</Faces>\n</Definition>\n</Surface>\n</Surfaces>\n</LandXML>\n");
+    }
+
+private:
+    LandXmlSurface m_surface;
+};
+
+} // namespace
+
+constinit const MeshWriter kLandXmlWriter = meshWriterFor<LandXmlFormat>();
 
 } // namespace terratin::io::detail

@@ -20,8 +20,8 @@ template <typename T> void putLittleEndian(unsigned char* out, T value) {
         std::reverse(out, out + sizeof value);
 }
 
-} // namespace
-
+/// The header of a file of `vertexCount` vertices and `triangleCount` faces; InvalidInputError
+/// when the vertices do not fit a PLY int index (2^31 - 1).
 std::string plyHeader(const MeshFileInfo& info, std::uint64_t vertexCount,
                       std::uint64_t triangleCount) {
     if (vertexCount > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max()))
@@ -45,38 +45,37 @@ std::string plyHeader(const MeshFileInfo& info, std::uint64_t vertexCount,
     return header;
 }
 
-void putPlyVertex(BufferedFile& file, const Point3& p) {
-    std::array<unsigned char, 3 * sizeof(double)> record{};
-    putLittleEndian(record.data(), p.x);
-    putLittleEndian(record.data() + 8, p.y);
-    putLittleEndian(record.data() + 16, p.z);
-    file.bytes(record.data(), record.size());
-}
+class PlyFormat : public MeshFormatBase {
+public:
+    static constexpr std::string_view kVertexMessage = "Writing vertices";
+    static constexpr std::string_view kFaceMessage = "Writing faces";
 
-void putPlyFace(BufferedFile& file, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    std::array<unsigned char, 1 + 3 * sizeof(std::int32_t)> record{};
-    record[0] = 3;
-    putLittleEndian(record.data() + 1, static_cast<std::int32_t>(a));
-    putLittleEndian(record.data() + 5, static_cast<std::int32_t>(b));
-    putLittleEndian(record.data() + 9, static_cast<std::int32_t>(c));
-    file.bytes(record.data(), record.size());
-}
+    void head(BufferedFile& file, const MeshFileInfo& info, std::uint64_t vertexCount,
+              std::uint64_t triangleCount) {
+        file.text(plyHeader(info, vertexCount, triangleCount));
+    }
 
-std::uint64_t writePly(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
-                       const ProgressTicker& ticker) {
-    const std::uint64_t vertexCount = mesh.vertexCount();
-    const std::uint64_t triangleCount = mesh.triangleCount();
-    file.text(plyHeader(info, vertexCount, triangleCount));
-    for (std::uint64_t v = 0; v < vertexCount; ++v) {
-        ticker.tick(v, "Writing vertices");
-        putPlyVertex(file, mesh.vertices[v]);
+    void vertex(BufferedFile& file, std::uint64_t, const Point3& p) {
+        std::array<unsigned char, 3 * sizeof(double)> record{};
+        putLittleEndian(record.data(), p.x);
+        putLittleEndian(record.data() + 8, p.y);
+        putLittleEndian(record.data() + 16, p.z);
+        file.bytes(record.data(), record.size());
     }
-    for (std::uint64_t t = 0; t < triangleCount; ++t) {
-        ticker.tick(vertexCount + t, "Writing faces");
-        putPlyFace(file, mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                   mesh.triangles[3 * t + 2]);
+
+    void face(BufferedFile& file, std::uint64_t, std::uint32_t a, std::uint32_t b,
+              std::uint32_t c) {
+        std::array<unsigned char, 1 + 3 * sizeof(std::int32_t)> record{};
+        record[0] = 3;
+        putLittleEndian(record.data() + 1, static_cast<std::int32_t>(a));
+        putLittleEndian(record.data() + 5, static_cast<std::int32_t>(b));
+        putLittleEndian(record.data() + 9, static_cast<std::int32_t>(c));
+        file.bytes(record.data(), record.size());
     }
-    return vertexCount + triangleCount;
-}
+};
+
+} // namespace
+
+constinit const MeshWriter kPlyWriter = meshWriterFor<PlyFormat>();
 
 } // namespace terratin::io::detail

@@ -1,7 +1,12 @@
 #include "terratin/io/tin_format.hpp"
 
+#include "landxml_writer.hpp"
+#include "mesh_writer.hpp"
+#include "obj_writer.hpp"
+#include "ply_writer.hpp"
 #include "terratin/error.hpp"
 #include "terratin/text.hpp"
+#include "two_dm_writer.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,29 +19,54 @@ constexpr std::string_view kStage = "TinFormat";
 
 using Kind = TinFormatKind;
 
+/// A row of the format table: what a caller sees of the format, and the writer of a mesh
+/// format (null for the vector formats, which OGR writes).
+struct FormatRow {
+    TinFormatInfo info;
+    const detail::MeshWriter* meshWriter;
+};
+
 // The formats, in the order of TinFormat. Fields: format, names, extensions, display name,
-// writer's stage, kind, CRS, node/edge layers and append, optional index, what it carries.
-constexpr std::array<TinFormatInfo, 7> kFormats = {{
-    {TinFormat::GeoPackage, "gpkg geopackage", ".gpkg", "GPKG", "OgrTinWriter", Kind::Vector, true,
-     true, true,
-     "Polygon Z triangles with attributes, optional node and edge layers, R-tree, CRS; a QGIS "
-     "vector layer; --append-layer adds layers to an existing file"},
-    {TinFormat::Shapefile, "shp esri_shapefile", ".shp", "ESRI Shapefile", "OgrTinWriter",
-     Kind::Vector, true, false, false,
-     "Polygon Z triangles with attributes, CRS in .prj; 2 GB per component"},
-    {TinFormat::FlatGeobuf, "fgb flatgeobuf", ".fgb", "FlatGeobuf", "OgrTinWriter", Kind::Vector,
-     true, false, true, "Polygon Z triangles with attributes, packed Hilbert R-tree, CRS"},
-    {TinFormat::TwoDm, "2dm mesh2d", ".2dm", "2DM", "TwoDmWriter", Kind::Mesh, false, false, false,
-     "SMS 2D mesh: nodes and triangles, no CRS; a QGIS mesh layer"},
-    {TinFormat::Ply, "ply", ".ply", "PLY", "PlyWriter", Kind::Mesh, true, false, false,
-     "binary PLY mesh: vertices and faces, CRS as a comment; a QGIS mesh layer"},
-    {TinFormat::Obj, "obj", ".obj", "OBJ", "ObjWriter", Kind::Mesh, false, false, false,
-     "Wavefront OBJ mesh about a local origin, no CRS; for 3D tools (QGIS does not open it)"},
-    {TinFormat::LandXml, "landxml xml", ".xml .landxml", "LandXML", "LandXmlWriter", Kind::Mesh,
-     true, false, false,
-     "LandXML 1.2 TIN surface with units, CRS and breaklines; for civil and CAD tools (QGIS "
-     "does not open it)"},
+// writer's stage, kind, CRS, node/edge layers and append, optional index, what it carries;
+// then the mesh format's writer.
+constexpr std::array<FormatRow, 7> kRows = {{
+    {{TinFormat::GeoPackage, "gpkg geopackage", ".gpkg", "GPKG", "OgrTinWriter", Kind::Vector, true,
+      true, true,
+      "Polygon Z triangles with attributes, optional node and edge layers, R-tree, CRS; a QGIS "
+      "vector layer; --append-layer adds layers to an existing file"},
+     nullptr},
+    {{TinFormat::Shapefile, "shp esri_shapefile", ".shp", "ESRI Shapefile", "OgrTinWriter",
+      Kind::Vector, true, false, false,
+      "Polygon Z triangles with attributes, CRS in .prj; 2 GB per component"},
+     nullptr},
+    {{TinFormat::FlatGeobuf, "fgb flatgeobuf", ".fgb", "FlatGeobuf", "OgrTinWriter", Kind::Vector,
+      true, false, true, "Polygon Z triangles with attributes, packed Hilbert R-tree, CRS"},
+     nullptr},
+    {{TinFormat::TwoDm, "2dm mesh2d", ".2dm", "2DM", "TwoDmWriter", Kind::Mesh, false, false, false,
+      "SMS 2D mesh: nodes and triangles, no CRS; a QGIS mesh layer"},
+     &detail::kTwoDmWriter},
+    {{TinFormat::Ply, "ply", ".ply", "PLY", "PlyWriter", Kind::Mesh, true, false, false,
+      "binary PLY mesh: vertices and faces, CRS as a comment; a QGIS mesh layer"},
+     &detail::kPlyWriter},
+    {{TinFormat::Obj, "obj", ".obj", "OBJ", "ObjWriter", Kind::Mesh, false, false, false,
+      "Wavefront OBJ mesh about a local origin, no CRS; for 3D tools (QGIS does not open it)"},
+     &detail::kObjWriter},
+    {{TinFormat::LandXml, "landxml xml", ".xml .landxml", "LandXML", "LandXmlWriter", Kind::Mesh,
+      true, false, false,
+      "LandXML 1.2 TIN surface with units, CRS and breaklines; for civil and CAD tools (QGIS "
+      "does not open it)"},
+     &detail::kLandXmlWriter},
 }};
+
+/// The rows as callers see them (tinFormats).
+constexpr std::array<TinFormatInfo, kRows.size()> publicRows() {
+    std::array<TinFormatInfo, kRows.size()> infos{};
+    for (std::size_t i = 0; i < kRows.size(); ++i)
+        infos[i] = kRows[i].info;
+    return infos;
+}
+
+constexpr std::array<TinFormatInfo, kRows.size()> kFormats = publicRows();
 
 /// Whether `word` is one of the space-separated `words`.
 bool isOneOf(std::string_view word, std::string_view words) {
@@ -113,6 +143,13 @@ std::string_view tinFormatExtension(TinFormat format) {
 
 bool isOgrFormat(TinFormat format) {
     return tinFormatInfo(format).kind == TinFormatKind::Vector;
+}
+
+const detail::MeshWriter& detail::meshWriterOf(TinFormat format) {
+    for (const FormatRow& row : kRows)
+        if (row.info.format == format && row.meshWriter != nullptr)
+            return *row.meshWriter;
+    throw InvalidInputError(std::string(tinFormatName(format)) + " is not a mesh format");
 }
 
 } // namespace terratin::io

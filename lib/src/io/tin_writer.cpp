@@ -7,15 +7,12 @@
 
 #include "atomic_output.hpp"
 #include "buffered_file.hpp"
-#include "landxml_writer.hpp"
-#include "obj_writer.hpp"
+#include "mesh_writer.hpp"
 #include "ogr_tin_writer.hpp"
 #include "ogr_triangle_layer.hpp"
-#include "ply_writer.hpp"
 #include "style_beside.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "two_dm_writer.hpp"
 #include "writer_support.hpp"
 
 #include <algorithm>
@@ -92,22 +89,7 @@ TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
     std::uint64_t written = 0;
     {
         detail::BufferedFile file(stage, temporary, output);
-        switch (options.format) {
-        case TinFormat::TwoDm:
-            written = detail::writeTwoDm(mesh, info, file, ticker);
-            break;
-        case TinFormat::Ply:
-            written = detail::writePly(mesh, info, file, ticker);
-            break;
-        case TinFormat::Obj:
-            written = detail::writeObj(mesh, info, file, ticker);
-            break;
-        case TinFormat::LandXml:
-            written = detail::writeLandXml(mesh, info, file, ticker);
-            break;
-        default:
-            throwInvalid(stage, "not a mesh format");
-        }
+        written = detail::meshWriterOf(options.format).writeWhole(mesh, info, file, ticker);
         // The last chance to cancel: nothing is in place before it.
         ticker.report(total, "Finishing");
         file.close();

@@ -2,50 +2,47 @@
 
 namespace terratin::io::detail {
 
-void putTwoDmHead(BufferedFile& file, const MeshFileInfo& info) {
-    file.text("MESH2D\nMESHNAME \"");
-    file.text(info.name);
-    file.text("\"\n");
-}
+namespace {
 
-void putTwoDmNode(BufferedFile& file, std::uint64_t number, const Point3& p) {
-    file.text("ND ");
-    file.number(number + 1);
-    file.put(' ');
-    file.number(p.x);
-    file.put(' ');
-    file.number(p.y);
-    file.put(' ');
-    file.number(p.z);
-    file.put('\n');
-}
+class TwoDmFormat : public MeshFormatBase {
+public:
+    static constexpr std::string_view kVertexMessage = "Writing nodes";
+    static constexpr std::string_view kFaceMessage = "Writing elements";
 
-void putTwoDmElement(BufferedFile& file, std::uint64_t number, std::uint32_t a, std::uint32_t b,
-                     std::uint32_t c) {
-    file.text("E3T ");
-    file.number(number + 1);
-    for (const std::uint32_t corner : {a, b, c}) {
+    void head(BufferedFile& file, const MeshFileInfo& info, std::uint64_t, std::uint64_t) {
+        file.text("MESH2D\nMESHNAME \"");
+        file.text(info.name);
+        file.text("\"\n");
+    }
+
+    /// Node ids count from 1.
+    void vertex(BufferedFile& file, std::uint64_t number, const Point3& p) {
+        file.text("ND ");
+        file.number(number + 1);
         file.put(' ');
-        file.number(std::uint64_t{corner} + 1);
+        file.number(p.x);
+        file.put(' ');
+        file.number(p.y);
+        file.put(' ');
+        file.number(p.z);
+        file.put('\n');
     }
-    file.text(" 1\n");
-}
 
-std::uint64_t writeTwoDm(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
-                         const ProgressTicker& ticker) {
-    const std::uint64_t vertexCount = mesh.vertexCount();
-    const std::uint64_t triangleCount = mesh.triangleCount();
-    putTwoDmHead(file, info);
-    for (std::uint64_t v = 0; v < vertexCount; ++v) {
-        ticker.tick(v, "Writing nodes");
-        putTwoDmNode(file, v, mesh.vertices[v]);
+    /// Element ids and node ids count from 1.
+    void face(BufferedFile& file, std::uint64_t number, std::uint32_t a, std::uint32_t b,
+              std::uint32_t c) {
+        file.text("E3T ");
+        file.number(number + 1);
+        for (const std::uint32_t corner : {a, b, c}) {
+            file.put(' ');
+            file.number(std::uint64_t{corner} + 1);
+        }
+        file.text(" 1\n");
     }
-    for (std::uint64_t t = 0; t < triangleCount; ++t) {
-        ticker.tick(vertexCount + t, "Writing elements");
-        putTwoDmElement(file, t, mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                        mesh.triangles[3 * t + 2]);
-    }
-    return vertexCount + triangleCount;
-}
+};
+
+} // namespace
+
+constinit const MeshWriter kTwoDmWriter = meshWriterFor<TwoDmFormat>();
 
 } // namespace terratin::io::detail

@@ -10,23 +10,11 @@
 ///                                material 1
 /// 2DM has no place for a CRS: the layer's CRS must be set in QGIS.
 
-#include "buffered_file.hpp"
-#include "terratin/triangulate/tin_mesh.hpp"
-#include "writer_support.hpp"
-
-#include <cstdint>
+#include "mesh_writer.hpp"
 
 namespace terratin::io::detail {
 
-/// The lines before the nodes; a node numbered `number` (from 0; its id is number + 1); an
-/// element numbered `number` of vertices a, b, c (numbered from 0).
-void putTwoDmHead(BufferedFile& file, const MeshFileInfo& info);
-void putTwoDmNode(BufferedFile& file, std::uint64_t number, const Point3& p);
-void putTwoDmElement(BufferedFile& file, std::uint64_t number, std::uint32_t a, std::uint32_t b,
-                     std::uint32_t c);
-
-/// Writes the whole file; returns vertices + triangles. Throws IoError, Cancelled.
-std::uint64_t writeTwoDm(const TinMesh& mesh, const MeshFileInfo& info, BufferedFile& file,
-                         const ProgressTicker& ticker);
+/// 2DM's row of the format table.
+extern const MeshWriter kTwoDmWriter;
 
 } // namespace terratin::io::detail

@@ -210,6 +210,48 @@ TEST(TinStream, AnObjOfMoreVerticesThanAReadBackChunk_IsTheWholeTinsObj) {
     EXPECT_GT(cut.whole.vertexCount() * sizeof(Point3), std::size_t{1} << 20);
 }
 
+TEST(TinStream, AMeshJoinOfSeveralChunks_ReportsItsProgress_AndACancelThereLeavesNoFile) {
+    // The join reads the temporaries back a MiB at a time and reports after each chunk, so
+    // that a cancel reaches it; OBJ reads its raw vertices twice.
+    constexpr int kLarge = 250;
+    const CutTin cut = cutTin(test::gridTin(kLarge), {0, 40000, 90000}, kLarge);
+    for (const TinFormat format : {TinFormat::Ply, TinFormat::Obj, TinFormat::LandXml}) {
+        SCOPED_TRACE(outputName(format));
+        const TemporaryDirectory directory;
+        const std::filesystem::path output = directory / outputName(format);
+        std::vector<double> joining;
+        std::vector<std::string> messages;
+        const auto record = [&](double fraction, std::string_view message) {
+            messages.emplace_back(message);
+            if (message == "Joining vertices and faces")
+                joining.push_back(fraction);
+            return true;
+        };
+        {
+            auto writer = openTinStream(output, streamOptions(format), "--memory-limit");
+            for (std::size_t p = 0; p < cut.pieces.size(); ++p)
+                writer->append({&cut.pieces[p], cut.numbers[p], cut.cells[p]});
+            writer->finish(record);
+        }
+        ASSERT_GE(joining.size(), 3U);
+        EXPECT_EQ(joining.front(), 0.0);
+        EXPECT_TRUE(std::is_sorted(joining.begin(), joining.end()));
+        EXPECT_LE(joining.back(), 0.98);
+        EXPECT_GT(joining.back(), 0.9);
+        EXPECT_EQ(messages.back(), "Finishing");
+        std::filesystem::remove(output);
+
+        int reports = 0;
+        auto writer = openTinStream(output, streamOptions(format), "--memory-limit");
+        for (std::size_t p = 0; p < cut.pieces.size(); ++p)
+            writer->append({&cut.pieces[p], cut.numbers[p], cut.cells[p]});
+        EXPECT_THROW(writer->finish([&](double, std::string_view) { return ++reports < 2; }),
+                     Cancelled);
+        writer.reset();
+        EXPECT_TRUE(directory.entries().empty());
+    }
+}
+
 TEST(TinStream, AShapefileWrittenPieceByPiece_IsTheShapefileOfTheWholeTin) {
     const TemporaryDirectory directory;
     std::filesystem::create_directory(directory / "streamed");
