@@ -30,7 +30,7 @@ TriangulationMethod methodOption(const std::string& function, const std::string&
     try {
         applyBuildOption(parsed, {"method", name}, OptionSpelling::Keyword);
     } catch (const InvalidInputError& error) {
-        throw InvalidInputError(function + ": " + error.what());
+        throw InvalidInputError(function + ": " + error.markedMessage());
     }
     return parsed.triangulation.method;
 }

@@ -103,12 +103,12 @@ void refuseIrregularOutputs(std::string_view stage, const std::vector<fs::path>&
 }
 
 void refuseExistingOutputs(std::string_view stage, const std::vector<fs::path>& candidates,
-                           bool overwrite, const OptionNamer& optionName) {
+                           bool overwrite) {
     refuseIrregularOutputs(stage, candidates);
     const auto existing = existingFiles(candidates);
     if (!existing.empty() && !overwrite)
         throw InvalidInputError(std::string(stage) + ": the output " + quoted(existing.front()) +
-                                " exists; use " + optionName("overwrite"));
+                                " exists; use " + markOption("overwrite"));
 }
 
 namespace {
@@ -213,10 +213,9 @@ int renameNoReplace(int fromDirectory, const char* from, int toDirectory, const 
 
 } // namespace
 
-AtomicOutput::AtomicOutput(std::string_view stage, const fs::path& output, ExistingTarget existing,
-                           const OptionNamer& optionName)
+AtomicOutput::AtomicOutput(std::string_view stage, const fs::path& output, ExistingTarget existing)
     : m_stage(stage), m_directory(outputDirectory(output)), m_existing(existing),
-      m_overwriteName(optionName("overwrite")) {
+      m_overwriteName(markOption("overwrite")) {
     std::random_device device;
     const std::uint64_t random =
         (static_cast<std::uint64_t>(device()) << 32U) ^ static_cast<std::uint64_t>(device());

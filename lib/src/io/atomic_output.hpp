@@ -16,8 +16,6 @@
 /// tool) keeps nothing of the run, wherever it went, and the final rename refuses it rather
 /// than put the output where it was not asked for.
 
-#include "terratin/option_namer.hpp"
-
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -48,11 +46,10 @@ void refuseIrregularOutputs(std::string_view stage,
                             const std::vector<std::filesystem::path>& candidates);
 
 /// refuseIrregularOutputs, then InvalidInputError "<stage>: the output '<first>' exists; use
-/// overwrite" (the option as `optionName` names it) when any of `candidates` exists and
+/// overwrite" (the option marked, markOption) when any of `candidates` exists and
 /// `overwrite` is false.
 void refuseExistingOutputs(std::string_view stage,
-                           const std::vector<std::filesystem::path>& candidates, bool overwrite,
-                           const OptionNamer& optionName);
+                           const std::vector<std::filesystem::path>& candidates, bool overwrite);
 
 /// What the final rename does with a target that exists by then.
 enum class ExistingTarget {
@@ -73,9 +70,9 @@ class AtomicOutput {
 public:
     /// Prefix ".<stem>.tmp-<pid>-<64 random bits>" in the directory of `output`; the stem is
     /// cut short when the temporary names would pass the file system's 255-byte name limit.
-    /// A refused target's message points to the overwrite option as `optionName` names it.
+    /// A refused target's message points to the overwrite option (marked, markOption).
     AtomicOutput(std::string_view stage, const std::filesystem::path& output,
-                 ExistingTarget existing, const OptionNamer& optionName);
+                 ExistingTarget existing);
     AtomicOutput(const AtomicOutput&) = delete;
     AtomicOutput& operator=(const AtomicOutput&) = delete;
     ~AtomicOutput();

@@ -71,7 +71,7 @@ void MeshJoin::readBack(const fs::path& from, const Chunk& chunk) {
 
 MeshStreamBase::MeshStreamBase(fs::path output, const TinWriteOptions& options)
     : m_stage(writerStage(options.format)), m_output(std::move(output)),
-      m_temporaries(m_stage, m_output, existingTargetFor(options.overwrite), options.optionName),
+      m_temporaries(m_stage, m_output, existingTargetFor(options.overwrite)),
       m_vertexPath(m_temporaries.temporary(".vtx")), m_facePath(m_temporaries.temporary(".fac")) {
     m_info.name = options.layerName;
     m_info.crs = summariseCrs(m_stage, options.crsWkt);

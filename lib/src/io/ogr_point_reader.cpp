@@ -141,7 +141,7 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
                 throw InvalidInputError(where +
                                         "its points have no z; name the elevation attribute "
                                         "with " +
-                                        options.optionName("z_field"));
+                                        markOption("z_field"));
             z = point.getZ();
         }
         cloud.points.push_back({point.getX(), point.getY(), *z});

@@ -36,8 +36,7 @@ public:
     OgrStreamWriter(fs::path output, const TinWriteOptions& options)
         : m_output(std::move(output)), m_options(options),
           m_shapefile(options.format == TinFormat::Shapefile),
-          m_temporaries(kOgrStage, m_output, existingTargetFor(options.overwrite),
-                        options.optionName),
+          m_temporaries(kOgrStage, m_output, existingTargetFor(options.overwrite)),
           m_srs(parseOutputCrs(options.crsWkt)), m_pieceTicker(kOgrStage, {}, m_output, 0, 0, 1) {
         m_file = m_shapefile ? makeShapefileDirectory(m_temporaries, m_output)
                              : m_temporaries.temporary(".fgb");

@@ -137,8 +137,7 @@ TinWriteResult writeFlatGeobuf(const TinMesh& mesh, const fs::path& output,
                                const ProgressCallback& progress) {
     const double insertShare = options.spatialIndex ? 0.5 : kInsertShareWithoutIndex;
     const ProgressTicker ticker(kStage, progress, output, 0.0, insertShare, mesh.triangleCount());
-    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite),
-                                   options.optionName);
+    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite));
     const fs::path temporary = temporaries.temporary(".fgb");
 
     // With an index: the triangles in the order GDAL will store them, and GDAL's temporary
@@ -178,8 +177,7 @@ TinWriteResult writeShapefile(const TinMesh& mesh, const fs::path& output,
                               const ProgressCallback& progress) {
     const ProgressTicker ticker(kStage, progress, output, 0.0, kInsertShareWithoutIndex,
                                 mesh.triangleCount());
-    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite),
-                                   options.optionName);
+    const AtomicOutput temporaries(kStage, output, existingTargetFor(options.overwrite));
     const fs::path temporaryShp = makeShapefileDirectory(temporaries, output);
     const std::size_t count = mesh.triangleCount();
     {

@@ -19,7 +19,7 @@ fs::path stylePath(const fs::path& output) {
 StyleBeside::StyleBeside(std::string_view stage, const fs::path& output,
                          const std::vector<fs::path>& dataFiles, const TinWriteOptions& options)
     : m_style(stylePath(output)),
-      m_temporaries(stage, m_style, existingTargetFor(options.overwrite), options.optionName),
+      m_temporaries(stage, m_style, existingTargetFor(options.overwrite)),
       m_temporary(m_temporaries.temporary(".qml")), m_stage(stage) {
     for (const auto& file : dataFiles)
         if (existingFiles({file}).empty() && file != m_style)

@@ -90,7 +90,7 @@ public:
             m_delimiter = d == '\t' ? ' ' : d;
         }
         if (!options.columns.empty() && options.columns.size() != 3)
-            throw InvalidInputError(std::string(kStage) + ": " + options.optionName("columns") +
+            throw InvalidInputError(std::string(kStage) + ": " + markOption("columns") +
                                     " takes three columns (x,y,z), got " +
                                     std::to_string(options.columns.size()));
     }
@@ -150,7 +150,7 @@ private:
         return count;
     }
 
-    std::string columnsName() const { return m_options.optionName("columns"); }
+    std::string columnsName() const { return markOption("columns"); }
 
     std::string where(std::uint64_t number) const {
         return std::string(kStage) + ": '" + m_name + "' line " + std::to_string(number) + ": ";

@@ -44,14 +44,12 @@ void addTile(OGRLayer& layer, const TileIndexEntry& entry, const std::filesystem
 } // namespace
 
 void writeTileIndex(const std::filesystem::path& path, const std::string& crsWkt,
-                    const std::vector<TileIndexEntry>& entries, bool overwrite,
-                    const OptionNamer& optionName) {
+                    const std::vector<TileIndexEntry>& entries, bool overwrite) {
     initialiseGdal();
     detail::checkOutputLocation(kStage, path);
-    detail::refuseExistingOutputs(kStage, {path}, overwrite, optionName);
+    detail::refuseExistingOutputs(kStage, {path}, overwrite);
     std::optional<OGRSpatialReference> crs = detail::parseOutputCrs(crsWkt);
-    const detail::AtomicOutput output(kStage, path, detail::existingTargetFor(overwrite),
-                                      optionName);
+    const detail::AtomicOutput output(kStage, path, detail::existingTargetFor(overwrite));
     const std::filesystem::path temporary = output.temporary(".gpkg");
     GDALDatasetUniquePtr dataset = detail::createDataset("GPKG", temporary, path);
     OGRLayer* layer = dataset->CreateLayer("tiles", crs ? &*crs : nullptr, wkbPolygon, nullptr);

@@ -123,14 +123,14 @@ TinFormat parseTinFormat(const std::string& name) {
                             tinFormatNameList());
 }
 
-TinFormat tinFormatFromPath(const std::filesystem::path& path, const OptionNamer& optionName) {
+TinFormat tinFormatFromPath(const std::filesystem::path& path) {
     const std::string extension = lowercase(path.extension().string());
     for (const TinFormatInfo& info : kFormats)
         if (!extension.empty() && isOneOf(extension, info.extensions))
             return info.format;
     throw InvalidInputError(std::string(kStage) + ": cannot tell the output format of '" +
                             path.string() + "' from its extension; use " +
-                            tinFormatExtensionList() + " (or " + optionName("format") + ")");
+                            tinFormatExtensionList() + " (or " + markOption("format") + ")");
 }
 
 std::string_view tinFormatName(TinFormat format) {

@@ -74,10 +74,9 @@ void checkTinStreamOptions(const TinWriteOptions& options, std::string_view piec
         throw InvalidInputError(std::string(pieceBy) + " writes the TIN tile by tile, " + what);
     };
     if (options.edges)
-        refuse("without " + options.optionName("edges") +
-               " (an edge's triangles may lie in two tiles)");
+        refuse("without " + markOption("edges") + " (an edge's triangles may lie in two tiles)");
     if (options.appendLayer)
-        refuse("to a new file, not with " + options.optionName("append_layer"));
+        refuse("to a new file, not with " + markOption("append_layer"));
     checkTinWriteOptions(options);
 }
 

@@ -73,7 +73,7 @@ private:
     std::uint64_t m_triangles = 0;
 };
 
-/// Refuses (InvalidInputError, naming options as options.optionName does) what a TIN written
+/// Refuses (InvalidInputError, naming the options it marks, markOption) what a TIN written
 /// piece by piece cannot be: with an edges layer (an edge's triangles may lie in two pieces),
 /// appended to a GeoPackage (appendLayer); then what writeTin refuses of the options.
 void checkTinStreamOptions(const TinWriteOptions& options, std::string_view pieceBy);

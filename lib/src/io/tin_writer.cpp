@@ -82,7 +82,7 @@ TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
                                const ProgressCallback& progress) {
     const std::string_view stage = detail::writerStage(options.format);
     const detail::AtomicOutput temporaries(
-        stage, output, detail::existingTargetFor(options.overwrite), options.optionName);
+        stage, output, detail::existingTargetFor(options.overwrite));
     const fs::path temporary = temporaries.temporary(output.extension().string());
     const std::uint64_t total = mesh.vertexCount() + mesh.triangleCount();
     const detail::ProgressTicker ticker(stage, progress, output, 0.0, kMeshRecordShare, total);
@@ -162,24 +162,23 @@ std::string edgeLayerName(const std::string& layerName) {
 void checkTinWriteOptions(const TinWriteOptions& options) {
     const bool geoPackage = options.format == TinFormat::GeoPackage;
     const std::string format(tinFormatName(options.format));
-    const OptionNamer& name = options.optionName;
     const std::string needsGeoPackage = " needs a GeoPackage output (.gpkg), not " + format;
     if (options.nodes && !geoPackage)
-        throwInvalid(kStage, name("nodes") + needsGeoPackage);
+        throwInvalid(kStage, markOption("nodes") + needsGeoPackage);
     if (options.edges && !geoPackage)
-        throwInvalid(kStage, name("edges") + needsGeoPackage);
+        throwInvalid(kStage, markOption("edges") + needsGeoPackage);
     if (options.appendLayer && !geoPackage)
-        throwInvalid(kStage, name("append_layer") + needsGeoPackage);
+        throwInvalid(kStage, markOption("append_layer") + needsGeoPackage);
     if (!options.spatialIndex && !geoPackage && options.format != TinFormat::FlatGeobuf)
-        throwInvalid(kStage, name("no_spatial_index") +
+        throwInvalid(kStage, markOption("no_spatial_index") +
                                  " applies to GeoPackage and FlatGeobuf, not " + format);
     if (options.qgisStyle && !isOgrFormat(options.format))
-        throwInvalid(kStage, name("qgis_style") +
+        throwInvalid(kStage, markOption("qgis_style") +
                                  " applies to GeoPackage, Shapefile and FlatGeobuf outputs, not " +
                                  format);
     if (options.qgisStyle && options.attributes == AttributeSet::None)
-        throwInvalid(kStage, name("qgis_style") + " colours by z_mean: it needs " +
-                                 name("attributes") + " basic or all");
+        throwInvalid(kStage, markOption("qgis_style") + " colours by z_mean: it needs " +
+                                 markOption("attributes") + " basic or all");
     if (geoPackage && options.layerName.empty())
         throwInvalid(kStage, "the layer name is empty");
     // The mesh formats write the name raw into a line of text (2DM MESHNAME, OBJ "o"): a
@@ -234,7 +233,7 @@ void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {
     // checked when the copy is opened.
     if (options.appendLayer)
         outputs.erase(outputs.begin());
-    detail::refuseExistingOutputs(stage, outputs, options.overwrite, options.optionName);
+    detail::refuseExistingOutputs(stage, outputs, options.overwrite);
 }
 
 TinWriteResult writeTin(const TinMesh& mesh, const fs::path& output, const TinWriteOptions& options,

@@ -25,7 +25,7 @@ namespace {
 /// The lines (or polygon rings) of one source as read; `keyword` names the option it came from.
 io::LineLayer readLayer(const std::string& source, std::string_view keyword,
                         const BuildOptions& options) {
-    const std::string option = optionName(keyword, options.optionSpelling);
+    const std::string option = markOption(keyword);
     return keyword == "breaklines"
                ? io::readOgrLines(source, options.breaklinesLayer, option)
                : io::readOgrPolygons(source, "", option,
@@ -36,8 +36,8 @@ io::LineLayer readLayer(const std::string& source, std::string_view keyword,
 /// for.
 io::LineLayer intoCrs(io::LineLayer layer, const std::string& source, std::string_view keyword,
                       const BuildOptions& options, const std::string& crsWkt, BuildReport& report) {
-    const std::string name = optionName(keyword, options.optionSpelling) + " '" + source +
-                             "' layer '" + layer.layerName + "'";
+    const std::string name =
+        markOption(keyword) + " '" + source + "' layer '" + layer.layerName + "'";
     if (layer.lines.empty()) {
         notify(options, report,
                name + (keyword == "breaklines" ? " has no lines" : " has no polygons"));
@@ -59,7 +59,7 @@ io::LineLayer intoCrs(io::LineLayer layer, const std::string& source, std::strin
                 reprojector.transform(std::span<Point3>(line));
         } catch (const CrsError& error) {
             // A layer whose CRS does not match its coordinates: say which layer.
-            throw CrsError(name + ": " + error.what());
+            throw CrsError(name + ": " + error.markedMessage());
         }
     }
     return layer;
@@ -71,13 +71,12 @@ bool samePlaces(const std::vector<Point3>& a, const std::vector<Point3>& b) {
                       [](const Point3& p, const Point3& q) { return p.x == q.x && p.y == q.y; });
 }
 
-void checkLineZ(const io::LineLayer& layer, const BuildOptions& options) {
+void checkLineZ(const io::LineLayer& layer) {
     for (std::size_t i = 0; i < layer.lines.size(); ++i)
         if (std::isnan(layer.lines[i].front().z))
-            throw InvalidInputError(
-                "Breaklines: " + optionName("breakline_z", options.optionSpelling) +
-                " line: feature " + std::to_string(layer.featureIds[i]) + " of '" + layer.source +
-                "' has no z");
+            throw InvalidInputError("Breaklines: " + markOption("breakline_z") + " line: feature " +
+                                    std::to_string(layer.featureIds[i]) + " of '" + layer.source +
+                                    "' has no z");
 }
 
 /// Gives the points of `layer` that take the surface's z (all under BreaklineZ::Surface, those
@@ -166,10 +165,10 @@ std::vector<double> replaceLevels(const io::LineLayer& rings, const PolygonSet& 
     for (std::size_t r = 0; r < rings.lines.size(); ++r)
         if (std::isnan(levels[rings.polygonOf[r]]))
             throw InvalidInputError(
-                "Build: " + optionName("replace", options.optionSpelling) + " '" + rings.source +
-                "' feature " + std::to_string(rings.featureIds[r]) +
+                "Build: " + markOption("replace") + " '" + rings.source + "' feature " +
+                std::to_string(rings.featureIds[r]) +
                 ": its boundary lies outside the data; give its elevation with " +
-                optionName("replace_z_field", options.optionSpelling));
+                markOption("replace_z_field"));
     return levels;
 }
 
@@ -268,7 +267,7 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
             intoCrs(std::move(layers.breaklines[i]), options.breaklines[i], "breaklines", options,
                     crsWkt, report));
         if (options.breaklineZ == BreaklineZ::Line)
-            checkLineZ(layer, options);
+            checkLineZ(layer);
         takeSurfaceZ(layer, dem, options.breaklineZ, options.triangulation.threads);
     }
     return sources;

@@ -572,25 +572,26 @@ std::string optionName(std::string_view keyword, OptionSpelling spelling) {
     return optionName(*option, spelling);
 }
 
-OptionNamer optionNamer(OptionSpelling spelling) {
-    return OptionNamer(
-        [spelling](std::string_view keyword) { return optionName(keyword, spelling); });
+OptionNaming optionNaming(OptionSpelling spelling) {
+    return [spelling](std::string_view keyword) { return optionName(keyword, spelling); };
 }
 
-void applyBuildOption(BuildOptions& options, const OptionValue& value, OptionSpelling spelling) {
+namespace {
+
+// applyBuildOption, its messages naming options by keyword (markOption).
+void applyNamingByKeyword(BuildOptions& options, const OptionValue& value,
+                          OptionSpelling spelling) {
     const BuildOptionSpec* option = findBuildOption(value.name, spelling);
     if (option == nullptr)
         refuseUnknown(value.name, spelling);
     // A C string ends at a NUL: a path holding one would name another file.
     if (value.text.find('\0') != std::string::npos)
-        refuse(optionName(*option, spelling) + " holds a NUL character");
-    option->apply(options, value.text, optionName(*option, spelling));
+        refuse(markOption(option->keyword) + " holds a NUL character");
+    option->apply(options, value.text, markOption(option->keyword));
 }
 
-BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpelling spelling) {
-    const auto name = [spelling](std::string_view keyword) {
-        return optionName(keyword, spelling);
-    };
+BuildOptions parseNamingByKeyword(const std::vector<OptionValue>& values, OptionSpelling spelling) {
+    const auto name = [](std::string_view keyword) { return markOption(keyword); };
     // What is missing first: a usage line is more use than a complaint about one value.
     if (!given(values, "inputs", spelling))
         refuse("missing " + name("inputs"));
@@ -603,17 +604,34 @@ BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpe
     BuildOptions options;
     options.optionSpelling = spelling;
     for (const OptionValue& value : values)
-        applyBuildOption(options, value, spelling);
-    if (options.keepGeographic && !options.targetSrs.empty())
-        refuse(name("keep_geographic") + " and " + name("t_srs") + " contradict each other");
+        applyNamingByKeyword(options, value, spelling);
     if (options.refine && options.refine->fillHoles && given(values, "max_hole", spelling))
         refuse(name("max_hole") + " and " + name("fill_holes") +
                " contradict each other: give one");
     if (!options.format)
-        options.format = tiles ? io::TinFormat::GeoPackage
-                               : io::tinFormatFromPath(options.output, optionNamer(spelling));
+        options.format = tiles ? io::TinFormat::GeoPackage : io::tinFormatFromPath(options.output);
     checkBuildOptions(options);
     return options;
+}
+
+} // namespace
+
+void applyBuildOption(BuildOptions& options, const OptionValue& value, OptionSpelling spelling) {
+    try {
+        applyNamingByKeyword(options, value, spelling);
+    } catch (Error& error) {
+        error.nameOptions(optionNaming(spelling));
+        throw;
+    }
+}
+
+BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpelling spelling) {
+    try {
+        return parseNamingByKeyword(values, spelling);
+    } catch (Error& error) {
+        error.nameOptions(optionNaming(spelling));
+        throw;
+    }
 }
 
 } // namespace terratin

@@ -24,7 +24,6 @@ io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat f
     writeOptions.appendLayer = options.appendLayer;
     writeOptions.spatialIndex = options.spatialIndex;
     writeOptions.qgisStyle = options.qgisStyle;
-    writeOptions.optionName = optionNamer(options.optionSpelling);
     return writeOptions;
 }
 
@@ -36,7 +35,7 @@ io::TinFormat outputFormat(const BuildOptions& options) {
         return *options.format;
     if (!options.tilesDir.empty())
         return io::TinFormat::GeoPackage;
-    return io::tinFormatFromPath(options.output, optionNamer(options.optionSpelling));
+    return io::tinFormatFromPath(options.output);
 }
 
 // Tiles without a maximum error or a limit are full resolution: every valid cell a vertex.
@@ -52,33 +51,31 @@ void checkBuildOptions(const BuildOptions& options) {
     checkTriangulationOptions(options.triangulation);
     if (options.refine)
         checkRefineOptions(withEveryCellTiles(*options.refine));
+    if (options.keepGeographic && !options.targetSrs.empty())
+        throw InvalidInputError("Build: " + markOption("keep_geographic") + " and " +
+                                markOption("t_srs") + " contradict each other");
     if (options.band < 1)
         throw InvalidInputError("Build: the raster band must be 1 or more (got " +
                                 std::to_string(options.band) + ")");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
         throw InvalidInputError("Build: the z factor must be a finite number other than 0");
     if (!options.replaceZField.empty() && options.replace.empty())
-        throw InvalidInputError("Build: " + optionName("replace_z_field", options.optionSpelling) +
-                                " names the field of " +
-                                optionName("replace", options.optionSpelling) +
-                                " polygons: give them too");
+        throw InvalidInputError("Build: " + markOption("replace_z_field") + " names the field of " +
+                                markOption("replace") + " polygons: give them too");
     if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
         throw InvalidInputError("Build: the longest edge kept must be a positive length");
     if (options.refine)
         detail::checkDemOnlyOptions(options);
     const bool tilesDir = !options.tilesDir.empty();
     if (tilesDir && !options.memoryLimit && (!options.refine || options.refine->tileSize == 0))
-        throw InvalidInputError("Build: " + optionName("tiles_dir", options.optionSpelling) +
-                                " writes tiles: give " +
-                                optionName("tile_size", options.optionSpelling) + " or " +
-                                optionName("memory_limit", options.optionSpelling));
+        throw InvalidInputError("Build: " + markOption("tiles_dir") + " writes tiles: give " +
+                                markOption("tile_size") + " or " + markOption("memory_limit"));
     if (!options.format && options.tilesDir.empty() && options.output.empty())
         return; // no output yet: a caller still filling the options in
     const io::TinWriteOptions writeOptions = tinWriteOptions(options, outputFormat(options));
     io::checkTinWriteOptions(writeOptions);
     if (options.memoryLimit && !tilesDir)
-        io::detail::checkTinStreamOptions(writeOptions,
-                                          optionName("memory_limit", options.optionSpelling));
+        io::detail::checkTinStreamOptions(writeOptions, markOption("memory_limit"));
 }
 
 namespace {
@@ -90,8 +87,7 @@ std::optional<BuildOptions> planTiles(const BuildOptions& options) {
     const bool sized = options.memoryLimit && refine.tileSize == 0;
     if (sized)
         refine.tileSize =
-            detail::memoryBudget(*options.memoryLimit, refine.fillHoles ? 0 : refine.maxHole, 0,
-                                 optionNamer(options.optionSpelling))
+            detail::memoryBudget(*options.memoryLimit, refine.fillHoles ? 0 : refine.maxHole, 0)
                 .tileSize;
     refine = withEveryCellTiles(refine);
     if (!sized && (!options.refine || refine.everyCell == options.refine->everyCell))
@@ -109,15 +105,12 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
         io::checkTinOutput(options.output, run.writeOptions()); // refused now, not after reading
     if (options.tileDistribution != nullptr && (!options.refine || options.refine->tileSize == 0))
         throw InvalidInputError("Build: several processes share the work only by tiles: give " +
-                                optionName("tile_size", options.optionSpelling) + " or " +
-                                optionName("memory_limit", options.optionSpelling));
+                                markOption("tile_size") + " or " + markOption("memory_limit"));
     return options.refine ? detail::buildRefinedTin(run) : detail::buildPointTin(run);
 }
 
-} // namespace
-
-BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
-    checkBuildOptions(options);
+// runBuildStages, a thread that cannot start reported as running out of memory.
+BuildReport runBuildInMemory(const BuildOptions& options, const ProgressCallback& progress) {
     try {
         return runBuildStages(options, progress);
     } catch (const std::system_error& error) {
@@ -127,6 +120,20 @@ BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progre
             error.code() == std::errc::not_enough_memory)
             throw Error("Build: out of memory: cannot start another thread (" +
                         error.code().message() + ")");
+        throw;
+    }
+}
+
+} // namespace
+
+BuildReport runBuild(const BuildOptions& options, const ProgressCallback& progress) {
+    // The modules below name options by keyword (markOption); the caller's spelling is given
+    // to them here, once, on the way out.
+    try {
+        checkBuildOptions(options);
+        return runBuildInMemory(options, progress);
+    } catch (Error& error) {
+        error.nameOptions(optionNaming(options.optionSpelling));
         throw;
     }
 }

@@ -51,8 +51,8 @@ void keepEdgesOfKeptTriangles(MeshArray<std::uint8_t>& edgeFlags,
 
 // The raster cell of every vertex, for the GeoPackage nodes layer: `cellOf(source)` is the
 // row-major cell index of input point `source`.
-template <class CellOf>
-std::vector<io::RasterCell> vertexCells(const TinMesh& mesh, std::uint64_t width, CellOf cellOf) {
+std::vector<io::RasterCell> vertexCells(const TinMesh& mesh, std::uint64_t width,
+                                        const std::function<std::uint64_t(std::uint32_t)>& cellOf) {
     std::vector<io::RasterCell> cells(mesh.vertexCount());
     for (std::size_t v = 0; v < cells.size(); ++v) {
         if (isConstraintVertex(mesh.sourceIndex[v])) {
@@ -86,25 +86,30 @@ void BuildRun::notify(const std::string& text) {
 }
 
 BuildReport BuildRun::write(TinProduct product) {
-    TinMesh& mesh = product.mesh;
-    if (m_options->maxEdge) {
-        const std::vector<std::uint8_t> drop = longEdgeTriangles(mesh, *m_options->maxEdge);
-        keepEdgesOfKeptTriangles(m_writeOptions.constrainedEdges, drop);
-        m_report.longEdgeTriangles = dropTriangles(mesh, drop);
-    }
-    m_report.triangles = mesh.triangleCount();
-
-    const Stopwatch writeTime;
     m_writeOptions.crsWkt = product.crsWkt;
-    if (m_options->nodes && product.cellOf)
-        m_writeOptions.vertexCells = vertexCells(mesh, product.rasterWidth, product.cellOf);
-    const io::TinWriteResult written =
-        io::writeTin(mesh, m_options->output, m_writeOptions,
-                     phase(kReadShare + kTriangulateShare, kWriteShare));
-    return finish(written, writeTime);
+    WholeFileSink sink(m_options->output, m_writeOptions);
+    deliver(sink, 0, std::move(product.mesh), product.cells);
+    return close(sink);
 }
 
-BuildReport BuildRun::finish(const io::TinWriteResult& written, const Stopwatch& writeTime) {
+void BuildRun::deliver(TinSink& sink, std::size_t piece, TinMesh tin,
+                       const VertexRasterCells& cells) {
+    if (m_options->maxEdge) {
+        const std::vector<std::uint8_t> drop = longEdgeTriangles(tin, *m_options->maxEdge);
+        keepEdgesOfKeptTriangles(m_writeOptions.constrainedEdges, drop);
+        m_report.longEdgeTriangles += dropTriangles(tin, drop);
+    }
+    std::vector<io::RasterCell> tinCells;
+    if (m_options->nodes && cells.cellOf)
+        tinCells = vertexCells(tin, cells.rasterWidth, cells.cellOf);
+    sink.write(piece, std::move(tin), std::move(tinCells));
+}
+
+BuildReport BuildRun::close(TinSink& sink) {
+    m_report.triangles = sink.triangles();
+    const Stopwatch writeTime;
+    const io::TinWriteResult written =
+        sink.finish(phase(kReadShare + kTriangulateShare, kWriteShare));
     m_report.timings.write = writeTime.seconds();
     m_report.writeFeatures = written.features;
     m_report.writeRowSeconds = written.rowSeconds;
@@ -152,10 +157,6 @@ std::size_t takeConstrainedOutput(ConstrainedTin& tin, const std::vector<std::ui
         throw InvalidInputError("Build: no triangle is left inside the clip area and outside "
                                 "the erase areas");
     return removed;
-}
-
-std::vector<io::RasterCell> gridVertexCells(const TinMesh& mesh, std::uint64_t rasterWidth) {
-    return vertexCells(mesh, rasterWidth, [](std::uint32_t cell) { return std::uint64_t{cell}; });
 }
 
 } // namespace terratin::detail

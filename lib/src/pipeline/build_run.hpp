@@ -1,12 +1,14 @@
 #pragma once
 /// @file
 /// BuildRun: one build's state, which every producer reads and fills (the options, the
-/// writers' options, the report, the progress and the clock), and the tail every build that
-/// writes one whole file shares, written once: long edges dropped, the nodes' raster cells,
-/// the file written, the report finished. The producers (builds.hpp) make a TinProduct and
-/// hand it to write(); those whose tiles went to their files as they came call finish().
+/// writers' options, the report, the progress and the clock), and the tail every build shares,
+/// written once: each piece of the TIN (the whole TIN, or a tile) has its long edges dropped
+/// and its nodes' raster cells found on its way into a sink (tin_sink.hpp: the whole file, the
+/// streamed tiles, a directory of tiles), and closing the sink finishes the report. The
+/// producers (builds.hpp) hand a whole TIN to write(), and a tiled one's tiles to deliver().
 
 #include "../stopwatch.hpp"
+#include "tin_sink.hpp"
 
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/error.hpp"
@@ -25,16 +27,21 @@ inline constexpr double kReadShare = 0.1;
 inline constexpr double kTriangulateShare = 0.4;
 inline constexpr double kWriteShare = 0.5;
 
-/// What a producer hands the whole-file sink.
+/// Where the vertices of a TIN lie in its raster, for the node layer's row and column: the
+/// row-major raster cell of input point `source` (a vertex's sourceIndex) in a raster
+/// `rasterWidth` cells wide. Unset when the vertices are no one raster's cells (point clouds,
+/// several rasters).
+struct VertexRasterCells {
+    std::function<std::uint64_t(std::uint32_t source)> cellOf;
+    std::uint64_t rasterWidth = 0;
+};
+
+/// A whole TIN, as a producer hands it to write().
 struct TinProduct {
     TinMesh mesh;
     /// The CRS of the vertices, WKT; empty for none.
     std::string crsWkt;
-    /// For the node layer's row and column: the row-major raster cell of input point `source`
-    /// (a vertex's sourceIndex) in a raster `rasterWidth` cells wide. Unset when the vertices
-    /// are no one raster's cells (point clouds, several rasters).
-    std::function<std::uint64_t(std::uint32_t source)> cellOf;
-    std::uint64_t rasterWidth = 0;
+    VertexRasterCells cells;
 };
 
 class BuildRun {
@@ -51,12 +58,16 @@ public:
     /// A notice in the report (and to options.notice).
     void notify(const std::string& text);
 
-    /// The whole-file sink: the long edges dropped (options.maxEdge, with the constrained
-    /// edges' flags kept in step), the nodes' cells, the file written in product.crsWkt.
-    /// Returns the finished report.
+    /// The whole TIN as the one piece of a WholeFileSink, in product.crsWkt, delivered and
+    /// closed. Returns the finished report.
     BuildReport write(TinProduct product);
-    /// The report with the write phase's figures and the total; the last progress call.
-    BuildReport finish(const io::TinWriteResult& written, const Stopwatch& writeTime);
+    /// Piece `piece` of the TIN into `sink`, after the tail every piece shares: its long edges
+    /// dropped (options.maxEdge; the constrained edges' flags kept in step, for a whole TIN)
+    /// and, with a nodes layer, its vertices' raster cells.
+    void deliver(TinSink& sink, std::size_t piece, TinMesh tin, const VertexRasterCells& cells);
+    /// After the last piece: the sink finished, the report given the sink's triangles, the
+    /// write phase's figures and the total; the last progress call.
+    BuildReport close(TinSink& sink);
 
 private:
     const BuildOptions* m_options;
@@ -87,9 +98,5 @@ bool hasConstraints(const BuildOptions& options);
 /// Returns how many were removed; InvalidInputError when none is left.
 std::size_t takeConstrainedOutput(ConstrainedTin& tin, const std::vector<std::uint8_t>& drop,
                                   io::TinWriteOptions& writeOptions);
-
-/// The raster cell of every vertex of `mesh` whose sourceIndex is a raster cell index (a
-/// refined or tiled DEM's), for the node layer.
-std::vector<io::RasterCell> gridVertexCells(const TinMesh& mesh, std::uint64_t rasterWidth);
 
 } // namespace terratin::detail

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <future>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -23,12 +24,11 @@ namespace {
 
 // What takes a DEM alone, as its options name it: tiling, or a simplification.
 std::string demOnlyWork(const BuildOptions& options) {
-    const OptionSpelling spelling = options.optionSpelling;
     if (options.memoryLimit)
-        return "Tiling (" + optionName("memory_limit", spelling) + ")";
+        return "Tiling (" + markOption("memory_limit") + ")";
     if (options.refine && options.refine->tileSize > 0)
-        return "Tiling (" + optionName("tile_size", spelling) + ")";
-    return "Simplification (" + optionName("max_error", spelling) + "...)";
+        return "Tiling (" + markOption("tile_size") + ")";
+    return "Simplification (" + markOption("max_error") + "...)";
 }
 
 // The refiner works on one raster's grid.
@@ -95,14 +95,18 @@ TinMesh takeConstrainedMesh(ConstrainedRefinement corrected, BuildRun& run) {
     return std::move(corrected.build.tin.mesh);
 }
 
+// A refined TIN's vertices: each vertex's sourceIndex is its cell's index in the grid.
+VertexRasterCells gridCells(int gridWidth) {
+    return {[](std::uint32_t cell) { return std::uint64_t{cell}; },
+            static_cast<std::uint64_t>(gridWidth)};
+}
+
 // The refined TIN, whose sourceIndex is the grid's cell index, for the whole-file sink.
 TinProduct refinedProduct(TinMesh mesh, int gridWidth, const std::string& crsWkt,
                           BuildReport& report) {
     report.points = mesh.vertexCount();
     report.vertices = mesh.vertexCount();
-    TinProduct product{std::move(mesh), crsWkt, {}, static_cast<std::uint64_t>(gridWidth)};
-    product.cellOf = [](std::uint32_t cell) { return std::uint64_t{cell}; };
-    return product;
+    return {std::move(mesh), crsWkt, gridCells(gridWidth)};
 }
 
 // The counts of a TIN whose tiles went to files as they came, never joined.
@@ -114,31 +118,30 @@ void reportTileCounts(std::uint64_t points, std::uint64_t triangles, const Stopw
     report.timings.triangulate = refineTime.seconds(); // the tiles' writing included
 }
 
-// --tiles-dir: the tiles are written as they came; the index last, which keeps them all.
-BuildReport commitTileFiles(TileFiles& files, BuildRun& run, const Stopwatch& refineTime) {
-    reportTileCounts(files.points(), files.triangles(), refineTime, run.report());
-    const Stopwatch writeTime;
-    files.commit();
-    io::TinWriteResult written;
-    written.features = files.features();
-    return run.finish(written, writeTime);
-}
-
-// --memory-limit: the tiles went to the output as they came; its end (the spatial index) now.
-BuildReport finishStreamedTin(StreamedTin& tin, const std::uint64_t writerBytes, BuildRun& run,
-                              const Stopwatch& refineTime) {
-    const BuildOptions& options = run.options();
-    reportTileCounts(tin.points(), tin.triangles(), refineTime, run.report());
+// --memory-limit: the tiles went to the output as they came; a notice when the spatial
+// index, which the writer holds to the end, outgrew its share of the limit.
+void noticeHeldIndex(const StreamedTin& tin, std::uint64_t writerBytes, BuildRun& run) {
     if (tin.heldBytes() > writerBytes)
         run.notify("the spatial index kept " + std::to_string(tin.heldBytes() >> 20U) +
-                   " MiB, more than the share of " +
-                   optionName("memory_limit", options.optionSpelling) +
-                   " set aside for it; give a larger limit or " +
-                   optionName("no_spatial_index", options.optionSpelling));
-    const Stopwatch writeTime;
-    const io::TinWriteResult written =
-        tin.finish(run.phase(kReadShare + kTriangulateShare, kWriteShare));
-    return run.finish(written, writeTime);
+                   " MiB, more than the share of " + markOption("memory_limit") +
+                   " set aside for it; give a larger limit or " + markOption("no_spatial_index"));
+}
+
+// Where the tiles go as they come (a directory of tiles, or one file streamed); none when
+// they are joined into one TIN (or this process only refines what it is handed).
+std::unique_ptr<TinSink> tileSink(BuildRun& run, const HeightGrid& extent,
+                                  const RefineOptions& refineOptions, bool coordinates) {
+    const BuildOptions& options = run.options();
+    if (!coordinates)
+        return nullptr;
+    if (!options.tilesDir.empty())
+        return std::make_unique<TileFiles>(options.tilesDir, extent, refineOptions.tileSize,
+                                           run.writeOptions(), refineOptions.cellPositions);
+    if (options.memoryLimit)
+        return std::make_unique<StreamedTin>(options.output, run.writeOptions(), extent.width,
+                                             extent.height, refineOptions.tileSize,
+                                             markOption("memory_limit"));
+    return nullptr;
 }
 
 // --memory-limit: the tile size within the budget (sized again where cells move, as they
@@ -147,18 +150,17 @@ MemoryBudget planMemory(BuildRun& run, RefineOptions& refineOptions, const Refin
                         bool coordinates) {
     const BuildOptions& options = run.options();
     const std::size_t margin = refineOptions.fillHoles ? 0 : refineOptions.maxHole;
-    const OptionNamer namer = optionNamer(options.optionSpelling);
     // planTiles sized the tiles before the CRS was known.
     if (crs.movesCells() &&
-        refineOptions.tileSize == memoryBudget(*options.memoryLimit, margin, 0, namer).tileSize)
+        refineOptions.tileSize == memoryBudget(*options.memoryLimit, margin, 0).tileSize)
         refineOptions.tileSize = 0;
     MemoryBudget budget =
-        memoryBudget(*options.memoryLimit, margin, refineOptions.tileSize, namer, crs.movesCells());
+        memoryBudget(*options.memoryLimit, margin, refineOptions.tileSize, crs.movesCells());
     refineOptions.tileSize = budget.tileSize;
     refineOptions.earlyTileBytes = budget.tileBytes;
     if (coordinates)
         run.notify("tiles of " + std::to_string(budget.tileSize) + " cells a side within " +
-                   optionName("memory_limit", options.optionSpelling));
+                   markOption("memory_limit"));
     return budget;
 }
 
@@ -197,36 +199,12 @@ BuildReport buildTiledTin(BuildRun& run) {
         budget = planMemory(run, refineOptions, crs, coordinates);
         gdalCache.emplace(budget->gdalCacheBytes);
     }
-    io::TinWriteOptions& writeOptions = run.writeOptions();
-    writeOptions.crsWkt = crs.target;
-    const auto keptTriangles = [&](TinMesh& tin) {
-        if (options.maxEdge)
-            report.longEdgeTriangles += dropLongEdgeTriangles(tin, *options.maxEdge);
-        return tin.triangleCount() > 0;
-    };
-    const auto cellsOfTile = [&](const TinMesh& tin) {
-        return options.nodes ? gridVertexCells(tin, static_cast<std::uint64_t>(extent.width))
-                             : std::vector<io::RasterCell>{};
-    };
-    std::optional<TileFiles> files;
-    std::optional<StreamedTin> streamed;
-    if (!options.tilesDir.empty() && coordinates) {
-        files.emplace(options.tilesDir, extent, refineOptions.tileSize, writeOptions,
-                      refineOptions.cellPositions);
+    run.writeOptions().crsWkt = crs.target;
+    const std::unique_ptr<TinSink> sink = tileSink(run, extent, refineOptions, coordinates);
+    if (sink)
         refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
-            if (!keptTriangles(tin))
-                return; // every triangle too long: no file
-            files->write(tile, tin, cellsOfTile(tin));
+            run.deliver(*sink, tile, std::move(tin), gridCells(extent.width));
         };
-    } else if (options.memoryLimit && coordinates) {
-        streamed.emplace(options.output, writeOptions, extent.width, extent.height,
-                         refineOptions.tileSize,
-                         optionName("memory_limit", options.optionSpelling));
-        refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
-            keptTriangles(tin); // a tile's vertices stay, as in the joined TIN
-            streamed->write(tile, tin, cellsOfTile(tin));
-        };
-    }
     RefineResult result =
         refineTiles(cells, refineOptions, run.phase(0.0, kReadShare + kTriangulateShare));
     if (!coordinates) {
@@ -234,28 +212,26 @@ BuildReport buildTiledTin(BuildRun& run) {
         return report;
     }
     report.skippedCells = report.rasterCells - result.validCells;
-    reportRefinement(result, refineOptions,
-                     files      ? files->points()
-                     : streamed ? streamed->points()
-                                : result.mesh.vertexCount(),
-                     report);
-    if (files)
-        return commitTileFiles(*files, run, refineTime);
-    if (streamed)
-        return finishStreamedTin(*streamed, budget->writerBytes, run, refineTime);
-    TinProduct product = refinedProduct(std::move(result.mesh), extent.width, crs.target, report);
-    report.timings.triangulate = refineTime.seconds();
-    return run.write(std::move(product));
+    if (!sink) {
+        reportRefinement(result, refineOptions, result.mesh.vertexCount(), report);
+        TinProduct product =
+            refinedProduct(std::move(result.mesh), extent.width, crs.target, report);
+        report.timings.triangulate = refineTime.seconds();
+        return run.write(std::move(product));
+    }
+    reportRefinement(result, refineOptions, sink->points(), report);
+    reportTileCounts(sink->points(), sink->triangles(), refineTime, report);
+    if (const auto* streamed = dynamic_cast<const StreamedTin*>(sink.get()))
+        noticeHeldIndex(*streamed, budget->writerBytes, run);
+    return run.close(*sink);
 }
 
 } // namespace
 
 void checkDemOnlyOptions(const BuildOptions& options) {
-    const OptionSpelling spelling = options.optionSpelling;
     if (options.zFactor != 1.0)
         throw InvalidInputError(demOnlyWork(options) + " does not combine with " +
-                                optionName("z_factor", spelling) +
-                                "; scale the DEM first (gdal_calc)");
+                                markOption("z_factor") + "; scale the DEM first (gdal_calc)");
     const bool tiled = options.memoryLimit || options.refine->tileSize > 0;
     if (tiled && hasConstraints(options))
         throw InvalidInputError(demOnlyWork(options) +

@@ -14,7 +14,6 @@
 #include "gather_inputs.hpp"
 
 #include "../stopwatch.hpp"
-#include "../triangulate/parallel_for.hpp"
 
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/crs/utm_zone.hpp"
@@ -53,7 +52,7 @@ void checkInputOptions(const BuildOptions& options, const std::vector<std::strin
                                      [](const std::string& path) { return path.empty(); }))
         throw InvalidInputError("Input: no input file given");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
-        throw InvalidInputError("Input: " + optionName("z_factor", options.optionSpelling) +
+        throw InvalidInputError("Input: " + markOption("z_factor") +
                                 " must be a finite number other than 0");
 }
 
@@ -61,11 +60,9 @@ void checkInputOptions(const BuildOptions& options, const std::vector<std::strin
 UserCrs parseUserCrs(const BuildOptions& options) {
     UserCrs user;
     if (!options.sourceSrs.empty())
-        user.source =
-            crs::crsFromUserInput(options.sourceSrs, optionName("s_srs", options.optionSpelling));
+        user.source = crs::crsFromUserInput(options.sourceSrs, markOption("s_srs"));
     if (!options.targetSrs.empty())
-        user.target =
-            crs::crsFromUserInput(options.targetSrs, optionName("t_srs", options.optionSpelling));
+        user.target = crs::crsFromUserInput(options.targetSrs, markOption("t_srs"));
     return user;
 }
 
@@ -77,8 +74,6 @@ io::InputReadOptions readOptionsOf(const BuildOptions& options) {
     read.text.columns = options.textColumns;
     read.vector.zField = options.zField;
     read.vector.layer = options.inputLayer;
-    read.text.optionName = optionNamer(options.optionSpelling);
-    read.vector.optionName = optionNamer(options.optionSpelling);
     return read;
 }
 
@@ -136,13 +131,11 @@ void requireCrsWhereNeeded(const std::vector<ReadInput>& inputs, const BuildOpti
         inputs.begin(), inputs.end(), [](const ReadInput& input) { return !input.crsWkt.empty(); });
     if (!otherHasCrs && requestedTarget.empty())
         return;
-    const OptionSpelling spelling = options.optionSpelling;
     throw CrsError("CRS: '" + options.inputs[static_cast<std::size_t>(missing - inputs.begin())] +
                    "' has no CRS and " +
-                   (requestedTarget.empty()
-                        ? std::string("other inputs have one")
-                        : optionName("t_srs", spelling) + " asks to reproject it") +
-                   "; give its CRS with " + optionName("s_srs", spelling));
+                   (requestedTarget.empty() ? std::string("other inputs have one")
+                                            : markOption("t_srs") + " asks to reproject it") +
+                   "; give its CRS with " + markOption("s_srs"));
 }
 
 /// The report's source CRS: the one every input shares, or "several".
@@ -211,8 +204,7 @@ void noticeUnitChange(const BuildOptions& options, BuildReport& report, const st
     notify(options, report,
            "'" + path + "' has x, y in " + source.linearUnit + " and the output in " +
                target.linearUnit + ": elevations stay in the input's units (use " +
-               optionName("z_factor", options.optionSpelling) + " " + factor +
-               " if they share the horizontal unit)");
+               markOption("z_factor") + " " + factor + " if they share the horizontal unit)");
 }
 
 void reprojectAll(const BuildOptions& options, const std::string& targetWkt,
@@ -259,9 +251,11 @@ GatheredInputs mergeInputs(std::vector<ReadInput>& inputs, double zFactor) {
 } // namespace
 
 void notify(const BuildOptions& options, BuildReport& report, const std::string& text) {
-    report.notices.push_back(text);
+    // The options a notice names are marked (markOption) and named here the caller's way.
+    const std::string named = nameMarkedOptions(text, optionNaming(options.optionSpelling));
+    report.notices.push_back(named);
     if (options.notice)
-        options.notice(text);
+        options.notice(named);
 }
 
 std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
@@ -278,8 +272,7 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
     notify(options, report,
            "the input is geographic (" + geographicName + "); projecting it to " + zone.name() +
                " (" + label + "), the zone of its centre (" + centreText + "); use " +
-               optionName("t_srs", options.optionSpelling) + " to choose another CRS or " +
-               optionName("keep_geographic", options.optionSpelling) +
+               markOption("t_srs") + " to choose another CRS or " + markOption("keep_geographic") +
                " to triangulate in degrees");
     return target;
 }
@@ -300,8 +293,7 @@ GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
     reprojectAll(options, target, inputs, report);
     if (!user.target.empty() && crs::describeCrs(target).geographic)
         notify(options, report,
-               optionName("t_srs", options.optionSpelling) +
-                   " is geographic: the TIN is triangulated in degrees");
+               markOption("t_srs") + " is geographic: the TIN is triangulated in degrees");
     report.timings.reproject = reprojectTime.seconds();
 
     GatheredInputs gathered = mergeInputs(inputs, options.zFactor);

@@ -48,7 +48,7 @@ std::uint64_t limitFor(std::uint64_t bytes) {
 } // namespace
 
 MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std::size_t tileSize,
-                          const OptionNamer& optionName, bool cellsMove) {
+                          bool cellsMove) {
     const std::uint64_t perCell = kTileBytesPerCell + (cellsMove ? kMovedCellBytes : 0);
     const auto tileBytes = [&](std::size_t size, std::size_t margin) {
         return detail::tileBytes(size, margin, perCell);
@@ -61,14 +61,14 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
     const std::uint64_t shared = budget.gdalCacheBytes + budget.writerBytes + kProcessBytes;
     const std::uint64_t forTiles = limitBytes > shared ? limitBytes - shared : 0;
     budget.tileBytes = forTiles;
-    const std::string limitName = optionName("memory_limit");
+    const std::string limitName = markOption("memory_limit");
     if (tileSize > 0) {
         if (tileBytes(tileSize, marginCells) > forTiles)
             throw InvalidInputError("Build: tiles of " + std::to_string(tileSize) + " cells need " +
                                     limitName + " " +
                                     mebibytes(limitFor(tileBytes(tileSize, marginCells))) +
                                     " or more; give a larger limit, or leave out " +
-                                    optionName("tile_size") + " to have the tiles fit");
+                                    markOption("tile_size") + " to have the tiles fit");
         budget.tileSize = tileSize;
         return budget;
     }
@@ -80,7 +80,7 @@ MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std
         throw InvalidInputError(
             "Build: " + limitName + " " + givenLimit(limitBytes) + " is too little for tiles of " +
             std::to_string(kLeastTileSize) + " cells with their margin of " +
-            optionName("max_hole") + " cells; give " +
+            markOption("max_hole") + " cells; give " +
             mebibytes(limitFor(tileBytes(kLeastTileSize, marginCells))) + " or more");
     return budget;
 }

@@ -6,8 +6,6 @@
 /// counted at its worst: every cell of it, margin included, a vertex of the TIN. The bytes
 /// per cell are measured (docs/benchmarks.md, "Tiles in a memory limit").
 
-#include "terratin/option_namer.hpp"
-
 #include <cstddef>
 #include <cstdint>
 
@@ -32,7 +30,7 @@ struct MemoryBudget {
 /// the tiles' cells lie at projected positions (RefineOptions::cellPositions), which takes more
 /// a cell.
 MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std::size_t tileSize,
-                          const OptionNamer& optionName, bool cellsMove = false);
+                          bool cellsMove = false);
 
 /// Holds GDAL's block cache to at most `bytes` while it lives: GDAL's default, 5 % of the
 /// machine's memory, may pass a limit alone.

@@ -89,7 +89,7 @@ BuildReport buildPointTin(BuildRun& run) {
     if (options.validate)
         validate(run, triangulation.mesh, constrained);
 
-    TinProduct product{std::move(triangulation.mesh), gathered.crsWkt, {}, gathered.rasterWidth};
+    TinProduct product{std::move(triangulation.mesh), gathered.crsWkt, {{}, gathered.rasterWidth}};
     if (constrained) {
         report.areaTriangles =
             takeConstrainedOutput(constrained->tin, constrained->outsideArea, run.writeOptions());
@@ -98,7 +98,7 @@ BuildReport buildPointTin(BuildRun& run) {
     }
     // Row and column mean something for one raster's cells only.
     if (gathered.rasterWidth != 0)
-        product.cellOf = [cellIndex = std::move(gathered.cellIndex)](std::uint32_t source) {
+        product.cells.cellOf = [cellIndex = std::move(gathered.cellIndex)](std::uint32_t source) {
             return static_cast<std::uint64_t>(cellIndex[source]);
         };
     return run.write(std::move(product));

@@ -17,8 +17,8 @@ bool RefineCrs::movesCells() const {
 
 RefineCrs chooseRefineCrs(const BuildOptions& options, Point2 centre, const std::string& rasterWkt,
                           BuildReport& report) {
-    const std::string sourceOption = optionName("s_srs", options.optionSpelling);
-    const std::string targetOption = optionName("t_srs", options.optionSpelling);
+    const std::string sourceOption = markOption("s_srs");
+    const std::string targetOption = markOption("t_srs");
     RefineCrs chosen;
     chosen.source = options.sourceSrs.empty()
                         ? rasterWkt

@@ -10,8 +10,7 @@ StreamedTin::StreamedTin(const std::filesystem::path& output,
     : m_writer(io::detail::openTinStream(output, writeOptions, pieceBy)),
       m_tiles(width, height, tileSize), m_numbers(width) {}
 
-void StreamedTin::write(std::size_t tile, const TinMesh& tin,
-                        std::span<const io::RasterCell> vertexCells) {
+void StreamedTin::write(std::size_t tile, TinMesh tin, std::vector<io::RasterCell> vertexCells) {
     const TilePlace place = m_tiles.placeOf(tile);
     std::vector<std::uint32_t> numbers(tin.vertexCount());
     for (std::size_t v = 0; v < numbers.size(); ++v)

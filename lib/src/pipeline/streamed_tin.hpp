@@ -8,6 +8,7 @@
 #include "../io/tin_stream.hpp"
 #include "../tile/joined_vertex_numbers.hpp"
 #include "../tile/tile_grid.hpp"
+#include "tin_sink.hpp"
 
 #include "terratin/io/tin_writer.hpp"
 #include "terratin/progress.hpp"
@@ -17,12 +18,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <span>
 #include <string_view>
+#include <vector>
 
 namespace terratin::detail {
 
-class StreamedTin {
+class StreamedTin final : public TinSink {
 public:
     /// Opens `output` for the tiles of a grid of `width` x `height` cells cut in tiles of
     /// `tileSize` (see io::detail::openTinStream for what is checked and refused; `pieceBy`
@@ -34,12 +35,12 @@ public:
     /// Writes tile `tile` (row-major among the tiles, each once, in order), whose sourceIndex
     /// numbers the grid's cells; `vertexCells` as TinWriteOptions' (empty without a nodes
     /// layer).
-    void write(std::size_t tile, const TinMesh& tin, std::span<const io::RasterCell> vertexCells);
+    void write(std::size_t tile, TinMesh tin, std::vector<io::RasterCell> vertexCells) override;
     /// Completes the file and puts it in place.
-    io::TinWriteResult finish(const ProgressCallback& progress);
+    io::TinWriteResult finish(const ProgressCallback& progress) override;
 
-    [[nodiscard]] std::uint64_t points() const { return m_writer->vertexCount(); }
-    [[nodiscard]] std::uint64_t triangles() const { return m_writer->triangleCount(); }
+    [[nodiscard]] std::uint64_t points() const override { return m_writer->vertexCount(); }
+    [[nodiscard]] std::uint64_t triangles() const override { return m_writer->triangleCount(); }
     /// What the writer keeps until finish().
     [[nodiscard]] std::uint64_t heldBytes() const { return m_writer->heldBytes(); }
 

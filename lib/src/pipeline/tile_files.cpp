@@ -95,7 +95,6 @@ void TileFiles::checkEveryFile() const {
     io::TinWriteOptions indexOptions;
     indexOptions.format = io::TinFormat::GeoPackage;
     indexOptions.overwrite = m_writeOptions.overwrite;
-    indexOptions.optionName = m_writeOptions.optionName;
     io::checkTinOutput(indexPath(), indexOptions);
 }
 
@@ -109,8 +108,9 @@ std::string TileFiles::fileName(std::size_t tileRow, std::size_t tileColumn) con
            std::string(io::tinFormatExtension(m_writeOptions.format));
 }
 
-void TileFiles::write(std::size_t tile, const TinMesh& tin,
-                      std::vector<io::RasterCell> vertexCells) {
+void TileFiles::write(std::size_t tile, TinMesh tin, std::vector<io::RasterCell> vertexCells) {
+    if (tin.triangleCount() == 0)
+        return;
     const std::size_t tileRow = tile / m_tiles.tileColumns();
     const std::size_t tileColumn = tile % m_tiles.tileColumns();
     const std::string name = fileName(tileRow, tileColumn);
@@ -128,10 +128,12 @@ void TileFiles::write(std::size_t tile, const TinMesh& tin,
     m_triangles += tin.triangleCount();
 }
 
-void TileFiles::commit() {
-    io::writeTileIndex(indexPath(), m_writeOptions.crsWkt, m_entries, m_writeOptions.overwrite,
-                       m_writeOptions.optionName);
+io::TinWriteResult TileFiles::finish(const ProgressCallback&) {
+    io::writeTileIndex(indexPath(), m_writeOptions.crsWkt, m_entries, m_writeOptions.overwrite);
     m_committed = true;
+    io::TinWriteResult written;
+    written.features = m_features;
+    return written;
 }
 
 void TileFiles::removeWritten() noexcept {

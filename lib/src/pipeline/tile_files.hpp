@@ -4,6 +4,7 @@
 /// joined, and an index of the tiles' footprints. Internal to the build pipeline.
 
 #include "../tile/tile_grid.hpp"
+#include "tin_sink.hpp"
 
 #include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/tile_index.hpp"
@@ -22,7 +23,7 @@ namespace terratin::detail {
 /// `writeOptions`, zero-padded numbers), and `tiles.gpkg`, the index. Until commit(), every
 /// file it wrote is removed again on destruction (and the directory, if it made it), so a run
 /// that fails leaves nothing behind.
-class TileFiles {
+class TileFiles final : public TinSink {
 public:
     /// Checks, before anything is refined, that every file the tiles of a grid shaped like
     /// `extent`, cut in tiles of `tileSize`, may write can be written (an existing one only with
@@ -37,14 +38,14 @@ public:
     ~TileFiles();
 
     /// Writes tile `tile` (row-major among the tiles); `vertexCells` as TinWriteOptions'
-    /// (empty without a nodes layer).
-    void write(std::size_t tile, const TinMesh& tin, std::vector<io::RasterCell> vertexCells);
+    /// (empty without a nodes layer). A tile left without a triangle (every one too long)
+    /// gets no file.
+    void write(std::size_t tile, TinMesh tin, std::vector<io::RasterCell> vertexCells) override;
     /// Writes the index of the tiles written, then keeps every file.
-    void commit();
+    io::TinWriteResult finish(const ProgressCallback& progress) override;
 
-    [[nodiscard]] std::size_t points() const { return m_points; }
-    [[nodiscard]] std::size_t triangles() const { return m_triangles; }
-    [[nodiscard]] std::uint64_t features() const { return m_features; }
+    [[nodiscard]] std::uint64_t points() const override { return m_points; }
+    [[nodiscard]] std::uint64_t triangles() const override { return m_triangles; }
     [[nodiscard]] std::filesystem::path indexPath() const { return m_directory / "tiles.gpkg"; }
 
 private:

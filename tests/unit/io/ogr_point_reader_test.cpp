@@ -126,13 +126,13 @@ TEST(OgrPointReader, ReadsGeoJsonPoints_WithZFromAField) {
             << error.what();
         EXPECT_EQ(std::string(error.what()).find("--"), std::string::npos) << error.what();
     }
-    OgrPointReadOptions named;
-    named.optionName =
-        OptionNamer([](std::string_view keyword) { return "<" + std::string(keyword) + ">"; });
     try {
-        readOgrPoints(path, named);
+        readOgrPoints(path);
         FAIL() << "2D points without a z field were accepted";
-    } catch (const InvalidInputError& error) {
+    } catch (InvalidInputError& error) {
+        EXPECT_EQ(error.options(), std::vector<std::string>{"z_field"});
+        error.nameOptions(
+            [](std::string_view keyword) { return "<" + std::string(keyword) + ">"; });
         EXPECT_NE(std::string(error.what()).find("with <z_field>"), std::string::npos)
             << error.what();
     }

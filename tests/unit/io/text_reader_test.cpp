@@ -32,11 +32,14 @@ TextReadOptions withColumns(std::vector<std::string> columns) {
     return options;
 }
 
-/// The message of the InvalidInputError that `text` raises, "" when none.
-std::string rejection(const std::string& text, const TextReadOptions& options = {}) {
+/// The message of the InvalidInputError that `text` raises, its options named the `naming` way;
+/// "" when none.
+std::string rejection(const std::string& text, const TextReadOptions& options = {},
+                      const OptionNaming& naming = {}) {
     try {
         parse(text, options);
-    } catch (const InvalidInputError& error) {
+    } catch (InvalidInputError& error) {
+        error.nameOptions(naming);
         return error.what();
     }
     return {};
@@ -151,7 +154,8 @@ std::string spelled(std::string pattern, const std::string& name) {
 }
 
 // A library caller's message names `columns`, the keyword it gave, not the command line's
-// --columns; the pipeline names it the command line's way through options.optionName.
+// --columns; the error carries the keyword, and the pipeline names it the command line's way
+// (Error::nameOptions).
 TEST(TextReader, NamesTheColumnsOptionByKeyword_UnlessTheCallerNamesItOtherwise) {
     struct Case {
         std::vector<std::string> columns;
@@ -164,15 +168,16 @@ TEST(TextReader, NamesTheColumnsOptionByKeyword_UnlessTheCallerNamesItOtherwise)
         {{"x", "y", "z"}, "no header line to find the columns named in {} (the first line"},
     };
     TextReadOptions named;
-    named.optionName =
-        OptionNamer([](std::string_view keyword) { return "<" + std::string(keyword) + ">"; });
+    const OptionNaming bracketed = [](std::string_view keyword) {
+        return "<" + std::string(keyword) + ">";
+    };
     for (const auto& [columns, message] : cases) {
         const std::string byKeyword = rejection("1 2 3\n", withColumns(columns));
         EXPECT_NE(byKeyword.find(spelled(message, "columns")), std::string::npos) << byKeyword;
         EXPECT_EQ(byKeyword.find("--"), std::string::npos) << byKeyword;
 
         named.columns = columns;
-        const std::string byCaller = rejection("1 2 3\n", named);
+        const std::string byCaller = rejection("1 2 3\n", named, bracketed);
         EXPECT_NE(byCaller.find(spelled(message, "<columns>")), std::string::npos) << byCaller;
     }
 }

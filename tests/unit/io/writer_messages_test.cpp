@@ -1,11 +1,11 @@
-// The writer's messages name options the caller's way. A C++ caller who never set
-// TinWriteOptions::optionName reads keywords ("overwrite"), never a command-line flag; a caller
-// with its own OptionNamer (runBuild: "--overwrite" for the command line) reads its names.
+// The writer's messages name options the caller's way. The error carries each option's keyword
+// (markOption): a C++ caller reads keywords ("overwrite"), never a command-line flag; a caller
+// that names them its own way (Error::nameOptions; runBuild: "--overwrite" for the command
+// line) reads its names.
 
 #include "terratin/error.hpp"
 #include "terratin/io/tin_format.hpp"
 #include "terratin/io/tin_writer.hpp"
-#include "terratin/option_namer.hpp"
 
 #include "mesh_readers.hpp"
 #include "ogr_test_support.hpp"
@@ -36,16 +36,17 @@ std::string bracketed(std::string_view keyword) {
     return name;
 }
 
-/// A namer, and how it names the keyword `{keyword}` in a message pattern.
+/// A caller's naming of options (empty: by keyword), and how it names the keyword `{keyword}`
+/// in a message pattern.
 struct Naming {
     std::string label;
-    OptionNamer namer;
+    OptionNaming naming;
     std::function<std::string(const std::string&)> name;
 };
 
 std::vector<Naming> namings() {
-    return {{"keywords", OptionNamer(), [](const std::string& keyword) { return keyword; }},
-            {"the caller's names", OptionNamer(bracketed),
+    return {{"keywords", OptionNaming(), [](const std::string& keyword) { return keyword; }},
+            {"the caller's names", OptionNaming(bracketed),
              [](const std::string& keyword) { return bracketed(keyword); }}};
 }
 
@@ -63,11 +64,13 @@ std::string spelled(const std::string& pattern, const Naming& naming) {
     return text + pattern.substr(from);
 }
 
-/// The message of the InvalidInputError `call` throws, "" when it throws none.
-std::string refusal(const std::function<void()>& call) {
+/// The message of the InvalidInputError `call` throws, its options named the `naming` way; ""
+/// when it throws none.
+std::string refusal(const std::function<void()>& call, const OptionNaming& naming = {}) {
     try {
         call();
-    } catch (const InvalidInputError& error) {
+    } catch (InvalidInputError& error) {
+        error.nameOptions(naming);
         return error.what();
     }
     return {};
@@ -85,7 +88,6 @@ TinWriteOptions optionsFor(TinFormat format, const Naming& naming) {
     TinWriteOptions options;
     options.format = format;
     options.crsWkt = test::utm10nWkt();
-    options.optionName = naming.namer;
     return options;
 }
 
@@ -117,16 +119,17 @@ TEST(WriterMessages, NameContradictoryOptionsTheCallersWay) {
         for (const Case& c : cases) {
             TinWriteOptions options = optionsFor(c.format, naming);
             c.ask(options);
-            expectSpelled(refusal([&] { checkTinWriteOptions(options); }), c.message, naming);
+            expectSpelled(refusal([&] { checkTinWriteOptions(options); }, naming.naming), c.message,
+                          naming);
         }
     }
 }
 
 TEST(WriterMessages, NameTheFormatOptionTheCallersWay_WhenTheExtensionIsUnknown) {
     for (const Naming& naming : namings())
-        expectSpelled(refusal([&] { tinFormatFromPath("hood.stl", naming.namer); }),
+        expectSpelled(refusal([&] { tinFormatFromPath("hood.stl"); }, naming.naming),
                       "use .gpkg .shp .fgb .2dm .ply .obj .xml .landxml (or {format})", naming);
-    // Without a namer: the keyword.
+    // Named by no one: the keyword.
     EXPECT_NE(refusal([] { tinFormatFromPath("hood.stl"); }).find("(or format)"),
               std::string::npos);
 }
@@ -135,10 +138,12 @@ TEST(WriterMessages, NameTheOverwriteOptionTheCallersWay_WhenTheOutputExists) {
     for (const Naming& naming : namings()) {
         const TemporaryDirectory directory;
         std::ofstream(directory / "tin.ply") << "someone's";
-        expectSpelled(refusal([&] {
-                          writeTin(test::gridTin(3), directory / "tin.ply",
-                                   optionsFor(TinFormat::Ply, naming));
-                      }),
+        expectSpelled(refusal(
+                          [&] {
+                              writeTin(test::gridTin(3), directory / "tin.ply",
+                                       optionsFor(TinFormat::Ply, naming));
+                          },
+                          naming.naming),
                       "tin.ply' exists; use {overwrite}", naming);
     }
 }
@@ -152,10 +157,12 @@ TEST(WriterMessages, NameTheOverwriteOptionTheCallersWay_WhenTheOutputAppearsDur
                 std::ofstream(output) << "someone's";
             return true;
         };
-        expectSpelled(refusal([&] {
-                          writeTin(test::gridTin(5), output, optionsFor(TinFormat::Obj, naming),
-                                   createTheOutput);
-                      }),
+        expectSpelled(refusal(
+                          [&] {
+                              writeTin(test::gridTin(5), output, optionsFor(TinFormat::Obj, naming),
+                                       createTheOutput);
+                          },
+                          naming.naming),
                       "appeared while this run was writing; it was left as it is (use "
                       "{overwrite} to replace it)",
                       naming);
@@ -169,7 +176,7 @@ TEST(WriterMessages, NameTheLayerAndOverwriteOptionsTheCallersWay_WhenAnAppended
         TinWriteOptions options = optionsFor(TinFormat::GeoPackage, naming);
         writeTin(test::gridTin(3), output, options);
         options.appendLayer = true;
-        expectSpelled(refusal([&] { writeTin(test::gridTin(3), output, options); }),
+        expectSpelled(refusal([&] { writeTin(test::gridTin(3), output, options); }, naming.naming),
                       "already has a layer 'tin'; choose another {layer} or use {overwrite} to "
                       "replace it",
                       naming);

@@ -22,8 +22,9 @@ std::string namer(std::string_view keyword) {
 
 std::string refusal(std::uint64_t limit, std::size_t margin, std::size_t tileSize) {
     try {
-        memoryBudget(limit, margin, tileSize, OptionNamer(namer));
-    } catch (const InvalidInputError& error) {
+        memoryBudget(limit, margin, tileSize);
+    } catch (InvalidInputError& error) {
+        error.nameOptions(namer);
         return error.what();
     }
     return "<accepted>";
@@ -39,10 +40,9 @@ std::uint64_t namedLimit(const std::string& message) {
 TEST(MemoryBudget, TheTileChosenIsTheLargestThatFits) {
     for (const std::uint64_t limit : {256 * kMiB, 1024 * kMiB, 8192 * kMiB})
         for (const std::size_t margin : {0U, 1U, 50U}) {
-            const MemoryBudget budget = memoryBudget(limit, margin, 0, OptionNamer(namer));
+            const MemoryBudget budget = memoryBudget(limit, margin, 0);
             EXPECT_GE(budget.tileSize, kLeastTileSize);
-            EXPECT_EQ(memoryBudget(limit, margin, budget.tileSize, OptionNamer(namer)).tileSize,
-                      budget.tileSize);
+            EXPECT_EQ(memoryBudget(limit, margin, budget.tileSize).tileSize, budget.tileSize);
             EXPECT_NE(refusal(limit, margin, budget.tileSize + 1), "<accepted>");
             EXPECT_LE(budget.gdalCacheBytes + budget.writerBytes, limit / 2);
             // The tile's share is what the others leave, and the tile chosen takes most of it.
@@ -51,10 +51,8 @@ TEST(MemoryBudget, TheTileChosenIsTheLargestThatFits) {
                       limit - 128 * kMiB);
         }
     // More memory, larger tiles; a wider margin, smaller ones.
-    EXPECT_LT(memoryBudget(512 * kMiB, 1, 0, OptionNamer(namer)).tileSize,
-              memoryBudget(2048 * kMiB, 1, 0, OptionNamer(namer)).tileSize);
-    EXPECT_GT(memoryBudget(512 * kMiB, 1, 0, OptionNamer(namer)).tileSize,
-              memoryBudget(512 * kMiB, 100, 0, OptionNamer(namer)).tileSize);
+    EXPECT_LT(memoryBudget(512 * kMiB, 1, 0).tileSize, memoryBudget(2048 * kMiB, 1, 0).tileSize);
+    EXPECT_GT(memoryBudget(512 * kMiB, 1, 0).tileSize, memoryBudget(512 * kMiB, 100, 0).tileSize);
 }
 
 TEST(MemoryBudget, ALimitTooSmall_NamesALimitThatIsEnough) {

@@ -4,7 +4,6 @@
 /// GeoJSON, FlatGeobuf, CSV with geometry...) to points.
 
 #include "terratin/io/point_source.hpp"
-#include "terratin/option_namer.hpp"
 #include "terratin/progress.hpp"
 
 #include <string>
@@ -17,9 +16,6 @@ struct OgrPointReadOptions {
     std::string layer;
     /// Numeric attribute holding the elevation; empty: z of the (3D) point geometry.
     std::string zField;
-    /// How messages name the z field option: "z_field" unless the caller names it otherwise
-    /// (runBuild: its caller's way, "--z-field" on the command line).
-    OptionNamer optionName;
 };
 
 /// Reads every Point and every point of a MultiPoint of the chosen layer, in feature order,

@@ -5,7 +5,6 @@
 /// is fast (terratin-readbench measures it; docs/benchmarks.md).
 
 #include "terratin/io/point_source.hpp"
-#include "terratin/option_namer.hpp"
 #include "terratin/progress.hpp"
 
 #include <optional>
@@ -24,9 +23,6 @@ struct TextReadOptions {
     /// The field separator: one of ' ' (runs of spaces and tabs), ',', ';', '|', '\t'. Unset:
     /// decided from the first non-comment line ('|', else ';', else ',', else whitespace).
     std::optional<char> delimiter;
-    /// How messages name the columns option: "columns" unless the caller names it otherwise
-    /// (runBuild: its caller's way, "--columns" on the command line).
-    OptionNamer optionName;
 };
 
 /// Reads the points of a delimited text file, one per line.

@@ -3,8 +3,6 @@
 /// The index of a directory of tiles (`terratin build --tiles-dir`): a GeoPackage
 /// layer "tiles" with one polygon per tile written, its footprint, and where its TIN is.
 
-#include "terratin/option_namer.hpp"
-
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -28,10 +26,9 @@ struct TileIndexEntry {
 
 /// Writes `entries` as the GeoPackage `path` (layer "tiles", CRS `crsWkt`, none when empty),
 /// under a temporary name renamed into place when complete. Throws IoError, CrsError, and
-/// InvalidInputError when `path` exists and `overwrite` is false (naming the option as
-/// `optionName` does).
+/// InvalidInputError when `path` exists and `overwrite` is false (the option marked,
+/// markOption).
 void writeTileIndex(const std::filesystem::path& path, const std::string& crsWkt,
-                    const std::vector<TileIndexEntry>& entries, bool overwrite,
-                    const OptionNamer& optionName = {});
+                    const std::vector<TileIndexEntry>& entries, bool overwrite);
 
 } // namespace terratin::io

@@ -2,8 +2,6 @@
 /// @file
 /// The output formats of a TIN, by name and by file extension.
 
-#include "terratin/option_namer.hpp"
-
 #include <filesystem>
 #include <span>
 #include <string>
@@ -30,8 +28,8 @@ TinFormat parseTinFormat(const std::string& name);
 
 /// The format implied by the file extension (.gpkg .shp .fgb .2dm .ply .obj .xml .landxml,
 /// case-insensitive); throws InvalidInputError when the extension is none of them, pointing to
-/// the format option as `optionName` names it ("format" by default).
-TinFormat tinFormatFromPath(const std::filesystem::path& path, const OptionNamer& optionName = {});
+/// the format option (marked, markOption).
+TinFormat tinFormatFromPath(const std::filesystem::path& path);
 
 /// A short display name: "GPKG", "ESRI Shapefile", "FlatGeobuf", "2DM", "PLY", "OBJ",
 /// "LandXML" (the GDAL driver name for the OGR formats).

@@ -3,7 +3,6 @@
 /// writeTin: the one entry point that writes a TinMesh in any output format.
 
 #include "terratin/io/tin_format.hpp"
-#include "terratin/option_namer.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 #include "terratin/version.hpp"
@@ -80,10 +79,6 @@ struct TinWriteOptions {
     /// Software version written into LandXML's Application element (and the PLY / OBJ
     /// headers): this library's by default.
     std::string softwareVersion = kVersionString;
-    /// How messages name the options above: by keyword ("overwrite", "append_layer") unless the
-    /// caller names them otherwise (runBuild: its caller's way, "--overwrite" on the command
-    /// line).
-    OptionNamer optionName;
 };
 
 /// What was written.
@@ -102,7 +97,7 @@ struct TinWriteResult {
 /// or without attributes; a layer name holding a control character, such as a newline, which
 /// would corrupt the text formats, or bytes that are not UTF-8; vertexCells of the wrong size
 /// is checked by writeTin). The
-/// message names the options as options.optionName does: "nodes needs a GeoPackage output".
+/// message marks the options it names (markOption): "nodes needs a GeoPackage output".
 void checkTinWriteOptions(const TinWriteOptions& options);
 
 /// Refuses, before anything is read or computed, the output writeTin would refuse: a location

@@ -12,7 +12,7 @@
 /// options (`inputs`, `classes`) and into one comma-joined text for the List option
 /// (`columns`); anything else into its text.
 
-#include "terratin/option_namer.hpp"
+#include "terratin/error.hpp"
 #include "terratin/pipeline/build_pipeline.hpp"
 #include "terratin/pipeline/option_spelling.hpp"
 
@@ -60,7 +60,7 @@ struct BuildOptionSpec {
     std::string_view defaultText;
     /// One sentence or two for --help.
     std::string help;
-    /// Parses `text` into `options`; `name` is how messages name the option (optionName).
+    /// Parses `text` into `options`; `name` is the option marked for messages (markOption).
     /// Throws InvalidInputError when the text is not a value of the option.
     void (*apply)(BuildOptions& options, const std::string& text,
                   const std::string& name) = nullptr;
@@ -91,9 +91,10 @@ std::string optionName(const BuildOptionSpec& option, OptionSpelling spelling);
 /// optionName of the option whose keyword is `keyword` (which must exist).
 std::string optionName(std::string_view keyword, OptionSpelling spelling);
 
-/// optionName(keyword, spelling) for the io module's messages, which name options through an
-/// OptionNamer (io is below this table).
-OptionNamer optionNamer(OptionSpelling spelling);
+/// optionName(keyword, spelling) as an OptionNaming, for Error::nameOptions: the modules below
+/// this table name an option by its keyword (markOption), and the messages reach the caller
+/// naming it the `spelling` way.
+OptionNaming optionNaming(OptionSpelling spelling);
 
 /// Parses `value` into `options`, as if it came after the ones parsed before: a Repeatable option
 /// adds to what is there, any other replaces it; the simplification options (max_error,

@@ -107,9 +107,9 @@ struct BuildOptions {
     /// Receives notices as they happen (the UTM zone chosen, units left unconverted); they are
     /// also kept in BuildReport::notices. The CLI prints them on stderr.
     std::function<void(std::string_view)> notice;
-    /// How messages name options (`--z-factor` or `z_factor`, see optionName), runBuild's and
-    /// those of the readers and writers it calls; parseBuildOptions sets it to the spelling of
-    /// its caller.
+    /// How runBuild's errors and notices name options (`--z-factor` or `z_factor`, see
+    /// optionName): the modules it calls name them by keyword (markOption), and runBuild names
+    /// them this way on the way out; parseBuildOptions sets it to the spelling of its caller.
     OptionSpelling optionSpelling = OptionSpelling::Keyword;
     /// Processes that share the tiles of a tiled simplification (RefineOptions::distribution:
     /// terratin's MPI ranks); needs refine with a tile size. Only the coordinating process
@@ -260,8 +260,7 @@ struct BuildReport {
 };
 
 /// The writer's options for a build writing `format`: the output options of BuildOptions
-/// (overwrite, layer, attributes, nodes, edges, append, spatial index, style) and the naming of
-/// options in messages (optionNamer(options.optionSpelling)); the CRS and the
+/// (overwrite, layer, attributes, nodes, edges, append, spatial index, style); the CRS and the
 /// vertices' raster cells are filled in once known. io::checkTinWriteOptions tells whether
 /// they contradict each other.
 io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat format);
@@ -271,8 +270,9 @@ io::TinWriteOptions tinWriteOptions(const BuildOptions& options, io::TinFormat f
 /// checkTriangulationOptions, checkRefineOptions (when `refine` is set), a band below 1, a
 /// zFactor that is 0 or not finite, a maxEdge that is not a positive finite length, and
 /// io::checkTinWriteOptions for the output format (given, or inferred from the output's
-/// extension when that is known), whose messages name options as `optionSpelling` says. Reads
-/// nothing. runBuild calls it first.
+/// extension when that is known); keep_geographic with t_srs. Its messages name options by
+/// keyword (runBuild names them as `optionSpelling` says). Reads nothing. runBuild calls it
+/// first.
 void checkBuildOptions(const BuildOptions& options);
 
 /// Runs the build. Before reading anything it checks the options (checkBuildOptions) and

@@ -61,14 +61,14 @@ void makeRoomForLayer(SqliteConnection& db, const std::string& name, const TinWr
         if (!options.overwrite)
             throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
                                     " already has a layer '" + name + "'; choose another " +
-                                    options.optionName("layer") + " or use " +
-                                    options.optionName("overwrite") + " to replace it");
+                                    markOption("layer") + " or use " + markOption("overwrite") +
+                                    " to replace it");
         dropLayer(db, name, output);
     }
     if (hasSchemaObject(db, name))
         throw InvalidInputError(std::string(kOgrStage) + ": the GeoPackage " + quoted(output) +
                                 " has a table '" + name + "' that is not a layer; choose another " +
-                                options.optionName("layer"));
+                                markOption("layer"));
 }
 
 } // namespace
@@ -79,7 +79,7 @@ TinWriteResult appendGeoPackageTin(const TinMesh& mesh, const fs::path& output,
                                    const ProgressTicker& ticker) {
     // The scratch file is this run's own, and removed on every way out (after the
     // connection, which is closed first).
-    const AtomicOutput scratchFiles(kOgrStage, output, ExistingTarget::Refuse, options.optionName);
+    const AtomicOutput scratchFiles(kOgrStage, output, ExistingTarget::Refuse);
     const fs::path scratch = scratchFiles.temporary(".gpkg");
     refuseNonSqliteFile(output);
     SqliteConnection db(kOgrStage, output, output);

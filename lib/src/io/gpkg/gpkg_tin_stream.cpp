@@ -45,8 +45,7 @@ class GpkgStreamWriter final : public TinStreamWriter {
 public:
     GpkgStreamWriter(fs::path output, const TinWriteOptions& options)
         : m_output(std::move(output)), m_options(options),
-          m_temporaries(kOgrStage, m_output, existingTargetFor(options.overwrite),
-                        options.optionName),
+          m_temporaries(kOgrStage, m_output, existingTargetFor(options.overwrite)),
           m_temporary(m_temporaries.temporary(".gpkg")) {
         GpkgLayerNames names = gpkgLayerNames(options);
         names.nodeCells = options.nodes; // filled from the pieces' cells

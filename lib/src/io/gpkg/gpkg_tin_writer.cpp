@@ -164,8 +164,7 @@ TinWriteResult writeGeoPackageTin(const TinMesh& mesh, const fs::path& output,
     }
     // A new file replaces only what --overwrite allows, even one that appeared while this run
     // was writing.
-    const AtomicOutput temporaries(kOgrStage, output, existingTargetFor(options.overwrite),
-                                   options.optionName);
+    const AtomicOutput temporaries(kOgrStage, output, existingTargetFor(options.overwrite));
     const fs::path temporary = temporaries.temporary(".gpkg");
     createGpkgTinLayers(temporary, features, gpkgLayerNames(options), options, output);
 
