@@ -1,12 +1,14 @@
-#include "terratin/huge_pages.hpp"
+#include "huge_pages.hpp"
 
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
 
 #include <cstdint>
+#include <cstdlib>
+#include <new>
 
-namespace terratin {
+namespace terratin::detail {
 
 namespace {
 
@@ -65,4 +67,4 @@ void releaseHugePages(void* memory, std::size_t bytes) noexcept {
 #endif
 }
 
-} // namespace terratin
+} // namespace terratin::detail

@@ -2,7 +2,7 @@
 // Which input segments each constrained edge belongs to: the segments whose chains must take
 // the vertex that splits the edge (at a crossing, or a polyline point on it).
 
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "node_arena.hpp"
 
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 
 #include <cstdlib>
 #include <new>

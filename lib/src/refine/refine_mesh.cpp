@@ -3,7 +3,7 @@
 #include "../triangulate/parallel_for.hpp"
 
 #include "terratin/geometry/predicates.hpp"
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <algorithm>

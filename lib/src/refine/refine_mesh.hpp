@@ -40,7 +40,7 @@
 #include "../mesh/node_arena.hpp"
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>

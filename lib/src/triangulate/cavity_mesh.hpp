@@ -38,7 +38,7 @@
 /// would cost memory per triangle that this method never reads.
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>

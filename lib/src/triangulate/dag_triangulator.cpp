@@ -1,7 +1,7 @@
 #include "dag_triangulator.hpp"
 
+#include "../huge_pages.hpp"
 #include "terratin/error.hpp"
-#include "terratin/huge_pages.hpp"
 
 #include "parallel_for.hpp"
 

@@ -4,7 +4,7 @@
 /// with an earlier point.
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 
 #include <cstdint>
 #include <span>

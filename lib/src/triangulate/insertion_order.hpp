@@ -4,7 +4,7 @@
 /// distributions are implementation-defined, so they are not used).
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 
 #include <cstdint>
 #include <span>

@@ -1,6 +1,6 @@
 #include "terratin/triangulate/triangulate.hpp"
 
-#include "terratin/huge_pages.hpp"
+#include "../huge_pages.hpp"
 
 #include "batch_insertion.hpp"
 #include "circumcircle_insertion.hpp"
@@ -21,6 +21,7 @@ namespace terratin {
 
 namespace {
 
+using detail::HugePageArray;
 using detail::VertexId;
 
 unsigned resolveThreads(unsigned requested) {

@@ -2,7 +2,7 @@
 // behave like vectors, and a worst-case capacity far beyond what is touched is only address
 // space.
 
-#include "terratin/huge_pages.hpp"
+#include "huge_pages.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace terratin {
+namespace terratin::detail {
 namespace {
 
 TEST(HugePages, BuffersHoldWhatIsWritten_SmallAndLarge) {
@@ -84,4 +84,4 @@ TEST(HugePages, ALargeCapacityIsOnlyAddressSpaceUntilTouched) {
 }
 
 } // namespace
-} // namespace terratin
+} // namespace terratin::detail

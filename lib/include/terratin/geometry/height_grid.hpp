@@ -3,8 +3,8 @@
 /// A DEM held once in memory for terrain simplification: one float32 elevation per cell,
 /// NaN for a cell without data, and the affine geotransform that places cell centres.
 
+#include "terratin/detail/huge_page_allocator.hpp"
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
 
 #include <array>
 #include <cmath>
@@ -15,6 +15,11 @@
 #include <vector>
 
 namespace terratin {
+
+/// The elevations of a HeightGrid: a std::vector in every use, whose memory lies on 2 MiB pages
+/// once it is a megabyte or more (the refiner reads a triangle's rows at a time, all over the
+/// raster). Its allocator is the library's (terratin::detail): name the type HeightArray.
+using HeightArray = std::vector<float, detail::HugePageAllocator<float>>;
 
 /// A raster band as a regular grid of elevations.
 ///
@@ -31,9 +36,8 @@ struct HeightGrid {
     /// row*c[5], (col, row) in pixels from the raster's corner (the first stored cell's, unless
     /// the grid is a window: firstRow). CRS units.
     std::array<double, 6> geoTransform{0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-    /// width * height elevations, row-major; NaN = no data. On huge pages: the refiner reads
-    /// them a triangle's rows at a time, all over the raster.
-    std::vector<float, HugePageAllocator<float>> z;
+    /// width * height elevations, row-major; NaN = no data.
+    HeightArray z;
     /// Where this grid's first cell lies in the raster the geotransform describes: 0, 0 for a
     /// whole raster; a tile's first row and column for a window of it (a tiled read), so that a
     /// cell has bit for bit the centre it has in the whole raster, whichever tile holds it.

@@ -4,7 +4,7 @@
 /// to a local origin.
 
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
+#include "terratin/triangulate/tin_mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -21,15 +21,15 @@ enum class DuplicateZPolicy {
     Mean,  ///< the mean elevation of the group
 };
 
-/// Distinct input points ready for the triangulator, in arrays on huge pages (huge_pages.hpp).
+/// Distinct input points ready for the triangulator, in arrays like the mesh's (MeshArray).
 struct PreparedPoints {
     /// Planar coordinates minus `origin`, exactly (see prepareOrigin).
-    HugePageArray<Point2> local;
+    MeshArray<Point2> local;
     /// Elevation of each distinct point after the duplicate policy.
-    HugePageArray<double> z;
+    MeshArray<double> z;
     /// Input index of the point each distinct point stands for (the first of its group for
     /// the Min, Max and Mean policies).
-    HugePageArray<std::uint32_t> sourceIndex;
+    MeshArray<std::uint32_t> sourceIndex;
     /// Added to `local` gives the input coordinates back exactly.
     Point2 origin;
     /// Input points merged into an earlier point with exactly the same (x, y).

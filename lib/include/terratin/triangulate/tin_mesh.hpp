@@ -2,21 +2,24 @@
 /// @file
 /// The triangulation result as flat arrays (delaunator style), with no pointer graph.
 
+#include "terratin/detail/huge_page_allocator.hpp"
 #include "terratin/geometry/point.hpp"
-#include "terratin/huge_pages.hpp"
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace terratin {
 
 /// Marks "no neighbour" (a convex hull edge) in TinMesh::neighbours.
 inline constexpr std::int32_t kNoNeighbour = -1;
 
-/// The arrays of TinMesh: on huge pages, and resize() leaves new elements unwritten (the
-/// triangulator sizes an array and then fills it on all its threads).
-template <class T> using MeshAllocator = HugePageArrayAllocator<T>;
-template <class T> using MeshArray = HugePageArray<T>;
+/// The arrays of TinMesh: a std::vector in every use (data(), std::span, iteration, ==), whose
+/// memory lies on 2 MiB pages once it is a megabyte or more, and whose resize() leaves new
+/// elements of a trivial type unwritten (the triangulator sizes an array and then fills it on
+/// all its threads). Its allocator is the library's (terratin::detail): name the type
+/// MeshArray<T>, never the allocator.
+template <class T> using MeshArray = std::vector<T, detail::HugePageArrayAllocator<T>>;
 
 /// A triangulated irregular network.
 ///

@@ -8,26 +8,26 @@
 /// on as many pages. 2 MiB pages cut those page walks to almost nothing. Linux gives them to
 /// memory advised with MADV_HUGEPAGE when transparent huge pages are in "madvise" mode (the
 /// common default); elsewhere the advice is ignored and normal pages are used.
+///
+/// The allocators and allocateOnHugePages / releaseHugePages are declared in
+/// terratin/detail/huge_page_allocator.hpp, since the public arrays (MeshArray, HeightArray)
+/// need them; the rest is the library's own.
+
+#include "terratin/detail/huge_page_allocator.hpp"
 
 #include <cstddef>
-#include <cstdlib>
-#include <new>
 #include <utility>
 #include <vector>
 
-namespace terratin {
+namespace terratin::detail {
 
 /// Bytes of a huge page, and the smallest allocation worth aligning to one.
+/// allocateOnHugePages puts a block of at least kHugePageThreshold bytes on huge pages, as
+/// reserved address space (MAP_NORESERVE on Linux): only pages touched take memory, so a
+/// capacity sized for the worst case costs nothing until used, and the kernel's overcommit
+/// check does not refuse it. Smaller blocks come from malloc.
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20U;
 inline constexpr std::size_t kHugePageThreshold = std::size_t{1} << 20U;
-
-/// `bytes` of uninitialised storage, on huge pages when at least kHugePageThreshold; release
-/// it with releaseHugePages(memory, bytes). Large blocks are reserved address space
-/// (MAP_NORESERVE on Linux): only pages touched take memory, so a capacity sized for the
-/// worst case costs nothing until used, and the kernel's overcommit check does not refuse
-/// it. Throws std::bad_alloc.
-void* allocateOnHugePages(std::size_t bytes);
-void releaseHugePages(void* memory, std::size_t bytes) noexcept;
 
 /// An owned array of `count` T on huge pages (allocateOnHugePages), elements uninitialised:
 /// for implicit-lifetime types the caller writes before reading.
@@ -64,42 +64,11 @@ private:
     std::size_t m_count = 0;
 };
 
-/// A std::allocator that puts allocations of kHugePageThreshold bytes or more on huge pages.
-template <class T> struct HugePageAllocator {
-    using value_type = T;
-
-    HugePageAllocator() = default;
-    template <class U> explicit HugePageAllocator(const HugePageAllocator<U>& /*other*/) noexcept {}
-
-    [[nodiscard]] T* allocate(std::size_t n) {
-        return static_cast<T*>(allocateOnHugePages(n * sizeof(T)));
-    }
-    void deallocate(T* p, std::size_t n) noexcept { releaseHugePages(p, n * sizeof(T)); }
-    friend bool operator==(const HugePageAllocator& /*a*/, const HugePageAllocator& /*b*/) {
-        return true;
-    }
-};
-
-/// A HugePageAllocator whose resize() leaves new elements default-initialised (unwritten, for
-/// trivial types) where std::allocator value-initialises. The big arrays of a triangulation
-/// are sized and then filled on all threads: zeros written first by resize() would be a pass
-/// over tens of megabytes on one thread.
-template <class T> struct HugePageArrayAllocator : HugePageAllocator<T> {
-    template <class U> struct rebind { using other = HugePageArrayAllocator<U>; };
-    HugePageArrayAllocator() = default;
-    template <class U>
-    explicit HugePageArrayAllocator(const HugePageArrayAllocator<U>& /*other*/) noexcept {}
-
-    template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
-    template <class U, class... Args> void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-};
-
 /// A vector on huge pages whose resize() leaves new elements unwritten: for the arrays of
 /// megabytes that a triangulation makes and fills once. Besides the TLB (above), huge pages
 /// are taken by the kernel at one fault per 2 MiB where normal pages cost one per 4 KiB: a
-/// fresh array of tens of megabytes is ready several times sooner.
+/// fresh array of tens of megabytes is ready several times sooner. The same type as the public
+/// MeshArray (tin_mesh.hpp).
 template <class T> using HugePageArray = std::vector<T, HugePageArrayAllocator<T>>;
 
-} // namespace terratin
+} // namespace terratin::detail
