@@ -52,8 +52,8 @@ void checkBuildOptions(const BuildOptions& options) {
     if (options.refine)
         checkRefineOptions(withEveryCellTiles(*options.refine));
     if (options.keepGeographic && !options.targetSrs.empty())
-        throw InvalidInputError("Build: " + markOption("keep_geographic") + " and " +
-                                markOption("t_srs") + " contradict each other");
+        throw InvalidInputError(markOption("keep_geographic") + " and " + markOption("t_srs") +
+                                " contradict each other");
     if (options.band < 1)
         throw InvalidInputError("Build: the raster band must be 1 or more (got " +
                                 std::to_string(options.band) + ")");

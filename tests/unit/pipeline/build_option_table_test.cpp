@@ -444,6 +444,35 @@ TEST(ParseBuildOptions, LibraryRangeChecksNameNoFlag) {
     }
 }
 
+// An error carries the options it names as keywords (data), and each caller names them its way.
+TEST(OptionMessages, AnErrorCarriesItsOptionsAsKeywords_AndEachCallerNamesThem) {
+    InvalidInputError error("Build: " + markOption("tiles_dir") + " writes tiles: give " +
+                            markOption("tile_size"));
+    EXPECT_EQ(error.options(), (std::vector<std::string>{"tiles_dir", "tile_size"}));
+    EXPECT_STREQ(error.what(), "Build: tiles_dir writes tiles: give tile_size");
+    error.nameOptions(optionNaming(OptionSpelling::CommandLine));
+    EXPECT_STREQ(error.what(), "Build: --tiles-dir writes tiles: give --tile-size");
+    // A message wrapping it keeps the marks, so the options are still named at the top.
+    InvalidInputError wrapped("Input: " + error.markedMessage());
+    wrapped.nameOptions(optionNaming(OptionSpelling::Keyword));
+    EXPECT_STREQ(wrapped.what(), "Input: Build: tiles_dir writes tiles: give tile_size");
+}
+
+// keep_geographic with t_srs was refused only when parsed from text: a C++ caller filling
+// BuildOptions in had t_srs silently ignored.
+TEST(CheckBuildOptions, RefusesKeepGeographicWithATargetCrs_ForACallerThatDidNotParse) {
+    BuildOptions options;
+    options.inputs = {"dem.tif"};
+    options.output = "tin.gpkg";
+    options.keepGeographic = true;
+    options.targetSrs = "EPSG:32633";
+    EXPECT_EQ(messageOf([&] { checkBuildOptions(options); }),
+              "keep_geographic and t_srs contradict each other");
+    options.optionSpelling = OptionSpelling::CommandLine;
+    EXPECT_EQ(messageOf([&] { runBuild(options); }),
+              "--keep-geographic and --t_srs contradict each other");
+}
+
 // runBuild's own messages name options the way parseBuildOptions was called.
 TEST(ParseBuildOptions, RunBuildMessagesFollowTheSpelling) {
     test::TemporaryDirectory directory;
