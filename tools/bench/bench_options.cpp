@@ -1,7 +1,5 @@
 #include "bench_options.hpp"
 
-#include "terratin/text.hpp"
-
 #include <boost/program_options.hpp>
 
 #include <algorithm>
@@ -28,6 +26,14 @@ constexpr const char* kDescription =
 constexpr std::size_t kLargeSize = 10'000'000;
 // A triangle needs three points: fewer make the library throw InvalidInputError.
 constexpr std::size_t kMinimumPoints = 3;
+
+// Option values compare case-insensitively (ASCII, the "C" locale).
+std::string lowercase(std::string_view text) {
+    std::string lower(text);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return lower;
+}
 
 std::vector<NamedMethod> methodTable() {
     using Method = TriangulationMethod;

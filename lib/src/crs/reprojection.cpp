@@ -6,7 +6,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "terratin/number_text.hpp"
+#include "../number_text.hpp"
 #include "wkt.hpp"
 
 #include <ogr_spatialref.h>
@@ -20,6 +20,8 @@
 #include <vector>
 
 namespace terratin::crs {
+
+using terratin::detail::numberText;
 
 namespace {
 

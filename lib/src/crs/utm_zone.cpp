@@ -5,7 +5,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "terratin/number_text.hpp"
+#include "../number_text.hpp"
 #include "wkt.hpp"
 
 #include <GeographicLib/UTMUPS.hpp>
@@ -14,6 +14,8 @@
 #include <cmath>
 
 namespace terratin::crs {
+
+using terratin::detail::numberText;
 
 namespace {
 

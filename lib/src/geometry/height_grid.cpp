@@ -1,12 +1,14 @@
 #include "terratin/geometry/height_grid.hpp"
 
 #include "terratin/geometry/predicates.hpp"
-#include "terratin/number_text.hpp"
+#include "../number_text.hpp"
 
 #include <algorithm>
 #include <limits>
 
 namespace terratin {
+
+using terratin::detail::numberText;
 
 std::size_t HeightGrid::validCount() const {
     std::size_t count = 0;

@@ -9,7 +9,7 @@
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "terratin/text.hpp"
+#include "../text.hpp"
 
 #include <gdal.h>
 
@@ -23,6 +23,8 @@
 #include <memory>
 
 namespace terratin::io {
+
+using terratin::detail::lowercase;
 
 namespace {
 

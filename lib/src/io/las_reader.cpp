@@ -15,7 +15,7 @@
 
 #include "geotiff_keys.hpp"
 #include "terratin/error.hpp"
-#include "terratin/text.hpp"
+#include "../text.hpp"
 
 #include <algorithm>
 #include <bitset>
@@ -29,6 +29,8 @@
 #include <optional>
 
 namespace terratin::io {
+
+using terratin::detail::lowercase;
 
 namespace {
 

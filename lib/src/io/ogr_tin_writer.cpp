@@ -42,7 +42,7 @@
 #include "packed_rtree_order.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "terratin/text.hpp"
+#include "../text.hpp"
 #include "writer_support.hpp"
 
 #include <cpl_conv.h>
@@ -60,6 +60,8 @@
 #include <vector>
 
 namespace terratin::io::detail {
+
+using terratin::detail::lowercase;
 
 namespace fs = std::filesystem;
 

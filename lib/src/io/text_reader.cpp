@@ -9,7 +9,7 @@
 #include "terratin/io/text_reader.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/text.hpp"
+#include "../text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,6 +24,8 @@
 #include <memory>
 
 namespace terratin::io {
+
+using terratin::detail::lowercase;
 
 namespace {
 

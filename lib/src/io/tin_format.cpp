@@ -5,13 +5,15 @@
 #include "obj_writer.hpp"
 #include "ply_writer.hpp"
 #include "terratin/error.hpp"
-#include "terratin/text.hpp"
+#include "../text.hpp"
 #include "two_dm_writer.hpp"
 
 #include <algorithm>
 #include <array>
 
 namespace terratin::io {
+
+using terratin::detail::lowercase;
 
 namespace {
 

@@ -2,7 +2,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/io/tin_format.hpp"
-#include "terratin/text.hpp"
+#include "../text.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -13,6 +13,8 @@
 #include <utility>
 
 namespace terratin {
+
+using terratin::detail::lowercase;
 
 namespace {
 

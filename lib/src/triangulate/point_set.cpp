@@ -2,8 +2,8 @@
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
-#include "terratin/number_text.hpp"
 
+#include "../number_text.hpp"
 #include "box.hpp"
 #include "distinct_points.hpp"
 #include "parallel_for.hpp"
@@ -18,6 +18,8 @@
 #include <vector>
 
 namespace terratin {
+
+using terratin::detail::numberText;
 
 namespace {
 

@@ -1,12 +1,12 @@
 #pragma once
 /// @file
-/// Numbers in messages: the value the user gave, in its shortest exact form.
+/// Numbers in the library's messages: the value the user gave, in its shortest exact form.
 
 #include <charconv>
 #include <cmath>
 #include <string>
 
-namespace terratin {
+namespace terratin::detail {
 
 /// `value` as the shortest decimal text that reads back as the same double (std::to_chars):
 /// "5000000.25", "1e+300", "5e-324", "-0"; "nan", "inf" and "-inf" for the others. Unlike
@@ -20,4 +20,4 @@ inline std::string numberText(double value) {
     return std::string(text, end.ptr);
 }
 
-} // namespace terratin
+} // namespace terratin::detail

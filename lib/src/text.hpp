@@ -1,13 +1,13 @@
 #pragma once
 /// @file
-/// Small text helpers shared by the library and its tools.
+/// Small text helpers of the library (the tools and the Python module have their own).
 
 #include <algorithm>
 #include <cctype>
 #include <string>
 #include <string_view>
 
-namespace terratin {
+namespace terratin::detail {
 
 /// `text` with every character lowered by std::tolower (ASCII letters in the "C" locale the
 /// library runs in): names of methods, formats and extensions compare case-insensitively.
@@ -18,4 +18,4 @@ inline std::string lowercase(std::string_view text) {
     return lower;
 }
 
-} // namespace terratin
+} // namespace terratin::detail
