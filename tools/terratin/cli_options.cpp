@@ -50,9 +50,10 @@ po::value_semantic* textValue(const BuildOptionSpec& option) {
     return value;
 }
 
-void addTableOptions(po::options_description& options) {
+// The table's options under `heading` (buildOptionHeading), in the table's order.
+void addTableOptions(po::options_description& options, std::string_view heading) {
     for (const BuildOptionSpec& option : buildOptionTable()) {
-        if (option.positional)
+        if (option.positional || buildOptionHeading(option) != heading)
             continue;
         std::string name(option.longFlag);
         if (option.shortFlag != 0)
@@ -65,14 +66,18 @@ void addTableOptions(po::options_description& options) {
 }
 
 po::options_description buildOptionsDescription() {
-    po::options_description options("Options of 'terratin build'");
-    addTableOptions(options);
+    po::options_description build("Options of 'terratin build'");
+    addTableOptions(build, {});
     // clang-format off
-    options.add_options()
+    build.add_options()
         ("quiet,q", "no progress and no summary")
         ("json", "print a JSON report on stdout (counts, CRS, seconds per phase)")
         ("help,h", "show this help");
     // clang-format on
+    po::options_description tuning{std::string(kMethodTuningHeading)};
+    addTableOptions(tuning, kMethodTuningHeading);
+    po::options_description options;
+    options.add(build).add(tuning);
     return options;
 }
 

@@ -1,139 +1,28 @@
 #include "terratin/pipeline/build_option_table.hpp"
 
+#include "option_text.hpp"
+
 #include "terratin/error.hpp"
 #include "terratin/io/tin_format.hpp"
-#include "../text.hpp"
 
-#include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <initializer_list>
-#include <sstream>
-#include <system_error>
-#include <utility>
+#include <string>
+#include <vector>
 
 namespace terratin {
 
-using terratin::detail::lowercase;
-
 namespace {
 
-[[noreturn]] void refuse(const std::string& message) {
-    throw InvalidInputError(message);
-}
-
-// The message Boost.Program_options gave for a number it could not read, kept for both spellings.
-[[noreturn]] void refuseNumberText(const std::string& text, const std::string& name) {
-    refuse("the argument ('" + text + "') for option '" + name + "' is invalid");
-}
-
-// std::from_chars over the whole text; a leading '+' is accepted, as the command line always did.
-template <class Number> bool readWhole(std::string_view text, Number& number) {
-    if (text.size() > 1 && text.front() == '+' && text[1] != '-')
-        text.remove_prefix(1);
-    const char* end = text.data() + text.size();
-    const auto [ptr, error] = std::from_chars(text.data(), end, number);
-    return !text.empty() && error == std::errc() && ptr == end;
-}
-
-double parseNumber(const std::string& text, const std::string& name) {
-    double number = 0.0;
-    if (!readWhole(text, number))
-        refuseNumberText(text, name);
-    return number;
-}
-
-// Digits only: "-1" is refused, never wrapped to 2^64 - 1. Ranges are checkBuildOptions'.
-template <class Count> Count parseCount(const std::string& text, const std::string& name) {
-    Count count{};
-    const char* end = text.data() + text.size();
-    const auto [ptr, error] = std::from_chars(text.data(), end, count);
-    if (error == std::errc::result_out_of_range)
-        refuse(name + " is too large (got '" + text + "')");
-    if (text.empty() || error != std::errc() || ptr != end)
-        refuse(name + " takes a whole number without sign (got '" + text + "')");
-    return count;
-}
-
-// "2G", "512M", "1.5GiB", "1000000": a number of bytes with K, M, G or T, powers of 1024.
-std::uint64_t parseByteSize(const std::string& text, const std::string& name) {
-    const auto refuseSize = [&] {
-        refuse(name + " takes a size such as 2G or 512M (got '" + text + "')");
-    };
-    const std::size_t unitAt = std::min(text.find_first_not_of("0123456789.+eE"), text.size());
-    std::string unit = lowercase(text.substr(unitAt));
-    if (unit.size() > 1 && unit.back() == 'b')
-        unit.pop_back(); // "GB", "GiB"
-    if (unit.size() == 2 && unit.back() == 'i')
-        unit.pop_back();
-    double power = 0.0;
-    if (!unit.empty()) {
-        const std::size_t at = std::string_view("kmgt").find(unit);
-        if (unit.size() != 1 || at == std::string_view::npos)
-            refuseSize();
-        power = static_cast<double>(at + 1);
-    }
-    double number = 0.0;
-    if (!readWhole(std::string_view(text).substr(0, unitAt), number))
-        refuseSize();
-    const double bytes = number * std::pow(1024.0, power);
-    if (!(bytes >= 1.0) || bytes > 0x1p62)
-        refuseSize();
-    return static_cast<std::uint64_t>(bytes);
-}
-
-bool parseFlag(const std::string& text, const std::string& name) {
-    const std::string key = lowercase(text);
-    if (key == "true")
-        return true;
-    if (key == "false")
-        return false;
-    refuse(name + " takes true or false (got '" + text + "')");
-}
-
-// "a, b or c".
-std::string alternatives(const std::vector<std::string_view>& names) {
-    std::string list;
-    for (std::size_t i = 0; i < names.size(); ++i)
-        list += std::string(i == 0                  ? ""
-                            : i + 1 == names.size() ? " or "
-                                                    : ", ") +
-                std::string(names[i]);
-    return list;
-}
-
-// One of `choices` by name, case-insensitively.
-template <class Value>
-Value parseChoice(const std::string& text, const std::string& name,
-                  std::initializer_list<std::pair<std::string_view, Value>> choices) {
-    const std::string key = lowercase(text);
-    std::vector<std::string_view> names;
-    for (const auto& [choiceName, value] : choices) {
-        if (key == choiceName)
-            return value;
-        names.push_back(choiceName);
-    }
-    refuse(name + " must be " + alternatives(names) + " (got '" + text + "')");
-}
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> items;
-    std::string item;
-    std::istringstream stream(text);
-    while (std::getline(stream, item, ','))
-        items.push_back(item);
-    if (!text.empty() && text.back() == ',')
-        items.emplace_back();
-    return items;
-}
-
-// A CRS given as an empty (or blank) string would mean "no CRS" to the library, which is not
-// what a caller naming the option asks for.
-std::string parseCrs(const std::string& text, const std::string& name) {
-    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
-        refuse(name + " needs a CRS (EPSG:n, WKT, PROJ string, .prj file), not an empty string");
-    return text;
-}
+using detail::parseByteSize;
+using detail::parseChoice;
+using detail::parseCount;
+using detail::parseCrs;
+using detail::parseFlag;
+using detail::parseNumber;
+using detail::readWhole;
+using detail::refuse;
+using detail::refuseNumberText;
+using detail::splitList;
 
 RefineOptions& refineOf(BuildOptions& options) {
     if (!options.refine)
@@ -188,9 +77,7 @@ void applyBand(BuildOptions& options, const std::string& text, const std::string
     int band = 0;
     if (!readWhole(text, band))
         refuseNumberText(text, name);
-    if (band < 1)
-        refuse(name + " must be 1 or more");
-    options.band = band;
+    options.band = band; // its range checked with the others' (checkBuildOptions)
 }
 
 void applyMaxError(BuildOptions& options, const std::string& text, const std::string& name) {
@@ -201,17 +88,11 @@ void applyMaxError(BuildOptions& options, const std::string& text, const std::st
 }
 
 void applyMaxEdge(BuildOptions& options, const std::string& text, const std::string& name) {
-    const double maxEdge = parseNumber(text, name);
-    if (!std::isfinite(maxEdge) || maxEdge <= 0.0)
-        refuse(name + " must be a positive number");
-    options.maxEdge = maxEdge;
+    options.maxEdge = parseNumber(text, name); // checked by checkBuildOptions
 }
 
 void applyZFactor(BuildOptions& options, const std::string& text, const std::string& name) {
-    const double zFactor = parseNumber(text, name);
-    if (!std::isfinite(zFactor) || zFactor == 0.0)
-        refuse(name + " must be a finite number other than 0");
-    options.zFactor = zFactor;
+    options.zFactor = parseNumber(text, name); // checked by checkBuildOptions
 }
 
 // Fill holes=false alone does not ask for a simplification.
@@ -490,61 +371,6 @@ std::vector<BuildOptionSpec> makeTable() {
     return table;
 }
 
-// Edits (insertions, deletions, substitutions) that turn `a` into `b`.
-std::size_t editDistance(std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j)
-        row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
-// A name two edits or fewer from `name`, for "did you mean"; empty when none is that close.
-std::string closestName(std::string_view name, OptionSpelling spelling) {
-    constexpr std::size_t kMaxTypoEdits = 2; // one slip of the finger, or two
-    std::string closest;
-    std::size_t best = kMaxTypoEdits + 1;
-    for (const BuildOptionSpec& option : buildOptionTable()) {
-        const std::string candidate = optionName(option, spelling);
-        const std::size_t distance = editDistance(name, candidate);
-        if (distance < best) {
-            best = distance;
-            closest = candidate;
-        }
-    }
-    return closest;
-}
-
-[[noreturn]] void refuseUnknown(std::string_view name, OptionSpelling spelling) {
-    const std::string closest = closestName(name, spelling);
-    refuse("unknown option '" + std::string(name) + "'" +
-           (closest.empty() ? std::string() : "; did you mean '" + closest + "'?"));
-}
-
-} // namespace
-
-std::string closestBuildOption(std::string_view name, OptionSpelling spelling) {
-    return closestName(name, spelling);
-}
-
-namespace {
-
-bool given(const std::vector<OptionValue>& values, std::string_view keyword,
-           OptionSpelling spelling) {
-    return std::any_of(values.begin(), values.end(), [&](const OptionValue& value) {
-        const BuildOptionSpec* option = findBuildOption(value.name, spelling);
-        return option != nullptr && option->keyword == keyword;
-    });
-}
-
 } // namespace
 
 std::span<const BuildOptionSpec> buildOptionTable() {
@@ -552,88 +378,15 @@ std::span<const BuildOptionSpec> buildOptionTable() {
     return table;
 }
 
-const BuildOptionSpec* findBuildOption(std::string_view name, OptionSpelling spelling) {
-    if (spelling == OptionSpelling::CommandLine && name.substr(0, 2) == "--")
-        name.remove_prefix(2);
-    for (const BuildOptionSpec& option : buildOptionTable())
-        if (name == (spelling == OptionSpelling::Keyword ? option.keyword : option.longFlag))
-            return &option;
-    return nullptr;
-}
-
-std::string optionName(const BuildOptionSpec& option, OptionSpelling spelling) {
-    if (spelling == OptionSpelling::Keyword)
-        return std::string(option.keyword);
-    return option.positional ? std::string(option.valueName) : "--" + std::string(option.longFlag);
-}
-
-std::string optionName(std::string_view keyword, OptionSpelling spelling) {
-    const BuildOptionSpec* option = findBuildOption(keyword, OptionSpelling::Keyword);
-    if (option == nullptr)
-        throw Error("optionName: no build option has the keyword '" + std::string(keyword) + "'");
-    return optionName(*option, spelling);
-}
-
-OptionNaming optionNaming(OptionSpelling spelling) {
-    return [spelling](std::string_view keyword) { return optionName(keyword, spelling); };
-}
-
-namespace {
-
-// applyBuildOption, its messages naming options by keyword (markOption).
-void applyNamingByKeyword(BuildOptions& options, const OptionValue& value,
-                          OptionSpelling spelling) {
-    const BuildOptionSpec* option = findBuildOption(value.name, spelling);
-    if (option == nullptr)
-        refuseUnknown(value.name, spelling);
-    // A C string ends at a NUL: a path holding one would name another file.
-    if (value.text.find('\0') != std::string::npos)
-        refuse(markOption(option->keyword) + " holds a NUL character");
-    option->apply(options, value.text, markOption(option->keyword));
-}
-
-BuildOptions parseNamingByKeyword(const std::vector<OptionValue>& values, OptionSpelling spelling) {
-    const auto name = [](std::string_view keyword) { return markOption(keyword); };
-    // What is missing first: a usage line is more use than a complaint about one value.
-    if (!given(values, "inputs", spelling))
-        refuse("missing " + name("inputs"));
-    const bool tiles = given(values, "tiles_dir", spelling);
-    if (!given(values, "output", spelling) && !tiles)
-        refuse(spelling == OptionSpelling::CommandLine ? std::string("missing -o OUTPUT")
-                                                       : "missing " + name("output"));
-    if (given(values, "output", spelling) && tiles)
-        refuse(name("tiles_dir") + " takes the place of " + name("output") + ": give one");
-    BuildOptions options;
-    options.optionSpelling = spelling;
-    for (const OptionValue& value : values)
-        applyNamingByKeyword(options, value, spelling);
-    if (options.refine && options.refine->fillHoles && given(values, "max_hole", spelling))
-        refuse(name("max_hole") + " and " + name("fill_holes") +
-               " contradict each other: give one");
-    if (!options.format)
-        options.format = tiles ? io::TinFormat::GeoPackage : io::tinFormatFromPath(options.output);
-    checkBuildOptions(options);
-    return options;
-}
-
-} // namespace
-
-void applyBuildOption(BuildOptions& options, const OptionValue& value, OptionSpelling spelling) {
-    try {
-        applyNamingByKeyword(options, value, spelling);
-    } catch (Error& error) {
-        error.nameOptions(optionNaming(spelling));
-        throw;
-    }
-}
-
-BuildOptions parseBuildOptions(const std::vector<OptionValue>& values, OptionSpelling spelling) {
-    try {
-        return parseNamingByKeyword(values, spelling);
-    } catch (Error& error) {
-        error.nameOptions(optionNaming(spelling));
-        throw;
-    }
+std::string_view buildOptionHeading(const BuildOptionSpec& option) {
+    // The randomized insertion and the parallel methods' own settings: every build runs well
+    // on their defaults, and a reader of --help wants the build's options first.
+    static constexpr std::string_view kMethodTuning[] = {
+        "seed", "order", "method", "locate", "searchers", "queue_length", "searchers_help"};
+    for (const std::string_view keyword : kMethodTuning)
+        if (option.keyword == keyword)
+            return kMethodTuningHeading;
+    return {};
 }
 
 } // namespace terratin

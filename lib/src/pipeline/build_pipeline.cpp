@@ -55,15 +55,14 @@ void checkBuildOptions(const BuildOptions& options) {
         throw InvalidInputError(markOption("keep_geographic") + " and " + markOption("t_srs") +
                                 " contradict each other");
     if (options.band < 1)
-        throw InvalidInputError("Build: the raster band must be 1 or more (got " +
-                                std::to_string(options.band) + ")");
+        throw InvalidInputError(markOption("band") + " must be 1 or more");
     if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
-        throw InvalidInputError("Build: the z factor must be a finite number other than 0");
+        throw InvalidInputError(markOption("z_factor") + " must be a finite number other than 0");
     if (!options.replaceZField.empty() && options.replace.empty())
         throw InvalidInputError("Build: " + markOption("replace_z_field") + " names the field of " +
                                 markOption("replace") + " polygons: give them too");
     if (options.maxEdge && (!std::isfinite(*options.maxEdge) || *options.maxEdge <= 0.0))
-        throw InvalidInputError("Build: the longest edge kept must be a positive length");
+        throw InvalidInputError(markOption("max_edge") + " must be a positive number");
     if (options.refine)
         detail::checkDemOnlyOptions(options);
     const bool tilesDir = !options.tilesDir.empty();

@@ -47,13 +47,10 @@ struct UserCrs {
     std::string target;
 };
 
-void checkInputOptions(const BuildOptions& options, const std::vector<std::string>& paths) {
+void checkInputPaths(const std::vector<std::string>& paths) {
     if (paths.empty() || std::any_of(paths.begin(), paths.end(),
                                      [](const std::string& path) { return path.empty(); }))
         throw InvalidInputError("Input: no input file given");
-    if (!std::isfinite(options.zFactor) || options.zFactor == 0.0)
-        throw InvalidInputError("Input: " + markOption("z_factor") +
-                                " must be a finite number other than 0");
 }
 
 /// The user's CRSs, parsed before any reading: a typo should fail before minutes of reading.
@@ -280,7 +277,7 @@ std::string zoneOfCentre(const BuildOptions& options, BuildReport& report,
 GatheredInputs gatherInputs(const BuildOptions& options, BuildReport& report,
                             const ProgressCallback& progress) {
     const std::vector<std::string>& paths = options.inputs;
-    checkInputOptions(options, paths);
+    checkInputPaths(paths); // the options were checked before (checkBuildOptions)
     report.zFactor = options.zFactor;
     const UserCrs user = parseUserCrs(options);
 

@@ -77,6 +77,15 @@ struct OptionValue {
 /// bounded options states the library's limits (kMaxThreads, kMaxRefineCells...).
 std::span<const BuildOptionSpec> buildOptionTable();
 
+/// The heading of the triangulation methods' tuning options in `terratin build --help`.
+inline constexpr std::string_view kMethodTuningHeading =
+    "Triangulation methods (their defaults suit every input)";
+
+/// The heading `option` stands under in `terratin build --help`: kMethodTuningHeading for the
+/// insertion order and the methods' settings (seed, order, method, locate, searchers,
+/// queue_length, searchers_help), empty (the build's own options) for every other.
+std::string_view buildOptionHeading(const BuildOptionSpec& option);
+
 /// The option named `name` the `spelling` way: a keyword ("max_error") or a long command-line
 /// name with or without its dashes ("--max-error", "max-error"). Null when there is none.
 const BuildOptionSpec* findBuildOption(std::string_view name, OptionSpelling spelling);
