@@ -3,9 +3,9 @@
 
 The document's table of modules, top to bottom, is the test's data: a file of one module may
 include a header of its own module or of one below it, never of one above; another module's
-private header (lib/src/<module>/*.hpp) only from lib/src/mesh/ or the top of lib/src/; a
-public header (lib/include/terratin/...) only public headers. Every include that breaks a rule
-is printed with its file and line, and the test fails.
+private header (lib/src/<module>/*.hpp) only from lib/src/mesh/, lib/src/parallel/ or the top
+of lib/src/; a public header (lib/include/terratin/...) only public headers. Every include that
+breaks a rule is printed with its file and line, and the test fails.
 
     tools/check_layering.py REPOSITORY_ROOT
 
@@ -69,7 +69,7 @@ def violations(root):
                 continue
             if rank[module] < rank[source_module]:
                 found.append(f"{where}: {source_module} includes {module}, a module above it")
-            elif private_header and module != "mesh":
+            elif private_header and module not in ("mesh", "parallel"):
                 found.append(f"{where}: {source_module} includes a private header of {module}")
     return found
 

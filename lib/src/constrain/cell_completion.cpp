@@ -1,6 +1,6 @@
 #include "cell_completion.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"

@@ -1,7 +1,7 @@
 #include "zoned_insertion.hpp"
 
-#include "../triangulate/parallel_for.hpp"
-#include "../triangulate/watched_threads.hpp"
+#include "../parallel/parallel_for.hpp"
+#include "../parallel/watched_threads.hpp"
 #include "terratin/error.hpp"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "zoned_vertices.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include <algorithm>
 #include <bit>

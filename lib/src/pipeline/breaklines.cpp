@@ -1,6 +1,6 @@
 #include "breaklines.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 #include "constraint_areas.hpp"
 #include "gather_inputs.hpp"
 #include "terratin/constrain/insert_constraints.hpp"

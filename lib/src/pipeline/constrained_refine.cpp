@@ -1,8 +1,8 @@
 #include "constrained_refine.hpp"
 
 #include "../constrain/cell_completion.hpp"
+#include "../parallel/parallel_for.hpp"
 #include "../refine/valid_hull.hpp"
-#include "../triangulate/parallel_for.hpp"
 #include "constraint_areas.hpp"
 #include "terratin/constrain/insert_constraints.hpp"
 

@@ -13,6 +13,7 @@
 
 #include "gather_inputs.hpp"
 
+#include "../parallel/parallel_for.hpp"
 #include "../stopwatch.hpp"
 
 #include "terratin/crs/reprojection.hpp"

@@ -1,6 +1,6 @@
 #include "cell_order.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 #include "error_check.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -20,11 +20,11 @@
 /// Limits (points, triangles) give each task a share of what is left per level; when little
 /// is left, one thread finishes in global priority order and stops exactly at the limit.
 
+#include "../parallel/round_workers.hpp"
 #include "candidate_queue.hpp"
 #include "cell_flags.hpp"
 #include "grid_scan.hpp"
 #include "located_check.hpp"
-#include "round_workers.hpp"
 #include "triangle_scan.hpp"
 
 #include "refine_mesh.hpp"

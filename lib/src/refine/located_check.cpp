@@ -1,6 +1,6 @@
 #include "located_check.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include "terratin/geometry/predicates.hpp"
 

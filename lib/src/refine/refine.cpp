@@ -1,10 +1,10 @@
 #include "terratin/refine/refine.hpp"
 
+#include "../parallel/round_workers.hpp"
 #include "cell_flags.hpp"
 #include "error_check.hpp"
 #include "greedy_refiner.hpp"
 #include "located_check.hpp"
-#include "round_workers.hpp"
 
 #include "../tile/tile_refine.hpp"
 

@@ -1,6 +1,6 @@
 #include "refine_mesh.hpp"
 
-#include "../triangulate/parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include "terratin/geometry/predicates.hpp"
 #include "../huge_pages.hpp"

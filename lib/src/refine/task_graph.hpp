@@ -9,7 +9,7 @@
 /// soon as its two strips are done, while other strips still run. The dependencies alone fix
 /// what each task sees, so the result does not depend on the order the threads take tasks in.
 
-#include "round_workers.hpp"
+#include "../parallel/round_workers.hpp"
 
 #include <atomic>
 #include <condition_variable>

@@ -4,10 +4,10 @@
 #include "projected_tile.hpp"
 #include "tile_cells.hpp"
 
+#include "../parallel/round_workers.hpp"
 #include "../refine/cell_flags.hpp"
 #include "../refine/error_check.hpp"
 #include "../refine/greedy_refiner.hpp"
-#include "../refine/round_workers.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/refine/mesh_filter.hpp"

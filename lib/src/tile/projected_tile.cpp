@@ -5,8 +5,8 @@
 #include "tile_cells.hpp"
 
 #include "../constrain/cell_completion.hpp"
+#include "../parallel/round_workers.hpp"
 #include "../refine/greedy_refiner.hpp"
-#include "../refine/round_workers.hpp"
 
 #include "terratin/constrain/constrained_validation.hpp"
 #include "terratin/constrain/insert_constraints.hpp"

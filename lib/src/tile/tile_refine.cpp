@@ -7,7 +7,7 @@
 #include "tile_mesh_merge.hpp"
 #include "tile_refinement.hpp"
 
-#include "../refine/round_workers.hpp"
+#include "../parallel/round_workers.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/refine/tile_distribution.hpp"

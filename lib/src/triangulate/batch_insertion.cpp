@@ -1,7 +1,7 @@
 #include "batch_insertion.hpp"
 
+#include "../parallel/watched_threads.hpp"
 #include "bounded_queue.hpp"
-#include "watched_threads.hpp"
 
 #include "terratin/error.hpp"
 

@@ -1,6 +1,6 @@
 #include "cavity_mesh.hpp"
 
-#include "parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"

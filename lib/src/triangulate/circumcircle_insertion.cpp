@@ -1,10 +1,10 @@
 #include "circumcircle_insertion.hpp"
 
+#include "../parallel/watched_threads.hpp"
 #include "circumcircle_worker.hpp"
 #include "owner_tag.hpp"
 #include "repair_rendezvous.hpp"
 #include "triangle_claims.hpp"
-#include "watched_threads.hpp"
 
 #include "terratin/error.hpp"
 

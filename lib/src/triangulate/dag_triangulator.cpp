@@ -3,7 +3,7 @@
 #include "../huge_pages.hpp"
 #include "terratin/error.hpp"
 
-#include "parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -1,6 +1,6 @@
 #include "distinct_points.hpp"
 
-#include "parallel_for.hpp"
+#include "../parallel/parallel_for.hpp"
 
 #include <algorithm>
 #include <atomic>

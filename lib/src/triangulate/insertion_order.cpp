@@ -1,7 +1,7 @@
 #include "insertion_order.hpp"
 
+#include "../parallel/parallel_for.hpp"
 #include "box.hpp"
-#include "parallel_for.hpp"
 
 #include <algorithm>
 #include <array>

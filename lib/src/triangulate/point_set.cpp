@@ -4,9 +4,9 @@
 #include "terratin/geometry/predicates.hpp"
 
 #include "../number_text.hpp"
+#include "../parallel/parallel_for.hpp"
 #include "box.hpp"
 #include "distinct_points.hpp"
-#include "parallel_for.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -1,7 +1,7 @@
 #include "strip_insertion.hpp"
 
-#include "parallel_for.hpp"
-#include "watched_threads.hpp"
+#include "../parallel/parallel_for.hpp"
+#include "../parallel/watched_threads.hpp"
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"

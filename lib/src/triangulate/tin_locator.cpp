@@ -1,7 +1,7 @@
 #include "terratin/triangulate/tin_locator.hpp"
 
+#include "../parallel/parallel_for.hpp"
 #include "hull_interior.hpp"
-#include "parallel_for.hpp"
 #include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>

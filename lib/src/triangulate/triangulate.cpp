@@ -2,11 +2,11 @@
 
 #include "../huge_pages.hpp"
 
+#include "../parallel/parallel_for.hpp"
 #include "batch_insertion.hpp"
 #include "circumcircle_insertion.hpp"
 #include "dag_triangulator.hpp"
 #include "insertion_order.hpp"
-#include "parallel_for.hpp"
 #include "strip_insertion.hpp"
 
 #include "terratin/error.hpp"

@@ -2,8 +2,8 @@
 // the tasks it depends on, on any number of threads; a failing task or a stop ends the run
 // without a hang. The plan of a level: its strips and pairs, and what each pair waits for.
 
+#include "../parallel/round_workers.hpp"
 #include "level_tasks.hpp"
-#include "round_workers.hpp"
 #include "task_graph.hpp"
 
 #include <gtest/gtest.h>
