@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Two builds of terratin-bench side by side: the triangulation and refinement tables of each,
-# run in turn ROUNDS times (before, after, before, after...), so that both see the same
-# machine. Prints, per configuration, the median seconds of each and after / before.
+# and the GeoPackage writing of the terratin beside each bench (Mt Hood whole, the write
+# phase of its --json report), run in turn ROUNDS times (before, after, before, after...), so
+# that both see the same machine. Prints, per configuration, the median seconds of each and
+# after / before.
 #   tools/bench/before_after.sh BEFORE_BENCH AFTER_BENCH [ROUNDS] [DEMS]
 # Example: keep a copy of build/release/tools/terratin-bench before a change, rebuild, then
 #   tools/bench/before_after.sh /tmp/terratin-bench.before build/release/tools/terratin-bench
@@ -24,6 +26,10 @@ for ((round = 1; round <= rounds; ++round)); do
     [ "$side" = after ] && bench=$after
     "$bench" "${triangulation[@]}" | grep -v '^#' >"$work/triangulation.$side.$round.csv"
     "$bench" "${refinement[@]}" | grep -v '^#' >"$work/refinement.$side.$round.csv"
+    "$(dirname "$bench")/terratin" build "$dems/gdalraster__lf_elev_220_mt_hood_utm.tif" \
+      -o "$work/hood.gpkg" --overwrite --quiet --json |
+      /usr/bin/python3 -c 'import json, sys; print("format,seconds"); print("gpkg,%s" % json.load(sys.stdin)["timings"]["write"])' \
+        >"$work/writing.$side.$round.csv"
   done
 done
 
@@ -33,6 +39,7 @@ work, rounds = sys.argv[1], int(sys.argv[2])
 tables = {
     "triangulation": ("distribution", "points", "method", "locate", "threads_used"),
     "refinement": ("dem", "max_error_m", "threads"),
+    "writing": ("format",),
 }
 for table, keys in tables.items():
     seconds = {}

@@ -226,6 +226,41 @@ BuildReport buildTiledTin(BuildRun& run) {
     return run.close(*sink);
 }
 
+// The DEM read whole, its cell counts and reading time in the report.
+io::HeightGridRaster readWholeDem(BuildRun& run) {
+    const Stopwatch readTime;
+    io::RasterReadOptions readOptions;
+    readOptions.band = run.options().band;
+    io::HeightGridRaster raster =
+        io::readHeightGrid(run.options().inputs.front(), readOptions, run.phase(0.0, kReadShare));
+    run.report().rasterCells = raster.grid.cellCount();
+    run.report().skippedCells = raster.skippedCells;
+    run.report().timings.read = readTime.seconds();
+    return raster;
+}
+
+// The constraints of a simplified DEM before its refinement: their layers in the TIN's CRS,
+// and the cells inside replace areas left out of the grid (counted as replaced points).
+struct PreparedConstraints {
+    ConstraintSources sources;
+    std::size_t replacedCells = 0;
+};
+
+PreparedConstraints prepareConstraints(std::future<ConstraintLayers>& layers, HeightGrid& grid,
+                                       const RefinePlacement& placement,
+                                       RefineOptions& refineOptions, BuildRun& run) {
+    const Stopwatch constrainTime;
+    PreparedConstraints prepared;
+    // A projected (geographic) DEM's cells are no longer on its grid: no bilinear z then.
+    prepared.sources =
+        readConstraintSources(layers.get(), run.options(), placement.targetWkt,
+                              placement.positions.empty() ? &grid : nullptr, run.report());
+    prepared.replacedCells = leaveOutAreaCells(grid, placement.positions, prepared.sources);
+    refineOptions.spareVertices = prepared.sources.spareVertices();
+    run.report().timings.constrain = constrainTime.seconds();
+    return prepared;
+}
+
 } // namespace
 
 void checkDemOnlyOptions(const BuildOptions& options) {
@@ -250,14 +285,7 @@ BuildReport buildRefinedTin(BuildRun& run) {
     const bool constrained = hasConstraints(options);
     if (constrained)
         constraintLayers = startReadingConstraintLayers(options);
-    const Stopwatch readTime;
-    io::RasterReadOptions readOptions;
-    readOptions.band = options.band;
-    io::HeightGridRaster raster =
-        io::readHeightGrid(options.inputs.front(), readOptions, run.phase(0.0, kReadShare));
-    report.rasterCells = raster.grid.cellCount();
-    report.skippedCells = raster.skippedCells;
-    report.timings.read = readTime.seconds();
+    io::HeightGridRaster raster = readWholeDem(run);
     // A geographic raster is refined in its UTM zone, at its cells' projected positions.
     const RefinePlacement placement =
         placeRefinedCells(options, raster.grid, raster.crsWkt, report);
@@ -269,18 +297,9 @@ BuildReport buildRefinedTin(BuildRun& run) {
     refineOptions.measure = !constrained; // refineWithConstraints measures every cell
     // With constraints, the refiner has most of the phase and the cells' insertion the rest.
     const double refineShare = constrained ? 0.8 * kTriangulateShare : kTriangulateShare;
-    ConstraintSources sources;
-    std::size_t replacedCells = 0;
-    if (constrained) {
-        const Stopwatch constrainTime;
-        // A projected (geographic) DEM's cells are no longer on its grid: no bilinear z then.
-        sources =
-            readConstraintSources(constraintLayers.get(), options, placement.targetWkt,
-                                  placement.positions.empty() ? &raster.grid : nullptr, report);
-        replacedCells = leaveOutAreaCells(raster.grid, placement.positions, sources);
-        refineOptions.spareVertices = sources.spareVertices();
-        report.timings.constrain = constrainTime.seconds();
-    }
+    PreparedConstraints prepared;
+    if (constrained)
+        prepared = prepareConstraints(constraintLayers, raster.grid, placement, refineOptions, run);
     const ProgressCallback refineProgress = run.phase(kReadShare, refineShare);
     RefineResult result =
         placement.positions.empty()
@@ -291,10 +310,10 @@ BuildReport buildRefinedTin(BuildRun& run) {
     if (constrained) {
         const Stopwatch constrainTime;
         ConstrainedRefinement corrected = refineWithConstraints(
-            raster.grid, placement.positions, std::move(mesh), options, std::move(sources), report,
-            run.phase(kReadShare + refineShare, kTriangulateShare - refineShare));
+            raster.grid, placement.positions, std::move(mesh), options, std::move(prepared.sources),
+            report, run.phase(kReadShare + refineShare, kTriangulateShare - refineShare));
         mesh = takeConstrainedMesh(std::move(corrected), run);
-        report.replacedPoints += replacedCells;
+        report.replacedPoints += prepared.replacedCells;
         report.timings.constrain += constrainTime.seconds();
     }
     const int gridWidth = raster.grid.width;
