@@ -1,17 +1,20 @@
 #!/usr/bin/python3
 """The layering of docs/layout.md, checked on the includes of lib/.
 
-The document's table of modules, top to bottom, is the test's data: a file of one module may
-include a header of its own module or of one below it, never of one above; another module's
-private header (lib/src/<module>/*.hpp) only from lib/src/mesh/, lib/src/parallel/ or the top
-of lib/src/; a public header (lib/include/terratin/...) only public headers. Every include that
-breaks a rule is printed with its file and line, and the test fails.
+Two tables of the document are the test's data. Its modules, top to bottom: a file of one
+module may include a header of its own module or of one below it, never of one above. What a
+module offers the modules above: another module's private header (lib/src/<module>/*.hpp) only
+when that module's row lists it (a name or a pattern, `*.hpp` for the whole module, relative to
+its folder). The top of lib/src/ is no module: anyone may include it. A public header
+(lib/include/terratin/...) includes only public headers. Every include that breaks a rule is
+printed with its file and line, and the test fails; so does a row that names no header there.
 
     tools/check_layering.py REPOSITORY_ROOT
 
 Not yet in the suite: it becomes a test once the includes it lists are gone.
 """
 
+import fnmatch
 import pathlib
 import re
 import sys
@@ -19,6 +22,9 @@ import sys
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 # A table row: | Module | `lib/src/<folder>/`... |
 ROW = re.compile(r"^\| (\w+) \| `lib/src/(\w+)/`")
+# The section of the offers' table, and one of its rows: | module | `header`, `header` |
+OFFERS = "## What a module offers the modules above"
+OFFER_ROW = re.compile(r"^\| (\w+) \| (.*)\|\s*$")
 
 
 def module_order(layout):
@@ -27,6 +33,40 @@ def module_order(layout):
     if len(modules) < 5:
         raise SystemExit("docs/layout.md: no table of modules found")
     return modules
+
+
+def offered_headers(layout, modules, root):
+    """{module: [patterns of its private headers other modules may include]}, from the table
+    of docs/layout.md's section OFFERS. Raises SystemExit for a row that names no module of
+    the order or a pattern that matches no header of the module's folder."""
+    lines = layout.splitlines()
+    if OFFERS not in lines:
+        raise SystemExit(f"docs/layout.md: no section '{OFFERS}'")
+    offers = {}
+    for line in lines[lines.index(OFFERS) + 1:]:
+        if line.startswith("## "):
+            break
+        match = OFFER_ROW.match(line)
+        if not match or match.group(1) == "Module":
+            continue
+        module = match.group(1)
+        if module not in modules:
+            raise SystemExit(f"docs/layout.md: '{module}' offers headers but is no module")
+        patterns = re.findall(r"`([^`]+)`", match.group(2))
+        folder = root / "lib" / "src" / module
+        for pattern in patterns:
+            if not any(fnmatch.fnmatch(p.relative_to(folder).as_posix(), pattern)
+                       for p in folder.rglob("*.hpp")):
+                raise SystemExit(f"docs/layout.md: {module} offers {pattern}, "
+                                 f"which is no header of lib/src/{module}/")
+        offers.setdefault(module, []).extend(patterns)
+    return offers
+
+
+def is_offered(target, module, offers, root):
+    """Whether the private header `target` of `module` is one it offers the modules above."""
+    name = target.relative_to(root / "lib" / "src" / module).as_posix()
+    return any(fnmatch.fnmatch(name, pattern) for pattern in offers.get(module, []))
 
 
 def module_of(path, root, modules):
@@ -49,7 +89,9 @@ def resolve(include, including, root):
 
 
 def violations(root):
-    modules = module_order((root / "docs" / "layout.md").read_text())
+    layout = (root / "docs" / "layout.md").read_text()
+    modules = module_order(layout)
+    offers = offered_headers(layout, modules, root)
     rank = {module: i for i, module in enumerate(modules)}
     found = []
     for path in sorted((root / "lib").rglob("*.[ch]pp")):
@@ -69,8 +111,9 @@ def violations(root):
                 continue
             if rank[module] < rank[source_module]:
                 found.append(f"{where}: {source_module} includes {module}, a module above it")
-            elif private_header and module not in ("mesh", "parallel"):
-                found.append(f"{where}: {source_module} includes a private header of {module}")
+            elif private_header and not is_offered(target, module, offers, root):
+                found.append(f"{where}: {source_module} includes a private header that {module} "
+                             "does not offer")
     return found
 
 
