@@ -5,8 +5,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace terratin {
 
@@ -50,71 +52,101 @@ std::string jsonNumber(double value) {
     return std::string(text, end.ptr);
 }
 
-} // namespace
+// The helpers below write the report's sections, in order, into one stream; its format
+// (6 decimals, fixed) is toJson's, for every number written with << rather than jsonNumber.
 
-std::string toJson(const BuildReport& report) {
-    std::ostringstream json;
-    json.precision(6);
-    json << std::fixed;
-    json << "{\"input\": " << jsonString(report.input)
+/// A coordinate system as {"name", "code"}.
+void writeCrs(std::ostream& json, const std::string& name, const std::string& code) {
+    json << "{\"name\": " << jsonString(name) << ", \"code\": " << jsonString(code) << "}";
+}
+
+const char* jsonBool(bool value) {
+    return value ? "true" : "false";
+}
+
+/// The paths, the format and the output's CRS.
+void writeRun(std::ostream& json, const BuildReport& report) {
+    json << "\"input\": " << jsonString(report.input)
          << ", \"output\": " << jsonString(report.output)
-         << ", \"format\": " << jsonString(report.format)
-         << ", \"crs\": {\"name\": " << jsonString(report.crsName)
-         << ", \"code\": " << jsonString(report.crsCode) << "}"
-         << ", \"counts\": {\"raster_cells\": " << report.rasterCells
+         << ", \"format\": " << jsonString(report.format) << ", \"crs\": ";
+    writeCrs(json, report.crsName, report.crsCode);
+}
+
+void writeCounts(std::ostream& json, const BuildReport& report) {
+    json << ", \"counts\": {\"raster_cells\": " << report.rasterCells
          << ", \"skipped_cells\": " << report.skippedCells << ", \"points\": " << report.points
          << ", \"duplicates\": " << report.duplicates << ", \"vertices\": " << report.vertices
-         << ", \"triangles\": " << report.triangles << "}"
-         << ", \"triangulation\": {\"method\": " << jsonString(report.method)
+         << ", \"triangles\": " << report.triangles << "}";
+}
+
+void writeTriangulation(std::ostream& json, const BuildReport& report) {
+    json << ", \"triangulation\": {\"method\": " << jsonString(report.method)
          << ", \"threads\": " << report.threads
          << ", \"history_bytes_per_point\": " << report.historyBytesPerPoint
-         << ", \"mesh_bytes_per_point\": " << report.meshBytesPerPoint << "}"
-         << ", \"timings\": {\"read\": " << report.timings.read
-         << ", \"triangulate\": " << report.timings.triangulate
-         << ", \"validate\": " << report.timings.validate << ", \"write\": " << report.timings.write
-         << ", \"total\": " << report.timings.total
-         << ", \"reproject\": " << report.timings.reproject
-         << ", \"constrain\": " << report.timings.constrain
-         << "}, \"validated\": " << (report.validated ? "true" : "false");
-    // Inputs and coordinate systems.
-    json << ", \"source_crs\": {\"name\": " << jsonString(report.sourceCrsName)
-         << ", \"code\": " << jsonString(report.sourceCrsCode) << "}"
-         << ", \"target_crs\": {\"name\": " << jsonString(report.crsName)
-         << ", \"code\": " << jsonString(report.crsCode) << "}"
-         << ", \"zone\": " << jsonString(report.zone)
-         << ", \"reprojected\": " << (report.reprojected ? "true" : "false")
-         << ", \"z_factor\": " << jsonNumber(report.zFactor) << ", \"inputs\": [";
-    for (std::size_t i = 0; i < report.inputs.size(); ++i) {
-        const InputReport& input = report.inputs[i];
+         << ", \"mesh_bytes_per_point\": " << report.meshBytesPerPoint << "}";
+}
+
+/// Seconds per phase, then whether the TIN was validated.
+void writeTimings(std::ostream& json, const BuildReport& report) {
+    const BuildTimings& timings = report.timings;
+    json << ", \"timings\": {\"read\": " << timings.read
+         << ", \"triangulate\": " << timings.triangulate << ", \"validate\": " << timings.validate
+         << ", \"write\": " << timings.write << ", \"total\": " << timings.total
+         << ", \"reproject\": " << timings.reproject << ", \"constrain\": " << timings.constrain
+         << "}, \"validated\": " << jsonBool(report.validated);
+}
+
+/// The coordinate systems from the inputs' to the TIN's, and the z factor.
+void writeCoordinateSystems(std::ostream& json, const BuildReport& report) {
+    json << ", \"source_crs\": ";
+    writeCrs(json, report.sourceCrsName, report.sourceCrsCode);
+    json << ", \"target_crs\": ";
+    writeCrs(json, report.crsName, report.crsCode);
+    json << ", \"zone\": " << jsonString(report.zone)
+         << ", \"reprojected\": " << jsonBool(report.reprojected)
+         << ", \"z_factor\": " << jsonNumber(report.zFactor);
+}
+
+/// Each input as read.
+void writeInputs(std::ostream& json, const std::vector<InputReport>& inputs) {
+    json << ", \"inputs\": [";
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const InputReport& input = inputs[i];
         json << (i > 0 ? ", " : "") << "{\"path\": " << jsonString(input.path)
-             << ", \"kind\": " << jsonString(input.kind)
-             << ", \"crs\": {\"name\": " << jsonString(input.crsName)
-             << ", \"code\": " << jsonString(input.crsCode) << "}"
-             << ", \"records\": " << input.records << ", \"filtered_out\": " << input.filteredOut
+             << ", \"kind\": " << jsonString(input.kind) << ", \"crs\": ";
+        writeCrs(json, input.crsName, input.crsCode);
+        json << ", \"records\": " << input.records << ", \"filtered_out\": " << input.filteredOut
              << ", \"skipped_cells\": " << input.skippedCells << ", \"points\": " << input.points
              << ", \"duplicates\": " << input.duplicates
-             << ", \"reprojected\": " << (input.reprojected ? "true" : "false") << "}";
+             << ", \"reprojected\": " << jsonBool(input.reprojected) << "}";
     }
-    json << "], \"notices\": [";
-    for (std::size_t i = 0; i < report.notices.size(); ++i)
-        json << (i > 0 ? ", " : "") << jsonString(report.notices[i]);
     json << "]";
-    if (report.refined) {
-        json << ", \"refine\": {\"max_error\": ";
-        if (report.targetMaxError)
-            json << *report.targetMaxError;
-        else
-            json << "null";
-        json << ", \"achieved_max_error\": " << report.achievedMaxError
-             << ", \"rmse\": " << report.rmse << ", \"points\": " << report.vertices
-             << ", \"triangles\": " << report.triangles
-             << ", \"stop\": " << jsonString(report.refineStop)
-             << ", \"open_hole_cells\": " << report.openHoleCells
-             << ", \"hole_triangles\": " << report.holeTriangles
-             << ", \"uncovered_cells\": " << report.uncoveredCells << "}";
-    }
-    if (report.longEdgeTriangles > 0)
-        json << ", \"long_edge_triangles\": " << report.longEdgeTriangles;
+}
+
+void writeNotices(std::ostream& json, const std::vector<std::string>& notices) {
+    json << ", \"notices\": [";
+    for (std::size_t i = 0; i < notices.size(); ++i)
+        json << (i > 0 ? ", " : "") << jsonString(notices[i]);
+    json << "]";
+}
+
+/// The simplification's target and result; only for a refined build.
+void writeRefine(std::ostream& json, const BuildReport& report) {
+    json << ", \"refine\": {\"max_error\": ";
+    if (report.targetMaxError)
+        json << *report.targetMaxError;
+    else
+        json << "null";
+    json << ", \"achieved_max_error\": " << report.achievedMaxError << ", \"rmse\": " << report.rmse
+         << ", \"points\": " << report.vertices << ", \"triangles\": " << report.triangles
+         << ", \"stop\": " << jsonString(report.refineStop)
+         << ", \"open_hole_cells\": " << report.openHoleCells
+         << ", \"hole_triangles\": " << report.holeTriangles
+         << ", \"uncovered_cells\": " << report.uncoveredCells << "}";
+}
+
+/// Breaklines and areas: what went in and what it did to the TIN.
+void writeConstraints(std::ostream& json, const BuildReport& report) {
     json << ", \"constraints\": {\"breaklines\": " << report.breaklines
          << ", \"clipped_breaklines\": " << report.clippedBreaklines
          << ", \"added_vertices\": " << report.constraintVertices
@@ -124,10 +156,36 @@ std::string toJson(const BuildReport& report) {
          << ", \"replaced_points\": " << report.replacedPoints
          << ", \"check_passes\": " << report.constraintPasses
          << ", \"inserted_cells\": " << report.constraintCells << "}";
+}
+
+void writeWriting(std::ostream& json, const BuildReport& report) {
     json << ", \"writing\": {\"features\": " << report.writeFeatures
          << ", \"features_per_second\": " << report.writeFeaturesPerSecond
          << ", \"rows_seconds\": " << report.writeRowSeconds
-         << ", \"index_seconds\": " << report.writeIndexSeconds << "}}";
+         << ", \"index_seconds\": " << report.writeIndexSeconds << "}";
+}
+
+} // namespace
+
+std::string toJson(const BuildReport& report) {
+    std::ostringstream json;
+    json.precision(6);
+    json << std::fixed;
+    json << "{";
+    writeRun(json, report);
+    writeCounts(json, report);
+    writeTriangulation(json, report);
+    writeTimings(json, report);
+    writeCoordinateSystems(json, report);
+    writeInputs(json, report.inputs);
+    writeNotices(json, report.notices);
+    if (report.refined)
+        writeRefine(json, report);
+    if (report.longEdgeTriangles > 0)
+        json << ", \"long_edge_triangles\": " << report.longEdgeTriangles;
+    writeConstraints(json, report);
+    writeWriting(json, report);
+    json << "}";
     return json.str();
 }
 
