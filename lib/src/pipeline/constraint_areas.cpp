@@ -122,89 +122,133 @@ bool onRayFrom(Point2 u, Point2 v, Point2 w) {
     return (w.y > u.y) == (v.y > u.y) && w.y != u.y;
 }
 
-/// Calls wall(t) for every triangle that the segment from vertex `from` (a corner of triangle
-/// `start`) towards `towards` (outside the mesh) passes through before it leaves the mesh, and for
-/// the triangles on both sides of an edge it runs along. Every side test is orient2d's, against
-/// the one line from `from` to `towards`, so the triangles found hold the whole segment inside
-/// the mesh.
-template <class Wall>
-void trianglesOnTheWayOut(const TinMesh& mesh, std::uint32_t from, std::size_t start,
-                          Point2 towards, Wall&& wall) {
-    const Point2 origin = xyOf(mesh, from);
-    const auto side = [&](std::uint32_t w) {
+/// The line of a walk out of the mesh, from a vertex towards a point outside it. Every side test
+/// of the walk is orient2d's against this one line, so the triangles found hold the whole segment.
+struct WalkLine {
+    Point2 origin;
+    Point2 towards;
+
+    /// > 0 left of the line, < 0 right, 0 on it (orient2d, exact).
+    [[nodiscard]] double side(const TinMesh& mesh, std::uint32_t w) const {
         return predicates::orient2d(origin, towards, xyOf(mesh, w));
-    };
+    }
+};
+
+/// Counts a walk's steps, each past a vertex or through a triangle; the bound only guards a
+/// broken mesh.
+class WalkSteps {
+public:
+    explicit WalkSteps(const TinMesh& mesh) : m_most(2 * mesh.triangleCount() + 2) {}
+
+    void step() {
+        if (++m_steps > m_most)
+            throw std::logic_error("Constraint areas: no end to a walk out of the mesh");
+    }
+
+private:
+    std::size_t m_steps = 0;
+    std::size_t m_most;
+};
+
+/// A vertex of the mesh on the walk's line, with a triangle round it.
+struct VertexOnLine {
+    std::uint32_t vertex;
+    std::size_t triangle;
+};
+
+/// Where the segment goes on from a vertex on it: along an edge to the edge's other end
+/// (`along`), into a triangle through the edge opposite the vertex (`exit`, that triangle's
+/// half-edge), or neither: out of the mesh at the vertex.
+struct PastVertex {
+    std::size_t triangle = kNone;
+    std::optional<std::uint32_t> along;
+    std::size_t exit = kNone;
+};
+
+/// At `at` (on the line): the triangle whose angle at the vertex the segment enters (its corner
+/// a right of the line, b left), or an edge the segment runs along, whose triangles on both
+/// sides go to wall(t).
+template <class Wall>
+PastVertex leaveVertex(const TinMesh& mesh, const WalkLine& line, VertexOnLine at,
+                       std::vector<std::size_t>& fan, Wall& wall) {
     const auto wallAcross = [&](std::size_t h) {
         if (mesh.neighbours[h] != kNoNeighbour)
             wall(static_cast<std::size_t>(mesh.neighbours[h]));
     };
-    std::vector<std::size_t> fan;
-    std::uint32_t v = from;
-    std::size_t t = start;
-    // Each step goes on along the segment, past a vertex or through a triangle; the bound only
-    // guards a broken mesh.
-    std::size_t steps = 0;
-    const auto step = [&] {
-        if (++steps > 2 * mesh.triangleCount() + 2)
-            throw std::logic_error("Constraint areas: no end to a walk out of the mesh");
-    };
-    for (;;) {
-        step();
-        // At vertex v (on the line): the triangle whose angle at v the segment enters (its
-        // corner a right of the line, b left), or an edge the segment runs along.
-        trianglesAround(mesh, v, t, fan);
-        std::size_t exit = kNone;
-        std::optional<std::uint32_t> along;
-        const Point2 pv = xyOf(mesh, v);
-        for (const std::size_t u : fan) {
-            const std::size_t k = cornerOf(mesh, u, v);
-            const std::uint32_t a = mesh.triangles[3 * u + (k + 1) % 3];
-            const std::uint32_t b = mesh.triangles[3 * u + (k + 2) % 3];
-            const double sideA = side(a);
-            const double sideB = side(b);
-            if (sideA == 0.0 && onRayFrom(pv, towards, xyOf(mesh, a))) {
-                wall(u);
-                wallAcross(3 * u + k);
-                along = a;
-            } else if (sideB == 0.0 && onRayFrom(pv, towards, xyOf(mesh, b))) {
-                wall(u);
-                wallAcross(3 * u + (k + 2) % 3);
-                along = b;
-            } else if (sideA < 0.0 && sideB > 0.0) {
-                wall(u);
-                exit = 3 * u + (k + 1) % 3;
-            } else {
-                continue;
-            }
-            t = u;
-            break;
+    trianglesAround(mesh, at.vertex, at.triangle, fan);
+    const Point2 pv = xyOf(mesh, at.vertex);
+    for (const std::size_t u : fan) {
+        const std::size_t k = cornerOf(mesh, u, at.vertex);
+        const std::uint32_t a = mesh.triangles[3 * u + (k + 1) % 3];
+        const std::uint32_t b = mesh.triangles[3 * u + (k + 2) % 3];
+        const double sideA = line.side(mesh, a);
+        const double sideB = line.side(mesh, b);
+        if (sideA == 0.0 && onRayFrom(pv, line.towards, xyOf(mesh, a))) {
+            wall(u);
+            wallAcross(3 * u + k);
+            return {u, a, kNone};
         }
-        if (along) {
-            v = *along;
+        if (sideB == 0.0 && onRayFrom(pv, line.towards, xyOf(mesh, b))) {
+            wall(u);
+            wallAcross(3 * u + (k + 2) % 3);
+            return {u, b, kNone};
+        }
+        if (sideA < 0.0 && sideB > 0.0) {
+            wall(u);
+            return {u, std::nullopt, 3 * u + (k + 1) % 3};
+        }
+    }
+    return {};
+}
+
+/// Through triangles from half-edge `exit`, each entered by an edge from its vertex right of the
+/// line to the one left of it, every one to wall(t), until the segment reaches a vertex (returned,
+/// with the triangle it was reached in) or leaves the mesh (nullopt).
+template <class Wall>
+std::optional<VertexOnLine> crossTriangles(const TinMesh& mesh, const WalkLine& line,
+                                           std::size_t exit, WalkSteps& steps, Wall& wall) {
+    for (;;) {
+        steps.step();
+        if (mesh.neighbours[exit] == kNoNeighbour)
+            return std::nullopt;
+        const std::uint32_t left = mesh.triangles[exit - exit % 3 + (exit % 3 + 1) % 3];
+        const auto u = static_cast<std::size_t>(mesh.neighbours[exit]);
+        wall(u);
+        const std::size_t k = cornerOf(mesh, u, left); // u is (left, right, w)
+        const std::uint32_t w = mesh.triangles[3 * u + (k + 2) % 3];
+        const double sideW = line.side(mesh, w);
+        if (sideW == 0.0)
+            return VertexOnLine{w, u};
+        exit = sideW > 0.0 ? 3 * u + (k + 1) % 3  // right -> w
+                           : 3 * u + (k + 2) % 3; // w -> left
+    }
+}
+
+/// Calls wall(t) for every triangle that the segment from vertex `from` (a corner of triangle
+/// `start`) towards `towards` (outside the mesh) passes through before it leaves the mesh, and for
+/// the triangles on both sides of an edge it runs along (WalkLine: the triangles found hold the
+/// whole segment inside the mesh).
+template <class Wall>
+void trianglesOnTheWayOut(const TinMesh& mesh, std::uint32_t from, std::size_t start,
+                          Point2 towards, Wall&& wall) {
+    const WalkLine line{xyOf(mesh, from), towards};
+    WalkSteps steps(mesh);
+    std::vector<std::size_t> fan;
+    VertexOnLine at{from, start};
+    for (;;) {
+        steps.step();
+        const PastVertex past = leaveVertex(mesh, line, at, fan, wall);
+        if (past.along) {
+            at = {*past.along, past.triangle};
             continue;
         }
-        if (exit == kNone)
-            return; // the segment leaves the mesh at v
-        // Through triangles, each entered by an edge from its vertex right of the line to the
-        // one left of it, until the segment reaches a vertex or leaves the mesh.
-        for (;;) {
-            step();
-            if (mesh.neighbours[exit] == kNoNeighbour)
-                return;
-            const std::uint32_t left = mesh.triangles[exit - exit % 3 + (exit % 3 + 1) % 3];
-            const auto u = static_cast<std::size_t>(mesh.neighbours[exit]);
-            wall(u);
-            const std::size_t k = cornerOf(mesh, u, left); // u is (left, right, w)
-            const std::uint32_t w = mesh.triangles[3 * u + (k + 2) % 3];
-            const double sideW = side(w);
-            if (sideW == 0.0) {
-                v = w;
-                t = u;
-                break;
-            }
-            exit = sideW > 0.0 ? 3 * u + (k + 1) % 3  // right -> w
-                               : 3 * u + (k + 2) % 3; // w -> left
-        }
+        if (past.exit == kNone)
+            return; // the segment leaves the mesh at the vertex
+        const std::optional<VertexOnLine> reached =
+            crossTriangles(mesh, line, past.exit, steps, wall);
+        if (!reached)
+            return;
+        at = *reached;
     }
 }
 
