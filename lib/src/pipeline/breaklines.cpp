@@ -198,6 +198,77 @@ void flattenPointsInside(std::span<std::vector<Point3>> polylines, const Polygon
                 point.z = levels[*k];
 }
 
+/// The replace polygons and each one's level.
+struct ReplaceAreas {
+    PolygonSet polygons;
+    std::vector<double> levels; // per polygon
+};
+
+/// The replace rings (build.replace) as constraints at their polygon's level (addFlatRings);
+/// nullopt without replace areas. Fills build.ringLevels and report.replacePolygons.
+std::optional<ReplaceAreas> addReplaceRings(ConstrainedBuild& build, TinLocator& locator,
+                                            const TinMesh& mesh, const BuildOptions& options,
+                                            ConstraintSet& constraints, BuildReport& report) {
+    if (!build.replace)
+        return std::nullopt;
+    ReplaceAreas areas{PolygonSet(*build.replace), {}};
+    areas.levels = replaceLevels(*build.replace, areas.polygons, locator, mesh, options);
+    build.ringLevels =
+        addFlatRings(*build.replace, areas.levels, locator, constraints, build.openRingEnds);
+    report.replacePolygons = areas.levels.size();
+    return areas;
+}
+
+/// The lines of every breakline source clipped to the hull into `constraints`, with a notice
+/// for each source some were clipped from. Fills report.breaklines and clippedBreaklines.
+void addBreaklines(std::vector<io::LineLayer>& breaklines, const TinLocator& locator,
+                   const BuildOptions& options, ConstraintSet& constraints, BuildReport& report) {
+    const std::size_t first = constraints.polylines.size();
+    for (io::LineLayer& layer : breaklines) {
+        const std::size_t clipped =
+            addLines(layer, locator, options.triangulation.threads, constraints);
+        notifyClipped(options, report, layer.source, clipped, layer.lines.size());
+        report.clippedBreaklines += clipped;
+    }
+    report.breaklines = constraints.polylines.size() - first;
+}
+
+/// The clip and erase areas' boundaries: constrained rings with the surface's z, their cut ends
+/// noted in build.openRingEnds. addLines leaves x and y as they are: the rings still bound the
+/// areas after it.
+void addAreaRings(ConstrainedBuild& build, const TinLocator& locator, const BuildOptions& options,
+                  ConstraintSet& constraints, BuildReport& report) {
+    for (std::optional<io::LineLayer>* area : {&build.clip, &build.erase})
+        if (*area)
+            notifyClipped(options, report, (*area)->source,
+                          addLines(**area, locator, options.triangulation.threads, constraints,
+                                   &build.openRingEnds),
+                          (*area)->lines.size());
+}
+
+/// `mesh` with the points inside the replace areas left out and those on its hull at their
+/// area's level (flattenAreas). Fills report.replacedPoints.
+TinMesh leaveOutReplacedPoints(TinMesh mesh, const ReplaceAreas& areas,
+                               const TriangulationOptions& options, ConstraintSet& constraints,
+                               BuildReport& report) {
+    std::size_t removed = 0;
+    mesh = flattenAreas(std::move(mesh), areas.polygons, areas.levels, options, removed);
+    if (removed > 0)
+        constraints.polylineTriangles.clear(); // they were the old mesh's
+    report.replacedPoints = removed;
+    return mesh;
+}
+
+/// build.outsideArea for build.tin, from its clip and erase areas (at least one given).
+std::vector<std::uint8_t> trianglesOutsideAreas(const ConstrainedBuild& build) {
+    const std::optional<PolygonSet> clipArea =
+        build.clip ? std::optional<PolygonSet>(*build.clip) : std::nullopt;
+    const std::optional<PolygonSet> eraseArea =
+        build.erase ? std::optional<PolygonSet>(*build.erase) : std::nullopt;
+    return trianglesOutsideArea(build.tin, build.openRingEnds, clipArea ? &*clipArea : nullptr,
+                                eraseArea ? &*eraseArea : nullptr);
+}
+
 } // namespace
 
 void flattenReplaceRings(ConstrainedBuild& build) {
@@ -275,8 +346,6 @@ ConstraintSources readConstraintSources(ConstraintLayers layers, const BuildOpti
 
 ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, BuildReport& report,
                                 ConstraintSources sources, const ProgressCallback& progress) {
-    // Replace rings go in first, so that where a line crosses one the new vertex takes the
-    // ring's level.
     ConstraintSet constraints;
     constraints.threads = threadsOrAll(options.triangulation.threads);
     const std::size_t lineCount = sources.lineCount();
@@ -284,8 +353,7 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
     build.clip = std::move(sources.clip);
     build.erase = std::move(sources.erase);
     build.replace = std::move(sources.replace);
-    std::optional<PolygonSet> replaceAreas;
-    std::vector<double> levels; // per replace polygon
+    std::optional<ReplaceAreas> replaceAreas;
     {
         // The inputs' surface, before any point is left out: triangulate()'s or the refiner's
         // mesh (with its triangles over holes), which covers its convex hull; its locator
@@ -293,53 +361,25 @@ ConstrainedBuild addConstraints(TinMesh mesh, const BuildOptions& options, Build
         TinLocator locator(mesh, {.threads = options.triangulation.threads,
                                   .coversConvexHull = true,
                                   .farQueries = lineCount});
-        if (build.replace) {
-            replaceAreas.emplace(*build.replace);
-            levels = replaceLevels(*build.replace, *replaceAreas, locator, mesh, options);
-            build.ringLevels =
-                addFlatRings(*build.replace, levels, locator, constraints, build.openRingEnds);
-            report.replacePolygons = levels.size();
-        }
+        // Replace rings go in first, so that where a line crosses one the new vertex takes the
+        // ring's level.
+        replaceAreas = addReplaceRings(build, locator, mesh, options, constraints, report);
         const std::size_t firstBreakline = constraints.polylines.size();
-        for (io::LineLayer& layer : sources.breaklines) {
-            const std::size_t clipped =
-                addLines(layer, locator, options.triangulation.threads, constraints);
-            notifyClipped(options, report, layer.source, clipped, layer.lines.size());
-            report.clippedBreaklines += clipped;
-        }
-        report.breaklines = constraints.polylines.size() - firstBreakline;
-        // The areas' boundaries: constrained rings with the surface's z. addLines leaves x and
-        // y as they are: the rings still bound the areas after it.
-        for (std::optional<io::LineLayer>* area : {&build.clip, &build.erase})
-            if (*area)
-                notifyClipped(options, report, (*area)->source,
-                              addLines(**area, locator, options.triangulation.threads, constraints,
-                                       &build.openRingEnds),
-                              (*area)->lines.size());
+        addBreaklines(sources.breaklines, locator, options, constraints, report);
+        addAreaRings(build, locator, options, constraints, report);
         if (replaceAreas)
             flattenPointsInside(std::span(constraints.polylines).subspan(firstBreakline),
-                                *replaceAreas, levels);
+                                replaceAreas->polygons, replaceAreas->levels);
     }
-    if (replaceAreas) {
-        std::size_t removed = 0;
-        mesh = flattenAreas(std::move(mesh), *replaceAreas, levels, options.triangulation, removed);
-        if (removed > 0)
-            constraints.polylineTriangles.clear(); // they were the old mesh's
-        report.replacedPoints = removed;
-    }
+    if (replaceAreas)
+        mesh = leaveOutReplacedPoints(std::move(mesh), *replaceAreas, options.triangulation,
+                                      constraints, report);
     build.tin = insertConstraints(std::move(mesh), constraints, progress);
     flattenReplaceRings(build);
     report.constraintVertices = build.tin.addedPoints + build.tin.intersections;
     report.constraintCrossings = build.tin.intersections;
-    if (build.clip || build.erase) {
-        const std::optional<PolygonSet> clipArea =
-            build.clip ? std::optional<PolygonSet>(*build.clip) : std::nullopt;
-        const std::optional<PolygonSet> eraseArea =
-            build.erase ? std::optional<PolygonSet>(*build.erase) : std::nullopt;
-        build.outsideArea =
-            trianglesOutsideArea(build.tin, build.openRingEnds, clipArea ? &*clipArea : nullptr,
-                                 eraseArea ? &*eraseArea : nullptr);
-    }
+    if (build.clip || build.erase)
+        build.outsideArea = trianglesOutsideAreas(build);
     return build;
 }
 
