@@ -171,6 +171,63 @@ std::string helpText(const po::options_description& options) {
     return text.str();
 }
 
+// What a first argument other than `build` asks for: the help, the version or the formats.
+Command::Kind infoCommand(const std::string& verb) {
+    if (verb == "--help" || verb == "-h" || verb == "help")
+        return Command::Kind::Help;
+    if (verb == "--version")
+        return Command::Kind::Version;
+    if (verb == "--formats")
+        return Command::Kind::Formats;
+    throw UsageError("unknown command '" + verb + "'; try 'terratin --help'");
+}
+
+// The arguments after `build` as Boost read them, and the library's options among them.
+struct BuildArguments {
+    po::variables_map values;
+    std::vector<OptionValue> given;
+};
+
+// Reads `rest` against `options` and the inputs (the positional arguments). Every mistake Boost
+// finds is a UsageError; an unknown option's names the closest one.
+BuildArguments readBuildArguments(const std::vector<std::string>& rest,
+                                  const po::options_description& options) {
+    const std::string inputName(findBuildOption("inputs", OptionSpelling::Keyword)->longFlag);
+    po::options_description all;
+    all.add(options);
+    all.add_options()(inputName.c_str(), po::value<std::vector<std::string>>());
+    po::positional_options_description positional;
+    positional.add(inputName.c_str(), -1);
+
+    BuildArguments read;
+    try {
+        refuseSingleDashWords(rest);
+        const po::parsed_options parsed =
+            po::command_line_parser(rest).options(all).positional(positional).run();
+        po::store(parsed, read.values); // refuses an option given twice
+        po::notify(read.values);
+        read.given = tableValues(parsed);
+    } catch (const po::unknown_option& error) {
+        const std::string typed = error.get_option_name();
+        const std::string closest = closestBuildOption(typed, OptionSpelling::CommandLine);
+        throw UsageError(error.what() +
+                         (closest.empty() ? std::string() : "; did you mean '" + closest + "'?"));
+    } catch (const po::error& error) {
+        throw UsageError(error.what());
+    }
+    return read;
+}
+
+// The build's options from what the user typed. Every value the library refuses, and options
+// that contradict each other or the output format, are command-line mistakes (status 2).
+BuildOptions checkedBuildOptions(const std::vector<OptionValue>& given) {
+    try {
+        return parseBuildOptions(given, OptionSpelling::CommandLine);
+    } catch (const Error& error) {
+        throw UsageError(error.what());
+    }
+}
+
 } // namespace
 
 Command parseCommandLine(const std::vector<std::string>& arguments) {
@@ -180,62 +237,23 @@ Command parseCommandLine(const std::vector<std::string>& arguments) {
     if (arguments.empty())
         throw UsageError("missing command; try 'terratin --help'");
     const std::string& verb = arguments.front();
-    if (verb == "--help" || verb == "-h" || verb == "help") {
+    if (verb != "build") {
+        command.kind = infoCommand(verb);
+        if (command.kind == Command::Kind::Formats)
+            command.helpText = formatsText();
+        return command;
+    }
+
+    const BuildArguments read =
+        readBuildArguments({arguments.begin() + 1, arguments.end()}, options);
+    if (read.values.count("help")) {
         command.kind = Command::Kind::Help;
         return command;
     }
-    if (verb == "--version") {
-        command.kind = Command::Kind::Version;
-        return command;
-    }
-    if (verb == "--formats") {
-        command.kind = Command::Kind::Formats;
-        command.helpText = formatsText();
-        return command;
-    }
-    if (verb != "build")
-        throw UsageError("unknown command '" + verb + "'; try 'terratin --help'");
-
-    const std::string inputName(findBuildOption("inputs", OptionSpelling::Keyword)->longFlag);
-    po::options_description all;
-    all.add(options);
-    all.add_options()(inputName.c_str(), po::value<std::vector<std::string>>());
-    po::positional_options_description positional;
-    positional.add(inputName.c_str(), -1);
-
-    po::variables_map values;
-    std::vector<OptionValue> given;
-    try {
-        const std::vector<std::string> rest(arguments.begin() + 1, arguments.end());
-        refuseSingleDashWords(rest);
-        const po::parsed_options parsed =
-            po::command_line_parser(rest).options(all).positional(positional).run();
-        po::store(parsed, values); // refuses an option given twice
-        po::notify(values);
-        given = tableValues(parsed);
-    } catch (const po::unknown_option& error) {
-        const std::string typed = error.get_option_name();
-        const std::string closest = closestBuildOption(typed, OptionSpelling::CommandLine);
-        throw UsageError(error.what() +
-                         (closest.empty() ? std::string() : "; did you mean '" + closest + "'?"));
-    } catch (const po::error& error) {
-        throw UsageError(error.what());
-    }
-    if (values.count("help")) {
-        command.kind = Command::Kind::Help;
-        return command;
-    }
-
     command.kind = Command::Kind::Build;
-    // Every value the library refuses, and options that contradict each other or the output
-    // format, are command-line mistakes (status 2).
-    try {
-        command.build = parseBuildOptions(given, OptionSpelling::CommandLine);
-    } catch (const Error& error) {
-        throw UsageError(error.what());
-    }
-    command.quiet = values.count("quiet") > 0;
-    command.json = values.count("json") > 0;
+    command.build = checkedBuildOptions(read.given);
+    command.quiet = read.values.count("quiet") > 0;
+    command.json = read.values.count("json") > 0;
     return command;
 }
 
