@@ -179,6 +179,95 @@ std::string textOf(const std::vector<std::byte>& bytes) {
     return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
 }
 
+/// Rank 0's side of gather: the tiles handed out and back (TileHandout), the ranks awaiting a
+/// reply, and the first failure, after which every rank is answered with Stop.
+class Gathering {
+public:
+    Gathering(std::size_t tileCount, std::uint64_t earlyBytes, int ranks)
+        : m_handout(tileCount, earlyBytes), m_tileOf(static_cast<std::size_t>(ranks), 0) {}
+
+    /// Whether to receive now a message of `tag` and `bytes` from `rank`. A tile that came back
+    /// before its turn and would pass the bound stays with its rank (its send waits) until its
+    /// turn comes or the early tiles make room; after a failure every message is taken, so
+    /// that each rank gets its Stop.
+    [[nodiscard]] bool accepts(int tag, int rank, std::uint64_t bytes) const {
+        return tag != kResult || m_failure ||
+               m_handout.accepts(m_tileOf[static_cast<std::size_t>(rank)],
+                                 bytes - std::min<std::uint64_t>(bytes, sizeof(std::uint64_t)));
+    }
+
+    /// Takes a tile's TIN to `take`, or notes the first failure (a failing `take` too); its
+    /// sender now awaits a reply.
+    void takeMessage(Message& message,
+                     const std::function<void(std::size_t, std::vector<std::byte>)>& take) {
+        if (message.tag == kResult && !m_failure) {
+            const std::uint64_t tile = numberOf(message.bytes);
+            message.bytes.erase(message.bytes.begin(), message.bytes.begin() + sizeof tile);
+            try {
+                m_handout.back(tile, message.bytes.size());
+                take(tile, std::move(message.bytes));
+            } catch (const Error& error) {
+                m_failure = error.what();
+            }
+        } else if (message.tag == kFailure && !m_failure) {
+            m_failure = "rank " + std::to_string(message.source) + ": " + textOf(message.bytes);
+        } else if (message.tag == kStopped && !m_failure) {
+            m_failure = stoppedBy("rank " + std::to_string(message.source), textOf(message.bytes));
+            m_failureIsSignal = true;
+        }
+        m_waiting.push_back(message.source);
+    }
+
+    /// Replies to the waiting ranks in turn: a tile each while there is one to hand out, Stop
+    /// (noted in `stopped`) once none is left or after a failure; returns how many were
+    /// stopped. Leaves the rest waiting while the early tiles hold too much.
+    int answerWaiting(std::vector<bool>& stopped) {
+        int stops = 0;
+        while (!m_waiting.empty()) {
+            const bool stop = m_failure || m_handout.allHandedOut();
+            const std::optional<std::size_t> tile = stop ? std::nullopt : m_handout.next();
+            if (!stop && !tile)
+                break; // the early tiles hold too much: wait for the ones in turn
+            const int rank = m_waiting.front();
+            m_waiting.pop_front();
+            if (tile) {
+                m_tileOf[static_cast<std::size_t>(rank)] = *tile;
+                send(numberBytes(*tile), kTile, rank);
+            } else {
+                send({}, kStop, rank);
+                stopped[static_cast<std::size_t>(rank)] = true;
+                ++stops;
+            }
+        }
+        return stops;
+    }
+
+    /// Rank 0 was stopped: throws the failure that came first, or Cancelled. A rank stopped by
+    /// the signal that stopped this one too is one cause, said once.
+    [[noreturn]] void throwStopped() const {
+        const bool signalled = cancelledBySignal().load();
+        if (m_failure && !(m_failureIsSignal && signalled))
+            throw Error(*m_failure);
+        throw Cancelled(signalled ? stoppedBy("the run", cancellingSignalName())
+                                  : std::string("Tiles: cancelled"));
+    }
+
+    /// Every rank stopped: throws the failure, or Error when tiles are left that no rank took.
+    void checkFinished() const {
+        if (m_failure)
+            throw Error(*m_failure);
+        if (!m_handout.allHandedOut())
+            throw Error("MPI: no rank to refine the tiles");
+    }
+
+private:
+    TileHandout m_handout;
+    std::deque<int> m_waiting;         // ranks whose last message has no reply yet
+    std::vector<std::size_t> m_tileOf; // each rank's work
+    std::optional<std::string> m_failure;
+    bool m_failureIsSignal = false; // the failure is a rank stopped by a signal
+};
+
 } // namespace
 
 MpiSession::MpiSession(int& argc, char**& argv) {
@@ -206,18 +295,9 @@ void MpiTiles::gather(std::size_t tileCount,
                       const std::function<bool()>& keepGoing, std::uint64_t earlyBytes) {
     m_stopped.assign(static_cast<std::size_t>(m_size), false);
     m_stopped[kCoordinator] = true;
-    TileHandout handout(tileCount, earlyBytes);
-    std::deque<int> waiting; // ranks whose last message has no reply yet
-    std::vector<std::size_t> tileOf(static_cast<std::size_t>(m_size), 0); // each rank's work
-    std::optional<std::string> failure;
-    bool failureIsSignal = false; // the failure is a rank stopped by a signal
-    // A tile that came back before its turn and would pass the bound stays with its rank (its
-    // send waits) until its turn comes or the early tiles make room; after a failure every
-    // message is taken, so that each rank gets its Stop.
+    Gathering gathering(tileCount, earlyBytes, m_size);
     const auto accept = [&](int tag, int rank, std::uint64_t bytes) {
-        return tag != kResult || failure ||
-               handout.accepts(tileOf[static_cast<std::size_t>(rank)],
-                               bytes - std::min<std::uint64_t>(bytes, sizeof(std::uint64_t)));
+        return gathering.accepts(tag, rank, bytes);
     };
     for (int working = m_size - 1; working > 0;) {
         std::optional<Message> received = receiveAccepted(m_size, accept, keepGoing);
@@ -225,51 +305,12 @@ void MpiTiles::gather(std::size_t tileCount,
             // Stopped (under mpirun, by a signal): the rank whose message is awaited may be gone,
             // so no more is awaited, and the others get no Stop (see releaseAll).
             g_ranksLeftWaiting.store(true);
-            const bool signalled = cancelledBySignal().load();
-            // A rank stopped by the signal that stopped this one too: one cause, said once.
-            if (failure && !(failureIsSignal && signalled))
-                throw Error(*failure);
-            throw Cancelled(signalled ? stoppedBy("the run", cancellingSignalName())
-                                      : std::string("Tiles: cancelled"));
+            gathering.throwStopped();
         }
-        Message& message = *received;
-        if (message.tag == kResult && !failure) {
-            const std::uint64_t tile = numberOf(message.bytes);
-            message.bytes.erase(message.bytes.begin(), message.bytes.begin() + sizeof tile);
-            try {
-                handout.back(tile, message.bytes.size());
-                take(tile, std::move(message.bytes));
-            } catch (const Error& error) {
-                failure = error.what();
-            }
-        } else if (message.tag == kFailure && !failure) {
-            failure = "rank " + std::to_string(message.source) + ": " + textOf(message.bytes);
-        } else if (message.tag == kStopped && !failure) {
-            failure = stoppedBy("rank " + std::to_string(message.source), textOf(message.bytes));
-            failureIsSignal = true;
-        }
-        waiting.push_back(message.source);
-        while (!waiting.empty()) {
-            const bool stop = failure || handout.allHandedOut();
-            const std::optional<std::size_t> tile = stop ? std::nullopt : handout.next();
-            if (!stop && !tile)
-                break; // the early tiles hold too much: wait for the ones in turn
-            const int rank = waiting.front();
-            waiting.pop_front();
-            if (tile) {
-                tileOf[static_cast<std::size_t>(rank)] = *tile;
-                send(numberBytes(*tile), kTile, rank);
-            } else {
-                send({}, kStop, rank);
-                m_stopped[static_cast<std::size_t>(rank)] = true;
-                --working;
-            }
-        }
+        gathering.takeMessage(*received, take);
+        working -= gathering.answerWaiting(m_stopped);
     }
-    if (failure)
-        throw Error(*failure);
-    if (!handout.allHandedOut())
-        throw Error("MPI: no rank to refine the tiles");
+    gathering.checkFinished();
 }
 
 void MpiTiles::serve(const std::function<std::vector<std::byte>(std::size_t)>& refine) {
