@@ -21,42 +21,51 @@ constexpr std::string_view kStage = "TinFormat";
 
 using Kind = TinFormatKind;
 
-/// A row of the format table: what a caller sees of the format, and the writer of a mesh
-/// format (null for the vector formats, which OGR writes).
+/// A row of the format table: what a caller sees of the format, what messages that list
+/// formats call it, and the writer of a mesh format (null for the vector formats, which OGR
+/// writes).
 struct FormatRow {
     TinFormatInfo info;
+    std::string_view title;
     const detail::MeshWriter* meshWriter;
 };
 
 // The formats, in the order of TinFormat. Fields: format, names, extensions, display name,
 // writer's stage, kind, CRS, node/edge layers and append, optional index, what it carries;
-// then the mesh format's writer.
+// then its title and the mesh format's writer.
 constexpr std::array<FormatRow, 7> kRows = {{
     {{TinFormat::GeoPackage, "gpkg geopackage", ".gpkg", "GPKG", "OgrTinWriter", Kind::Vector, true,
       true, true,
       "Polygon Z triangles with attributes, optional node and edge layers, R-tree, CRS; a QGIS "
       "vector layer; --append-layer adds layers to an existing file"},
+     "GeoPackage",
      nullptr},
     {{TinFormat::Shapefile, "shp esri_shapefile", ".shp", "ESRI Shapefile", "OgrTinWriter",
       Kind::Vector, true, false, false,
       "Polygon Z triangles with attributes, CRS in .prj; 2 GB per component"},
+     "Shapefile",
      nullptr},
     {{TinFormat::FlatGeobuf, "fgb flatgeobuf", ".fgb", "FlatGeobuf", "OgrTinWriter", Kind::Vector,
       true, false, true, "Polygon Z triangles with attributes, packed Hilbert R-tree, CRS"},
+     "FlatGeobuf",
      nullptr},
     {{TinFormat::TwoDm, "2dm mesh2d", ".2dm", "2DM", "TwoDmWriter", Kind::Mesh, false, false, false,
       "SMS 2D mesh: nodes and triangles, no CRS; a QGIS mesh layer"},
+     "2DM",
      &detail::kTwoDmWriter},
     {{TinFormat::Ply, "ply", ".ply", "PLY", "PlyWriter", Kind::Mesh, true, false, false,
       "binary PLY mesh: vertices and faces, CRS as a comment; a QGIS mesh layer"},
+     "PLY",
      &detail::kPlyWriter},
     {{TinFormat::Obj, "obj", ".obj", "OBJ", "ObjWriter", Kind::Mesh, false, false, false,
       "Wavefront OBJ mesh about a local origin, no CRS; for 3D tools (QGIS does not open it)"},
+     "OBJ",
      &detail::kObjWriter},
     {{TinFormat::LandXml, "landxml xml", ".xml .landxml", "LandXML", "LandXmlWriter", Kind::Mesh,
       true, false, false,
       "LandXML 1.2 TIN surface with units, CRS and breaklines; for civil and CAD tools (QGIS "
       "does not open it)"},
+     "LandXML",
      &detail::kLandXmlWriter},
 }};
 
@@ -145,6 +154,13 @@ std::string_view tinFormatExtension(TinFormat format) {
 
 bool isOgrFormat(TinFormat format) {
     return tinFormatInfo(format).kind == TinFormatKind::Vector;
+}
+
+std::string_view detail::formatTitle(TinFormat format) {
+    for (const FormatRow& row : kRows)
+        if (row.info.format == format)
+            return row.title;
+    throw Error(std::string(kStage) + ": a format without a row in the table");
 }
 
 const detail::MeshWriter& detail::meshWriterOf(TinFormat format) {

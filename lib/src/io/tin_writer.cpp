@@ -22,6 +22,7 @@
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 namespace terratin::io {
 
@@ -149,62 +150,90 @@ std::optional<char32_t> nextUtf8Character(std::string_view text, std::size_t& at
     return character;
 }
 
-} // namespace
-
-std::string nodeLayerName(const std::string& layerName) {
-    return layerName == "tin" ? std::string("nodes") : layerName + "_nodes";
+/// Which formats take which options, by the flags of their rows in the format table.
+bool takesExtraLayers(const TinFormatInfo& format) {
+    return format.takesExtraLayers;
+}
+bool hasOptionalIndex(const TinFormatInfo& format) {
+    return format.hasOptionalIndex;
+}
+/// The QGIS style is a vector layer's.
+bool takesStyle(const TinFormatInfo& format) {
+    return format.kind == TinFormatKind::Vector;
 }
 
-std::string edgeLayerName(const std::string& layerName) {
-    return layerName == "tin" ? std::string("edges") : layerName + "_edges";
+/// The titles of the formats that `take`, for a message: "GeoPackage and FlatGeobuf",
+/// "GeoPackage, Shapefile and FlatGeobuf" (with `last` " and ").
+std::string formatsThat(bool (*take)(const TinFormatInfo&), std::string_view last = " and ") {
+    std::vector<std::string_view> titles;
+    for (const TinFormatInfo& info : tinFormats())
+        if (take(info))
+            titles.push_back(detail::formatTitle(info.format));
+    std::string list;
+    for (std::size_t i = 0; i < titles.size(); ++i) {
+        if (i > 0)
+            list += i + 1 == titles.size() ? last : ", ";
+        list += titles[i];
+    }
+    return list;
 }
 
-void checkTinWriteOptions(const TinWriteOptions& options) {
-    const bool geoPackage = options.format == TinFormat::GeoPackage;
-    const std::string format(tinFormatName(options.format));
-    const std::string needsGeoPackage = " needs a GeoPackage output (.gpkg), not " + format;
-    if (options.nodes && !geoPackage)
+/// "a GeoPackage output (.gpkg)": the formats that take the node and edge layers.
+std::string extraLayerOutput() {
+    std::string extensions;
+    for (const TinFormatInfo& info : tinFormats())
+        if (takesExtraLayers(info))
+            extensions += (extensions.empty() ? "" : " or ") + std::string(info.extension());
+    return "a " + formatsThat(takesExtraLayers, " or ") + " output (" + extensions + ")";
+}
+
+/// What the options ask of the output format `row`.
+void checkOptionsOfFormat(const TinWriteOptions& options, const TinFormatInfo& row) {
+    const std::string format(row.displayName);
+    const std::string needsGeoPackage = " needs " + extraLayerOutput() + ", not " + format;
+    if (options.nodes && !takesExtraLayers(row))
         throwInvalid(kStage, markOption("nodes") + needsGeoPackage);
-    if (options.edges && !geoPackage)
+    if (options.edges && !takesExtraLayers(row))
         throwInvalid(kStage, markOption("edges") + needsGeoPackage);
-    if (options.appendLayer && !geoPackage)
+    if (options.appendLayer && !takesExtraLayers(row))
         throwInvalid(kStage, markOption("append_layer") + needsGeoPackage);
-    if (!options.spatialIndex && !geoPackage && options.format != TinFormat::FlatGeobuf)
-        throwInvalid(kStage, markOption("no_spatial_index") +
-                                 " applies to GeoPackage and FlatGeobuf, not " + format);
-    if (options.qgisStyle && !isOgrFormat(options.format))
-        throwInvalid(kStage, markOption("qgis_style") +
-                                 " applies to GeoPackage, Shapefile and FlatGeobuf outputs, not " +
-                                 format);
+    if (!options.spatialIndex && !hasOptionalIndex(row))
+        throwInvalid(kStage, markOption("no_spatial_index") + " applies to " +
+                                 formatsThat(hasOptionalIndex) + ", not " + format);
+    if (options.qgisStyle && !takesStyle(row))
+        throwInvalid(kStage, markOption("qgis_style") + " applies to " + formatsThat(takesStyle) +
+                                 " outputs, not " + format);
     if (options.qgisStyle && options.attributes == AttributeSet::None)
         throwInvalid(kStage, markOption("qgis_style") + " colours by z_mean: it needs " +
                                  markOption("attributes") + " basic or all");
-    if (geoPackage && options.layerName.empty())
-        throwInvalid(kStage, "the layer name is empty");
+}
+
+/// Refuses a layer name that holds a control character, is not UTF-8, or holds U+FFFE or
+/// U+FFFF.
+void checkLayerNameText(const std::string& layerName) {
     // The mesh formats write the name raw into a line of text (2DM MESHNAME, OBJ "o"): a
     // newline in it starts a record of its own and shifts every index after it. No format has
     // a use for control characters in a name, so every one refuses them.
-    const auto control = std::find_if(options.layerName.begin(), options.layerName.end(),
+    const auto control = std::find_if(layerName.begin(), layerName.end(),
                                       [](unsigned char ch) { return ch < 0x20 || ch == 0x7F; });
-    if (control != options.layerName.end()) {
+    if (control != layerName.end()) {
         char code[8];
         std::snprintf(code, sizeof code, "0x%02X", static_cast<unsigned char>(*control));
         throwInvalid(kStage, "the layer name holds a control character (" + std::string(code) +
-                                 " at byte " +
-                                 std::to_string(control - options.layerName.begin() + 1) +
+                                 " at byte " + std::to_string(control - layerName.begin() + 1) +
                                  "); use printable characters only");
     }
     // A GeoPackage table name is UTF-8 text to SQLite and to every reader, and LandXML says
     // encoding="UTF-8": other bytes (Latin-1 from a script, a name cut mid-character) make an
     // unreadable table name and XML that is not well-formed. U+FFFE and U+FFFF are UTF-8 but
     // no characters, and XML 1.0 cannot hold them.
-    for (std::size_t at = 0; at < options.layerName.size();) {
+    for (std::size_t at = 0; at < layerName.size();) {
         const std::size_t start = at;
-        const std::optional<char32_t> character = nextUtf8Character(options.layerName, at);
+        const std::optional<char32_t> character = nextUtf8Character(layerName, at);
         char code[16];
         if (!character) {
             std::snprintf(code, sizeof code, "0x%02X",
-                          static_cast<unsigned char>(options.layerName[start]));
+                          static_cast<unsigned char>(layerName[start]));
             throwInvalid(kStage, "the layer name is not valid UTF-8 (" + std::string(code) +
                                      " at byte " + std::to_string(start + 1) +
                                      "); give it in UTF-8");
@@ -216,11 +245,35 @@ void checkTinWriteOptions(const TinWriteOptions& options) {
                                      ", which is no character; use printable characters only");
         }
     }
-    if (geoPackage && (options.nodes || options.edges) &&
+}
+
+/// The layer name: the name of a table beside others in a format of several layers, so not
+/// empty and not the node or edge layer's, and text every format can hold.
+void checkLayerName(const TinWriteOptions& options, const TinFormatInfo& row) {
+    if (takesExtraLayers(row) && options.layerName.empty())
+        throwInvalid(kStage, "the layer name is empty");
+    checkLayerNameText(options.layerName);
+    if (takesExtraLayers(row) && (options.nodes || options.edges) &&
         (nodeLayerName(options.layerName) == options.layerName ||
          edgeLayerName(options.layerName) == options.layerName))
         throwInvalid(kStage, "the layer name '" + options.layerName +
                                  "' collides with the node or edge layer");
+}
+
+} // namespace
+
+std::string nodeLayerName(const std::string& layerName) {
+    return layerName == "tin" ? std::string("nodes") : layerName + "_nodes";
+}
+
+std::string edgeLayerName(const std::string& layerName) {
+    return layerName == "tin" ? std::string("edges") : layerName + "_edges";
+}
+
+void checkTinWriteOptions(const TinWriteOptions& options) {
+    const TinFormatInfo& format = tinFormatInfo(options.format);
+    checkOptionsOfFormat(options, format);
+    checkLayerName(options, format);
 }
 
 void checkTinOutput(const fs::path& output, const TinWriteOptions& options) {

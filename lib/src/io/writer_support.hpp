@@ -78,6 +78,10 @@ CrsSummary summariseCrs(std::string_view stage, const std::string& wkt);
 /// The stage a writer of `format` starts its messages with ("PlyWriter", "OgrTinWriter"...).
 std::string_view writerStage(TinFormat format);
 
+/// What messages that list formats call `format` ("GeoPackage", "Shapefile", "PLY"); its row
+/// of the format table (tin_format.cpp) says.
+std::string_view formatTitle(TinFormat format);
+
 } // namespace terratin::io::detail
 
 namespace terratin::io::detail {
