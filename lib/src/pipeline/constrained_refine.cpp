@@ -1,7 +1,7 @@
 #include "constrained_refine.hpp"
 
-#include "../constrain/cell_completion.hpp"
 #include "../parallel/parallel_for.hpp"
+#include "../refine/cell_completion.hpp"
 #include "../refine/valid_hull.hpp"
 #include "constraint_areas.hpp"
 #include "terratin/constrain/insert_constraints.hpp"

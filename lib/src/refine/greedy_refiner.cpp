@@ -483,13 +483,8 @@ std::size_t GreedyRefiner::pointCount() const {
 }
 
 std::size_t GreedyRefiner::budget() const {
-    std::size_t left = kNoQuota;
-    if (m_options.maxPoints)
-        left = *m_options.maxPoints - std::min(*m_options.maxPoints, pointCount());
-    if (m_options.maxTriangles)
-        left = std::min(
-            left, (*m_options.maxTriangles - std::min(*m_options.maxTriangles, m_triangles)) / 2);
-    return left;
+    return pointsUnderLimits(m_options.maxPoints, m_options.maxTriangles, pointCount(),
+                             m_triangles);
 }
 
 double GreedyRefiner::progressFraction(double topPriority) const {

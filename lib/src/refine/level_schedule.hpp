@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 
 namespace terratin::detail {
 
@@ -42,6 +43,14 @@ inline constexpr std::size_t kNoQuota = std::numeric_limits<std::size_t>::max();
 /// down to the target.
 [[nodiscard]] double levelBelow(double top, double threshold, double firstPriority,
                                 std::size_t strips);
+
+/// The points a TIN of `points` vertices and `triangles` triangles may still take under the
+/// limits (RefineOptions::maxPoints, maxTriangles; each point inserted adds two triangles),
+/// kNoQuota without one. The refiner's rule, which the completion of a constrained TIN
+/// (cell_completion.hpp) follows too.
+[[nodiscard]] std::size_t pointsUnderLimits(std::optional<std::size_t> maxPoints,
+                                            std::optional<std::size_t> maxTriangles,
+                                            std::size_t points, std::size_t triangles);
 
 /// Whether `left` points (kNoQuota without a limit) are too few to share among `strips`: one
 /// thread then finishes in global priority order and stops exactly at the limit.

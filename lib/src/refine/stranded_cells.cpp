@@ -69,19 +69,15 @@ std::vector<CellToInsert> cellsBesideStrandedVertices(const TinMesh& mesh,
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
         if (kept[v] != 0)
             continue;
-        const auto cellRow = static_cast<std::int64_t>(mesh.sourceIndex[v]) / grid.width;
-        const auto cellColumn = static_cast<std::int64_t>(mesh.sourceIndex[v]) % grid.width;
-        for (std::int64_t row = cellRow - 1; row <= cellRow + 1; ++row)
-            for (std::int64_t col = cellColumn - 1; col <= cellColumn + 1; ++col) {
-                if (row < 0 || col < 0 || row >= grid.height || col >= grid.width)
-                    continue;
-                const auto cell = static_cast<std::uint32_t>(row * grid.width + col);
+        forEachCellAround(
+            mesh.sourceIndex[v], grid.width, grid.height,
+            [&](std::uint32_t cell, std::int64_t row, std::int64_t col) {
                 if ((grid.flags[cell] & kNotInsertable) != 0)
-                    continue;
+                    return;
                 const Point2 target{static_cast<double>(col), static_cast<double>(row)};
                 cells.push_back(
                     {cell, walkTo(mesh, triangleOf[v], target, grid.width), kHolePriority});
-            }
+            });
     }
     std::sort(cells.begin(), cells.end(),
               [](const CellToInsert& a, const CellToInsert& b) { return a.cell < b.cell; });
@@ -89,6 +85,47 @@ std::vector<CellToInsert> cellsBesideStrandedVertices(const TinMesh& mesh,
         std::unique(cells.begin(), cells.end(),
                     [](const CellToInsert& a, const CellToInsert& b) { return a.cell == b.cell; }),
         cells.end());
+    return cells;
+}
+
+std::vector<CellToInsert>
+cellsBesideStrandedVertices(const HeightGrid& grid, const TinMesh& mesh,
+                            std::span<const std::uint8_t> drop,
+                            std::span<const std::uint8_t> overHoleOnly,
+                            const std::function<bool(std::size_t cell)>& insertable) {
+    constexpr std::uint8_t kKept = 1;
+    constexpr std::uint8_t kOverHole = 2;
+    constexpr std::uint32_t kNoTriangleYet = 0xffffffffU;
+    std::vector<std::uint8_t> uses(mesh.vertexCount(), 0);
+    std::vector<std::uint32_t> triangleOf(mesh.vertexCount(), kNoTriangleYet);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::uint32_t v = mesh.triangles[3 * t + i];
+            if (drop[t] == 0)
+                uses[v] |= kKept;
+            else if (overHoleOnly[t] != 0)
+                uses[v] |= kOverHole;
+            triangleOf[v] = static_cast<std::uint32_t>(t);
+        }
+    std::vector<std::uint8_t> isVertex(grid.cellCount(), 0);
+    for (const std::uint32_t cell : mesh.sourceIndex)
+        if (cell < grid.cellCount())
+            isVertex[cell] = 1;
+    std::vector<CellToInsert> cells;
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        if (uses[v] != kOverHole || mesh.sourceIndex[v] >= grid.cellCount())
+            continue;
+        forEachCellAround(mesh.sourceIndex[v], grid.width, grid.height,
+                          [&](std::uint32_t cell, std::int64_t, std::int64_t) {
+                              if (!grid.isValid(cell) || isVertex[cell] != 0 ||
+                                  (insertable && !insertable(cell)))
+                                  return;
+                              isVertex[cell] = 1; // once
+                              cells.push_back({cell, triangleOf[v], kHolePriority});
+                          });
+    }
+    std::sort(cells.begin(), cells.end(),
+              [](const CellToInsert& a, const CellToInsert& b) { return a.cell < b.cell; });
     return cells;
 }
 

@@ -4,8 +4,8 @@
 #include "projected_sides.hpp"
 #include "tile_cells.hpp"
 
-#include "../constrain/cell_completion.hpp"
 #include "../parallel/round_workers.hpp"
+#include "../refine/cell_completion.hpp"
 #include "../refine/greedy_refiner.hpp"
 
 #include "terratin/constrain/constrained_validation.hpp"

@@ -5,7 +5,7 @@
 /// sides, so the tiles no longer meet along straight hull edges: each tile is refined at its
 /// cells' positions, its boundary, a ring through its sides' vertices (chosen from each side's
 /// cells alone, projected_sides.hpp), is inserted as constraints, the triangles outside it
-/// dropped, and the cells still over the bound inserted (constrain/cell_completion.hpp).
+/// dropped, and the cells still over the bound inserted (refine/cell_completion.hpp).
 /// Neighbouring tiles share the same chords, so their TINs join without cracks; each is a
 /// constrained Delaunay TIN. docs/algorithms.md, "Tiles at projected positions", has the why.
 

@@ -3,7 +3,10 @@
 /// The cells of a grid still over the error bound inserted into a constrained Delaunay TIN until
 /// none is: the last step of a simplified constrained build (docs/algorithms.md, "Simplified
 /// constrained TINs") and of a tile refined at projected positions (tile/projected_tile.hpp).
-/// What is measured, kept and insertable is the caller's: CompletionRules.
+/// It is the refiner's rule (each triangle's worst cell, a triangle over an open hole split until
+/// it covers no valid cell, the same limits) on a TIN whose constrained edges the refiner's own
+/// mesh cannot hold: completion_check.hpp measures, insertVertices inserts. What is measured,
+/// kept and insertable is the caller's: CompletionRules.
 
 #include "terratin/constrain/constrained_tin.hpp"
 #include "terratin/geometry/height_grid.hpp"
