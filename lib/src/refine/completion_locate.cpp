@@ -1,8 +1,10 @@
 // CompletionCheck: locating the measured cells and the open holes' cells in the constrained
 // TIN (completion_check.hpp), once and then after each round of insertions.
 
-#include "cell_in_triangle.hpp"
 #include "completion_check.hpp"
+
+#include "cell_in_triangle.hpp"
+#include "error_measure.hpp"
 
 #include <cmath>
 
@@ -106,7 +108,7 @@ void CompletionCheck::placeVertexCells() {
             // Only this vertex lies at the cell's position: no other thread writes cell i.
             const std::uint32_t i = measuredIndex[cell];
             m_cellTriangle[i] = vertexTriangle[v];
-            m_cellError[i] = std::abs(double{m_grid->z[cell]} - at.z);
+            m_cellError[i] = cellError(m_grid->z[cell], at.z);
             m_cellAtCorner[i] = 1;
         }
     });
@@ -121,7 +123,7 @@ void CompletionCheck::measureAt(std::size_t i, TinLocator& locator, std::uint32_
         return;
     // Measured while the walk has the triangle's corners in cache: the tally, a pass
     // over every cell later, then reads no corner.
-    m_cellError[i] = std::abs(double{m_grid->z[cell]} - planeAt(m_tin->mesh, t, p));
+    m_cellError[i] = cellError(m_grid->z[cell], planeAt(m_tin->mesh, t, p));
     m_cellAtCorner[i] = isCorner(m_tin->mesh, t, p) ? 1 : 0;
 }
 

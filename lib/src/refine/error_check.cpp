@@ -1,5 +1,7 @@
 #include "error_check.hpp"
 
+#include "error_measure.hpp"
+
 #include "../parallel/parallel_for.hpp"
 
 #include <algorithm>
@@ -79,8 +81,7 @@ void measureCells(const GridView& grid, const PixelTriangle& triangle, std::int6
     for (std::int64_t col = lo; col <= hi; ++col) {
         if (flags[col] != 0)
             continue;
-        const double error =
-            std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
+        const double error = cellError(z[col], base + gradCol * static_cast<double>(col));
         maxError = std::max(maxError, error);
         sumSquares += error * error;
         ++cells;

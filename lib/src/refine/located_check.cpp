@@ -1,5 +1,7 @@
 #include "located_check.hpp"
 
+#include "error_measure.hpp"
+
 #include "../parallel/parallel_for.hpp"
 
 #include "terratin/geometry/predicates.hpp"
@@ -269,8 +271,7 @@ ErrorMeasure measureErrorsAt(const TinMesh& mesh, std::span<const std::uint8_t> 
             walker.forEachHolding(t, [&](std::size_t s) {
                 if (drop[s] != 0)
                     return;
-                const double error =
-                    std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
+                const double error = cellError(grid.z[cell], walker.elevation(s, cell));
                 measure.maxError = std::max(measure.maxError, error);
                 if (!counted) {
                     measure.sumSquares += error * error;
@@ -313,8 +314,7 @@ std::vector<CellToInsert> cellsToInsertAt(const TinMesh& mesh, const GridView& g
             if (memo != nullptr)
                 memo->located[cell] = walker.onEdge() ? -1 : static_cast<std::int32_t>(t);
             walker.forEachHolding(t, [&](std::size_t s) {
-                const double error =
-                    std::fabs(static_cast<double>(grid.z[cell]) - walker.elevation(s, cell));
+                const double error = cellError(grid.z[cell], walker.elevation(s, cell));
                 if (overHole[s] != 0 || error > threshold)
                     blocks[block].push_back(
                         {static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(cell), error});

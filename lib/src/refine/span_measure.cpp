@@ -36,7 +36,7 @@ __attribute__((target("avx2"))) inline void measureFour(FourLanes& lanes, __m128
                                                         __m256d cells) {
     const __m256d absolute = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffff));
     const __m256d elevation = _mm256_cvtps_pd(z);
-    // The plane as measureSpan evaluates it: base + gradCol * col, then |z - plane|.
+    // The plane as measureSpan evaluates it: base + gradCol * col, then cellError's |z - plane|.
     const __m256d plane = _mm256_add_pd(base, _mm256_mul_pd(gradCol, columns));
     const __m256d error = _mm256_and_pd(_mm256_sub_pd(elevation, plane), absolute);
     const __m256i laneFlags = _mm256_cvtepu8_epi64(_mm_cvtsi32_si128(static_cast<int>(flags)));

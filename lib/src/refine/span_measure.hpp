@@ -8,6 +8,7 @@
 /// with the same operations in the same order (no fused multiply-add), so they give
 /// bit-identical errors and pick the same cell.
 
+#include "error_measure.hpp"
 #include "grid_scan.hpp"
 
 #include <cmath>
@@ -50,8 +51,7 @@ inline void measureSpan(const GridView& view, const PixelTriangle& triangle, std
         seen |= flags[col];
         if (flags[col] != 0)
             continue;
-        const double error =
-            std::fabs(static_cast<double>(z[col]) - (base + gradCol * static_cast<double>(col)));
+        const double error = cellError(z[col], base + gradCol * static_cast<double>(col));
         if (error > best) {
             best = error;
             bestCol = col;

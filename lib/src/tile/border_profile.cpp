@@ -1,5 +1,7 @@
 #include "border_profile.hpp"
 
+#include "../refine/error_measure.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -27,7 +29,7 @@ void splitRun(std::span<const float> z, std::size_t first, std::size_t last, dou
         std::size_t worst = a;
         double worstError = maxError;
         for (std::size_t i = a + 1; i < b; ++i) {
-            const double error = std::abs(double{z[i]} - lineAt(a, z[a], b, z[b], i));
+            const double error = cellError(z[i], lineAt(a, z[a], b, z[b], i));
             if (error > worstError) { // the first of equal errors: the result is fixed
                 worst = i;
                 worstError = error;
@@ -75,8 +77,8 @@ double borderProfileError(std::span<const float> elevations, std::span<const std
         for (std::size_t i = a + 1; i < b; ++i) {
             if (std::isnan(elevations[i]))
                 break; // a run ends between a and b: nothing spans the gap
-            largest = std::max(largest, std::abs(double{elevations[i]} -
-                                                 lineAt(a, elevations[a], b, elevations[b], i)));
+            largest = std::max(
+                largest, cellError(elevations[i], lineAt(a, elevations[a], b, elevations[b], i)));
         }
     }
     return largest;

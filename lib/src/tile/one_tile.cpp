@@ -7,6 +7,7 @@
 #include "../parallel/round_workers.hpp"
 #include "../refine/cell_flags.hpp"
 #include "../refine/error_check.hpp"
+#include "../refine/error_measure.hpp"
 #include "../refine/greedy_refiner.hpp"
 
 #include "terratin/error.hpp"
@@ -145,7 +146,7 @@ void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, Unow
                     continue;
                 const double along = (static_cast<double>(k) - static_cast<double>(from)) /
                                      (static_cast<double>(to) - static_cast<double>(from));
-                const double error = z - (za + (zb - za) * along);
+                const double error = cellError(z, za + (zb - za) * along);
                 sides.cover(row, col, error * error);
             }
         }

@@ -1,5 +1,7 @@
 #include "projected_sides.hpp"
 
+#include "../refine/error_measure.hpp"
+
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
 
@@ -61,7 +63,7 @@ std::size_t splitOf(const ProjectedSide& side, std::size_t a, std::size_t b, dou
     std::size_t worst = a;
     double worstError = tolerance;
     for (std::size_t i = a + 1; i < b; ++i) {
-        const double error = std::abs(double{side.z[i]} - chordAt(side, a, b, i));
+        const double error = cellError(side.z[i], chordAt(side, a, b, i));
         if (error > worstError) {
             worst = i;
             worstError = error;
