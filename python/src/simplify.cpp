@@ -10,8 +10,8 @@
 #include "progress.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/refine/mesh_filter.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 
 #include <pybind11/stl.h>
 

@@ -2,7 +2,7 @@
 
 #include "gather_inputs.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
-#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 
 #include <ogr_spatialref.h>
 

@@ -8,8 +8,8 @@
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/input_reader.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
-#include "terratin/refine/mesh_filter.hpp"
 #include "terratin/refine/tile_distribution.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 #include "tile_files.hpp"
 
 #include <algorithm>

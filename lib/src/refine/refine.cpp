@@ -10,7 +10,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/refine/cell_source.hpp"
-#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 
 #include <algorithm>
 #include <array>

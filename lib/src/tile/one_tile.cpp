@@ -11,7 +11,7 @@
 #include "../refine/greedy_refiner.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <algorithm>

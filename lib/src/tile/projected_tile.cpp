@@ -12,7 +12,7 @@
 #include "terratin/constrain/insert_constraints.hpp"
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
-#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // only removed triangles used, and the long-edge filter for point clouds.
 
 #include "terratin/error.hpp"
-#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <gtest/gtest.h>

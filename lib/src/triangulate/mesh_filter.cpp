@@ -1,4 +1,4 @@
-#include "terratin/refine/mesh_filter.hpp"
+#include "terratin/triangulate/mesh_filter.hpp"
 
 #include "terratin/error.hpp"
 
