@@ -11,6 +11,7 @@
 
 #include "terratin/error.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/refine_tiles.hpp"
 #include "terratin/triangulate/mesh_filter.hpp"
 
 #include <pybind11/stl.h>
@@ -70,20 +71,29 @@ RefineOptions refineOptions(const SimplifyLimits& limits) {
     options.fillHoles = limits.fillHoles;
     options.threads = threadsOption(kFunction, limits.threads);
     options.validate = limits.validate;
-    options.tileSize = countOption(kFunction, "tile_size", limits.tileSize);
     checkRefineOptions(options);
     return options;
+}
+
+TileOptions tileOptions(const SimplifyLimits& limits, const RefineOptions& refine) {
+    TileOptions tiles;
+    tiles.tileSize = countOption(kFunction, "tile_size", limits.tileSize);
+    if (tiles.tileSize > 0)
+        checkTileOptions(refine, tiles);
+    return tiles;
 }
 
 py::tuple simplifyArray(const py::array& z, const py::object& geoTransform,
                         std::optional<double> nodata, const SimplifyLimits& limits,
                         std::optional<double> maxEdge, const py::object& progress) {
     const RefineOptions options = refineOptions(limits);
+    const TileOptions tiles = tileOptions(limits, options);
     if (maxEdge && !(std::isfinite(*maxEdge) && *maxEdge > 0.0))
         throw InvalidInputError(kFunction + ": max_edge must be a positive length (CRS units)");
     HeightGrid grid = heightGrid(z, geoTransformOption(geoTransform), nodata, kFunction);
     TinMesh mesh = runWithoutGil(progress, [&](const ProgressCallback& callback) {
-        RefineResult result = refine(grid, options, callback);
+        RefineResult result = tiles.tileSize > 0 ? refineTiles(grid, options, tiles, callback)
+                                                 : refine(grid, options, callback);
         grid = {}; // the mesh holds its own vertices
         if (maxEdge)
             dropLongEdgeTriangles(result.mesh, *maxEdge);

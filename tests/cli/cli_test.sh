@@ -909,7 +909,7 @@ case "$case_name" in
       fail "output written despite the usage error"
     ;;
   # Every count option bounded, refused with status 2 and one line before reading.
-  d2_queue_length_bounded)
+  queue_length_bounded)
     for value in -1 0 1048577 4294967295 18446744073709551617 9223372036854775809; do
       run 2 build "$sample" -o out.gpkg --method batch --queue-length "$value"
       expect_one_error_line "queue"
@@ -918,7 +918,7 @@ case "$case_name" in
     grep -q 'queue-length L.*' out.txt && grep -q '1 to 1048576' out.txt || fail "no bound in --help"
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
     ;;
-  d3_searchers_bounded)
+  searchers_bounded)
     for value in -1 1024 100000 4294967296; do
       run 2 build "$sample" -o out.gpkg --method batch --searchers "$value"
       expect_one_error_line "search"
@@ -927,7 +927,7 @@ case "$case_name" in
     grep -q '0 to 1023' out.txt || fail "no bound in --help"
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
     ;;
-  d4_threads_bounded)
+  threads_bounded)
     for method in circumcircle strips batch; do
       for value in -1 1025 3000 100000; do
         run 2 build "$sample" -o out.gpkg --method "$method" --threads "$value"
@@ -940,7 +940,7 @@ case "$case_name" in
     grep -q '0 to 1024' out.txt || fail "no bound in --help"
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
     ;;
-  d12_invalid_values_refused)
+  invalid_values_refused)
     for option in '--threads -1' '--threads=-1' '--max-points -5' '--max-points 2' \
                   '--max-triangles -1' '--max-triangles 0' '--max-hole -3' '--max-hole 4294967292' \
                   '--searchers -1' '--queue-length 4294967295' '--seed -1' '--threads 1.5' \
@@ -957,7 +957,7 @@ case "$case_name" in
     done
     [ ! -e out.gpkg ] || fail "output written despite usage errors"
     ;;
-  d13_limits_hold_or_refused)
+  limits_hold_or_refused)
     # The sample's valid cells fill the raster: a hull of 4 corners, 2 triangles.
     run 1 build "$sample" -o out.gpkg --max-points 3 --quiet
     expect_one_error_line "4 corners"
@@ -977,7 +977,7 @@ case "$case_name" in
     run 0 --help
     grep -q 'corner count is refused' out.txt || fail "--help does not state the hull guarantee"
     ;;
-  d6_rotated_raster_simplified)
+  rotated_raster_simplified)
     rotated_sample rot.tif
     for limit in '--max-error 1' '--max-points 200' '--max-triangles 300'; do
       # shellcheck disable=SC2086
@@ -991,7 +991,7 @@ case "$case_name" in
     run 0 build rot.tif -o error.gpkg --max-error 1 --json --quiet
     report_at_most achieved_max_error 1
     ;;
-  d7_infinite_elevations_refused)
+  infinite_elevations_refused)
     gdal_create -q -of GTiff -outsize 20 10 -bands 1 -ot Float32 -burn inf -a_srs EPSG:32633 \
       -a_ullr 0 100 200 0 all_inf.tif || fail "gdal_create failed"
     small_sample
@@ -1014,7 +1014,7 @@ case "$case_name" in
     grep -q 'row 7, column 5' err.txt || fail "the infinite cell is not named"
     [ ! -e out.gpkg ] || fail "output written for infinite elevations"
     ;;
-  d11_non_horizontal_crs_refused)
+  non_horizontal_crs_refused)
     small_sample
     for crs in EPSG:5703 EPSG:4978 '+proj=geocent +datum=WGS84'; do
       for option in --t_srs --s_srs; do
@@ -1029,7 +1029,7 @@ case "$case_name" in
     run 0 build small.tif -o compound.2dm --t_srs EPSG:7415 --quiet
     run 0 build small.tif -o geographic3d.2dm --t_srs EPSG:4979 --quiet
     ;;
-  d14_layer_control_characters_refused)
+  layer_control_characters_refused)
     for format in obj 2dm ply xml gpkg shp fgb; do
       for name in "$(printf 'two\nlines')" "$(printf 'tab\there')" "$(printf 'cr\r')" \
                   "$(printf 'esc\033[31m')"; do
@@ -1042,7 +1042,7 @@ case "$case_name" in
     run 0 build "$sample" -o tin.obj --layer 'Mt Hood – 1 m' --quiet
     [ "$(grep -c '^v ' tin.obj)" -gt 0 ] || fail "no vertices written"
     ;;
-  d19_rotated_slivers_have_sane_attributes)
+  rotated_slivers_have_sane_attributes)
     # The exact hull of the rotated centres keeps border slivers (area ~1e-10 m2); their
     # slope is 0 and aspect -1, not the 1e15 % the rounding made, and areas sum to the hull's
     # (39 x 39 cells of 10 m: 152100 m2).
@@ -1061,7 +1061,7 @@ case "$case_name" in
     [ "$(sed -n 's/.*n (Integer) = //p' sql.txt)" = "$slivers" ] || fail "a sliver has a slope"
     ;;
   # Regression cases of an audit of hostile input, named d<N>_ after its defects.
-  d10_out_of_memory)
+  out_of_memory)
     # A segfault inside GDAL's RasterIO under an address-space limit; now one line. Around
     # 200 MB the limit falls in the raster read; the others land before or after it.
     need_shared gdalraster__lf_elev_220_mt_hood_utm.tif
@@ -1081,7 +1081,7 @@ case "$case_name" in
     done
     expect_no_leftovers
     ;;
-  d16_subdataset_input)
+  subdataset_input)
     gdal_translate -q -srcwin 0 0 30 20 "$sample" a.tif || fail "gdal_translate failed"
     gdal_translate -q -srcwin 30 30 20 30 "$sample" b.tif || fail "gdal_translate failed"
     gdal_translate -q -of GPKG a.tif two.gpkg -co RASTER_TABLE=a || fail "no GeoPackage"
@@ -1097,7 +1097,7 @@ case "$case_name" in
     run 1 build GPKG:two.gpkg:nothere -o tin3.gpkg --quiet
     expect_one_error_line "nothere"
     ;;
-  d20_number_format)
+  number_format)
     printf '1e300 2 3\n4 5 6\n1 9 3\n' >huge.xyz
     run 1 build huge.xyz -o tin.ply --quiet
     expect_one_error_line "(1e+300, 2)"
@@ -1106,19 +1106,19 @@ case "$case_name" in
     run 1 build tiny.xyz -o tin.ply --quiet
     expect_one_error_line "(5e-324, -5e-324)"
     ;;
-  d20_not_a_directory)
+  not_a_directory)
     : >plain_file
     run 1 build "$sample" -o plain_file/tin.gpkg --quiet
     expect_one_error_line "'plain_file' is not a directory"
     ;;
-  d20_symlink_loop)
+  symlink_loop)
     ln -s loop loop
     run 1 build loop -o tin.gpkg --quiet
     expect_one_error_line "too many levels of symbolic links"
     run 1 build "$sample" -o loop/tin.gpkg --quiet
     expect_one_error_line "too many levels of symbolic links"
     ;;
-  d20_las_point_format_99)
+  las_point_format_99)
     need_shared pdal__autzen_trim.las
     cp "$shared/pdal__autzen_trim.las" odd.las && chmod u+w odd.las
     printf '\143' | dd of=odd.las bs=1 seek=104 conv=notrunc status=none
@@ -1136,7 +1136,7 @@ case "$case_name" in
     run 1 build bad_wkt.las -o tin.gpkg --quiet
     expect_one_error_line "WKT CRS record cannot be read"
     ;;
-  d20_gpkg_disk_full)
+  gpkg_disk_full)
     # A GeoPackage on a full disk said "no such table: gpkg_geometry_columns". Needs a small
     # tmpfs, so root; Mt Hood's TIN takes 64 KiB pages, which a 400 KiB disk cannot hold.
     need_shared gdalraster__lf_elev_220_mt_hood_utm.tif
@@ -1147,12 +1147,12 @@ case "$case_name" in
     expect_one_error_line "disk is full"
     [ -z "$(ls -A full)" ] || fail "left in the full directory: $(ls -A full)"
     ;;
-  d20_newline_in_message)
+  newline_in_message)
     cp "$sample" "$(printf 'two\nlines.tif')"
     run 1 build "$(printf 'two\nlines.tif')" -o tin.gpkg --quiet --band 9
     expect_one_error_line "two lines.tif"
     ;;
-  d20_unusable_geotransform)
+  unusable_geotransform)
     small_sample
     cp small.tif nan.tif && gdal_edit.py -a_ullr nan 0 1 1 nan.tif 2>/dev/null
     run 1 build nan.tif -o tin.gpkg --quiet
@@ -1162,26 +1162,26 @@ case "$case_name" in
     run 1 build huge.tif -o tin.gpkg --quiet --max-error 1
     expect_one_error_line "geotransform"
     ;;
-  d20_utf8_bom)
+  utf8_bom)
     printf '\357\273\277x,y,z\r\n1,2,3\r\n4,5,6\r\n1,9,3\r\n' >bom.csv
     run 0 build bom.csv -o tin.ply --quiet
     printf '\357\273\2771 2 3\n4 5 6\n1 9 3\n' >bom.xyz
     run 0 build bom.xyz -o tin2.ply --quiet
     ;;
-  d20_missing_prj)
+  missing_prj)
     printf '1 2 3\n4 5 6\n1 9 3\n' >points.xyz
     run 1 build points.xyz --s_srs nothere.prj -o tin.ply --quiet
     expect_one_error_line "no such file"
     ! grep -q "not a CRS PROJ knows" err.txt || fail "reported as an unknown CRS"
     ;;
-  d20_ascii_pgm)
+  ascii_pgm)
     printf 'P2\n# plain PGM\n4 3\n255\n0 1 2 3\n10 11 12 13\n20 21 22 255\n' >small.pgm
     run 0 build small.pgm -o tin.gpkg --quiet --json
     [ "$(report_count vertices)" -eq 12 ] || fail "not 12 vertices"
     need_shared pyterra__crater.pgm
     run 0 build "$shared/pyterra__crater.pgm" -o crater.gpkg --quiet --max-error 2
     ;;
-  d20_unknown_gdal_error)
+  unknown_gdal_error)
     # Causes GDAL knows but did not record: "unknown GDAL error" before.
     mkdir empty_dir
     head -c 3000 /dev/zero >binary.bin

@@ -9,6 +9,7 @@
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/refine_tiles.hpp"
 #include "terratin/triangulate/mesh_validation.hpp"
 
 #include <gtest/gtest.h>
@@ -129,10 +130,11 @@ TEST(RefineDem, RasterWindowsHoldTheGridsCells_AndGiveItsTiledTin) {
     EXPECT_THROW(static_cast<void>(cells.window(0, 1, grid.width, 1)), std::out_of_range);
 
     RefineOptions options = test::validatedOptions(0.5, 1);
-    options.tileSize = 50;
     options.maxHole = 3;
-    const RefineResult whole = refine(grid, options);
-    const RefineResult windows = refineTiles(cells, options);
+    TileOptions tiles;
+    tiles.tileSize = 50;
+    const RefineResult whole = refineTiles(grid, options, tiles);
+    const RefineResult windows = refineTiles(cells, options, tiles);
     EXPECT_EQ(windows.mesh.vertices, whole.mesh.vertices);
     EXPECT_EQ(windows.mesh.triangles, whole.mesh.triangles);
     EXPECT_EQ(windows.mesh.neighbours, whole.mesh.neighbours);

@@ -3,7 +3,7 @@
 #include "cancel_signals.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/refine/tile_handout.hpp"
+#include "terratin/tile/tile_handout.hpp"
 
 #include <mpi.h>
 

@@ -19,7 +19,7 @@
 // its temporaries, prints why, and exits without MPI_Finalize; the other ranks keep waiting for
 // rank 0, so that no exit of theirs brings mpirun's SIGKILL first, and are ended by mpirun.
 
-#include "terratin/refine/tile_distribution.hpp"
+#include "terratin/tile/tile_distribution.hpp"
 
 #include <string>
 #include <vector>

@@ -208,7 +208,8 @@ std::vector<BuildOptionSpec> makeTable() {
              if (cells < 2 || cells > kMaxTileSize)
                  refuse(n + " must be 2 to " + std::to_string(kMaxTileSize) + " cells (got " + t +
                         ")");
-             refineOf(o).tileSize = cells;
+             refineOf(o); // tiles are a DEM's build, simplified or at full resolution
+             o.tileSize = cells;
          }},
         {"memory_limit", "memory-limit", 0, Kind::Text, false, "SIZE", "",
          "build a DEM's TIN in tiles within SIZE of memory (2G, 512M: K M G T are powers of "

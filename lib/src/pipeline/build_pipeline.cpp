@@ -38,19 +38,14 @@ io::TinFormat outputFormat(const BuildOptions& options) {
     return io::tinFormatFromPath(options.output);
 }
 
-// Tiles without a maximum error or a limit are full resolution: every valid cell a vertex.
-RefineOptions withEveryCellTiles(RefineOptions refine) {
-    if (refine.tileSize > 0 && !refine.maxError && !refine.maxPoints && !refine.maxTriangles)
-        refine.everyCell = true;
-    return refine;
-}
-
 } // namespace
 
 void checkBuildOptions(const BuildOptions& options) {
     checkTriangulationOptions(options.triangulation);
     if (options.refine)
-        checkRefineOptions(withEveryCellTiles(*options.refine));
+        checkRefineOptions(*options.refine);
+    if (options.refine && options.tileSize > 0)
+        checkTileOptions(*options.refine, detail::tileOptionsOf(options));
     if (options.keepGeographic && !options.targetSrs.empty())
         throw InvalidInputError(markOption("keep_geographic") + " and " + markOption("t_srs") +
                                 " contradict each other");
@@ -66,7 +61,7 @@ void checkBuildOptions(const BuildOptions& options) {
     if (options.refine)
         detail::checkDemOnlyOptions(options);
     const bool tilesDir = !options.tilesDir.empty();
-    if (tilesDir && !options.memoryLimit && (!options.refine || options.refine->tileSize == 0))
+    if (tilesDir && !options.memoryLimit && options.tileSize == 0)
         throw InvalidInputError("Build: " + markOption("tiles_dir") + " writes tiles: give " +
                                 markOption("tile_size") + " or " + markOption("memory_limit"));
     if (!options.format && options.tilesDir.empty() && options.output.empty())
@@ -79,20 +74,13 @@ void checkBuildOptions(const BuildOptions& options) {
 
 namespace {
 
-// --memory-limit without --tile-size sizes the tiles, and tiles without a maximum error or a
-// limit are full resolution. Empty when there is nothing to plan.
+// --memory-limit alone builds a DEM in tiles at full resolution: a DEM's build with no
+// simplification. Empty when there is nothing to plan.
 std::optional<BuildOptions> planTiles(const BuildOptions& options) {
-    RefineOptions refine = options.refine.value_or(RefineOptions{});
-    const bool sized = options.memoryLimit && refine.tileSize == 0;
-    if (sized)
-        refine.tileSize =
-            detail::memoryBudget(*options.memoryLimit, refine.fillHoles ? 0 : refine.maxHole, 0)
-                .tileSize;
-    refine = withEveryCellTiles(refine);
-    if (!sized && (!options.refine || refine.everyCell == options.refine->everyCell))
+    if (!options.memoryLimit || options.refine)
         return std::nullopt;
     BuildOptions planned = options;
-    planned.refine = refine;
+    planned.refine.emplace(); // the tiles at full resolution, each sized in buildTiledTin
     return planned;
 }
 
@@ -102,7 +90,7 @@ BuildReport runBuildStages(const BuildOptions& options, const ProgressCallback& 
     detail::BuildRun run(options, outputFormat(options), progress);
     if (options.tilesDir.empty())
         io::checkTinOutput(options.output, run.writeOptions()); // refused now, not after reading
-    if (options.tileDistribution != nullptr && (!options.refine || options.refine->tileSize == 0))
+    if (options.tileDistribution != nullptr && !options.memoryLimit && options.tileSize == 0)
         throw InvalidInputError("Build: several processes share the work only by tiles: give " +
                                 markOption("tile_size") + " or " + markOption("memory_limit"));
     return options.refine ? detail::buildRefinedTin(run) : detail::buildPointTin(run);

@@ -8,7 +8,8 @@
 #include "terratin/io/height_grid_reader.hpp"
 #include "terratin/io/input_reader.hpp"
 #include "terratin/pipeline/build_option_table.hpp"
-#include "terratin/refine/tile_distribution.hpp"
+#include "terratin/tile/refine_tiles.hpp"
+#include "terratin/tile/tile_distribution.hpp"
 #include "terratin/triangulate/mesh_filter.hpp"
 #include "tile_files.hpp"
 
@@ -26,7 +27,7 @@ namespace {
 std::string demOnlyWork(const BuildOptions& options) {
     if (options.memoryLimit)
         return "Tiling (" + markOption("memory_limit") + ")";
-    if (options.refine && options.refine->tileSize > 0)
+    if (options.tileSize > 0)
         return "Tiling (" + markOption("tile_size") + ")";
     return "Simplification (" + markOption("max_error") + "...)";
 }
@@ -129,35 +130,31 @@ void noticeHeldIndex(const StreamedTin& tin, std::uint64_t writerBytes, BuildRun
 
 // Where the tiles go as they come (a directory of tiles, or one file streamed); none when
 // they are joined into one TIN (or this process only refines what it is handed).
-std::unique_ptr<TinSink> tileSink(BuildRun& run, const HeightGrid& extent,
-                                  const RefineOptions& refineOptions, bool coordinates) {
+std::unique_ptr<TinSink> tileSink(BuildRun& run, const HeightGrid& extent, const TileOptions& tiles,
+                                  bool coordinates) {
     const BuildOptions& options = run.options();
     if (!coordinates)
         return nullptr;
     if (!options.tilesDir.empty())
-        return std::make_unique<TileFiles>(options.tilesDir, extent, refineOptions.tileSize,
-                                           run.writeOptions(), refineOptions.cellPositions);
+        return std::make_unique<TileFiles>(options.tilesDir, extent, tiles.tileSize,
+                                           run.writeOptions(), tiles.cellPositions);
     if (options.memoryLimit)
         return std::make_unique<StreamedTin>(options.output, run.writeOptions(), extent.width,
-                                             extent.height, refineOptions.tileSize,
+                                             extent.height, tiles.tileSize,
                                              markOption("memory_limit"));
     return nullptr;
 }
 
-// --memory-limit: the tile size within the budget (sized again where cells move, as they
-// take more memory a cell), the GDAL cache capped, and a notice.
-MemoryBudget planMemory(BuildRun& run, RefineOptions& refineOptions, const RefineCrs& crs,
-                        bool coordinates) {
+// --memory-limit: the tile size within the budget, unless --tile-size gave one (sized once the
+// CRS is known: cells that move take more memory a cell), the GDAL cache capped, and a notice.
+MemoryBudget planMemory(BuildRun& run, const RefineOptions& refineOptions, TileOptions& tiles,
+                        const RefineCrs& crs, bool coordinates) {
     const BuildOptions& options = run.options();
     const std::size_t margin = refineOptions.fillHoles ? 0 : refineOptions.maxHole;
-    // planTiles sized the tiles before the CRS was known.
-    if (crs.movesCells() &&
-        refineOptions.tileSize == memoryBudget(*options.memoryLimit, margin, 0).tileSize)
-        refineOptions.tileSize = 0;
     MemoryBudget budget =
-        memoryBudget(*options.memoryLimit, margin, refineOptions.tileSize, crs.movesCells());
-    refineOptions.tileSize = budget.tileSize;
-    refineOptions.earlyTileBytes = budget.tileBytes;
+        memoryBudget(*options.memoryLimit, margin, options.tileSize, crs.movesCells());
+    tiles.tileSize = budget.tileSize;
+    tiles.earlyTileBytes = budget.tileBytes;
     if (coordinates)
         run.notify("tiles of " + std::to_string(budget.tileSize) + " cells a side within " +
                    markOption("memory_limit"));
@@ -182,11 +179,11 @@ BuildReport buildTiledTin(BuildRun& run) {
 
     // Reading is part of the refinement: each tile reads its own cells.
     const Stopwatch refineTime;
-    RefineOptions refineOptions = refineOptionsOf(options);
+    const RefineOptions refineOptions = refineOptionsOf(options);
+    TileOptions tiles = tileOptionsOf(options);
     if (crs.movesCells()) {
         // A geographic DEM is refined in its UTM zone, each tile at its cells' positions.
-        refineOptions.cellPositions = [source = crs.source,
-                                       target = crs.target](const HeightGrid& window) {
+        tiles.cellPositions = [source = crs.source, target = crs.target](const HeightGrid& window) {
             return crs::projectCellCentres(window, source, target);
         };
         report.reprojected = true;
@@ -196,17 +193,17 @@ BuildReport buildTiledTin(BuildRun& run) {
     std::optional<MemoryBudget> budget;
     std::optional<GdalCacheCap> gdalCache;
     if (options.memoryLimit) {
-        budget = planMemory(run, refineOptions, crs, coordinates);
+        budget = planMemory(run, refineOptions, tiles, crs, coordinates);
         gdalCache.emplace(budget->gdalCacheBytes);
     }
     run.writeOptions().crsWkt = crs.target;
-    const std::unique_ptr<TinSink> sink = tileSink(run, extent, refineOptions, coordinates);
+    const std::unique_ptr<TinSink> sink = tileSink(run, extent, tiles, coordinates);
     if (sink)
-        refineOptions.tileSink = [&](std::size_t tile, TinMesh tin) {
+        tiles.tileSink = [&](std::size_t tile, TinMesh tin) {
             run.deliver(*sink, tile, std::move(tin), gridCells(extent.width));
         };
     RefineResult result =
-        refineTiles(cells, refineOptions, run.phase(0.0, kReadShare + kTriangulateShare));
+        refineTiles(cells, refineOptions, tiles, run.phase(0.0, kReadShare + kTriangulateShare));
     if (!coordinates) {
         report.servedTiles = true;
         return report;
@@ -262,12 +259,21 @@ PreparedConstraints prepareConstraints(std::future<ConstraintLayers>& layers, He
 }
 
 } // namespace
+TileOptions tileOptionsOf(const BuildOptions& options) {
+    TileOptions tiles;
+    tiles.tileSize = options.tileSize;
+    const RefineOptions& refine = *options.refine;
+    tiles.everyCell = !refine.maxError && !refine.maxPoints && !refine.maxTriangles;
+    tiles.distribution = options.tileDistribution;
+    return tiles;
+}
+
 
 void checkDemOnlyOptions(const BuildOptions& options) {
     if (options.zFactor != 1.0)
         throw InvalidInputError(demOnlyWork(options) + " does not combine with " +
                                 markOption("z_factor") + "; scale the DEM first (gdal_calc)");
-    const bool tiled = options.memoryLimit || options.refine->tileSize > 0;
+    const bool tiled = options.memoryLimit || options.tileSize > 0;
     if (tiled && hasConstraints(options))
         throw InvalidInputError(demOnlyWork(options) +
                                 " does not combine with breaklines, clip, erase or replace "
@@ -277,7 +283,7 @@ void checkDemOnlyOptions(const BuildOptions& options) {
 BuildReport buildRefinedTin(BuildRun& run) {
     const BuildOptions& options = run.options();
     BuildReport& report = run.report();
-    if (options.refine->tileSize > 0)
+    if (options.memoryLimit || options.tileSize > 0)
         return buildTiledTin(run);
     checkOneRasterInput(options);
     // The constraint layers are read while the DEM is.

@@ -1,7 +1,7 @@
 #include "memory_budget.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/refine/refine.hpp"
+#include "terratin/tile/refine_tiles.hpp"
 
 #include <gdal.h>
 

@@ -6,10 +6,7 @@
 #include "greedy_refiner.hpp"
 #include "located_check.hpp"
 
-#include "../tile/tile_refine.hpp"
-
 #include "terratin/error.hpp"
-#include "terratin/refine/cell_source.hpp"
 #include "terratin/triangulate/mesh_filter.hpp"
 
 #include <algorithm>
@@ -36,6 +33,18 @@ double lap(Clock::time_point& start) {
 void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
                 const RefineOptions& options) {
     checkRefineOptions(options);
+    checkRefineGrid(grid);
+    if (!positions.empty() && positions.size() != grid.cellCount())
+        throw InvalidInputError("Refiner: " + std::to_string(positions.size()) + " positions for " +
+                                std::to_string(grid.cellCount()) + " cells");
+    for (const Point2& p : positions)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y))
+            throw InvalidInputError("Refiner: a cell position is not finite");
+}
+
+} // namespace
+
+void checkRefineGrid(const HeightGrid& grid) {
     if (grid.width <= 0 || grid.height <= 0)
         throw InvalidInputError("Refiner: the grid is empty");
     if (grid.z.size() != grid.cellCount())
@@ -65,9 +74,6 @@ void checkInput(const HeightGrid& grid, std::span<const Point2> positions,
 RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                       const RefineOptions& options, const ProgressCallback& progress) {
     checkInput(grid, positions, options);
-    if (options.tileSize > 0)
-        throw InvalidInputError("Refiner: tiles need the grid's own cell centres (a "
-                                "geographic or reprojected DEM: warp it first, gdalwarp)");
     RefineResult result;
     Clock::time_point phase = Clock::now();
     const unsigned threads = options.threads != 0
@@ -156,32 +162,6 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     return result;
 }
 
-void checkTileOptions(const RefineOptions& options) {
-    if (options.everyCell && options.tileSize == 0)
-        throw InvalidInputError("Refiner: every cell a vertex is full resolution in tiles: give "
-                                "a tile size (without tiles, triangulate the cells)");
-    if (options.tileSize == 0)
-        return;
-    if (options.tileSize < 2 || options.tileSize > kMaxTileSize)
-        throw InvalidInputError("Refiner: the tile size must be 2 to " +
-                                std::to_string(kMaxTileSize) + " cells (got " +
-                                std::to_string(options.tileSize) + ")");
-    if (options.everyCell && (options.maxError || options.maxPoints || options.maxTriangles))
-        throw InvalidInputError("Refiner: tiles with every cell a vertex take no maximum error "
-                                "and no point or triangle limit");
-    if (!options.maxError && !options.everyCell)
-        throw InvalidInputError("Refiner: tiles need a maximum error, which decides the "
-                                "vertices of their borders (with a point or triangle limit "
-                                "too), or every cell a vertex");
-    if (options.spareVertices > 0)
-        throw InvalidInputError("Refiner: tiles leave no room for more vertices");
-}
-
-void checkDistribution(const RefineOptions& options) {
-    if (options.distribution != nullptr && options.tileSize == 0)
-        throw InvalidInputError("Refiner: processes share tiles: give a tile size");
-}
-
 } // namespace
 
 void checkRefineOptions(const RefineOptions& options) {
@@ -201,8 +181,6 @@ void checkRefineOptions(const RefineOptions& options) {
     if (options.threads > kMaxThreads)
         throw InvalidInputError("Refiner: the thread count must be 0 (all) to " +
                                 std::to_string(kMaxThreads) + got(options.threads));
-    checkTileOptions(options);
-    checkDistribution(options);
 }
 
 const char* toString(RefineStop stop) {
@@ -237,11 +215,6 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
     // left unchecked).
     // The path for reprojected grids locates every cell exactly at its position, so the
     // rotated grid takes it with the centres as positions (16 bytes per cell).
-    if (options.tileSize > 0) {
-        checkInput(grid, {}, options);
-        GridCells cells(grid);
-        return refineTiles(cells, options, progress);
-    }
     const std::array<double, 6>& c = grid.geoTransform;
     if ((c[2] != 0.0 || c[4] != 0.0) && grid.width > 0 && grid.height > 0 &&
         static_cast<std::uint64_t>(grid.cellCount()) <= kMaxRefineCells) {
@@ -252,20 +225,6 @@ RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
         return refineAt(grid, centres, options, progress);
     }
     return refineAt(grid, {}, options, progress);
-}
-
-RefineResult refineTiles(CellSource& cells, const RefineOptions& options,
-                         const ProgressCallback& progress) {
-    checkRefineOptions(options);
-    if (options.tileSize == 0)
-        throw InvalidInputError("Refiner: refineTiles needs a tile size");
-    if (cells.width() <= 0 || cells.height() <= 0)
-        throw InvalidInputError("Refiner: the grid is empty");
-    if (static_cast<std::uint64_t>(cells.width()) * static_cast<std::uint64_t>(cells.height()) >
-        std::uint64_t{0xFFFFFFFFU})
-        throw InvalidInputError("Refiner: tiles number the cells of at most 2^32 - 1 cells; "
-                                "split the raster");
-    return detail::refineInTiles(cells, options, progress);
 }
 
 RefineResult refine(const HeightGrid& grid, std::span<const Point2> positions,

@@ -237,7 +237,7 @@ double sideTolerance(std::span<const float> side, double maxError) {
 }
 
 TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
-                             const RefineOptions& options, RoundWorkers& workers,
+                             const TiledRefineOptions& options, RoundWorkers& workers,
                              const ProgressCallback& progress) {
     if (options.cellPositions)
         return refineProjectedTile(cells, tiles, tile, options, workers, progress);

@@ -6,10 +6,11 @@
 /// measured.
 
 #include "tile_grid.hpp"
+#include "tiled_refine_options.hpp"
 #include "tile_refinement.hpp"
 
 #include "terratin/progress.hpp"
-#include "terratin/refine/cell_source.hpp"
+#include "terratin/tile/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
 
 #include <cstdint>
@@ -37,7 +38,7 @@ std::vector<std::uint32_t> keptSideCells(const HeightGrid& tile, double maxError
 /// below what the tile's hull and sides keep. With options.cellPositions, refineProjectedTile
 /// (projected_tile.hpp) refines it.
 TileRefinement refineOneTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
-                             const RefineOptions& options, RoundWorkers& workers,
+                             const TiledRefineOptions& options, RoundWorkers& workers,
                              const ProgressCallback& progress);
 
 } // namespace terratin::detail

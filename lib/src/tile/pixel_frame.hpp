@@ -10,7 +10,7 @@
 /// exactly after the mapping. Within a tile the TIN is exactly Delaunay in the pixel frame,
 /// which for square pixels is the CRS's Delaunay TIN up to the ties the rounding breaks.
 
-#include "terratin/refine/cell_source.hpp"
+#include "terratin/tile/cell_source.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 #include "tile_grid.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// One tile of a tiled refinement whose cells lie at projected positions (RefineOptions::
+/// One tile of a tiled refinement whose cells lie at projected positions (TileOptions::
 /// cellPositions: a geographic DEM refined in its UTM zone). The projection bends the tile's
 /// sides, so the tiles no longer meet along straight hull edges: each tile is refined at its
 /// cells' positions, its boundary, a ring through its sides' vertices (chosen from each side's
@@ -10,10 +10,11 @@
 /// constrained Delaunay TIN. docs/algorithms.md, "Tiles at projected positions", has the why.
 
 #include "tile_grid.hpp"
+#include "tiled_refine_options.hpp"
 #include "tile_refinement.hpp"
 
 #include "terratin/progress.hpp"
-#include "terratin/refine/cell_source.hpp"
+#include "terratin/tile/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
 
 #include <cstddef>
@@ -27,14 +28,14 @@ class RoundWorkers;
 /// The cells of tile `tile`'s four sides kept as vertices, as indices of the tile's cells (a
 /// corner once), with options.cellPositions; every valid side cell with options.everyCell.
 std::vector<std::uint32_t> keptProjectedSideCells(CellSource& cells, const TileGrid& tiles,
-                                                  std::size_t tile, const RefineOptions& options);
+                                                  std::size_t tile, const TiledRefineOptions& options);
 
 /// refineOneTile for a grid whose cells lie at options.cellPositions (set). The figures are
 /// those of refineOneTile; the tile's TIN is a constrained Delaunay TIN at the positions, its
 /// vertices valid cells (sourceIndex the tile's cell index). Throws InvalidInputError as
 /// refineOneTile does, and where a side's gap of no data bends too far (keptProjectedSideCells).
 TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std::size_t tile,
-                                   const RefineOptions& options, RoundWorkers& workers,
+                                   const TiledRefineOptions& options, RoundWorkers& workers,
                                    const ProgressCallback& progress);
 
 } // namespace terratin::detail

@@ -9,7 +9,7 @@
 
 #include "../refine/cell_flags.hpp"
 
-#include "terratin/refine/cell_source.hpp"
+#include "terratin/tile/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "terratin/refine/tile_handout.hpp"
+#include "terratin/tile/tile_handout.hpp"
 
 #include "terratin/error.hpp"
 

@@ -10,7 +10,7 @@
 #include "../parallel/round_workers.hpp"
 
 #include "terratin/error.hpp"
-#include "terratin/refine/tile_distribution.hpp"
+#include "terratin/tile/tile_distribution.hpp"
 
 #include <algorithm>
 #include <array>
@@ -47,7 +47,7 @@ void addFigures(const TileRefinement& tile, RefineResult& result) {
 struct TileJob {
     CellSource* cells;
     TileGrid tiles;
-    RefineOptions options;
+    TiledRefineOptions options;
     /// Each tile's share of options.maxPoints and maxTriangles (empty without them).
     std::vector<std::size_t> pointShares;
     std::vector<std::size_t> triangleShares;
@@ -55,8 +55,8 @@ struct TileJob {
     std::optional<std::array<double, 6>> world;
 
     [[nodiscard]] TilePlace place(std::size_t tile) const { return tiles.placeOf(tile); }
-    [[nodiscard]] RefineOptions optionsOf(std::size_t tile) const {
-        RefineOptions tileOptions = options;
+    [[nodiscard]] TiledRefineOptions optionsOf(std::size_t tile) const {
+        TiledRefineOptions tileOptions = options;
         if (!pointShares.empty())
             tileOptions.maxPoints = pointShares[tile];
         if (!triangleShares.empty())
@@ -77,7 +77,7 @@ struct TileTally {
 
 /// Every tile's tally, reading a tile's window at a time.
 std::vector<TileTally> tallyTiles(CellSource& cells, const TileGrid& tiles,
-                                  const RefineOptions& options) {
+                                  const TiledRefineOptions& options) {
     std::vector<TileTally> tallies(tiles.tileCount());
     for (std::size_t tile = 0; tile < tallies.size(); ++tile) {
         const TilePlace place = tiles.placeOf(tile);
@@ -267,7 +267,7 @@ void gatherEveryTile(const TileJob& job, TileDistribution& distribution, TileJoi
 
 } // namespace
 
-RefineResult refineInTiles(CellSource& cells, const RefineOptions& options,
+RefineResult refineInTiles(CellSource& cells, const TiledRefineOptions& options,
                            const ProgressCallback& progress) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();

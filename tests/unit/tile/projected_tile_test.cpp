@@ -1,6 +1,6 @@
 // Tiles at projected positions (projected_tile.hpp, a geographic DEM refined in its UTM zone):
 // the joined TIN is one conforming triangulation at the cells' positions, each tile a
-// constrained Delaunay TIN (RefineOptions::validate), every valid cell within the bound or
+// constrained Delaunay TIN (Tiled::validate), every valid cell within the bound or
 // reported uncovered (checked by a scan that shares no code with the refiner), and the TIN does
 // not depend on the thread count. The maps bend rows into arcs far more than any projection.
 
@@ -8,7 +8,10 @@
 #include "conforming_tin.hpp"
 #include "mesh_invariants.hpp"
 
+#include "tiled_refine_options.hpp"
+
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/refine_tiles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +23,15 @@
 
 namespace terratin {
 namespace {
+
+// The refiner's options and the tiles' together, as each test states them (options.maxError,
+// options.tileSize), refined by refineTiles.
+using Tiled = detail::TiledRefineOptions;
+
+RefineResult refine(const HeightGrid& grid, const Tiled& options,
+                    const ProgressCallback& progress = {}) {
+    return refineTiles(grid, options, options, progress);
+}
 
 using test::expectConforming;
 using test::xy;
@@ -41,8 +53,8 @@ std::vector<Point2> positionsOf(const HeightGrid& window, bool mirrored) {
     return positions;
 }
 
-RefineOptions tiledAt(double maxError, std::size_t tileSize, bool mirrored, unsigned threads = 1) {
-    RefineOptions options = test::validatedOptions(maxError, threads);
+Tiled tiledAt(double maxError, std::size_t tileSize, bool mirrored, unsigned threads = 1) {
+    Tiled options(test::validatedOptions(maxError, threads), {});
     options.tileSize = tileSize;
     options.cellPositions = [mirrored](const HeightGrid& window) {
         return positionsOf(window, mirrored);
@@ -50,8 +62,8 @@ RefineOptions tiledAt(double maxError, std::size_t tileSize, bool mirrored, unsi
     return options;
 }
 
-RefineOptions everyCellAt(std::size_t tileSize, bool mirrored) {
-    RefineOptions options = tiledAt(0.0, tileSize, mirrored);
+Tiled everyCellAt(std::size_t tileSize, bool mirrored) {
+    Tiled options = tiledAt(0.0, tileSize, mirrored);
     options.maxError.reset();
     options.everyCell = true;
     return options;
@@ -153,7 +165,7 @@ TEST(TilesAtPositions, EveryCell_EachValidCellAVertex) {
 
 TEST(TilesAtPositions, APointLimitSharedAmongTheTiles_HoldsForTheWhole) {
     const HeightGrid grid = test::roughTerrain(90, 70, 5);
-    RefineOptions options = tiledAt(0.1, 30, false);
+    Tiled options = tiledAt(0.1, 30, false);
     options.maxPoints = 1500;
     const RefineResult result = refine(grid, options);
     EXPECT_EQ(result.stop, RefineStop::PointLimit);

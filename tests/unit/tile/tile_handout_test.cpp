@@ -3,7 +3,7 @@
 // more than the bound; a pause always ends, since the tile in turn is always out in work.
 
 #include "terratin/error.hpp"
-#include "terratin/refine/tile_handout.hpp"
+#include "terratin/tile/tile_handout.hpp"
 
 #include <gtest/gtest.h>
 

@@ -14,8 +14,11 @@
 
 #include "terratin/error.hpp"
 #include "terratin/geometry/predicates.hpp"
+#include "tiled_refine_options.hpp"
+
 #include "terratin/refine/refine.hpp"
-#include "terratin/refine/tile_distribution.hpp"
+#include "terratin/tile/refine_tiles.hpp"
+#include "terratin/tile/tile_distribution.hpp"
 
 #include <gtest/gtest.h>
 
@@ -37,6 +40,15 @@
 namespace terratin {
 namespace {
 
+// The refiner's options and the tiles' together, as each test states them (options.maxError,
+// options.tileSize), refined by refineTiles.
+using Tiled = detail::TiledRefineOptions;
+
+RefineResult refine(const HeightGrid& grid, const Tiled& options,
+                    const ProgressCallback& progress = {}) {
+    return refineTiles(grid, options, options, progress);
+}
+
 using test::areaSum;
 using test::EdgeCount;
 using test::expectConforming;
@@ -44,8 +56,8 @@ using test::xy;
 
 constexpr double kNoData = std::numeric_limits<double>::quiet_NaN();
 
-RefineOptions tiled(double maxError, std::size_t tileSize, unsigned threads = 1) {
-    RefineOptions options = test::validatedOptions(maxError, threads);
+Tiled tiled(double maxError, std::size_t tileSize, unsigned threads = 1) {
+    Tiled options(test::validatedOptions(maxError, threads), {});
     options.tileSize = tileSize;
     return options;
 }
@@ -180,7 +192,7 @@ TEST(TiledRefine, HolesAcrossSides_DecidedFromTheTilesMarginsAsFromTheWholeGrid)
         return nodata.count({row, col}) != 0 ? kNoData
                                              : 20.0 + 3.0 * std::sin(row * 0.4) + 0.05 * col * row;
     });
-    RefineOptions options = tiled(0.2, 20);
+    Tiled options = tiled(0.2, 20);
     options.maxHole = 6;
     const RefineResult result = refine(grid, options);
     const std::vector<std::uint8_t> open = openHoleCells(grid, options);
@@ -234,7 +246,7 @@ TEST(TiledRefine, TheUncoveredCellsReported_AreTheCellsNoTileCovers) {
                          std::to_string(seed));
             const HeightGrid grid = test::shoreWithPeninsulas(seed);
             for (const bool everyCell : {false, true}) {
-                RefineOptions options = tiled(1.0, tileSize);
+                Tiled options = tiled(1.0, tileSize);
                 if (everyCell) {
                     options.maxError.reset();
                     options.everyCell = true;
@@ -320,11 +332,11 @@ TEST(TiledRefine, TilesRefinedElsewhere_OutOfOrder_GiveTheOneProcessTin) {
     std::vector<std::thread> threads;
     for (std::size_t k = 0; k < others.size(); ++k)
         threads.emplace_back([&, k] {
-            RefineOptions options = tiled(1.0, 20, 1);
+            Tiled options = tiled(1.0, 20, 1);
             options.distribution = &others[k];
             served[k] = refine(grid, options);
         });
-    RefineOptions options = tiled(1.0, 20, 1);
+    Tiled options = tiled(1.0, 20, 1);
     options.distribution = &coordinator;
     const RefineResult joined = refine(grid, options);
     for (std::thread& thread : threads)
@@ -346,7 +358,7 @@ TEST(TiledRefine, ASinkGetsEveryTileInOrder_TheJoinedTinsTriangles) {
     const RefineResult joined = refine(grid, tiled(1.0, 20));
     std::vector<std::size_t> order;
     std::vector<std::array<Point2, 3>> triangles;
-    RefineOptions options = tiled(1.0, 20);
+    Tiled options = tiled(1.0, 20);
     options.tileSink = [&](std::size_t tile, TinMesh tin) {
         order.push_back(tile);
         for (std::size_t v = 0; v < tin.vertexCount(); ++v) // the grid's cells, not the tile's
@@ -408,7 +420,7 @@ TEST(TiledRefine, APointOrTriangleLimit_SharedAmongTheTiles_HoldsForTheWhole) {
     const RefineResult free = refine(grid, tiled(2.0, 40));
     for (const bool points : {true, false}) {
         SCOPED_TRACE(points ? "point limit" : "triangle limit");
-        RefineOptions options = tiled(2.0, 40);
+        Tiled options = tiled(2.0, 40);
         const std::size_t limit =
             (points ? free.mesh.vertexCount() : free.mesh.triangleCount()) * 2 / 3;
         if (points)
@@ -427,13 +439,13 @@ TEST(TiledRefine, APointOrTriangleLimit_SharedAmongTheTiles_HoldsForTheWhole) {
         EXPECT_GT(check.maxError, 2.0); // stopped by the limit before the error
     }
     // A share below what a tile's hull and sides keep: refused, not passed.
-    RefineOptions tooFew = tiled(2.0, 40);
+    Tiled tooFew = tiled(2.0, 40);
     tooFew.maxPoints = 40;
     EXPECT_THROW(refine(grid, tooFew), InvalidInputError);
 }
 
-RefineOptions everyCell(std::size_t tileSize, unsigned threads = 1) {
-    RefineOptions options = tiled(0.0, tileSize, threads);
+Tiled everyCell(std::size_t tileSize, unsigned threads = 1) {
+    Tiled options = tiled(0.0, tileSize, threads);
     options.maxError.reset();
     options.everyCell = true;
     return options;
@@ -543,24 +555,22 @@ TEST(TiledRefine, ARotatedGrid_InTiles_TheTinOfItsPixelFrame_AtTheCellsCentres) 
 TEST(TiledRefine, RefusesWhatTilesCannotDo) {
     const HeightGrid grid = test::roughTerrain(30, 30, 3);
     EXPECT_THROW(refine(grid, tiled(1.0, 1)), InvalidInputError);
-    RefineOptions noError = tiled(1.0, 16);
+    Tiled noError = tiled(1.0, 16);
     noError.maxError.reset();
     noError.maxPoints = 100;
     EXPECT_THROW(refine(grid, noError), InvalidInputError);
-    std::vector<Point2> positions(grid.cellCount());
-    for (std::size_t cell = 0; cell < positions.size(); ++cell)
-        positions[cell] = grid.cellCentre(static_cast<std::uint64_t>(cell));
-    EXPECT_THROW(refine(grid, positions, tiled(1.0, 16)), InvalidInputError);
+    // Tiles with the cells at positions of the caller's own take TileOptions::cellPositions:
+    // refine() at positions has no tile options to be given.
     ThreadTiles shared;
     ThreadTiles::Side coordinator(shared, true);
-    RefineOptions untiled = tiled(1.0, 16);
+    Tiled untiled = tiled(1.0, 16);
     untiled.tileSize = 0;
     untiled.distribution = &coordinator;
     EXPECT_THROW(refine(grid, untiled), InvalidInputError);
-    RefineOptions everyCellUntiled = everyCell(16);
+    Tiled everyCellUntiled = everyCell(16);
     everyCellUntiled.tileSize = 0;
     EXPECT_THROW(refine(grid, everyCellUntiled), InvalidInputError);
-    RefineOptions everyCellWithError = everyCell(16);
+    Tiled everyCellWithError = everyCell(16);
     everyCellWithError.maxError = 1.0;
     EXPECT_THROW(refine(grid, everyCellWithError), InvalidInputError);
 }

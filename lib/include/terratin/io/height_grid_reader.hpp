@@ -7,7 +7,7 @@
 #include "terratin/geometry/height_grid.hpp"
 #include "terratin/io/raster_reader.hpp"
 #include "terratin/progress.hpp"
-#include "terratin/refine/cell_source.hpp"
+#include "terratin/tile/cell_source.hpp"
 
 #include <array>
 #include <cstdint>

@@ -8,6 +8,7 @@
 #include "terratin/pipeline/option_spelling.hpp"
 #include "terratin/progress.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/refine_tiles.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <cstdint>
@@ -42,10 +43,14 @@ struct BuildOptions {
     /// TIN as its own file, tile_ROW_COLUMN.EXT in `format` (default GeoPackage), and
     /// tiles.gpkg, the index of the tiles' footprints; the TIN is never joined.
     std::filesystem::path tilesDir;
-    /// Bytes of memory a tiled simplification stays under (--memory-limit): the tile
-    /// size follows from it unless refine->tileSize is given (refused when that size would
-    /// not fit), and `output` is written tile by tile, a GeoPackage or a PLY, the TIN never
-    /// held whole. Needs refine->maxError. With tileDistribution, each process's limit.
+    /// A DEM's TIN built in tiles of this many cells a side (--tile-size, TileOptions::tileSize,
+    /// tile/refine_tiles.hpp), simplified with refine->maxError, else at full resolution; 0:
+    /// the whole DEM at once, unless memoryLimit sizes the tiles.
+    std::size_t tileSize = 0;
+    /// Bytes of memory a tiled build stays under (--memory-limit): the tile size follows from
+    /// it unless tileSize is given (refused when that size would not fit), and `output` is
+    /// written tile by tile, the TIN never held whole. With tileDistribution, each process's
+    /// limit.
     std::optional<std::uint64_t> memoryLimit;
     /// Output format; when unset it follows the output's extension (.gpkg .shp .fgb .2dm .ply
     /// .obj .xml .landxml).
@@ -111,8 +116,8 @@ struct BuildOptions {
     /// optionName): the modules it calls name them by keyword (markOption), and runBuild names
     /// them this way on the way out; parseBuildOptions sets it to the spelling of its caller.
     OptionSpelling optionSpelling = OptionSpelling::Keyword;
-    /// Processes that share the tiles of a tiled simplification (RefineOptions::distribution:
-    /// terratin's MPI ranks); needs refine with a tile size. Only the coordinating process
+    /// Processes that share the tiles of a tiled build (TileOptions::distribution: terratin's
+    /// MPI ranks); needs tileSize or memoryLimit. Only the coordinating process
     /// writes; the others return a report with servedTiles set and write nothing.
     TileDistribution* tileDistribution = nullptr;
 

@@ -26,15 +26,9 @@
 
 namespace terratin {
 
-class CellSource;       // cell_source.hpp
-class TileDistribution; // tile_distribution.hpp
-
 /// Most cells a grid may have for refine(): vertex ids are 32-bit and the triangulation needs
 /// a few for itself. Also the largest point limit and hole size that mean anything.
 inline constexpr std::uint64_t kMaxRefineCells = (std::uint64_t{1} << 32U) - 5;
-
-/// Largest RefineOptions::tileSize: a tile's side fits the grid's int dimensions.
-inline constexpr std::size_t kMaxTileSize = (std::size_t{1} << 31U) - 2;
 
 /// How much to simplify. With no limit at all every valid cell becomes a vertex.
 /// checkRefineOptions states the ranges.
@@ -80,45 +74,6 @@ struct RefineOptions {
     /// Run validateDelaunay on the TIN before the triangles over holes are dropped and throw
     /// terratin::Error when it is not exactly Delaunay (with tiles: each tile's TIN).
     bool validate = false;
-    /// Refine in tiles of this many cell intervals along each axis, 2 to kMaxTileSize, that
-    /// share their border cells; 0 = the whole grid at once. The tiles' TINs join
-    /// without cracks: each border's vertices are chosen from its cells alone, within
-    /// maxError (docs/algorithms.md, "Tiles"), and each tile's TIN is exactly Delaunay, the
-    /// whole only within tiles; a rotated grid's tiles are Delaunay in its pixel frame and then
-    /// put at the cells' centres. Needs maxError (or everyCell) and a grid without positions
-    /// (cellPositions moves the cells of a tiled refinement);
-    /// takes no spareVertices. A point or triangle limit is shared among the tiles
-    /// in proportion to the valid cells each owns (counted in a first pass over the cells), so
-    /// the whole keeps to it; a tile whose share is below what its hull and sides keep within
-    /// maxError fails the run.
-    std::size_t tileSize = 0;
-    /// With tiles: full resolution, every valid cell a vertex. Each tile's cells are
-    /// triangulated at once (exactly Delaunay, triangulate()) instead of refined, its open holes
-    /// cut as a refined tile's; a side's cells are all vertices in both tiles, so the tiles join
-    /// without cracks. Takes no maxError, point or triangle limit.
-    bool everyCell = false;
-    /// With tiles: the processes that share them (terratin's MPI ranks; the caller's, alive for
-    /// the call); nullptr: this process refines every tile. The TIN is the same either way. In
-    /// a process that does not coordinate, refine() refines what it is handed and returns no
-    /// TIN.
-    TileDistribution* distribution = nullptr;
-    /// With a distribution: the bytes the coordinator may hold in tiles that came back before
-    /// their turn before it hands out no more (TileDistribution::gather; 0: no bound).
-    std::uint64_t earlyTileBytes = 0;
-    /// With tiles: where the cells of a window of the grid lie in the TIN's CRS, row-major
-    /// over the window (given as a grid with its shape, firstRow, firstColumn and geoTransform,
-    /// and no elevations), as refine()'s positions: a geographic DEM's cell centres projected to
-    /// its UTM zone. Windows overlap; a cell must get exactly the same position every time. Each
-    /// tile is then refined at its cells' positions and its TIN cut along a boundary through its
-    /// sides' vertices (docs/algorithms.md, "Tiles at projected positions"). Empty: the cells
-    /// lie at their centres.
-    std::function<std::vector<Point2>(const HeightGrid& window)> cellPositions;
-    /// With tiles: when set, receives each tile's TIN in tile order (a tile number, row-major
-    /// among the tiles, and its TIN with sourceIndex = the grid's cell index; tiles without a
-    /// triangle are skipped) instead of having them joined; the result then holds no TIN, only
-    /// the figures. A tile's TIN shares its side vertices with its neighbours' (equal
-    /// positions).
-    std::function<void(std::size_t tile, TinMesh tin)> tileSink;
 };
 
 /// Why refinement stopped.
@@ -208,15 +163,10 @@ void checkRefineOptions(const RefineOptions& options);
 RefineResult refine(const HeightGrid& grid, const RefineOptions& options,
                     const ProgressCallback& progress = {});
 
-/// refine() in tiles (options.tileSize > 0) over cells read a window at a time: the whole
-/// grid is never held, only one tile's cells with a margin of options.maxHole cells around them
-/// (none with fillHoles), which decides the tile's holes as the whole grid would, and the
-/// joined TIN. The same TIN as refine() of the whole grid with the same options. Same
-/// exceptions as refine(), and those of `cells`; InvalidInputError when the grid has 2^32 cells
-/// or more (the TIN's sourceIndex numbers them in 32 bits). Memory: the TIN, and per tile its
-/// cells with their margin (5 bytes a cell) and its refinement.
-RefineResult refineTiles(CellSource& cells, const RefineOptions& options,
-                         const ProgressCallback& progress = {});
+/// Throws InvalidInputError for a grid refine() cannot take: empty, elevations that do not
+/// match its cells, more than kMaxRefineCells cells, an infinite elevation (NaN is nodata).
+/// refine() and refineTiles (tile/refine_tiles.hpp) call it.
+void checkRefineGrid(const HeightGrid& grid);
 
 /// refine() with the TIN in other coordinates than the grid's: the vertex of cell c lies at
 /// `positions[c]` (x, y; one entry per cell, nodata cells included, row-major), typically the

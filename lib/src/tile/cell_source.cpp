@@ -1,4 +1,4 @@
-#include "terratin/refine/cell_source.hpp"
+#include "terratin/tile/cell_source.hpp"
 
 #include <algorithm>
 #include <cstddef>
