@@ -27,7 +27,7 @@ struct MemoryBudget {
 /// 0 with fillHoles). `tileSize` 0: the largest tiles that fit, up to kMaxTileSize; else that
 /// size, refused (InvalidInputError naming the least limit it needs) when it does not fit. A
 /// limit too small for tiles of kLeastTileSize is refused, naming the least limit. `cellsMove`:
-/// the tiles' cells lie at projected positions (RefineOptions::cellPositions), which takes more
+/// the tiles' cells lie at projected positions (TileOptions::cellPositions), which takes more
 /// a cell.
 MemoryBudget memoryBudget(std::uint64_t limitBytes, std::size_t marginCells, std::size_t tileSize,
                           bool cellsMove = false);

@@ -29,7 +29,7 @@ public:
     /// `extent`, cut in tiles of `tileSize`, may write can be written (an existing one only with
     /// writeOptions.overwrite), and makes the directory when it is missing. Throws IoError,
     /// InvalidInputError. `cellPositions`: where cells lie in the TIN's CRS when they move
-    /// (RefineOptions::cellPositions), for the footprints; empty: at their centres.
+    /// (TileOptions::cellPositions), for the footprints; empty: at their centres.
     TileFiles(std::filesystem::path directory, const HeightGrid& extent, std::size_t tileSize,
               io::TinWriteOptions writeOptions,
               std::function<std::vector<Point2>(const HeightGrid&)> cellPositions = {});
