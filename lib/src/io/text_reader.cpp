@@ -8,8 +8,8 @@
 
 #include "terratin/io/text_reader.hpp"
 
-#include "terratin/error.hpp"
 #include "../text.hpp"
+#include "terratin/error.hpp"
 
 #include <algorithm>
 #include <array>
@@ -22,6 +22,9 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace terratin::io {
 
@@ -77,6 +80,27 @@ bool parseNumber(std::string_view field, double& value) {
     if (error == std::errc::result_out_of_range && ptr == end)
         return parseUnderflow(field, value);
     return error == std::errc() && ptr == end && std::isfinite(value);
+}
+
+/// Whether a field reads as a number, finite or not (a header's names do not).
+bool looksNumeric(std::string_view field) {
+    double ignored = 0.0;
+    if (!field.empty() && field.front() == '+')
+        field.remove_prefix(1);
+    const char* end = field.data() + field.size();
+    const auto [ptr, error] = std::from_chars(field.data(), end, ignored);
+    return !field.empty() && ptr == end &&
+           (error == std::errc() || error == std::errc::result_out_of_range);
+}
+
+/// The column of the lower-case header `names` called `wanted`, case-insensitively.
+std::optional<std::size_t> findName(const std::vector<std::string>& names,
+                                    std::string_view wanted) {
+    const std::string key = lowercase(wanted);
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == key)
+            return i;
+    return std::nullopt;
 }
 
 /// Turns lines into points; configured by the first meaningful line.
@@ -158,122 +182,134 @@ private:
         return std::string(kStage) + ": '" + m_name + "' line " + std::to_string(number) + ": ";
     }
 
+    /// The first meaningful line: the delimiter (unless given), whether the line is a header,
+    /// and the columns of x, y and z.
     void configure(std::string_view text, std::uint64_t number) {
         m_configured = true;
-        if (!m_delimiter) {
-            if (text.find('|') != std::string_view::npos)
-                m_delimiter = '|';
-            else if (text.find(';') != std::string_view::npos)
-                m_delimiter = ';';
-            else if (text.find(',') != std::string_view::npos)
-                m_delimiter = ',';
-            else
-                m_delimiter = ' ';
-        }
-        std::vector<std::string_view> all;
-        // A line of n bytes has at most n + 1 fields.
-        const std::size_t limit = std::min(kMaxColumnNumber, text.size() + 1);
-        m_fields.resize(limit);
-        const std::size_t count = split(text, limit);
-        all.assign(m_fields.begin(), m_fields.begin() + static_cast<std::ptrdiff_t>(count));
-
-        // Column numbers given as numbers, names kept for a header lookup.
-        std::array<std::optional<std::size_t>, 3> byNumber;
-        bool namesGiven = false;
-        for (std::size_t i = 0; i < m_options.columns.size(); ++i) {
-            const std::string_view entry = trim(m_options.columns[i]);
-            if (entry.empty())
-                throw InvalidInputError(std::string(kStage) + ": empty entry in " + columnsName());
-            if (std::all_of(entry.begin(), entry.end(),
-                            [](char c) { return c >= '0' && c <= '9'; })) {
-                std::size_t value = 0;
-                const auto [ptr, error] =
-                    std::from_chars(entry.data(), entry.data() + entry.size(), value);
-                if (error != std::errc() || value == 0 || value > kMaxColumnNumber)
-                    throw InvalidInputError(std::string(kStage) + ": column '" +
-                                            std::string(entry) + "' in " + columnsName() +
-                                            ": columns are numbered from 1 to " +
-                                            std::to_string(kMaxColumnNumber));
-                byNumber[i] = value - 1;
-            } else {
-                namesGiven = true;
-            }
-        }
-
-        // A header: a named column was asked for, or none of the chosen columns of this line
-        // reads as a number (a line with some numbers is data, to be reported if bad).
-        const auto looksNumeric = [](std::string_view field) {
-            double ignored = 0.0;
-            if (!field.empty() && field.front() == '+')
-                field.remove_prefix(1);
-            const char* end = field.data() + field.size();
-            const auto [ptr, error] = std::from_chars(field.data(), end, ignored);
-            return !field.empty() && ptr == end &&
-                   (error == std::errc() || error == std::errc::result_out_of_range);
-        };
-        bool header = true;
-        for (std::size_t i = 0; i < 3; ++i) {
-            const std::size_t index = byNumber[i].value_or(i);
-            if (index < all.size() && looksNumeric(all[index]))
-                header = false;
-        }
-        if (namesGiven) {
-            if (std::all_of(all.begin(), all.end(), looksNumeric))
-                throw InvalidInputError(where(number) +
-                                        "no header line to find the columns named in " +
-                                        columnsName() + " (the first line is numbers)");
-            header = true;
-        }
-
+        if (!m_delimiter)
+            m_delimiter = guessDelimiter(text);
+        const std::vector<std::string_view> all = allFields(text);
+        const ColumnRequest request = requestedColumns();
+        const bool header = isHeader(all, request, number);
         std::vector<std::string> names;
         if (header) {
             m_headerSeen = true;
             for (const std::string_view field : all)
                 names.push_back(lowercase(field));
         }
-        const auto findName = [&](std::string_view wanted) -> std::optional<std::size_t> {
-            const std::string key = lowercase(wanted);
-            for (std::size_t i = 0; i < names.size(); ++i)
-                if (names[i] == key)
-                    return i;
-            return std::nullopt;
-        };
-
-        if (!m_options.columns.empty()) {
-            for (std::size_t i = 0; i < 3; ++i) {
-                if (byNumber[i]) {
-                    m_columns[i] = *byNumber[i];
-                    continue;
-                }
-                const std::string_view entry = trim(m_options.columns[i]);
-                if (!header)
-                    throw InvalidInputError(where(number) + "no header line to find column '" +
-                                            std::string(entry) + "' of " + columnsName() + " in");
-                const auto found = findName(entry);
-                if (!found)
-                    throw InvalidInputError(where(number) + "the header has no column '" +
-                                            std::string(entry) + "'");
-                m_columns[i] = *found;
-            }
-        } else {
-            m_columns = {0, 1, 2};
-            if (header) {
-                static constexpr std::array<std::array<std::string_view, 7>, 3> kNames{{
-                    {"x", "easting", "east", "lon", "long", "longitude", "e"},
-                    {"y", "northing", "north", "lat", "latitude", "n", "nord"},
-                    {"z", "elevation", "elev", "height", "alt", "altitude", "h"},
-                }};
-                std::array<std::optional<std::size_t>, 3> found;
-                for (std::size_t axis = 0; axis < 3; ++axis)
-                    for (const std::string_view candidate : kNames[axis])
-                        if (!found[axis])
-                            found[axis] = findName(candidate);
-                if (found[0] && found[1] && found[2])
-                    m_columns = {*found[0], *found[1], *found[2]};
-            }
-        }
+        if (!m_options.columns.empty())
+            m_columns = requestedIndices(request, names, header, number);
+        else
+            m_columns = header ? columnsNamed(names) : std::array<std::size_t, 3>{0, 1, 2};
         m_needed = std::max({m_columns[0], m_columns[1], m_columns[2]}) + 1;
         m_fields.resize(m_needed);
+    }
+
+    /// '|', ';' or ',' when the line holds one (in that order), else blanks.
+    static char guessDelimiter(std::string_view text) {
+        for (const char candidate : {'|', ';', ','})
+            if (text.find(candidate) != std::string_view::npos)
+                return candidate;
+        return ' ';
+    }
+
+    /// Every field of the line.
+    std::vector<std::string_view> allFields(std::string_view text) {
+        // A line of n bytes has at most n + 1 fields.
+        const std::size_t limit = std::min(kMaxColumnNumber, text.size() + 1);
+        m_fields.resize(limit);
+        const std::size_t count = split(text, limit);
+        return {m_fields.begin(), m_fields.begin() + static_cast<std::ptrdiff_t>(count)};
+    }
+
+    /// The columns --columns asks for: by number (from 0) where given as one, else by name.
+    struct ColumnRequest {
+        std::array<std::optional<std::size_t>, 3> byNumber;
+        bool namesGiven = false;
+    };
+
+    [[nodiscard]] ColumnRequest requestedColumns() const {
+        ColumnRequest request;
+        for (std::size_t i = 0; i < m_options.columns.size(); ++i) {
+            const std::string_view entry = trim(m_options.columns[i]);
+            if (entry.empty())
+                throw InvalidInputError(std::string(kStage) + ": empty entry in " + columnsName());
+            if (!std::all_of(entry.begin(), entry.end(),
+                             [](char c) { return c >= '0' && c <= '9'; })) {
+                request.namesGiven = true;
+                continue;
+            }
+            std::size_t value = 0;
+            const auto [ptr, error] =
+                std::from_chars(entry.data(), entry.data() + entry.size(), value);
+            if (error != std::errc() || value == 0 || value > kMaxColumnNumber)
+                throw InvalidInputError(std::string(kStage) + ": column '" + std::string(entry) +
+                                        "' in " + columnsName() +
+                                        ": columns are numbered from 1 to " +
+                                        std::to_string(kMaxColumnNumber));
+            request.byNumber[i] = value - 1;
+        }
+        return request;
+    }
+
+    /// A header: a named column was asked for, or none of the chosen columns of this line
+    /// reads as a number (a line with some numbers is data, to be reported if bad).
+    [[nodiscard]] bool isHeader(const std::vector<std::string_view>& all,
+                                const ColumnRequest& request, std::uint64_t number) const {
+        bool header = true;
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::size_t index = request.byNumber[i].value_or(i);
+            if (index < all.size() && looksNumeric(all[index]))
+                header = false;
+        }
+        if (!request.namesGiven)
+            return header;
+        if (std::all_of(all.begin(), all.end(), looksNumeric))
+            throw InvalidInputError(where(number) + "no header line to find the columns named in " +
+                                    columnsName() + " (the first line is numbers)");
+        return true;
+    }
+
+    /// The columns --columns asks for, the named ones found in the header's `names`.
+    [[nodiscard]] std::array<std::size_t, 3> requestedIndices(const ColumnRequest& request,
+                                                              const std::vector<std::string>& names,
+                                                              bool header,
+                                                              std::uint64_t number) const {
+        std::array<std::size_t, 3> columns{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            if (request.byNumber[i]) {
+                columns[i] = *request.byNumber[i];
+                continue;
+            }
+            const std::string_view entry = trim(m_options.columns[i]);
+            if (!header)
+                throw InvalidInputError(where(number) + "no header line to find column '" +
+                                        std::string(entry) + "' of " + columnsName() + " in");
+            const auto found = findName(names, entry);
+            if (!found)
+                throw InvalidInputError(where(number) + "the header has no column '" +
+                                        std::string(entry) + "'");
+            columns[i] = *found;
+        }
+        return columns;
+    }
+
+    /// The columns of a header whose names say x, y and z (x / easting / lon..., in that order
+    /// of preference); the first three when one of them is missing.
+    static std::array<std::size_t, 3> columnsNamed(const std::vector<std::string>& names) {
+        static constexpr std::array<std::array<std::string_view, 7>, 3> kNames{{
+            {"x", "easting", "east", "lon", "long", "longitude", "e"},
+            {"y", "northing", "north", "lat", "latitude", "n", "nord"},
+            {"z", "elevation", "elev", "height", "alt", "altitude", "h"},
+        }};
+        std::array<std::optional<std::size_t>, 3> found;
+        for (std::size_t axis = 0; axis < 3; ++axis)
+            for (const std::string_view candidate : kNames[axis])
+                if (!found[axis])
+                    found[axis] = findName(names, candidate);
+        if (found[0] && found[1] && found[2])
+            return {*found[0], *found[1], *found[2]};
+        return {0, 1, 2};
     }
 
     void dataLine(std::string_view text, std::uint64_t number) {
