@@ -14,6 +14,8 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 
 namespace terratin::io {
 
@@ -72,6 +74,111 @@ std::string layerCrs(OGRLayer& layer, const std::string& path) {
     return wkt;
 }
 
+/// The attribute that gives the points their elevation (OgrPointReadOptions::zField), or
+/// none: the geometry's z.
+struct ZField {
+    int index = -1;
+    OGRFieldType type = OFTReal;
+};
+
+/// The z field `options` names, checked in `layer`'s definition; `where` starts messages.
+ZField zFieldOf(OGRLayer& layer, const OgrPointReadOptions& options, const std::string& where) {
+    ZField z;
+    if (options.zField.empty())
+        return z;
+    OGRFeatureDefn* definition = layer.GetLayerDefn();
+    z.index = definition->GetFieldIndex(options.zField.c_str());
+    if (z.index < 0) {
+        std::string fields;
+        for (int i = 0; i < definition->GetFieldCount(); ++i)
+            fields += std::string(i ? ", " : "") + definition->GetFieldDefn(i)->GetNameRef();
+        throw InvalidInputError(where + "no field '" + options.zField + "' (fields: " +
+                                (fields.empty() ? std::string("none") : fields) + ")");
+    }
+    z.type = definition->GetFieldDefn(z.index)->GetType();
+    if (z.type != OFTInteger && z.type != OFTInteger64 && z.type != OFTReal && z.type != OFTString)
+        throw InvalidInputError(where + "field '" + options.zField + "' is " +
+                                OGRFieldDefn::GetFieldTypeName(z.type) + ", not a number");
+    return z;
+}
+
+/// The points of one layer's features, added to a cloud one feature at a time.
+class FeaturePoints {
+public:
+    FeaturePoints(const ZField& zField, const OgrPointReadOptions& options, std::string where,
+                  PointCloud& cloud)
+        : m_zField(zField), m_options(options), m_where(std::move(where)), m_cloud(cloud) {}
+
+    /// Adds the feature's points (a point, or each of a multipoint's); counts it as filtered
+    /// out when it gives none (no geometry, another type, empty points, a null z field).
+    void add(const OGRFeature& feature) {
+        ++m_cloud.recordsRead;
+        std::optional<double> z;
+        if (m_zField.index >= 0) {
+            double value = 0.0;
+            if (!fieldZ(feature, value)) {
+                ++m_cloud.filteredOut;
+                return;
+            }
+            z = value;
+        }
+        const OGRGeometry* geometry = feature.GetGeometryRef();
+        bool added = false;
+        if (geometry != nullptr) {
+            const OGRwkbGeometryType type = wkbFlatten(geometry->getGeometryType());
+            if (type == wkbPoint) {
+                added = addPoint(*geometry->toPoint(), z);
+            } else if (type == wkbMultiPoint) {
+                for (const OGRPoint* point : *geometry->toMultiPoint())
+                    added = addPoint(*point, z) || added;
+            }
+        }
+        if (!added)
+            ++m_cloud.filteredOut;
+    }
+
+private:
+    /// The elevation the feature's z field gives; false when it is not set.
+    bool fieldZ(const OGRFeature& feature, double& z) const {
+        if (!feature.IsFieldSetAndNotNull(m_zField.index))
+            return false;
+        if (m_zField.type != OFTString) {
+            z = feature.GetFieldAsDouble(m_zField.index);
+        } else {
+            const std::string_view text = feature.GetFieldAsString(m_zField.index);
+            const auto [ptr, error] = std::from_chars(text.data(), text.data() + text.size(), z);
+            if (error != std::errc() || ptr != text.data() + text.size())
+                throw InvalidInputError(m_where + "feature " + std::to_string(feature.GetFID()) +
+                                        ": field '" + m_options.zField + "' ('" +
+                                        std::string(text) + "') is not a number");
+        }
+        if (!std::isfinite(z))
+            throw InvalidInputError(m_where + "feature " + std::to_string(feature.GetFID()) +
+                                    ": field '" + m_options.zField + "' is not finite");
+        return true;
+    }
+
+    bool addPoint(const OGRPoint& point, std::optional<double> z) {
+        if (point.IsEmpty())
+            return false;
+        if (!z) {
+            if (!point.Is3D())
+                throw InvalidInputError(m_where +
+                                        "its points have no z; name the elevation attribute "
+                                        "with " +
+                                        markOption("z_field"));
+            z = point.getZ();
+        }
+        m_cloud.points.push_back({point.getX(), point.getY(), *z});
+        return true;
+    }
+
+    ZField m_zField;
+    const OgrPointReadOptions& m_options;
+    std::string m_where;
+    PointCloud& m_cloud;
+};
+
 } // namespace
 
 PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& options,
@@ -86,25 +193,7 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
     OGRLayer* layer = chooseLayer(*dataset, path, options.layer);
     const std::string where =
         std::string(kStage) + ": '" + path + "' layer '" + layer->GetName() + "': ";
-
-    int zFieldIndex = -1;
-    OGRFieldType zFieldType = OFTReal;
-    if (!options.zField.empty()) {
-        OGRFeatureDefn* definition = layer->GetLayerDefn();
-        zFieldIndex = definition->GetFieldIndex(options.zField.c_str());
-        if (zFieldIndex < 0) {
-            std::string fields;
-            for (int i = 0; i < definition->GetFieldCount(); ++i)
-                fields += std::string(i ? ", " : "") + definition->GetFieldDefn(i)->GetNameRef();
-            throw InvalidInputError(where + "no field '" + options.zField + "' (fields: " +
-                                    (fields.empty() ? std::string("none") : fields) + ")");
-        }
-        zFieldType = definition->GetFieldDefn(zFieldIndex)->GetType();
-        if (zFieldType != OFTInteger && zFieldType != OFTInteger64 && zFieldType != OFTReal &&
-            zFieldType != OFTString)
-            throw InvalidInputError(where + "field '" + options.zField + "' is " +
-                                    OGRFieldDefn::GetFieldTypeName(zFieldType) + ", not a number");
-    }
+    const ZField zField = zFieldOf(*layer, options, where);
 
     PointCloud cloud;
     cloud.path = path;
@@ -114,65 +203,10 @@ PointCloud readOgrPoints(const std::string& path, const OgrPointReadOptions& opt
     if (featureCount > 0)
         cloud.points.reserve(static_cast<std::size_t>(featureCount));
 
-    // The elevation a feature gives its points: the z field, or nothing (use the geometry's).
-    const auto fieldZ = [&](const OGRFeature& feature, double& z) {
-        if (!feature.IsFieldSetAndNotNull(zFieldIndex))
-            return false;
-        if (zFieldType != OFTString) {
-            z = feature.GetFieldAsDouble(zFieldIndex);
-        } else {
-            const std::string_view text = feature.GetFieldAsString(zFieldIndex);
-            const auto [ptr, error] = std::from_chars(text.data(), text.data() + text.size(), z);
-            if (error != std::errc() || ptr != text.data() + text.size())
-                throw InvalidInputError(where + "feature " + std::to_string(feature.GetFID()) +
-                                        ": field '" + options.zField + "' ('" + std::string(text) +
-                                        "') is not a number");
-        }
-        if (!std::isfinite(z))
-            throw InvalidInputError(where + "feature " + std::to_string(feature.GetFID()) +
-                                    ": field '" + options.zField + "' is not finite");
-        return true;
-    };
-    const auto addPoint = [&](const OGRPoint& point, std::optional<double> z) {
-        if (point.IsEmpty())
-            return false;
-        if (!z) {
-            if (!point.Is3D())
-                throw InvalidInputError(where +
-                                        "its points have no z; name the elevation attribute "
-                                        "with " +
-                                        markOption("z_field"));
-            z = point.getZ();
-        }
-        cloud.points.push_back({point.getX(), point.getY(), *z});
-        return true;
-    };
-
+    FeaturePoints points(zField, options, where, cloud);
     layer->ResetReading();
     for (auto& feature : *layer) {
-        ++cloud.recordsRead;
-        std::optional<double> z;
-        if (zFieldIndex >= 0) {
-            double value = 0.0;
-            if (!fieldZ(*feature, value)) {
-                ++cloud.filteredOut;
-                continue;
-            }
-            z = value;
-        }
-        const OGRGeometry* geometry = feature->GetGeometryRef();
-        bool added = false;
-        if (geometry != nullptr) {
-            const OGRwkbGeometryType type = wkbFlatten(geometry->getGeometryType());
-            if (type == wkbPoint) {
-                added = addPoint(*geometry->toPoint(), z);
-            } else if (type == wkbMultiPoint) {
-                for (const OGRPoint* point : *geometry->toMultiPoint())
-                    added = addPoint(*point, z) || added;
-            }
-        }
-        if (!added)
-            ++cloud.filteredOut;
+        points.add(*feature);
         if (progress && featureCount > 0 && cloud.recordsRead % kProgressEvery == 0 &&
             !progress(std::min(1.0, static_cast<double>(cloud.recordsRead) /
                                         static_cast<double>(featureCount)),
