@@ -19,7 +19,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace terratin::io::detail {
@@ -118,6 +120,73 @@ void createFeature(OGRLayer& layer, OGRFeature& feature, std::string_view what, 
                        output.string());
 }
 
+/// The one feature and the one polygon that carry every triangle of a layer in turn: the
+/// ring's 4 points and the attribute fields are overwritten in place, so no geometry is
+/// allocated per triangle.
+class TriangleFeature {
+public:
+    /// `checkDbf`: refuse a value that does not fit a Shapefile's DBF column.
+    TriangleFeature(OGRLayer& layer, std::span<const AttributeColumn> columns,
+                    const fs::path& output, bool checkDbf)
+        : m_layer(layer), m_columns(columns), m_output(output), m_checkDbf(checkDbf),
+          m_feature(OGRFeature::CreateFeature(layer.GetLayerDefn())) {
+        for (const AttributeColumn& column : columns)
+            m_indices.push_back(fieldIndex(layer, column.name, output));
+        m_ring = new OGRLinearRing();
+        for (int i = 0; i < 4; ++i)
+            m_ring->setPoint(i, 0.0, 0.0, 0.0);
+        auto* polygon = new OGRPolygon();
+        polygon->addRingDirectly(m_ring);
+        polygon->set3D(TRUE);
+        m_feature->SetGeometryDirectly(polygon);
+        for (const int index : m_indices)
+            m_feature->SetField(index, 0.0);
+    }
+
+    /// The closed ring a, b, c, a.
+    void setCorners(const Point3& a, const Point3& b, const Point3& c) {
+        m_ring->setPoint(0, a.x, a.y, a.z);
+        m_ring->setPoint(1, b.x, b.y, b.z);
+        m_ring->setPoint(2, c.x, c.y, c.z);
+        m_ring->setPoint(3, a.x, a.y, a.z);
+    }
+
+    /// The attribute fields of triangle `t`.
+    void setAttributes(const TriangleAttributes& values, std::size_t t) {
+        for (std::size_t i = 0; i < m_columns.size(); ++i) {
+            const double value = values.*(m_columns[i].member);
+            if (m_checkDbf && !(std::fabs(value) < kDbfMaxMagnitude))
+                throwInvalid("triangle " + std::to_string(t) + " has " + m_columns[i].name + " = " +
+                             std::to_string(value) +
+                             ", which does not fit a Shapefile's DBF column; write a "
+                             "GeoPackage (.gpkg) instead of " +
+                             quoted(m_output));
+            // The raw field: SetField's type dispatch and set-marker bookkeeping cost more
+            // than the insert of a FlatGeobuf feature itself. Every field was set (to 0) at
+            // the start, and a finite double never matches OGR's unset / null markers (NaN
+            // bit patterns).
+            m_feature->GetRawFieldRef(m_indices[i])->Real = value;
+        }
+    }
+
+    /// Inserts the feature as triangle `t`.
+    void write(std::size_t t) {
+        // The driver numbers; a reused feature must be reset, or the next insert would
+        // collide with the FID CreateFeature stored in it.
+        m_feature->SetFID(OGRNullFID);
+        createFeature(m_layer, *m_feature, "triangle", t, m_output);
+    }
+
+private:
+    OGRLayer& m_layer;
+    std::span<const AttributeColumn> m_columns;
+    const fs::path& m_output;
+    bool m_checkDbf;
+    std::vector<int> m_indices;
+    OGRFeatureUniquePtr m_feature;
+    OGRLinearRing* m_ring = nullptr; // owned by the feature's polygon
+};
+
 /// Triangles per attribute chunk: the progress interval, so each chunk ends with a report.
 constexpr std::size_t kChunkTriangles = kProgressInterval;
 
@@ -134,35 +203,17 @@ OGRLayer& createTriangleLayer(GDALDataset& dataset, const TriangleLayerSpec& spe
 
 void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions& options,
                     const ProgressTicker& ticker, const fs::path& output, TriangleRange range) {
-    const auto columns = attributeColumns(options.attributes);
-    std::vector<int> indices;
-    for (const auto& column : columns)
-        indices.push_back(fieldIndex(layer, column.name, output));
-
-    // One feature and one polygon for all triangles: the ring's 4 points are overwritten in
-    // place, so no geometry is allocated per triangle.
-    OGRFeatureUniquePtr feature(OGRFeature::CreateFeature(layer.GetLayerDefn()));
-    auto* ring = new OGRLinearRing();
-    for (int i = 0; i < 4; ++i)
-        ring->setPoint(i, 0.0, 0.0, 0.0);
-    auto* polygon = new OGRPolygon();
-    polygon->addRingDirectly(ring);
-    polygon->set3D(TRUE);
-    feature->SetGeometryDirectly(polygon);
-
-    for (const int index : indices)
-        feature->SetField(index, 0.0);
-
+    const std::span<const AttributeColumn> columns = attributeColumns(options.attributes);
+    TriangleFeature feature(layer, columns, output, options.format == TinFormat::Shapefile);
     const std::size_t first = range.first;
     const std::size_t last = std::min(mesh.triangleCount(), range.last);
-    const bool checkDbf = options.format == TinFormat::Shapefile;
-
     const std::size_t chunks =
         last > first ? (last - first + kChunkTriangles - 1) / kChunkTriangles : 0;
     const auto chunkRange = [&](std::size_t chunk) {
         const std::size_t begin = first + chunk * kChunkTriangles;
         return std::pair{begin, std::min(last, begin + kChunkTriangles)};
     };
+    // The attributes of a chunk are computed beside the writer, which writes the one before.
     const auto prepare = [&](std::size_t chunk, std::vector<TriangleAttributes>& attributes) {
         if (!columns.empty()) {
             const auto [begin, end] = chunkRange(chunk);
@@ -173,35 +224,12 @@ void writeTriangles(OGRLayer& layer, const TinMesh& mesh, const TinWriteOptions&
         const auto [begin, end] = chunkRange(chunk);
         ticker.report(begin, "Writing triangles");
         for (std::size_t t = begin; t < end; ++t) {
-            const Point3& a = mesh.vertices[mesh.triangles[3 * t]];
-            const Point3& b = mesh.vertices[mesh.triangles[3 * t + 1]];
-            const Point3& c = mesh.vertices[mesh.triangles[3 * t + 2]];
-            ring->setPoint(0, a.x, a.y, a.z);
-            ring->setPoint(1, b.x, b.y, b.z);
-            ring->setPoint(2, c.x, c.y, c.z);
-            ring->setPoint(3, a.x, a.y, a.z);
-
-            if (!columns.empty()) {
-                const TriangleAttributes& values = attributes[t - begin];
-                for (std::size_t i = 0; i < columns.size(); ++i) {
-                    const double value = values.*(columns[i].member);
-                    if (checkDbf && !(std::fabs(value) < kDbfMaxMagnitude))
-                        throwInvalid("triangle " + std::to_string(t) + " has " + columns[i].name +
-                                     " = " + std::to_string(value) +
-                                     ", which does not fit a Shapefile's DBF column; write a "
-                                     "GeoPackage (.gpkg) instead of " +
-                                     quoted(output));
-                    // The raw field: SetField's type dispatch and set-marker bookkeeping cost
-                    // more than the insert of a FlatGeobuf feature itself. Every field was
-                    // set (to 0) before the loop, and a finite double never matches OGR's
-                    // unset / null markers (NaN bit patterns).
-                    feature->GetRawFieldRef(indices[i])->Real = value;
-                }
-            }
-            // The driver numbers; a reused feature must be reset, or the next insert would
-            // collide with the FID CreateFeature stored in it.
-            feature->SetFID(OGRNullFID);
-            createFeature(layer, *feature, "triangle", t, output);
+            feature.setCorners(mesh.vertices[mesh.triangles[3 * t]],
+                               mesh.vertices[mesh.triangles[3 * t + 1]],
+                               mesh.vertices[mesh.triangles[3 * t + 2]]);
+            if (!columns.empty())
+                feature.setAttributes(attributes[t - begin], t);
+            feature.write(t);
         }
     };
     runBesideOneWriter<std::vector<TriangleAttributes>>(chunks, prepare, consume);
