@@ -121,12 +121,13 @@ struct DatasetCloser {
 
 } // namespace
 
-std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
-                             std::span<const double> doubleParams, std::string_view asciiParams,
-                             std::string_view stage, std::string_view name) {
-    const std::string where = std::string(stage) + ": '" + std::string(name) + "': ";
-    // GeoTIFF 1.0, 2.4: a header of four SHORTs (version 1, revision, minor revision, number of
-    // keys), then four SHORTs per key.
+namespace {
+
+/// The keys of `directory` (GeoTIFF 1.0, 2.4: a header of four SHORTs, version 1, revision,
+/// minor revision and number of keys, then four SHORTs per key), the header checked; CrsError
+/// starting with `where` otherwise.
+std::span<const std::uint16_t> keysOf(std::span<const std::uint16_t> directory,
+                                      const std::string& where) {
     if (directory.size() < 4)
         throw CrsError(where + "the GeoTIFF key directory is shorter than its header");
     if (directory[0] != 1)
@@ -138,12 +139,17 @@ std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
                        " keys but holds " + std::to_string(directory.size() / 4 - 1));
     if (keys == 0)
         throw CrsError(where + "the GeoTIFF key directory holds no key");
+    return directory.first(4 * (keys + 1));
+}
 
+/// The tags of a one-pixel TIFF that carries the GeoTIFF keys `used` and their parameters.
+std::vector<TiffEntry> geoKeyEntries(std::span<const std::uint16_t> used,
+                                     std::span<const double> doubleParams,
+                                     std::string_view asciiParams) {
     std::vector<TiffEntry> entries{shortEntry(256, 1), shortEntry(257, 1), shortEntry(258, 8),
                                    shortEntry(259, 1), shortEntry(262, 1), longEntry(273, 0),
                                    shortEntry(277, 1), shortEntry(278, 1), longEntry(279, 1),
                                    shortEntry(284, 1)};
-    const std::span<const std::uint16_t> used = directory.first(4 * (keys + 1));
     entries.push_back({34735, kShort, static_cast<std::uint32_t>(used.size()), bytesOf(used)});
     if (!doubleParams.empty())
         entries.push_back({34736, kDouble, static_cast<std::uint32_t>(doubleParams.size()),
@@ -156,8 +162,11 @@ std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
         entries.push_back({34737, kAscii, static_cast<std::uint32_t>(ascii.size()),
                            bytesOf(std::span<const char>(ascii.data(), ascii.size()))});
     }
-    std::vector<std::byte> tiff = serialiseTiff(std::move(entries));
+    return entries;
+}
 
+/// The CRS GDAL's GeoTIFF reader finds in `tiff`, as WKT; empty when it finds none.
+std::string crsOfTiff(std::vector<std::byte>& tiff, const std::string& where) {
     // A name no other call uses at the same time: /vsimem is process-wide.
     static std::atomic<std::uint64_t> counter{0};
     const std::string memName =
@@ -182,6 +191,18 @@ std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
         }
     }
     VSIUnlink(memName.c_str());
+    return wkt;
+}
+
+} // namespace
+
+std::string geoTiffKeysToWkt(std::span<const std::uint16_t> directory,
+                             std::span<const double> doubleParams, std::string_view asciiParams,
+                             std::string_view stage, std::string_view name) {
+    const std::string where = std::string(stage) + ": '" + std::string(name) + "': ";
+    const std::span<const std::uint16_t> used = keysOf(directory, where);
+    std::vector<std::byte> tiff = serialiseTiff(geoKeyEntries(used, doubleParams, asciiParams));
+    const std::string wkt = crsOfTiff(tiff, where);
     if (wkt.empty())
         throw CrsError(where + "its GeoTIFF keys describe no CRS GDAL can use: " +
                        lastGdalErrorMessage("GDAL derives no CRS from them"));

@@ -6,10 +6,10 @@
 
 #include "ascii_pgm.hpp"
 
+#include "../text.hpp"
 #include "terratin/crs/reprojection.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "../text.hpp"
 
 #include <gdal.h>
 
@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 namespace terratin::io {
 
@@ -94,6 +95,53 @@ bool looksLikeConnectionString(const std::string& path) {
                        [](unsigned char c) { return std::isalnum(c) != 0 || c == '_'; });
 }
 
+namespace {
+
+/// The kind a file's first bytes or its extension tell (LAS, text, a CSV with or without a
+/// geometry column, an ASCII PGM); nullopt to ask GDAL.
+std::optional<InputKind> kindOfFile(const std::string& path) {
+    const std::string start = head(path, 4);
+    const std::string ext = lowercaseExtension(path);
+    if (start == "LASF" || ext == ".las" || ext == ".laz")
+        return InputKind::Las;
+    if (ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".tsv" || ext == ".dat")
+        return InputKind::Text;
+    if (ext == ".csv")
+        return csvHasGeometryColumn(path) ? InputKind::Vector : InputKind::Text;
+    // An ASCII PGM, which GDAL's PNM driver does not read; the raster reader does.
+    if (detail::isAsciiPgm(start))
+        return InputKind::Raster;
+    return std::nullopt;
+}
+
+/// The kind GDAL opens `path` as; nullopt when it opens it as nothing.
+std::optional<InputKind> kindByGdal(const std::string& path) {
+    initialiseGdal();
+    CPLErrorReset();
+    const std::unique_ptr<void, DatasetCloser> dataset(GDALOpenEx(
+        path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
+        nullptr, nullptr, nullptr));
+    if (!dataset)
+        return std::nullopt;
+    if (GDALGetRasterCount(dataset.get()) > 0)
+        return InputKind::Raster;
+    if (GDALDatasetGetLayerCount(dataset.get()) > 0)
+        return InputKind::Vector;
+    // A container of subdatasets: the raster reader explains how to pick one.
+    return InputKind::Raster;
+}
+
+/// Whether a file no reader recognised is to be read as text: unless it starts like JSON or
+/// XML (a damaged GeoJSON or GML should get GDAL's message, not a line-number complaint).
+bool readsAsText(const std::string& path) {
+    const std::string sample = head(path, kSniffBytes);
+    const std::size_t first = sample.find_first_not_of(" \t\r\n");
+    return first != std::string::npos && sample[first] != '{' && sample[first] != '<' &&
+           sample.find('\0') == std::string::npos;
+}
+
+} // namespace
+
 InputKind detectInputKind(const std::string& path) {
     const bool virtualPath = path.rfind("/vsi", 0) == 0;
     std::error_code error;
@@ -109,49 +157,19 @@ InputKind detectInputKind(const std::string& path) {
                                            : std::string("no such file or directory");
             throw IoError(std::string(kStage) + ": cannot open '" + path + "': " + reason);
         }
-        if (fs::is_directory(status)) {
-            // A directory can be a vector dataset (a folder of Shapefiles); GDAL decides below.
-        } else {
-            const std::string start = head(path, 4);
-            const std::string ext = lowercaseExtension(path);
-            if (start == "LASF" || ext == ".las" || ext == ".laz")
-                return InputKind::Las;
-            if (ext == ".xyz" || ext == ".txt" || ext == ".pts" || ext == ".tsv" || ext == ".dat")
-                return InputKind::Text;
-            if (ext == ".csv")
-                return csvHasGeometryColumn(path) ? InputKind::Vector : InputKind::Text;
-            // An ASCII PGM, which GDAL's PNM driver does not read; the raster reader does.
-            if (detail::isAsciiPgm(start))
-                return InputKind::Raster;
-        }
+        // A directory can be a vector dataset (a folder of Shapefiles); GDAL decides below.
+        if (!fs::is_directory(status))
+            if (const std::optional<InputKind> kind = kindOfFile(path))
+                return *kind;
     }
-
-    initialiseGdal();
-    CPLErrorReset();
-    const std::unique_ptr<void, DatasetCloser> dataset(GDALOpenEx(
-        path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
-        nullptr, nullptr, nullptr));
-    if (dataset) {
-        if (GDALGetRasterCount(dataset.get()) > 0)
-            return InputKind::Raster;
-        if (GDALDatasetGetLayerCount(dataset.get()) > 0)
-            return InputKind::Vector;
-        // A container of subdatasets: the raster reader explains how to pick one.
-        return InputKind::Raster;
-    }
+    if (const std::optional<InputKind> kind = kindByGdal(path))
+        return *kind;
     if (gdalName)
         throw IoError(std::string(kStage) + ": cannot open '" + path +
                       "': no such file, and GDAL does not open it as a dataset name: " +
                       lastGdalErrorMessage());
-    if (!virtualPath && !fs::is_directory(status)) {
-        // Text unless it starts like JSON or XML (a damaged GeoJSON or GML should get GDAL's
-        // message, not a line-number complaint).
-        const std::string sample = head(path, kSniffBytes);
-        const std::size_t first = sample.find_first_not_of(" \t\r\n");
-        if (first != std::string::npos && sample[first] != '{' && sample[first] != '<' &&
-            sample.find('\0') == std::string::npos)
-            return InputKind::Text;
-    }
+    if (!virtualPath && !fs::is_directory(status) && readsAsText(path))
+        return InputKind::Text;
     throw IoError(std::string(kStage) + ": '" + path +
                   "' is not a raster, LAS, text or vector file terratin can read: " +
                   lastGdalErrorMessage("GDAL recognises no format in it"));

@@ -30,6 +30,25 @@ inline Point2 affineCellCentre(const std::array<double, 6>& c, double row, doubl
     return {c[0] + px * c[1] + py * c[2], c[3] + px * c[4] + py * c[5]};
 }
 
+/// Room in `result` for a point per cell of `reader`'s band; InvalidInputError when memory
+/// cannot hold them.
+void reserveCells(RasterPoints& result, const detail::RasterBandReader& reader) {
+    const auto tooLarge = [&] {
+        return InvalidInputError(std::string(kStage) + ": " + reader.quotedPath() + " has " +
+                                 std::to_string(reader.width()) + " x " +
+                                 std::to_string(reader.height()) +
+                                 " cells: out of memory holding them as points (32 bytes a cell)");
+    };
+    try {
+        result.points.reserve(reader.cellCount());
+        result.cellIndex.reserve(reader.cellCount());
+    } catch (const std::bad_alloc&) {
+        throw tooLarge();
+    } catch (const std::length_error&) {
+        throw tooLarge();
+    }
+}
+
 } // namespace
 
 Point2 GeoTransform::cellCentre(std::int64_t row, std::int64_t col) const {
@@ -50,20 +69,7 @@ RasterPoints readRasterPoints(const std::string& path, const RasterReadOptions& 
     // The result is at most one point per cell: reserving that avoids every reallocation, and
     // the excess (nodata frames) is released at the end when it is large.
     const std::uint64_t cellCount = reader.cellCount();
-    const auto tooLarge = [&] {
-        return InvalidInputError(std::string(kStage) + ": " + reader.quotedPath() + " has " +
-                                 std::to_string(reader.width()) + " x " +
-                                 std::to_string(reader.height()) +
-                                 " cells: out of memory holding them as points (32 bytes a cell)");
-    };
-    try {
-        result.points.reserve(cellCount);
-        result.cellIndex.reserve(cellCount);
-    } catch (const std::bad_alloc&) {
-        throw tooLarge();
-    } catch (const std::length_error&) {
-        throw tooLarge();
-    }
+    reserveCells(result, reader);
 
     // Keep valid cells in row-major order.
     const std::uint64_t valid = reader.readStrips(
