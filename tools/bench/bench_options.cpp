@@ -225,8 +225,10 @@ NamedMethod parseMethod(std::string_view name) {
                      known + ")");
 }
 
-BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
-    const po::options_description options = benchOptionsDescription();
+namespace {
+
+po::variables_map parseArguments(const std::vector<std::string>& arguments,
+                                 const po::options_description& options) {
     po::variables_map values;
     try {
         // No positional arguments: without this empty description Boost ignores them.
@@ -238,15 +240,11 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
     } catch (const po::error& error) {
         throw UsageError(error.what());
     }
+    return values;
+}
 
-    BenchCommand command;
-    if (values.count("help")) {
-        command.kind = BenchCommand::Kind::Help;
-        command.helpText = helpText(options);
-        return command;
-    }
-
-    BenchOptions& bench = command.options;
+// What the triangulation table runs: the points, the configurations and the peers.
+void readTriangulationRuns(const po::variables_map& values, BenchOptions& bench) {
     bench.sizes = parseSizes(values);
     bench.distributions = parseDistributions(values);
     if (values.count("methods")) {
@@ -273,6 +271,10 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
     bench.runCgal = values.count("no-cgal") == 0;
     bench.runGdal = values.count("no-gdal") == 0;
     bench.warmMemory = values.count("no-warm-memory") == 0;
+}
+
+// Which table, in which form, and the other tables' own options.
+void readTableChoice(const po::variables_map& values, BenchOptions& bench) {
     bench.csv = values.count("csv") != 0;
     bench.refine = values.count("refine") != 0;
     bench.write = values.count("write") != 0;
@@ -291,6 +293,21 @@ BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
         throw UsageError("--refine and --write are two different tables: choose one");
     bench.demDirectory = values["dems"].as<std::string>();
     bench.threadsGiven = values.count("threads") != 0;
+}
+
+} // namespace
+
+BenchCommand parseBenchCommandLine(const std::vector<std::string>& arguments) {
+    const po::options_description options = benchOptionsDescription();
+    const po::variables_map values = parseArguments(arguments, options);
+    BenchCommand command;
+    if (values.count("help")) {
+        command.kind = BenchCommand::Kind::Help;
+        command.helpText = helpText(options);
+        return command;
+    }
+    readTriangulationRuns(values, command.options);
+    readTableChoice(values, command.options);
     return command;
 }
 

@@ -47,7 +47,9 @@
 #include <memory>
 #include <new>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -256,6 +258,46 @@ std::vector<Configuration> configurations(const BenchOptions& bench) {
     return runs;
 }
 
+// The seconds of the peer of that name, if it ran.
+std::optional<double> peerSeconds(const std::vector<ResultRow>& peerRows,
+                                  std::string_view peerName) {
+    for (const ResultRow& row : peerRows)
+        if (row.method == peerName)
+            return row.seconds;
+    return std::nullopt;
+}
+
+// After the rounds of one group: our rows, with their speed-ups and ratios to the peers,
+// then the peers' rows; a triangle count unlike our first row's becomes a note.
+void printGroupRows(const std::string& group, const std::vector<Configuration>& ours,
+                    std::span<const TimedJob> ourJobs, std::size_t points,
+                    std::vector<ResultRow>& rows, const std::vector<ResultRow>& peerRows,
+                    ResultTable& table, std::vector<std::string>& notes) {
+    std::optional<double> sequentialSeconds;
+    std::optional<std::size_t> ourTriangles;
+    for (std::size_t c = 0; c < ours.size(); ++c) {
+        ResultRow& row = rows[c];
+        summarise(ourJobs[c], points, row);
+        if (ours[c].method.method == TriangulationMethod::Sequential)
+            sequentialSeconds = row.seconds; // rows of one location follow their sequential one
+        row.speedUp = ratio(sequentialSeconds, row.seconds);
+        row.vsCgal = ratio(row.seconds, peerSeconds(peerRows, "cgal"));
+        row.vsGdal = ratio(row.seconds, peerSeconds(peerRows, "gdal"));
+        if (!ourTriangles)
+            ourTriangles = row.triangles;
+        else if (row.triangles != *ourTriangles)
+            notes.push_back(group + ": " + row.method + " made " + std::to_string(row.triangles) +
+                            " triangles, " + std::to_string(*ourTriangles) + " expected");
+        table.printRow(row);
+    }
+    for (const ResultRow& row : peerRows) {
+        if (row.seconds && ourTriangles && row.triangles != *ourTriangles)
+            notes.push_back(group + ": " + row.method + " made " + std::to_string(row.triangles) +
+                            " triangles, terratin " + std::to_string(*ourTriangles));
+        table.printRow(row);
+    }
+}
+
 // One distribution at one size: every configuration and peer is timed in rounds, one run of
 // each per round (interleaved_runs.hpp), and the rows are printed when the rounds are over.
 void runGroup(Distribution distribution, std::size_t size, const BenchOptions& bench,
@@ -287,38 +329,8 @@ void runGroup(Distribution distribution, std::size_t size, const BenchOptions& b
     for (std::size_t p = 0; p < peers.size(); ++p)
         if (peerJobIndex[p])
             finishPeer(peers[p], jobs[*peerJobIndex[p]], bench, peerRows[p], notes);
-    const auto peerSeconds = [&](std::string_view peerName) -> std::optional<double> {
-        for (const ResultRow& row : peerRows)
-            if (row.method == peerName)
-                return row.seconds;
-        return std::nullopt;
-    };
-
-    std::optional<double> sequentialSeconds;
-    std::optional<std::size_t> ourTriangles;
-    for (std::size_t c = 0; c < ours.size(); ++c) {
-        ResultRow& row = rows[c];
-        summarise(jobs[firstOurs + c], points.size(), row);
-        if (ours[c].method.method == TriangulationMethod::Sequential)
-            sequentialSeconds = row.seconds; // rows of one location follow their sequential one
-        row.speedUp = ratio(sequentialSeconds, row.seconds);
-        row.vsCgal = ratio(row.seconds, peerSeconds("cgal"));
-        row.vsGdal = ratio(row.seconds, peerSeconds("gdal"));
-        if (!ourTriangles)
-            ourTriangles = row.triangles;
-        else if (row.triangles != *ourTriangles)
-            notes.push_back(groupName(name, points.size()) + ": " + row.method + " made " +
-                            std::to_string(row.triangles) + " triangles, " +
-                            std::to_string(*ourTriangles) + " expected");
-        table.printRow(row);
-    }
-    for (const ResultRow& row : peerRows) {
-        if (row.seconds && ourTriangles && row.triangles != *ourTriangles)
-            notes.push_back(groupName(name, points.size()) + ": " + row.method + " made " +
-                            std::to_string(row.triangles) + " triangles, terratin " +
-                            std::to_string(*ourTriangles));
-        table.printRow(row);
-    }
+    printGroupRows(groupName(name, points.size()), ours, std::span(jobs).subspan(firstOurs),
+                   points.size(), rows, peerRows, table, notes);
 }
 
 std::string orderName(InsertionOrder order) {

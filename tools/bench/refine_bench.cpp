@@ -60,18 +60,76 @@ std::vector<Point2> casePositions(const RefineCase& refineCase,
         crs::utmZoneCrs(crs::standardUtmZone(centre.x, centre.y), raster.crsWkt));
 }
 
-} // namespace
+// One row: the median of the runs of one case at one tolerance and thread count.
+struct RefineRow {
+    RefineResult result;
+    double seconds = 0.0;
+    /// Median growth of the peak resident set, MiB; -1 when unknown.
+    double peakMiB = -1.0;
+    /// Time the hypervisor gave other guests while the row ran, percent; -1 when unknown.
+    double stolenPercent = -1.0;
+};
 
-int runRefineBench(const BenchOptions& options) {
-    const std::vector<unsigned> threads =
-        options.threadsGiven ? options.threads : std::vector<unsigned>{1, 2};
-    if (options.csv)
+RefineRow measureRefine(const io::HeightGridRaster& raster, const std::vector<Point2>& positions,
+                        const RefineOptions& refineOptions, unsigned runs) {
+    RefineRow row;
+    std::vector<double> seconds;
+    std::vector<double> peaks;
+    PeakMemoryProbe probe;
+    HostStealProbe steal;
+    steal.start();
+    for (unsigned run = 0; run < runs; ++run) {
+        probe.start();
+        const Stopwatch stopwatch;
+        row.result = positions.empty() ? refine(raster.grid, refineOptions)
+                                       : refine(raster.grid, positions, refineOptions);
+        seconds.push_back(stopwatch.seconds());
+        if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
+            peaks.push_back(static_cast<double>(*peak));
+    }
+    row.seconds = median(seconds);
+    if (!peaks.empty())
+        row.peakMiB = median(peaks) / (1024.0 * 1024.0);
+    row.stolenPercent = 100.0 * steal.stolenShare().value_or(-0.01);
+    return row;
+}
+
+void printRefineHeader(bool csv) {
+    if (csv)
         std::printf("dem,cells,valid,max_error_m,threads,points,triangles,hole_triangles,"
                     "achieved_max_error_m,rmse_m,seconds,speedup,peak_mib,steal_percent\n");
     else
         std::printf("%-11s %9s %6s %3s %9s %9s %9s %8s %7s %8s %6s %8s %7s\n", "DEM", "cells",
                     "E [m]", "thr", "points", "triangles", "holes", "max err", "RMSE", "time [s]",
                     "speed", "peak MiB", "steal %");
+}
+
+// `speedUp`: the case's one-thread seconds (its first row's) / this row's.
+void printRefineRow(bool csv, const RefineCase& refineCase, const HeightGrid& grid,
+                    std::size_t valid, double tolerance, unsigned threads, const RefineRow& row,
+                    double speedUp) {
+    const RefineResult& result = row.result;
+    if (csv)
+        std::printf("%s,%zu,%zu,%g,%u,%zu,%zu,%zu,%.3f,%.3f,%.4f,%.2f,%.1f,%.1f\n",
+                    refineCase.label, grid.cellCount(), valid, tolerance, threads,
+                    result.mesh.vertexCount(), result.mesh.triangleCount(),
+                    result.droppedTriangles, result.maxError, result.rmse, row.seconds, speedUp,
+                    row.peakMiB, row.stolenPercent);
+    else
+        std::printf("%-11s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f %7.1f\n",
+                    refineCase.label, grid.cellCount(), tolerance, threads,
+                    result.mesh.vertexCount(), result.mesh.triangleCount(),
+                    result.droppedTriangles, result.maxError, result.rmse, row.seconds, speedUp,
+                    row.peakMiB, row.stolenPercent);
+    std::fflush(stdout);
+}
+
+} // namespace
+
+int runRefineBench(const BenchOptions& options) {
+    const std::vector<unsigned> threads =
+        options.threadsGiven ? options.threads : std::vector<unsigned>{1, 2};
+    printRefineHeader(options.csv);
     for (const RefineCase& refineCase : refineCases()) {
         const std::filesystem::path path =
             std::filesystem::path(options.demDirectory) / refineCase.file;
@@ -88,41 +146,11 @@ int runRefineBench(const BenchOptions& options) {
                 RefineOptions refineOptions;
                 refineOptions.maxError = tolerance;
                 refineOptions.threads = threadCount;
-                std::vector<double> seconds;
-                std::vector<double> peaks;
-                RefineResult result;
-                PeakMemoryProbe probe;
-                HostStealProbe steal;
-                steal.start();
-                for (unsigned run = 0; run < options.runs; ++run) {
-                    probe.start();
-                    const Stopwatch stopwatch;
-                    result = positions.empty() ? refine(raster.grid, refineOptions)
-                                               : refine(raster.grid, positions, refineOptions);
-                    seconds.push_back(stopwatch.seconds());
-                    if (const std::optional<std::size_t> peak = probe.peakGrowthBytes())
-                        peaks.push_back(static_cast<double>(*peak));
-                }
-                const double time = median(seconds);
+                const RefineRow row = measureRefine(raster, positions, refineOptions, options.runs);
                 if (!oneThread)
-                    oneThread = time;
-                const double peakMiB = peaks.empty() ? -1.0 : median(peaks) / (1024.0 * 1024.0);
-                // Time the hypervisor gave other guests while this row ran (-1: unknown).
-                const double stolen = 100.0 * steal.stolenShare().value_or(-0.01);
-                if (options.csv)
-                    std::printf("%s,%zu,%zu,%g,%u,%zu,%zu,%zu,%.3f,%.3f,%.4f,%.2f,%.1f,%.1f\n",
-                                refineCase.label, raster.grid.cellCount(), valid, tolerance,
-                                threadCount, result.mesh.vertexCount(), result.mesh.triangleCount(),
-                                result.droppedTriangles, result.maxError, result.rmse, time,
-                                *oneThread / time, peakMiB, stolen);
-                else
-                    std::printf(
-                        "%-11s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f %7.1f\n",
-                        refineCase.label, raster.grid.cellCount(), tolerance, threadCount,
-                        result.mesh.vertexCount(), result.mesh.triangleCount(),
-                        result.droppedTriangles, result.maxError, result.rmse, time,
-                        *oneThread / time, peakMiB, stolen);
-                std::fflush(stdout);
+                    oneThread = row.seconds;
+                printRefineRow(options.csv, refineCase, raster.grid, valid, tolerance, threadCount,
+                               row, *oneThread / row.seconds);
             }
         }
     }

@@ -22,7 +22,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <span>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace terratin::bench {
 
@@ -58,24 +61,19 @@ OGRPolygon trianglePolygon(const Point3& a, const Point3& b, const Point3& c) {
 
 #ifdef TERRATIN_HAVE_CGAL
 
-bool scriptPeerBuilt() {
-    return true;
-}
+namespace {
 
-std::size_t runGdalCgalOgrScript(const std::string& dem, const fs::path& output) {
-    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-    using Vertex = CGAL::Triangulation_vertex_base_with_info_2<double, Kernel>;
-    using Delaunay =
-        CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<Vertex>>;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vertex = CGAL::Triangulation_vertex_base_with_info_2<double, Kernel>;
+using Delaunay =
+    CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<Vertex>>;
 
-    // GDAL: the valid cells' centres.
-    initialiseGdal();
-    GDALDatasetUniquePtr raster(GDALDataset::Open(dem.c_str(), GDAL_OF_RASTER));
-    if (!raster)
-        fail("cannot open " + dem);
-    GDALRasterBand* band = raster->GetRasterBand(1);
-    const int width = raster->GetRasterXSize();
-    const int height = raster->GetRasterYSize();
+// GDAL: the valid cells' centres of band 1, each with its elevation.
+std::vector<std::pair<Kernel::Point_2, double>> validCellCentres(GDALDataset& raster,
+                                                                 const std::string& dem) {
+    GDALRasterBand* band = raster.GetRasterBand(1);
+    const int width = raster.GetRasterXSize();
+    const int height = raster.GetRasterYSize();
     std::vector<double> cells(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
     if (band->RasterIO(GF_Read, 0, 0, width, height, cells.data(), width, height, GDT_Float64, 0, 0,
                        nullptr) != CE_None)
@@ -83,7 +81,7 @@ std::size_t runGdalCgalOgrScript(const std::string& dem, const fs::path& output)
     int hasNodata = 0;
     const double nodata = band->GetNoDataValue(&hasNodata);
     double gt[6];
-    raster->GetGeoTransform(gt);
+    raster.GetGeoTransform(gt);
     std::vector<std::pair<Kernel::Point_2, double>> points;
     for (int row = 0; row < height; ++row)
         for (int col = 0; col < width; ++col) {
@@ -94,15 +92,16 @@ std::size_t runGdalCgalOgrScript(const std::string& dem, const fs::path& output)
             const double y = gt[3] + (col + 0.5) * gt[4] + (row + 0.5) * gt[5];
             points.emplace_back(Kernel::Point_2(x, y), z);
         }
+    return points;
+}
 
-    // CGAL: the Delaunay triangulation.
-    Delaunay triangulation;
-    triangulation.insert(points.begin(), points.end());
-
-    // OGR: one Polygon Z per finite face, z_mean, one transaction.
+// OGR: one Polygon Z per finite face, with its z_mean, in one transaction. Returns the faces
+// written.
+std::size_t writeFaces(const Delaunay& triangulation, const OGRSpatialReference* crs,
+                       const fs::path& output) {
     GDALDatasetUniquePtr dataset = createGeoPackage(output);
-    OGRLayer* layer = dataset->CreateLayer(
-        "tin", const_cast<OGRSpatialReference*>(raster->GetSpatialRef()), wkbPolygon25D, nullptr);
+    OGRLayer* layer = dataset->CreateLayer("tin", const_cast<OGRSpatialReference*>(crs),
+                                           wkbPolygon25D, nullptr);
     OGRFieldDefn field("z_mean", OFTReal);
     if (layer == nullptr || layer->CreateField(&field) != OGRERR_NONE)
         fail("cannot create the layer of " + output.string());
@@ -125,6 +124,24 @@ std::size_t runGdalCgalOgrScript(const std::string& dem, const fs::path& output)
     if (dataset->CommitTransaction() != OGRERR_NONE)
         fail("cannot commit " + output.string());
     return written;
+}
+
+} // namespace
+
+bool scriptPeerBuilt() {
+    return true;
+}
+
+std::size_t runGdalCgalOgrScript(const std::string& dem, const fs::path& output) {
+    initialiseGdal();
+    GDALDatasetUniquePtr raster(GDALDataset::Open(dem.c_str(), GDAL_OF_RASTER));
+    if (!raster)
+        fail("cannot open " + dem);
+    const std::vector<std::pair<Kernel::Point_2, double>> points = validCellCentres(*raster, dem);
+    // CGAL: the Delaunay triangulation.
+    Delaunay triangulation;
+    triangulation.insert(points.begin(), points.end());
+    return writeFaces(triangulation, raster->GetSpatialRef(), output);
 }
 
 #else
@@ -267,12 +284,13 @@ std::string manyRowInsert(const std::string& table, int columns, int rows) {
     return sql;
 }
 
-} // namespace
+constexpr int kManyRows = 64;
+// The table's columns: fid, geom and 14 attributes.
+constexpr int kAttributes = 14;
+constexpr int kColumns = 2 + kAttributes;
 
-void SqliteLimitPeer::write(const fs::path& output) const {
-    constexpr int kRows = 64;
-    constexpr int kColumns = 16;
-    const Prepared& p = *m_prepared;
+// A new database at `output` with the empty table "tin", in an open transaction.
+sqlite3* createTinDatabase(const fs::path& output) {
     sqlite3* db = nullptr;
     fs::remove(output);
     if (sqlite3_open_v2(output.c_str(), &db,
@@ -283,26 +301,29 @@ void SqliteLimitPeer::write(const fs::path& output) const {
              "PRAGMA locking_mode = EXCLUSIVE; PRAGMA cache_size = -16384");
     std::string table = "CREATE TABLE tin (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, "
                         "geom POLYGON";
-    for (int c = 0; c < 14; ++c)
+    for (int c = 0; c < kAttributes; ++c)
         table += ", a" + std::to_string(c) + " REAL";
     exec(db, table + ")");
     exec(db, "BEGIN");
+    return db;
+}
 
-    // The rows.
-    const std::size_t count = p.leafOf.size();
-    sqlite3_stmt* many = prepareStatement(db, manyRowInsert("tin", kColumns, kRows));
+// The `count` rows of "tin", kManyRows to a statement.
+void insertTriangleRows(sqlite3* db, std::span<const std::uint8_t> blobs,
+                        std::span<const double> values, std::size_t count) {
+    sqlite3_stmt* many = prepareStatement(db, manyRowInsert("tin", kColumns, kManyRows));
     sqlite3_stmt* one = prepareStatement(db, manyRowInsert("tin", kColumns, 1));
     const auto bindRow = [&](sqlite3_stmt* statement, int first, std::size_t t) {
         sqlite3_bind_int64(statement, first, static_cast<sqlite3_int64>(t) + 1);
-        sqlite3_bind_blob(statement, first + 1, p.blobs.data() + t * io::detail::kGpkgTriangleBytes,
+        sqlite3_bind_blob(statement, first + 1, blobs.data() + t * io::detail::kGpkgTriangleBytes,
                           static_cast<int>(io::detail::kGpkgTriangleBytes), SQLITE_STATIC);
-        for (int c = 0; c < 14; ++c)
+        for (int c = 0; c < kAttributes; ++c)
             sqlite3_bind_double(statement, first + 2 + c,
-                                p.values[t * 14 + static_cast<std::size_t>(c)]);
+                                values[t * kAttributes + static_cast<std::size_t>(c)]);
     };
     std::size_t t = 0;
-    for (; count - t >= kRows; t += kRows) {
-        for (int r = 0; r < kRows; ++r)
+    for (; count - t >= kManyRows; t += kManyRows) {
+        for (int r = 0; r < kManyRows; ++r)
             bindRow(many, 1 + r * kColumns, t + static_cast<std::size_t>(r));
         step(db, many);
     }
@@ -312,41 +333,61 @@ void SqliteLimitPeer::write(const fs::path& output) const {
     }
     sqlite3_finalize(many);
     sqlite3_finalize(one);
+}
 
-    // The packed R-tree into the R*Tree's shadow tables.
-    exec(db, "CREATE VIRTUAL TABLE rtree_tin_geom USING rtree(id, minx, maxx, miny, maxy)");
-    exec(db, "DELETE FROM rtree_tin_geom_node");
+// The packed R-tree's nodes and their parents into the R*Tree's shadow tables.
+void insertRtreeNodes(sqlite3* db,
+                      std::span<const std::pair<std::int64_t, std::vector<std::uint8_t>>> nodes,
+                      std::span<const std::pair<std::int64_t, std::int64_t>> parents) {
     sqlite3_stmt* node = prepareStatement(db, "INSERT INTO rtree_tin_geom_node VALUES (?, ?)");
-    for (const auto& [number, blob] : p.nodes) {
+    for (const auto& [number, blob] : nodes) {
         sqlite3_bind_int64(node, 1, number);
         sqlite3_bind_blob(node, 2, blob.data(), static_cast<int>(blob.size()), SQLITE_STATIC);
         step(db, node);
     }
     sqlite3_finalize(node);
     sqlite3_stmt* parent = prepareStatement(db, "INSERT INTO rtree_tin_geom_parent VALUES (?, ?)");
-    for (const auto& [number, parentNumber] : p.parents) {
+    for (const auto& [number, parentNumber] : parents) {
         sqlite3_bind_int64(parent, 1, number);
         sqlite3_bind_int64(parent, 2, parentNumber);
         step(db, parent);
     }
     sqlite3_finalize(parent);
-    sqlite3_stmt* rowids = prepareStatement(db, manyRowInsert("rtree_tin_geom_rowid", 2, kRows));
+}
+
+// Each row's leaf of the packed R-tree into the R*Tree's rowid table.
+void insertRtreeRowids(sqlite3* db, std::span<const std::int64_t> leafOf) {
+    const std::size_t count = leafOf.size();
+    sqlite3_stmt* rowids =
+        prepareStatement(db, manyRowInsert("rtree_tin_geom_rowid", 2, kManyRows));
     sqlite3_stmt* rowid = prepareStatement(db, manyRowInsert("rtree_tin_geom_rowid", 2, 1));
     std::size_t e = 0;
-    for (; count - e >= kRows; e += kRows) {
-        for (int r = 0; r < kRows; ++r) {
+    for (; count - e >= kManyRows; e += kManyRows) {
+        for (int r = 0; r < kManyRows; ++r) {
             sqlite3_bind_int64(rowids, 1 + 2 * r, static_cast<sqlite3_int64>(e + r) + 1);
-            sqlite3_bind_int64(rowids, 2 + 2 * r, p.leafOf[e + static_cast<std::size_t>(r)]);
+            sqlite3_bind_int64(rowids, 2 + 2 * r, leafOf[e + static_cast<std::size_t>(r)]);
         }
         step(db, rowids);
     }
     for (; e < count; ++e) {
         sqlite3_bind_int64(rowid, 1, static_cast<sqlite3_int64>(e) + 1);
-        sqlite3_bind_int64(rowid, 2, p.leafOf[e]);
+        sqlite3_bind_int64(rowid, 2, leafOf[e]);
         step(db, rowid);
     }
     sqlite3_finalize(rowids);
     sqlite3_finalize(rowid);
+}
+
+} // namespace
+
+void SqliteLimitPeer::write(const fs::path& output) const {
+    const Prepared& p = *m_prepared;
+    sqlite3* db = createTinDatabase(output);
+    insertTriangleRows(db, p.blobs, p.values, p.leafOf.size());
+    exec(db, "CREATE VIRTUAL TABLE rtree_tin_geom USING rtree(id, minx, maxx, miny, maxy)");
+    exec(db, "DELETE FROM rtree_tin_geom_node");
+    insertRtreeNodes(db, p.nodes, p.parents);
+    insertRtreeRowids(db, p.leafOf);
     exec(db, "COMMIT");
     if (sqlite3_close(db) != SQLITE_OK)
         throw Error("terratin-bench: cannot close " + output.string());

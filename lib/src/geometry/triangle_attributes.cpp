@@ -50,6 +50,50 @@ bool isPlanimetricSliver(const Point3& a, const Point3& b, const Point3& c, doub
     // height = doubleArea / longest; compared without the division.
     return doubleArea <= tolerance * longest;
 }
+/// The cross product (b - a) x (c - a), turned up (see the notation above).
+struct Normal {
+    double x;
+    double y;
+    double z;
+};
+
+Normal upwardNormal(const Point3& a, const Point3& b, const Point3& c) {
+    // Edges relative to a: projected coordinates are large (UTM northings ~5e6), their
+    // differences are small and nearly exact, so the cross product keeps its precision.
+    const double e1x = b.x - a.x;
+    const double e1y = b.y - a.y;
+    const double e1z = b.z - a.z;
+    const double e2x = c.x - a.x;
+    const double e2y = c.y - a.y;
+    const double e2z = c.z - a.z;
+    Normal n{e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x};
+    // Up, or for a vertical plane the first non-zero component positive: a canonical sign
+    // that does not depend on the corner order.
+    if (n.z < 0.0 || (n.z == 0.0 && (n.x < 0.0 || (n.x == 0.0 && n.y < 0.0))))
+        n = {-n.x, -n.y, -n.z};
+    return n;
+}
+
+/// The compass direction, degrees clockwise from grid north in [0, 360), of the downhill
+/// direction (nx, ny), which is not (0, 0).
+double aspectDegrees(double nx, double ny) {
+    double aspect = std::atan2(nx, ny) * kDegreesPerRadian;
+    if (aspect < 0.0)
+        aspect += 360.0;
+    // A direction a hair west of north gives a tiny negative angle, and -tiny + 360 rounds to
+    // 360, which is outside [0, 360): it is north.
+    if (aspect >= 360.0)
+        aspect = 0.0;
+    return aspect;
+}
+
+/// Slope and aspect of a triangle that has none (the header's convention).
+void setNoSlope(TriangleAttributes& attributes) {
+    attributes.slopeDeg = 0.0;
+    attributes.slopePct = 0.0;
+    attributes.aspectDeg = -1.0;
+}
+
 } // namespace
 
 TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, const Point3& c) {
@@ -61,71 +105,36 @@ TriangleAttributes computeTriangleAttributes(const Point3& a, const Point3& b, c
     attributes.zMax = std::max({a.z, b.z, c.z});
     attributes.zMean = (a.z + b.z + c.z) / 3.0;
 
-    // Edges relative to a: projected coordinates are large (UTM northings ~5e6), their
-    // differences are small and nearly exact, so the cross product keeps its precision.
-    const double e1x = b.x - a.x;
-    const double e1y = b.y - a.y;
-    const double e1z = b.z - a.z;
-    const double e2x = c.x - a.x;
-    const double e2y = c.y - a.y;
-    const double e2z = c.z - a.z;
-
-    double nx = e1y * e2z - e1z * e2y;
-    double ny = e1z * e2x - e1x * e2z;
-    double nz = e1x * e2y - e1y * e2x;
-
-    // Up, or for a vertical plane the first non-zero component positive: a canonical sign
-    // that does not depend on the corner order.
-    if (nz < 0.0 || (nz == 0.0 && (nx < 0.0 || (nx == 0.0 && ny < 0.0)))) {
-        nx = -nx;
-        ny = -ny;
-        nz = -nz;
-    }
-    const double horizontal = std::hypot(nx, ny);
-    const double length = std::hypot(horizontal, nz);
+    const Normal n = upwardNormal(a, b, c);
+    const double horizontal = std::hypot(n.x, n.y);
+    const double length = std::hypot(horizontal, n.z);
     attributes.area3d = 0.5 * length;
     if (length > 0.0) {
-        attributes.nx = nx / length;
-        attributes.ny = ny / length;
-        attributes.nz = nz / length;
+        attributes.nx = n.x / length;
+        attributes.ny = n.y / length;
+        attributes.nz = n.z / length;
     }
 
     // No planimetric extent (collinear in x, y): the plane is vertical or undefined, so slope
     // and aspect have no meaning; the header documents slope 0, aspect -1, area 0.
-    if (nz == 0.0) {
-        attributes.slopeDeg = 0.0;
-        attributes.slopePct = 0.0;
-        attributes.aspectDeg = -1.0;
+    if (n.z == 0.0) {
+        setNoSlope(attributes);
         attributes.area2d = 0.0;
         return attributes;
     }
 
-    attributes.area2d = 0.5 * nz;
+    attributes.area2d = 0.5 * n.z;
     // Within rounding of no extent: the same slope and aspect as above, the (tiny) area kept
     // so that areas still sum to the hull's.
-    if (isPlanimetricSliver(a, b, c, nz)) {
-        attributes.slopeDeg = 0.0;
-        attributes.slopePct = 0.0;
-        attributes.aspectDeg = -1.0;
+    if (isPlanimetricSliver(a, b, c, n.z)) {
+        setNoSlope(attributes);
         return attributes;
     }
-    attributes.slopeDeg = std::atan2(horizontal, nz) * kDegreesPerRadian;
-    attributes.slopePct = 100.0 * (horizontal / nz);
-
+    attributes.slopeDeg = std::atan2(horizontal, n.z) * kDegreesPerRadian;
+    attributes.slopePct = 100.0 * (horizontal / n.z);
     // Exact comparison on purpose: a horizontal triangle (all z equal) gives nx = ny = 0
     // exactly, and any tilt at all, however small, has a well-defined downhill direction.
-    if (nx == 0.0 && ny == 0.0) {
-        attributes.aspectDeg = -1.0;
-        return attributes;
-    }
-    double aspect = std::atan2(nx, ny) * kDegreesPerRadian;
-    if (aspect < 0.0)
-        aspect += 360.0;
-    // A direction a hair west of north gives a tiny negative angle, and -tiny + 360 rounds to
-    // 360, which is outside [0, 360): it is north.
-    if (aspect >= 360.0)
-        aspect = 0.0;
-    attributes.aspectDeg = aspect;
+    attributes.aspectDeg = n.x == 0.0 && n.y == 0.0 ? -1.0 : aspectDegrees(n.x, n.y);
     return attributes;
 }
 

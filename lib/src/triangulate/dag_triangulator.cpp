@@ -316,57 +316,78 @@ std::size_t DagTriangulator::repairEdgesFrom(NodeId first, unsigned threads) {
     return flips;
 }
 
-void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
-                              MeshArray<std::int32_t>& neighbours, unsigned threads) {
-    // Each thread takes a contiguous block of the arena: it lists the output triangles
-    // (finite leaves) of its block, numbers them after the blocks before it, and then writes
-    // their corners and neighbours. Three passes, since a neighbour may be in any block.
-    const std::size_t nodeCount = m_nodes.size();
-    const auto isFinite = [this](const DagNode& node) {
-        return m_predicates.isFinite(node.v[0]) && m_predicates.isFinite(node.v[1]) &&
-               m_predicates.isFinite(node.v[2]);
-    };
-    struct BlockLeaves {
-        /// On huge pages: a quarter of the arena's entries.
-        HugePageArray<NodeId> finite;
-        /// Leaves with a symbolic corner: outside the mesh.
-        HugePageArray<NodeId> outside;
+namespace {
+
+// The extraction's three passes, each on every block of the arena: list the leaves, number
+// the output triangles (finite leaves) after the blocks before theirs, write corners and
+// neighbours. Three passes, since a neighbour may be in any block.
+
+/// The leaves of one contiguous block of the arena, by id.
+struct BlockLeaves {
+    /// With three finite corners: the output triangles. On huge pages: a quarter of the
+    /// arena's entries.
+    HugePageArray<NodeId> finite;
+    /// With a symbolic corner: outside the mesh.
+    HugePageArray<NodeId> outside;
+};
+
+std::vector<BlockLeaves> leavesByBlock(const NodeArena& nodes,
+                                       const SymbolicPredicates& predicates, unsigned threads) {
+    const std::size_t nodeCount = nodes.size();
+    const auto isFinite = [&predicates](const DagNode& node) {
+        return predicates.isFinite(node.v[0]) && predicates.isFinite(node.v[1]) &&
+               predicates.isFinite(node.v[2]);
     };
     std::vector<BlockLeaves> blockLeaves(parallelForThreads(nodeCount, threads));
     parallelFor(nodeCount, threads, [&](unsigned block, std::size_t begin, std::size_t end) {
         BlockLeaves& leaves = blockLeaves[block];
         leaves.finite.reserve((end - begin) / 4);
         for (std::size_t n = begin; n < end; ++n) {
-            const DagNode& node = m_nodes[static_cast<NodeId>(n)];
+            const DagNode& node = nodes[static_cast<NodeId>(n)];
             if (node.isLeaf())
                 (isFinite(node) ? leaves.finite : leaves.outside).push_back(static_cast<NodeId>(n));
         }
     });
+    return blockLeaves;
+}
+
+// The output index of every leaf, kOutside outside the mesh, is kept in its owner word: the
+// insertions are over, so the word is free, and the corners beside it are read anyway. (An
+// array of one entry per node took 37 MB of fresh pages per million points.)
+constexpr std::uint32_t kOutside = 0xFFFFFFFFU; // -1 as an int32_t
+
+/// Numbers every block's finite leaves from blockFirst[block] on; returns blockFirst, whose
+/// last entry is the number of output triangles.
+std::vector<std::size_t> numberLeaves(NodeArena& nodes, const std::vector<BlockLeaves>& blockLeaves,
+                                      unsigned threads) {
     std::vector<std::size_t> blockFirst(blockLeaves.size() + 1, 0);
     for (std::size_t block = 0; block < blockLeaves.size(); ++block)
         blockFirst[block + 1] = blockFirst[block] + blockLeaves[block].finite.size();
-
-    // The output index of every leaf, kOutside outside the mesh, in its owner word: the
-    // insertions are over, so the word is free, and the corners beside it are read below
-    // anyway. (An array of one entry per node took 37 MB of fresh pages per million points.)
-    constexpr std::uint32_t kOutside = 0xFFFFFFFFU; // -1 as an int32_t
-    const auto setOutput = [this](NodeId n, std::size_t output) {
-        m_nodes[n].owner.store(static_cast<std::uint32_t>(output), std::memory_order_relaxed);
+    const auto setOutput = [&nodes](NodeId n, std::size_t output) {
+        nodes[n].owner.store(static_cast<std::uint32_t>(output), std::memory_order_relaxed);
     };
-    const auto outputOf = [this](NodeId n) {
-        return static_cast<std::int32_t>(m_nodes[n].owner.load(std::memory_order_relaxed));
-    };
-    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
+    parallelFor(nodes.size(), threads, [&](unsigned block, std::size_t, std::size_t) {
         const BlockLeaves& leaves = blockLeaves[block];
         for (std::size_t k = 0; k < leaves.finite.size(); ++k)
             setOutput(leaves.finite[k], blockFirst[block] + k);
         for (const NodeId n : leaves.outside)
             setOutput(n, kOutside);
     });
+    return blockFirst;
+}
 
+} // namespace
+
+void DagTriangulator::extract(MeshArray<std::uint32_t>& triangles,
+                              MeshArray<std::int32_t>& neighbours, unsigned threads) {
+    const std::vector<BlockLeaves> blockLeaves = leavesByBlock(m_nodes, m_predicates, threads);
+    const std::vector<std::size_t> blockFirst = numberLeaves(m_nodes, blockLeaves, threads);
+    const auto outputOf = [this](NodeId n) {
+        return static_cast<std::int32_t>(m_nodes[n].owner.load(std::memory_order_relaxed));
+    };
     triangles.resize(3 * blockFirst.back());
     neighbours.resize(3 * blockFirst.back());
-    parallelFor(nodeCount, threads, [&](unsigned block, std::size_t, std::size_t) {
+    parallelFor(m_nodes.size(), threads, [&](unsigned block, std::size_t, std::size_t) {
         const HugePageArray<NodeId>& outputs = blockLeaves[block].finite;
         for (std::size_t k = 0; k < outputs.size(); ++k) {
             const DagNode& node = m_nodes[outputs[k]];

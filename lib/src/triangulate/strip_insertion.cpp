@@ -188,22 +188,56 @@ unsigned StripTriangulator::retryLevel(std::uint32_t point, unsigned level) cons
     return std::min(static_cast<unsigned>(std::countr_zero(boundary)) + 1, m_topLevel);
 }
 
+StripTriangulator::LevelPoints StripTriangulator::groupPoints(std::span<const std::uint32_t> points,
+                                                              unsigned level) const {
+    const unsigned groups = groupsAt(level);
+    LevelPoints grouped;
+    grouped.start.assign(groups + 1, 0);
+    for (const std::uint32_t p : points)
+        ++grouped.start[(m_vertexStrip[p] >> level) + 1];
+    for (unsigned g = 0; g < groups; ++g)
+        grouped.start[g + 1] += grouped.start[g];
+    grouped.points.resize(points.size());
+    std::vector<std::size_t> fill(grouped.start.begin(), grouped.start.end() - 1);
+    for (const std::uint32_t p : points)
+        grouped.points[fill[m_vertexStrip[p] >> level]++] = p;
+    return grouped;
+}
+
+std::vector<std::vector<CavityTriangleId>>
+StripTriangulator::findCheckpoints(const LevelPoints& grouped, unsigned level,
+                                   const ProgressCallback& progress, double fraction) {
+    const unsigned groups = groupsAt(level);
+    std::vector<std::vector<CavityTriangleId>> checkpoints(groups);
+    for (unsigned g = 0; g < groups; ++g)
+        checkpoints[g].reserve(grouped.size(g) / kCheckpointStride + 1);
+    runGroups(groups, progress, fraction, [&](unsigned g) {
+        const auto owner = static_cast<std::uint8_t>(g);
+        const std::size_t groupEnd = grouped.start[g + 1];
+        CavityTriangleId walkStart = m_hint;
+        for (std::size_t first = grouped.start[g]; first < groupEnd && !stopping();
+             first += kCheckpointStride) {
+            // The stretch's first point may lie by a boundary: a few more are tried.
+            const std::size_t length = std::min(kCheckpointStride, groupEnd - first);
+            const std::size_t tries = std::min(length, kCheckpointTries);
+            CavityTriangleId checkpoint = kNoCavityTriangle;
+            for (std::size_t k = 0; k < tries && checkpoint == kNoCavityTriangle; ++k) {
+                walkStart = m_mesh.locate(grouped.points[first + length * k / tries], walkStart);
+                if (m_mesh.mayTouch(walkStart, owner, level))
+                    checkpoint = walkStart;
+            }
+            checkpoints[g].push_back(checkpoint);
+        }
+    });
+    return checkpoints;
+}
+
 std::vector<std::vector<std::uint32_t>>
 StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned level,
                                  const ProgressCallback& progress, double fraction) {
     const unsigned groups = groupsAt(level);
     // The points by group, each group keeping the given (Hilbert) order.
-    std::vector<std::size_t> groupStart(groups + 1, 0);
-    for (const std::uint32_t p : points)
-        ++groupStart[(m_vertexStrip[p] >> level) + 1];
-    for (unsigned g = 0; g < groups; ++g)
-        groupStart[g + 1] += groupStart[g];
-    HugePageArray<std::uint32_t> byGroup(points.size());
-    {
-        std::vector<std::size_t> fill(groupStart.begin(), groupStart.end() - 1);
-        for (const std::uint32_t p : points)
-            byGroup[fill[m_vertexStrip[p] >> level]++] = p;
-    }
+    const LevelPoints grouped = groupPoints(points, level);
     // Checkpoints: for every kCheckpointStride-th point of a group, the triangle holding it
     // before the level starts, if the group may touch it. A thread whose walk is cut off by
     // another group's triangles (its points jump from one cluster to another, or the Hilbert
@@ -212,38 +246,20 @@ StripTriangulator::insertAtLevel(std::span<const std::uint32_t> points, unsigned
     // groups' checkpoints first, all before any thread inserts (the walks read the whole
     // mesh); after that only the group's thread edits the group's triangles, so a checkpoint
     // stays the group's.
-    std::vector<std::vector<CavityTriangleId>> checkpoints(groups);
-    for (unsigned g = 0; g < groups; ++g)
-        checkpoints[g].reserve((groupStart[g + 1] - groupStart[g]) / kCheckpointStride + 1);
+    const std::vector<std::vector<CavityTriangleId>> checkpoints =
+        findCheckpoints(grouped, level, progress, fraction);
     std::vector<CavityTriangleId> hints(groups, kNoCavityTriangle);
     std::vector<std::vector<std::uint32_t>> refused(groups);
     runGroups(groups, progress, fraction, [&](unsigned g) {
         const auto owner = static_cast<std::uint8_t>(g);
-        CavityTriangleId walkStart = m_hint;
-        for (std::size_t first = groupStart[g]; first < groupStart[g + 1] && !stopping();
-             first += kCheckpointStride) {
-            // The stretch's first point may lie by a boundary: a few more are tried.
-            const std::size_t length = std::min(kCheckpointStride, groupStart[g + 1] - first);
-            const std::size_t tries = std::min(length, kCheckpointTries);
-            CavityTriangleId checkpoint = kNoCavityTriangle;
-            for (std::size_t k = 0; k < tries && checkpoint == kNoCavityTriangle; ++k) {
-                walkStart = m_mesh.locate(byGroup[first + length * k / tries], walkStart);
-                if (m_mesh.mayTouch(walkStart, owner, level))
-                    checkpoint = walkStart;
-            }
-            checkpoints[g].push_back(checkpoint);
-        }
-    });
-    runGroups(groups, progress, fraction, [&](unsigned g) {
-        const auto owner = static_cast<std::uint8_t>(g);
         CavityTriangleId hint = kNoCavityTriangle;
-        for (std::size_t i = groupStart[g]; i < groupStart[g + 1] && !stopping(); ++i) {
-            const std::uint32_t p = byGroup[i];
+        for (std::size_t i = grouped.start[g]; i < grouped.start[g + 1] && !stopping(); ++i) {
+            const std::uint32_t p = grouped.points[i];
             CavityMesh::Scratch& scratch = m_scratch[m_vertexStrip[p]];
             bool inserted =
                 hint != kNoCavityTriangle && m_mesh.insert(p, hint, scratch, owner, level);
             const CavityTriangleId checkpoint =
-                checkpoints[g][(i - groupStart[g]) / kCheckpointStride];
+                checkpoints[g][(i - grouped.start[g]) / kCheckpointStride];
             if (!inserted && checkpoint != kNoCavityTriangle && checkpoint != hint) {
                 hint = checkpoint;
                 inserted = m_mesh.insert(p, hint, scratch, owner, level);

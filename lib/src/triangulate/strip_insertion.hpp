@@ -67,6 +67,24 @@ private:
     /// what the watching thread reports to `progress` meanwhile.
     void insertRoundInGroups(std::span<const std::uint32_t> round, unsigned level,
                              const ProgressCallback& progress, double fraction);
+    /// A level's points by group, each group keeping the given (Hilbert) order: group g's are
+    /// points[start[g]] to points[start[g + 1] - 1].
+    struct LevelPoints {
+        std::vector<std::size_t> start;
+        HugePageArray<std::uint32_t> points;
+        [[nodiscard]] std::size_t size(unsigned group) const {
+            return start[group + 1] - start[group];
+        }
+    };
+    [[nodiscard]] LevelPoints groupPoints(std::span<const std::uint32_t> points,
+                                          unsigned level) const;
+    /// For every kCheckpointStride-th point of each group, the triangle holding it now if the
+    /// group may touch it, else kNoCavityTriangle (insertAtLevel says why); on the groups'
+    /// threads.
+    std::vector<std::vector<CavityTriangleId>> findCheckpoints(const LevelPoints& grouped,
+                                                               unsigned level,
+                                                               const ProgressCallback& progress,
+                                                               double fraction);
     /// One level: each group's points on a thread of its own. Returns the points refused.
     std::vector<std::vector<std::uint32_t>> insertAtLevel(std::span<const std::uint32_t> points,
                                                           unsigned level,
