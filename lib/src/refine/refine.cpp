@@ -63,13 +63,9 @@ void checkRefineGrid(const HeightGrid& grid) {
                                 std::to_string(cell / width) + ", column " +
                                 std::to_string(cell % width) + ") has an infinite elevation");
     }
-    if (!positions.empty() && positions.size() != grid.cellCount())
-        throw InvalidInputError("Refiner: " + std::to_string(positions.size()) + " positions for " +
-                                std::to_string(grid.cellCount()) + " cells");
-    for (const Point2& p : positions)
-        if (!std::isfinite(p.x) || !std::isfinite(p.y))
-            throw InvalidInputError("Refiner: a cell position is not finite");
 }
+
+namespace {
 
 RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                       const RefineOptions& options, const ProgressCallback& progress) {
