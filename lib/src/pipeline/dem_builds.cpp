@@ -49,7 +49,6 @@ RefineOptions refineOptionsOf(const BuildOptions& options) {
     if (refineOptions.threads == 0)
         refineOptions.threads = options.triangulation.threads;
     refineOptions.validate = options.validate;
-    refineOptions.distribution = options.tileDistribution;
     return refineOptions;
 }
 
@@ -259,6 +258,7 @@ PreparedConstraints prepareConstraints(std::future<ConstraintLayers>& layers, He
 }
 
 } // namespace
+
 TileOptions tileOptionsOf(const BuildOptions& options) {
     TileOptions tiles;
     tiles.tileSize = options.tileSize;
@@ -267,7 +267,6 @@ TileOptions tileOptionsOf(const BuildOptions& options) {
     tiles.distribution = options.tileDistribution;
     return tiles;
 }
-
 
 void checkDemOnlyOptions(const BuildOptions& options) {
     if (options.zFactor != 1.0)
