@@ -1,5 +1,5 @@
 // CdtMesh::replaceCavity: the one write of a segment's retriangulated region
-// (segment_cavity.hpp), beside cdt_mesh.cpp's flips and splits.
+// (segment_cavity.hpp), beside cdt_flips.cpp's flips and splits.
 
 #include "cdt_mesh.hpp"
 

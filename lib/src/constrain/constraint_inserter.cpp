@@ -197,23 +197,8 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     const Point3 crossing{pc.x + t * (pd.x - pc.x), pc.y + t * (pd.y - pc.y),
                           pc.z + t * (pd.z - pc.z)};
 
-    // Found, and for a zone's inserter checked, before anything changes: a refusal leaves
-    // the mesh as it was.
-    const MeshLocation where = m_mesh.locate({crossing.x, crossing.y}, crossed / 3);
-    if (where.kind == MeshLocation::Kind::OutsideHull)
-        throw std::logic_error("insertConstraints: a crossing lies outside the convex hull");
-    std::optional<std::uint32_t> w;
-    if (where.kind == MeshLocation::Kind::OnVertex)
-        w = where.vertex;
-    else
-        w = vertexWithinRounding(crossing, where.halfEdge / 3);
-    if (w) {
-        m_mesh.rememberTriangle(*w, where.halfEdge / 3);
-    } else {
-        m_mesh.requireInsertable(where);
-        if (where.kind == MeshLocation::Kind::OnEdge && m_mesh.isConstrained(where.halfEdge))
-            requireEdgeInZone(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
-    }
+    MeshLocation where;
+    std::optional<std::uint32_t> w = crossingVertex(crossing, crossed, where);
     requireEdgeInZone(c, d);
 
     const ConstraintOwners::Owners crossedOwners = takeOwners(c, d);
@@ -235,6 +220,29 @@ void ConstraintInserter::splitAtCrossing(std::uint32_t u, std::uint32_t v,
     m_pieces.push_back({u, *w, owners});
     m_pieces.push_back({*w, d, crossedOwners});
     m_pieces.push_back({c, *w, crossedOwners});
+}
+
+std::optional<std::uint32_t> ConstraintInserter::crossingVertex(const Point3& crossing,
+                                                                std::size_t crossed,
+                                                                MeshLocation& where) {
+    // Found, and for a zone's inserter checked, before anything changes: a refusal leaves
+    // the mesh as it was.
+    where = m_mesh.locate({crossing.x, crossing.y}, crossed / 3);
+    if (where.kind == MeshLocation::Kind::OutsideHull)
+        throw std::logic_error("insertConstraints: a crossing lies outside the convex hull");
+    std::optional<std::uint32_t> w;
+    if (where.kind == MeshLocation::Kind::OnVertex)
+        w = where.vertex;
+    else
+        w = vertexWithinRounding(crossing, where.halfEdge / 3);
+    if (w) {
+        m_mesh.rememberTriangle(*w, where.halfEdge / 3);
+    } else {
+        m_mesh.requireInsertable(where);
+        if (where.kind == MeshLocation::Kind::OnEdge && m_mesh.isConstrained(where.halfEdge))
+            requireEdgeInZone(m_mesh.from(where.halfEdge), m_mesh.to(where.halfEdge));
+    }
+    return w;
 }
 
 // c or d when it lies within rounding (kSnapUlps) of the line through u and v.

@@ -136,6 +136,11 @@ private:
                      std::uint32_t w);
     void splitAtCrossing(std::uint32_t u, std::uint32_t v, const ConstraintOwners::Owners& owners,
                          std::size_t crossed);
+    /// The vertex at `crossing`, where u -> v crosses the constrained edge of half-edge
+    /// `crossed`: one at it or within rounding of it, else none yet (`where` then says where
+    /// it goes, checked insertable in this inserter's zone).
+    std::optional<std::uint32_t> crossingVertex(const Point3& crossing, std::size_t crossed,
+                                                MeshLocation& where);
     [[nodiscard]] std::optional<std::uint32_t> vertexWithinRounding(const Point3& p,
                                                                     std::size_t triangle) const;
     [[nodiscard]] std::optional<std::uint32_t> nearEndpoint(std::uint32_t u, std::uint32_t v,

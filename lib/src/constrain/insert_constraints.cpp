@@ -6,6 +6,7 @@
 #include "zoned_insertion.hpp"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -68,6 +69,60 @@ std::size_t checkConstraints(const TinMesh& mesh, const ConstraintSet& constrain
     return segments;
 }
 
+/// The owner number of each polyline's first segment: the index segments own 0 to
+/// segments - 1, then the polylines' segments follow in order. `owners` receives the count.
+std::vector<std::uint32_t> firstOwners(const ConstraintSet& constraints, std::size_t& owners) {
+    std::vector<std::uint32_t> firstOwner;
+    owners = constraints.segments.size();
+    for (const std::vector<Point3>& polyline : constraints.polylines) {
+        firstOwner.push_back(static_cast<std::uint32_t>(owners));
+        owners += polyline.empty() ? 0 : polyline.size() - 1;
+    }
+    return firstOwner;
+}
+
+/// The polylines inserted: in zones on the threads where they are many and come with their
+/// triangles in the mesh as given (no index segment has changed it), then on this thread what
+/// they refused, or every polyline. polylines[k] receives polyline k's vertices.
+void insertPolylines(detail::ConstraintInserter& inserter, const ConstraintSet& constraints,
+                     const std::vector<std::uint32_t>& firstOwner,
+                     std::vector<std::vector<std::uint32_t>>& polylines,
+                     const std::function<bool()>& keepGoing) {
+    const unsigned zones = constraints.segments.empty() && !constraints.polylineTriangles.empty()
+                               ? detail::zoneCount(constraints)
+                               : 1;
+    detail::ZonedInsertion zoned;
+    if (zones > 1) {
+        zoned = detail::insertInZones(inserter, constraints, zones, constraints.threads, firstOwner,
+                                      polylines, keepGoing);
+    } else {
+        zoned.refused.resize(constraints.polylines.size());
+        for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
+            zoned.refused[k].polyline = k;
+    }
+    for (detail::PolylineProgress& left : zoned.refused)
+        detail::insertPolyline(inserter, constraints, polylines[left.polyline],
+                               firstOwner[left.polyline], left);
+    if (zones > 1)
+        inserter.compact(zoned.unusedVertices, zoned.unusedTriangles, polylines);
+}
+
+/// Each input segment's chain, then each polyline's (its segments' chains joined), into `tin`.
+void collectChains(const detail::ConstraintInserter& inserter, const ConstraintSet& constraints,
+                   const std::vector<std::vector<std::uint32_t>>& polylines, ConstrainedTin& tin) {
+    for (std::size_t s = 0; s < constraints.segments.size(); ++s)
+        tin.chains.push_back(inserter.chainOf(static_cast<std::uint32_t>(s)));
+    std::size_t owner = constraints.segments.size();
+    for (const std::vector<std::uint32_t>& polyline : polylines) {
+        std::vector<std::uint32_t> chain;
+        if (!polyline.empty())
+            chain.push_back(polyline.front());
+        for (std::size_t j = 1; j < polyline.size(); ++j, ++owner)
+            inserter.appendChainAfterFirst(static_cast<std::uint32_t>(owner), chain);
+        tin.chains.push_back(std::move(chain));
+    }
+}
+
 } // namespace
 
 ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints,
@@ -89,48 +144,14 @@ ConstrainedTin insertConstraints(TinMesh mesh, const ConstraintSet& constraints,
     const std::vector<std::array<std::uint32_t, 2>>& segments = constraints.segments;
     for (std::size_t s = 0; s < segments.size(); ++s)
         inserter.insertSegment(segments[s][0], segments[s][1], static_cast<std::uint32_t>(s));
-    std::vector<std::uint32_t> firstOwner;
-    std::size_t owners = segments.size();
-    for (const std::vector<Point3>& polyline : constraints.polylines) {
-        firstOwner.push_back(static_cast<std::uint32_t>(owners));
-        owners += polyline.empty() ? 0 : polyline.size() - 1;
-    }
+    std::size_t owners = 0;
+    const std::vector<std::uint32_t> firstOwner = firstOwners(constraints, owners);
     inserter.prepareChains(owners);
-
-    // In zones on the threads where the polylines are many and come with their triangles in
-    // the mesh as given (no index segment has changed it), then on this thread what they
-    // refused, or every polyline.
     std::vector<std::vector<std::uint32_t>> polylines(constraints.polylines.size());
-    const unsigned zones = segments.empty() && !constraints.polylineTriangles.empty()
-                               ? detail::zoneCount(constraints)
-                               : 1;
-    detail::ZonedInsertion zoned;
-    if (zones > 1) {
-        zoned = detail::insertInZones(inserter, constraints, zones, constraints.threads, firstOwner,
-                                      polylines, keepGoing);
-    } else {
-        zoned.refused.resize(constraints.polylines.size());
-        for (std::size_t k = 0; k < constraints.polylines.size(); ++k)
-            zoned.refused[k].polyline = k;
-    }
-    for (detail::PolylineProgress& left : zoned.refused)
-        detail::insertPolyline(inserter, constraints, polylines[left.polyline],
-                               firstOwner[left.polyline], left);
-    if (zones > 1)
-        inserter.compact(zoned.unusedVertices, zoned.unusedTriangles, polylines);
+    insertPolylines(inserter, constraints, firstOwner, polylines, keepGoing);
 
     ConstrainedTin tin;
-    for (std::size_t s = 0; s < constraints.segments.size(); ++s)
-        tin.chains.push_back(inserter.chainOf(static_cast<std::uint32_t>(s)));
-    std::size_t owner = constraints.segments.size();
-    for (const std::vector<std::uint32_t>& polyline : polylines) {
-        std::vector<std::uint32_t> chain;
-        if (!polyline.empty())
-            chain.push_back(polyline.front());
-        for (std::size_t j = 1; j < polyline.size(); ++j, ++owner)
-            inserter.appendChainAfterFirst(static_cast<std::uint32_t>(owner), chain);
-        tin.chains.push_back(std::move(chain));
-    }
+    collectChains(inserter, constraints, polylines, tin);
     inserter.finish(tin);
     return tin;
 }

@@ -93,13 +93,11 @@ void measureCells(const GridView& grid, const PixelTriangle& triangle, std::int6
     }
 }
 
-} // namespace
-
-ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned threads) {
+/// 1 for each triangle without pixel area (pixel-collinear corners), which the check skips:
+/// its cells lie on its neighbours' edges.
+std::vector<std::uint8_t> flatInPixels(const TinMesh& mesh, const std::vector<PixelCorner>& corners,
+                                       unsigned threads) {
     const std::size_t triangles = mesh.triangleCount();
-    std::vector<ErrorMeasure> blocks(parallelForThreads(triangles, threads));
-    const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
-    // Triangles without pixel area are skipped (their cells lie on their neighbours' edges).
     std::vector<std::uint8_t> flat(triangles);
     parallelFor(triangles, threads, [&](unsigned, std::size_t begin, std::size_t end) {
         for (std::size_t t = begin; t < end; ++t) {
@@ -110,50 +108,62 @@ ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned t
                 (b.col - a.col) * (c.row - a.row) == (c.col - a.col) * (b.row - a.row) ? 1 : 0;
         }
     });
+    return flat;
+}
+
+/// Measures the cells of triangle t (with pixel area) into `measure`: each covered cell
+/// counted in the one triangle that owns it, which sees the largest error as well.
+void measureTriangle(const TinMesh& mesh, const std::vector<PixelCorner>& corners,
+                     const std::vector<std::uint8_t>& flat, std::size_t t, const GridView& grid,
+                     ErrorMeasure& measure) {
+    const PixelTriangle triangle = triangleOf(mesh, corners, t);
+    if (triangle.coversOnlyCorners())
+        return; // vertices, counted by the caller
+    // Edge i of `triangle` runs corner(i) -> corner(i+1); the mesh's neighbour across it is
+    // the one across the mesh edge opposite corner(i+2), mesh corner k, which is the mesh edge
+    // k + 1 (TinMesh: neighbours[3t+j] across corner j to j+1).
+    bool strict[3] = {false, false, false};
+    bool besideFlat = false;
+    for (int i = 0; i < 3; ++i) {
+        const std::uint32_t opposite = triangle.corner((i + 2) % 3).id;
+        const std::size_t k = opposite == mesh.triangles[3 * t]       ? 0
+                              : opposite == mesh.triangles[3 * t + 1] ? 1
+                                                                      : 2;
+        const std::int32_t neighbour = mesh.neighbours[3 * t + (k + 1) % 3];
+        strict[i] = neighbour != kNoNeighbour && !triangle.ownsSharedEdge(i);
+        besideFlat |= neighbour != kNoNeighbour && flat[static_cast<std::size_t>(neighbour)];
+    }
+    // No triangle owns the cells a flat neighbour skips, so beside one the maximum takes every
+    // cell of the closed triangle.
+    triangle.forEachRow(grid.width, grid.height, strict,
+                        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                            measureCells(grid, triangle, row, lo, hi, true, measure);
+                        });
+    if (besideFlat)
+        triangle.forEachRow(grid.width, grid.height, nullptr,
+                            [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
+                                measureCells(grid, triangle, row, lo, hi, false, measure);
+                            });
+}
+
+} // namespace
+
+ErrorMeasure measureErrors(const TinMesh& mesh, const GridView& grid, unsigned threads) {
+    const std::size_t triangles = mesh.triangleCount();
+    std::vector<ErrorMeasure> blocks(parallelForThreads(triangles, threads));
+    const std::vector<PixelCorner> corners = pixelCorners(mesh, grid.width, threads);
+    const std::vector<std::uint8_t> flat = flatInPixels(mesh, corners, threads);
     // Chunks, not halves: triangles differ in size by orders of magnitude (flat ground).
     parallelForChunks(
         triangles, threads, kCheckChunk, [&](unsigned block, std::size_t begin, std::size_t end) {
-            ErrorMeasure& measure = blocks[block];
             for (std::size_t t = begin; t < end; ++t) {
                 // Corners are looked up by vertex number, at random: ask for them ahead.
                 constexpr std::size_t kAhead = 8;
                 if (t + kAhead < end)
                     for (std::size_t k = 0; k < 3; ++k)
                         __builtin_prefetch(&corners[mesh.triangles[3 * (t + kAhead) + k]]);
-                if (flat[t] != 0)
-                    continue;
-                const PixelTriangle triangle = triangleOf(mesh, corners, t);
-                if (triangle.coversOnlyCorners())
-                    continue; // vertices, counted below
-
-                // Edge i of `triangle` runs corner(i) -> corner(i+1); the mesh's neighbour across
-                // it is the one across the mesh edge opposite corner(i+2), mesh corner k, which
-                // is the mesh edge k + 1 (TinMesh: neighbours[3t+j] across corner j to j+1).
-                bool strict[3] = {false, false, false};
-                bool besideFlat = false;
-                for (int i = 0; i < 3; ++i) {
-                    const std::uint32_t opposite = triangle.corner((i + 2) % 3).id;
-                    const std::size_t k = opposite == mesh.triangles[3 * t]       ? 0
-                                          : opposite == mesh.triangles[3 * t + 1] ? 1
-                                                                                  : 2;
-                    const std::int32_t neighbour = mesh.neighbours[3 * t + (k + 1) % 3];
-                    strict[i] = neighbour != kNoNeighbour && !triangle.ownsSharedEdge(i);
-                    besideFlat |=
-                        neighbour != kNoNeighbour && flat[static_cast<std::size_t>(neighbour)];
-                }
-                // Each covered cell is counted in the one triangle that owns it, which sees the
-                // largest error as well; but no triangle owns the cells a flat neighbour skips, so
-                // beside one the maximum takes every cell of the closed triangle.
-                triangle.forEachRow(grid.width, grid.height, strict,
-                                    [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                        measureCells(grid, triangle, row, lo, hi, true, measure);
-                                    });
-                if (besideFlat)
-                    triangle.forEachRow(grid.width, grid.height, nullptr,
-                                        [&](std::int64_t row, std::int64_t lo, std::int64_t hi) {
-                                            measureCells(grid, triangle, row, lo, hi, false,
-                                                         measure);
-                                        });
+                if (flat[t] == 0)
+                    measureTriangle(mesh, corners, flat, t, grid, blocks[block]);
             }
         });
     ErrorMeasure total;

@@ -119,6 +119,8 @@ private:
     void planStrips();
     void startFromHull();
     void insertSeedCells();
+    /// Candidates of the first triangles, scanned on the workers: they cover every valid cell.
+    void scanFirstTriangles();
     /// Where `cell` lies in the TIN.
     [[nodiscard]] Point2 position(std::uint32_t cell) const {
         return m_positions.empty() ? m_grid->cellCentre(cell) : m_positions[cell];

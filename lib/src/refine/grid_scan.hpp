@@ -264,6 +264,39 @@ public:
     }
 
 private:
+#if defined(__SSE2__)
+    /// An edge's function sgn * orient(p, q, (x, r)) - t (forEachRow) at the 16 columns from a
+    /// triangle's first one, in 16-bit lanes: columns 0..7 and 8..15 of the current row, and
+    /// the change from one row to the next.
+    struct EdgeLanes {
+        __m128i first;
+        __m128i last;
+        __m128i rowStep;
+        void nextRow() {
+            first = _mm_add_epi16(first, rowStep);
+            last = _mm_add_epi16(last, rowStep);
+        }
+    };
+    /// Edge i's lanes at row `row` from column `colMin`; `strict` leaves its cells out.
+    [[nodiscard]] EdgeLanes edgeLanes(std::size_t i, std::int64_t row, std::int64_t colMin,
+                                      bool strict) const {
+        const std::int64_t sgn = m_det > 0 ? 1 : -1;
+        const PixelCorner& p = m_corner[i];
+        const PixelCorner& q = m_corner[(i + 1) % 3];
+        const std::int64_t perColumn = -sgn * (q.row - p.row);
+        const std::int64_t perRow = sgn * (q.col - p.col);
+        const std::int64_t t = strict ? 1 : 0;
+        const std::int64_t start = perRow * (row - p.row) + perColumn * (colMin - p.col) - t;
+        const __m128i column = _mm_set1_epi16(static_cast<short>(perColumn));
+        const __m128i base = _mm_set1_epi16(static_cast<short>(start));
+        return {
+            _mm_add_epi16(base, _mm_mullo_epi16(column, _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7))),
+            _mm_add_epi16(base,
+                          _mm_mullo_epi16(column, _mm_setr_epi16(8, 9, 10, 11, 12, 13, 14, 15))),
+            _mm_set1_epi16(static_cast<short>(perRow))};
+    }
+#endif
+
     /// forEachRow's visits, for a triangle of at most 16 columns and 32 rows (97% of those a
     /// refinement scans): the edge functions sgn * orient(p, q, (x, r)) - t of 16
     /// columns at once, in 16-bit lanes (exact: they stay under 2^11 in magnitude), give each
@@ -281,42 +314,23 @@ private:
         if (colMax - colMin >= kColumns || m_rowMax - m_rowMin >= kRows || colMin < 0 ||
             colMax >= gridWidth)
             return false;
-        const std::int64_t sgn = m_det > 0 ? 1 : -1;
-        const __m128i firstLanes = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7);
-        const __m128i lastLanes = _mm_setr_epi16(8, 9, 10, 11, 12, 13, 14, 15);
-        // Edge i's function at columns colMin + 0..7 and + 8..15 of the current row, and its
-        // change from one row to the next.
-        __m128i first[3];
-        __m128i last[3];
-        __m128i rowStep[3];
-        for (std::size_t i = 0; i < 3; ++i) {
-            const PixelCorner& p = m_corner[i];
-            const PixelCorner& q = m_corner[(i + 1) % 3];
-            const std::int64_t perColumn = -sgn * (q.row - p.row);
-            const std::int64_t perRow = sgn * (q.col - p.col);
-            const std::int64_t t = strictEdge != nullptr && strictEdge[i] ? 1 : 0;
-            const std::int64_t start =
-                perRow * (rowFirst - p.row) + perColumn * (colMin - p.col) - t;
-            const __m128i column = _mm_set1_epi16(static_cast<short>(perColumn));
-            const __m128i base = _mm_set1_epi16(static_cast<short>(start));
-            first[i] = _mm_add_epi16(base, _mm_mullo_epi16(column, firstLanes));
-            last[i] = _mm_add_epi16(base, _mm_mullo_epi16(column, lastLanes));
-            rowStep[i] = _mm_set1_epi16(static_cast<short>(perRow));
-        }
+        EdgeLanes edges[3];
+        for (std::size_t i = 0; i < 3; ++i)
+            edges[i] = edgeLanes(i, rowFirst, colMin, strictEdge != nullptr && strictEdge[i]);
         const unsigned columns = (1U << static_cast<unsigned>(colMax - colMin + 1)) - 1U;
         for (std::int64_t r = rowFirst; r <= rowLast; ++r) {
             // A lane is outside when any edge function is negative: the sign bits of the OR.
-            const __m128i firstOr = _mm_or_si128(_mm_or_si128(first[0], first[1]), first[2]);
-            const __m128i lastOr = _mm_or_si128(_mm_or_si128(last[0], last[1]), last[2]);
+            const __m128i firstOr =
+                _mm_or_si128(_mm_or_si128(edges[0].first, edges[1].first), edges[2].first);
+            const __m128i lastOr =
+                _mm_or_si128(_mm_or_si128(edges[0].last, edges[1].last), edges[2].last);
             const auto outside =
                 static_cast<unsigned>(_mm_movemask_epi8(_mm_packs_epi16(firstOr, lastOr)));
             const unsigned inside = ~outside & columns;
             if (inside != 0)
                 visit(r, colMin + __builtin_ctz(inside), colMin + 31 - __builtin_clz(inside));
-            for (std::size_t i = 0; i < 3; ++i) {
-                first[i] = _mm_add_epi16(first[i], rowStep[i]);
-                last[i] = _mm_add_epi16(last[i], rowStep[i]);
-            }
+            for (EdgeLanes& edge : edges)
+                edge.nextRow();
         }
         return true;
 #else

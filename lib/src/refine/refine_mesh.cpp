@@ -1,9 +1,9 @@
 #include "refine_mesh.hpp"
 
+#include "../huge_pages.hpp"
 #include "../parallel/parallel_for.hpp"
 
 #include "terratin/geometry/predicates.hpp"
-#include "../huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <algorithm>
@@ -191,36 +191,42 @@ TriId RefineMesh::walk(const Point2& q, TriId start) const {
     return t;
 }
 
-int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned region,
-                          InsertScratch& scratch, int maxAdded) {
-    const Point2& q = point(p);
-    // The walk, then the cavity by a search over neighbours; nothing is written until both
-    // are known to stay within the allowed strips.
-    const auto refuse = [&](TriId met) {
-        const StripRange strips = m_triangles[met].strips;
-        scratch.needed = {std::min(allowed.first, strips.first),
-                          std::max(allowed.last, strips.last)};
-        return 0;
-    };
+void RefineMesh::refuse(TriId met, StripRange allowed, InsertScratch& scratch) const {
+    const StripRange strips = m_triangles[met].strips;
+    scratch.needed = {std::min(allowed.first, strips.first), std::max(allowed.last, strips.last)};
+}
+
+void RefineMesh::requestNeighbours(TriId t) const {
+    for (const TriId n : m_triangles[t].n)
+        if (n != kNoTriangle)
+            __builtin_prefetch(&m_triangles[n]);
+}
+
+TriId RefineMesh::walkWithin(const Point2& q, TriId start, StripRange allowed,
+                             InsertScratch& scratch) const {
     TriId t = start;
-    if (!allowed.contains(m_triangles[t].strips))
-        return refuse(t);
+    if (!allowed.contains(m_triangles[t].strips)) {
+        refuse(t, allowed, scratch);
+        return kNoTriangle;
+    }
     for (int exit = exitEdge(t, q); exit >= 0; exit = exitEdge(t, q)) {
         t = m_triangles[t].n[static_cast<std::size_t>(exit)];
         if (t == kNoTriangle)
             throw std::logic_error("Refiner: a point outside the hull");
-        if (!allowed.contains(m_triangles[t].strips))
-            return refuse(t);
+        if (!allowed.contains(m_triangles[t].strips)) {
+            refuse(t, allowed, scratch);
+            return kNoTriangle;
+        }
     }
+    return t;
+}
+
+bool RefineMesh::findCavity(const Point2& q, TriId t, StripRange allowed,
+                            InsertScratch& scratch) const {
     std::vector<TriId>& cavity = scratch.cavity;
     std::vector<InsertScratch::Edge>& boundary = scratch.boundary;
     // A cavity triangle's neighbours are read when the search reaches it: their records are
     // requested as soon as it joins.
-    const auto requestNeighbours = [&](TriId in) {
-        for (const TriId n : m_triangles[in].n)
-            if (n != kNoTriangle)
-                __builtin_prefetch(&m_triangles[n]);
-    };
     requestNeighbours(t);
     cavity.assign(1, t);
     boundary.clear();
@@ -248,8 +254,10 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
             // A point inside the edge (a, b) is strictly inside u's circumcircle too.
             if (predicates::incircle(point(beyond.v[0]), point(beyond.v[1]), point(beyond.v[2]),
                                      q) > 0.0) {
-                if (!allowed.contains(beyond.strips))
-                    return refuse(u);
+                if (!allowed.contains(beyond.strips)) {
+                    refuse(u, allowed, scratch);
+                    return false;
+                }
                 requestNeighbours(u);
                 cavity.push_back(u);
             } else {
@@ -257,12 +265,12 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
             }
         }
     }
+    return true;
+}
 
-    const int added = static_cast<int>(boundary.size()) - static_cast<int>(cavity.size());
-    if (added > maxAdded)
-        return 0;
-
-    // The fan: (p, a, b) for each boundary edge, in the cavity's slots and then new ones.
+void RefineMesh::makeFan(VertexId p, unsigned region, InsertScratch& scratch) {
+    const std::vector<TriId>& cavity = scratch.cavity;
+    const std::vector<InsertScratch::Edge>& boundary = scratch.boundary;
     std::vector<TriId>& fan = scratch.fan;
     fan.resize(boundary.size());
     for (std::size_t k = 0; k < fan.size(); ++k)
@@ -282,6 +290,21 @@ int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned 
         set(fan[k], {p, a, b}, {beyond, fanFrom(b, true), fanFrom(a, false)});
         relinkAcross(beyond, a, b, fan[k]);
     }
+}
+
+int RefineMesh::tryInsert(VertexId p, TriId start, StripRange allowed, unsigned region,
+                          InsertScratch& scratch, int maxAdded) {
+    const Point2& q = point(p);
+    // The walk, then the cavity by a search over neighbours; nothing is written until both
+    // are known to stay within the allowed strips.
+    const TriId t = walkWithin(q, start, allowed, scratch);
+    if (t == kNoTriangle || !findCavity(q, t, allowed, scratch))
+        return 0;
+    const int added =
+        static_cast<int>(scratch.boundary.size()) - static_cast<int>(scratch.cavity.size());
+    if (added > maxAdded)
+        return 0;
+    makeFan(p, region, scratch);
     return added;
 }
 

@@ -37,10 +37,10 @@
 /// one owner strip and merges strips by levels, and keeps 24-byte triangles whose links name
 /// the corner across. One core would make one of them carry the other's fields per triangle.
 
+#include "../huge_pages.hpp"
 #include "../mesh/node_arena.hpp"
 
 #include "terratin/geometry/point.hpp"
-#include "../huge_pages.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>
@@ -191,6 +191,22 @@ private:
     /// nothing was flipped.
     TriId flipIfIllegal(TriId t, int e);
     [[nodiscard]] const Point2& point(VertexId v) const { return m_vertices[v].position; }
+
+    /// tryInsert's steps. The walk from `start` to the triangle holding q, kNoTriangle when it
+    /// meets one not within `allowed`; the cavity of q from that triangle into scratch.cavity
+    /// and its boundary into scratch.boundary, false when it meets one not within `allowed`
+    /// (either way scratch.needed is then set, refuse); the fan of p over the boundary, in the
+    /// cavity's slots and then new ones of `region`, into scratch.fan, linked to the triangles
+    /// beyond.
+    [[nodiscard]] TriId walkWithin(const Point2& q, TriId start, StripRange allowed,
+                                   InsertScratch& scratch) const;
+    [[nodiscard]] bool findCavity(const Point2& q, TriId t, StripRange allowed,
+                                  InsertScratch& scratch) const;
+    void makeFan(VertexId p, unsigned region, InsertScratch& scratch);
+    /// scratch.needed for an insertion within `allowed` that met triangle `met`.
+    void refuse(TriId met, StripRange allowed, InsertScratch& scratch) const;
+    /// Asks for the records of the neighbours of `t`, which a cavity search reads next.
+    void requestNeighbours(TriId t) const;
 
     std::span<const RefineVertex> m_vertices;
     std::size_t m_capacity = 0;

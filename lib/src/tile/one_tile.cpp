@@ -107,15 +107,13 @@ private:
     std::array<std::vector<double>, 2> m_columns; // left, right
 };
 
-/// Fills the tile's coveredForLaterTiles and uncoveredSharedSides from its final TIN. A side
-/// is the tile's hull there, so a side cell is covered by a kept triangle's vertex or edge
-/// along the side (its error along that edge), by no other.
-void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, UnownedSides unowned,
-                   TileRefinement& tile) {
+/// How the tile's TIN covers its sides. A side is the tile's hull there, so a side cell is
+/// covered by a kept triangle's vertex or edge along the side (its error along that edge), by
+/// no other.
+SideCover coverOfSides(const HeightGrid& grid, const TinMesh& mesh) {
     const auto width = static_cast<std::size_t>(grid.width);
     const auto height = static_cast<std::size_t>(grid.height);
     SideCover sides(grid);
-    const TinMesh& mesh = tile.mesh;
     const auto rowOf = [&](std::uint32_t v) { return mesh.sourceIndex[v] / width; };
     const auto colOf = [&](std::uint32_t v) { return mesh.sourceIndex[v] % width; };
     // The sides each vertex lies on (bits: top, bottom, left, right), found once.
@@ -150,6 +148,15 @@ void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, Unow
                 sides.cover(row, col, error * error);
             }
         }
+    return sides;
+}
+
+/// Fills the tile's coveredForLaterTiles and uncoveredSharedSides from its final TIN.
+void coverTheSides(const HeightGrid& grid, bool topShared, bool leftShared, UnownedSides unowned,
+                   TileRefinement& tile) {
+    const auto width = static_cast<std::size_t>(grid.width);
+    const auto height = static_cast<std::size_t>(grid.height);
+    const SideCover sides = coverOfSides(grid, tile.mesh);
     const auto report = [&](std::size_t row, std::size_t col) {
         const std::size_t cell = row * width + col;
         const bool shared = (topShared && row == 0) || (leftShared && col == 0);

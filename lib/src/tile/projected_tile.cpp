@@ -1,24 +1,22 @@
 #include "projected_tile.hpp"
 
 #include "one_tile.hpp"
-#include "projected_sides.hpp"
+#include "placed_tile.hpp"
 #include "tile_cells.hpp"
+#include "tile_ring.hpp"
 
 #include "../parallel/round_workers.hpp"
 #include "../refine/cell_completion.hpp"
 #include "../refine/greedy_refiner.hpp"
 
 #include "terratin/constrain/constrained_validation.hpp"
-#include "terratin/constrain/insert_constraints.hpp"
 #include "terratin/error.hpp"
-#include "terratin/geometry/predicates.hpp"
 #include "terratin/triangulate/mesh_filter.hpp"
 #include "terratin/triangulate/triangulate.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -71,8 +69,8 @@ TinMesh firstTin(const PlacedTile& tile, const TileRing& ring, const TiledRefine
 /// the ring are dropped and their cells not measured, and a side cell goes in only where it
 /// lies strictly inside the ring, where it is this tile's alone.
 Completion completeInRing(const PlacedTile& placed, const TileRing& ring, ConstrainedTin& tin,
-                          CompletionRules rules, const TiledRefineOptions& options, unsigned threads,
-                          const ProgressCallback& progress) {
+                          CompletionRules rules, const TiledRefineOptions& options,
+                          unsigned threads, const ProgressCallback& progress) {
     const HeightGrid& grid = placed.read.grid;
     const std::vector<std::uint8_t> insideSides = sideCellsInside(ring, grid);
     rules.outsideArea = [frameSign = placed.frameSign](const ConstrainedTin& constrained) {
@@ -148,7 +146,8 @@ void countFromErrors(const std::vector<std::size_t>& cells, const std::vector<do
 } // namespace
 
 std::vector<std::uint32_t> keptProjectedSideCells(CellSource& cells, const TileGrid& tiles,
-                                                  std::size_t tile, const TiledRefineOptions& options) {
+                                                  std::size_t tile,
+                                                  const TiledRefineOptions& options) {
     const PlacedTile placed = placeTile(cells, tiles, tile, options);
     std::vector<std::uint32_t> kept;
     for (const std::vector<std::uint32_t>& side :
@@ -195,26 +194,12 @@ TileRefinement refineProjectedTile(CellSource& cells, const TileGrid& tiles, std
     checkTheShares(mesh, options, tileRow, tileColumn);
     ConstrainedTin tin = constrainToRing(std::move(mesh), ring, grid.cellCount());
 
-    const std::vector<std::uint8_t> insideSides = sideCellsInside(ring, grid);
-    rules.outsideArea = [frameSign = placed.frameSign](const ConstrainedTin& constrained) {
-        return trianglesOutsideRing(constrained, frameSign);
-    };
-    rules.insertable = [&](std::size_t cell) {
-        return !ring.onSide(static_cast<std::uint32_t>(cell)) || insideSides[cell] != 0;
-    };
-    rules.coverStrandedVertices = true;
-    rules.keepCellErrors = true;
-    const Completion completion = completeWithCells(grid, placed.at, tin, rules, options,
-                                                    workers.size(), partOf(progress, 0.8, 0.2));
+    const Completion completion = completeInRing(placed, ring, tin, std::move(rules), options,
+                                                 workers.size(), partOf(progress, 0.8, 0.2));
     if (completion.limitReached && result.stop == RefineStop::ErrorReached)
         result.stop = options.maxPoints ? RefineStop::PointLimit : RefineStop::TriangleLimit;
-    if (options.validate) {
-        const ConstrainedValidation validation = validateConstrainedDelaunay(tin);
-        if (!validation.ok())
-            throw Error("Refiner: a tile's TIN is not constrained Delaunay: " +
-                        (validation.problems.empty() ? std::string("(no detail)")
-                                                     : validation.problems.front()));
-    }
+    if (options.validate)
+        checkConstrainedDelaunay(tin);
     const std::vector<double> squaredErrors =
         options.everyCell ? verticesKept(tin.mesh, completion.drop, validCells)
                           : completion.squaredErrors;
