@@ -11,7 +11,7 @@ printed with its file and line, and the test fails; so does a row that names no 
 
     tools/check_layering.py REPOSITORY_ROOT
 
-Not yet in the suite: it becomes a test once the includes it lists are gone.
+The suite runs it as source.layering_follows_docs_layout (tests/CMakeLists.txt).
 """
 
 import fnmatch

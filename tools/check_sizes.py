@@ -9,7 +9,8 @@ counted, so a brace in a message does not open a block.
 
     tools/check_sizes.py REPOSITORY_ROOT
 
-Prints every file and function over its limit and exits 1 if there is one.
+Prints every file and function over its limit and exits 1 if there is one. The suite runs it as
+source.files_and_functions_within_their_sizes (tests/CMakeLists.txt).
 """
 
 import pathlib

@@ -67,6 +67,55 @@ void checkRefineGrid(const HeightGrid& grid) {
 
 namespace {
 
+// The refiner's TIN in cell order into result.mesh, with the refiner's figures; returns the
+// triangles to drop over open holes (empty: none, or the caller decides). Holes are decided on
+// the whole triangulation; with positions, so are the errors (the walks that locate cells need
+// the triangles over holes).
+std::vector<std::uint8_t> extractTin(detail::GreedyRefiner& refiner, const detail::GridView& view,
+                                     std::span<const Point2> positions,
+                                     const RefineOptions& options, unsigned threads,
+                                     const ProgressCallback& progress, RefineResult& result) {
+    std::vector<detail::TriId> slots;
+    result.mesh = refiner.extractInCellOrder(&slots, options.spareVertices);
+    std::vector<std::uint8_t> drop;
+    if (positions.empty() && !options.keepHoleTriangles)
+        drop = refiner.coverStrandedVertices(result.mesh, slots, options.spareVertices, progress);
+    else if (result.openHoleCells > 0 && (options.measure || !options.keepHoleTriangles))
+        drop = positions.empty()
+                   ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
+                   : detail::trianglesOverOpenHolesAt(result.mesh, view, positions, threads);
+    result.stop = refiner.stop();
+    detail::copyRefinerCounts(refiner, result);
+    result.completionPasses = refiner.completionPasses();
+    return drop;
+}
+
+// The guarantee's figures from the errors of the covered valid cells; Error when one is over
+// the maximum error the refinement says it reached.
+void reportGuarantee(const detail::ErrorMeasure& measure, const detail::CellFlags& flags,
+                     const RefineOptions& options, RefineResult& result) {
+    result.maxError = measure.maxError;
+    result.coveredCells = measure.coveredCells;
+    result.rmse = measure.coveredCells > 0
+                      ? std::sqrt(measure.sumSquares / static_cast<double>(measure.coveredCells))
+                      : 0.0;
+    for (const std::uint8_t flag : flags)
+        result.validCells += (flag & detail::kCellNoData) == 0 ? 1U : 0U;
+    result.uncoveredCells = result.validCells - std::min(result.validCells, result.coveredCells);
+    if (options.maxError && result.stop == RefineStop::ErrorReached &&
+        result.maxError > *options.maxError)
+        throw Error("Refiner: check failed: a covered cell is " + std::to_string(result.maxError) +
+                    " from the TIN, more than the maximum error " +
+                    std::to_string(*options.maxError));
+}
+
+// `result`, the refinement's last progress call made.
+RefineResult refined(RefineResult result, const ProgressCallback& progress) {
+    if (progress)
+        progress(1.0, "refined");
+    return result;
+}
+
 RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
                       const RefineOptions& options, const ProgressCallback& progress) {
     checkInput(grid, positions, options);
@@ -86,23 +135,8 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     refiner.run(progress);
     result.insertSeconds = lap(phase);
 
-    // Holes are decided on the whole triangulation; with positions, so are the errors (the
-    // walks that locate cells need the triangles over holes).
-    const auto trianglesOverHoles = [&] {
-        return positions.empty()
-                   ? detail::trianglesOverOpenHoles(result.mesh, view, threads)
-                   : detail::trianglesOverOpenHolesAt(result.mesh, view, positions, threads);
-    };
-    std::vector<detail::TriId> slots;
-    result.mesh = refiner.extractInCellOrder(&slots, options.spareVertices);
-    std::vector<std::uint8_t> drop; // empty: no triangle to drop, or the caller decides
-    if (positions.empty() && !options.keepHoleTriangles)
-        drop = refiner.coverStrandedVertices(result.mesh, slots, options.spareVertices, progress);
-    else if (result.openHoleCells > 0 && (options.measure || !options.keepHoleTriangles))
-        drop = trianglesOverHoles();
-    result.stop = refiner.stop();
-    detail::copyRefinerCounts(refiner, result);
-    result.completionPasses = refiner.completionPasses();
+    std::vector<std::uint8_t> drop =
+        extractTin(refiner, view, positions, options, threads, progress, result);
     result.extractSeconds = lap(phase); // with the holes' check and its completion passes
 
     if (options.validate) {
@@ -113,9 +147,7 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
         if (!options.keepHoleTriangles && result.openHoleCells > 0)
             result.droppedTriangles = dropTriangles(result.mesh, drop);
         result.extractSeconds += lap(phase);
-        if (progress)
-            progress(1.0, "refined");
-        return result;
+        return refined(std::move(result), progress);
     }
     if (drop.empty())
         drop.assign(result.mesh.triangleCount(), 0);
@@ -137,25 +169,11 @@ RefineResult refineAt(const HeightGrid& grid, std::span<const Point2> positions,
     // The guarantee, measured over every valid cell.
     if (positions.empty())
         measure = detail::measureErrors(result.mesh, view, threads);
-    result.maxError = measure.maxError;
-    result.coveredCells = measure.coveredCells;
-    result.rmse = measure.coveredCells > 0
-                      ? std::sqrt(measure.sumSquares / static_cast<double>(measure.coveredCells))
-                      : 0.0;
-    for (const std::uint8_t flag : flags)
-        result.validCells += (flag & detail::kCellNoData) == 0 ? 1U : 0U;
-    result.uncoveredCells = result.validCells - std::min(result.validCells, result.coveredCells);
-    if (options.maxError && result.stop == RefineStop::ErrorReached &&
-        result.maxError > *options.maxError)
-        throw Error("Refiner: check failed: a covered cell is " + std::to_string(result.maxError) +
-                    " from the TIN, more than the maximum error " +
-                    std::to_string(*options.maxError));
+    reportGuarantee(measure, flags, options, result);
     result.checkSeconds += lap(phase);
     if (options.keepHoleTriangles && result.openHoleCells > 0)
         result.mesh = std::move(whole);
-    if (progress)
-        progress(1.0, "refined");
-    return result;
+    return refined(std::move(result), progress);
 }
 
 } // namespace
