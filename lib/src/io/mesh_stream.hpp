@@ -12,6 +12,7 @@
 #include "tin_stream.hpp"
 #include "writer_support.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
