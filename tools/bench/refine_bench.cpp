@@ -112,15 +112,15 @@ void printRefineRow(bool csv, const RefineCase& refineCase, const HeightGrid& gr
     if (csv)
         std::printf("%s,%zu,%zu,%g,%u,%zu,%zu,%zu,%.3f,%.3f,%.4f,%.2f,%.1f,%.1f\n",
                     refineCase.label, grid.cellCount(), valid, tolerance, threads,
-                    result.mesh.vertexCount(), result.mesh.triangleCount(),
-                    result.droppedTriangles, result.maxError, result.rmse, row.seconds, speedUp,
-                    row.peakMiB, row.stolenPercent);
+                    result.mesh.vertexCount(), result.mesh.triangleCount(), result.droppedTriangles,
+                    result.maxError, result.rmse, row.seconds, speedUp, row.peakMiB,
+                    row.stolenPercent);
     else
         std::printf("%-11s %9zu %6g %3u %9zu %9zu %9zu %8.3f %7.3f %8.3f %6.2f %8.1f %7.1f\n",
                     refineCase.label, grid.cellCount(), tolerance, threads,
-                    result.mesh.vertexCount(), result.mesh.triangleCount(),
-                    result.droppedTriangles, result.maxError, result.rmse, row.seconds, speedUp,
-                    row.peakMiB, row.stolenPercent);
+                    result.mesh.vertexCount(), result.mesh.triangleCount(), result.droppedTriangles,
+                    result.maxError, result.rmse, row.seconds, speedUp, row.peakMiB,
+                    row.stolenPercent);
     std::fflush(stdout);
 }
 

@@ -100,8 +100,8 @@ std::vector<std::pair<Kernel::Point_2, double>> validCellCentres(GDALDataset& ra
 std::size_t writeFaces(const Delaunay& triangulation, const OGRSpatialReference* crs,
                        const fs::path& output) {
     GDALDatasetUniquePtr dataset = createGeoPackage(output);
-    OGRLayer* layer = dataset->CreateLayer("tin", const_cast<OGRSpatialReference*>(crs),
-                                           wkbPolygon25D, nullptr);
+    OGRLayer* layer =
+        dataset->CreateLayer("tin", const_cast<OGRSpatialReference*>(crs), wkbPolygon25D, nullptr);
     OGRFieldDefn field("z_mean", OFTReal);
     if (layer == nullptr || layer->CreateField(&field) != OGRERR_NONE)
         fail("cannot create the layer of " + output.string());

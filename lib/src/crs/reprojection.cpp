@@ -4,9 +4,9 @@
 
 #include "terratin/crs/reprojection.hpp"
 
+#include "../number_text.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "../number_text.hpp"
 #include "wkt.hpp"
 
 #include <ogr_spatialref.h>

@@ -3,9 +3,9 @@
 
 #include "terratin/crs/utm_zone.hpp"
 
+#include "../number_text.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "../number_text.hpp"
 #include "wkt.hpp"
 
 #include <GeographicLib/UTMUPS.hpp>

@@ -1,7 +1,7 @@
 #include "terratin/geometry/height_grid.hpp"
 
-#include "terratin/geometry/predicates.hpp"
 #include "../number_text.hpp"
+#include "terratin/geometry/predicates.hpp"
 
 #include <algorithm>
 #include <limits>

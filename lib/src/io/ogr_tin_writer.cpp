@@ -34,6 +34,7 @@
 
 #include "ogr_tin_writer.hpp"
 
+#include "../text.hpp"
 #include "atomic_output.hpp"
 #include "attribute_columns.hpp"
 #include "gpkg/gpkg_tin_writer.hpp"
@@ -42,7 +43,6 @@
 #include "packed_rtree_order.hpp"
 #include "terratin/error.hpp"
 #include "terratin/gdal_error.hpp"
-#include "../text.hpp"
 #include "writer_support.hpp"
 
 #include <cpl_conv.h>

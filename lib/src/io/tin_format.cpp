@@ -1,11 +1,11 @@
 #include "terratin/io/tin_format.hpp"
 
+#include "../text.hpp"
 #include "landxml_writer.hpp"
 #include "mesh_writer.hpp"
 #include "obj_writer.hpp"
 #include "ply_writer.hpp"
 #include "terratin/error.hpp"
-#include "../text.hpp"
 #include "two_dm_writer.hpp"
 
 #include <algorithm>

@@ -82,8 +82,8 @@ TinWriteResult writeMeshFormat(const TinMesh& mesh, const fs::path& output,
                                const TinWriteOptions& options, const detail::MeshFileInfo& info,
                                const ProgressCallback& progress) {
     const std::string_view stage = detail::writerStage(options.format);
-    const detail::AtomicOutput temporaries(
-        stage, output, detail::existingTargetFor(options.overwrite));
+    const detail::AtomicOutput temporaries(stage, output,
+                                           detail::existingTargetFor(options.overwrite));
     const fs::path temporary = temporaries.temporary(output.extension().string());
     const std::uint64_t total = mesh.vertexCount() + mesh.triangleCount();
     const detail::ProgressTicker ticker(stage, progress, output, 0.0, kMeshRecordShare, total);

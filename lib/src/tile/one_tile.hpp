@@ -6,12 +6,12 @@
 /// measured.
 
 #include "tile_grid.hpp"
-#include "tiled_refine_options.hpp"
 #include "tile_refinement.hpp"
+#include "tiled_refine_options.hpp"
 
 #include "terratin/progress.hpp"
-#include "terratin/tile/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/cell_source.hpp"
 
 #include <cstdint>
 #include <span>

@@ -10,12 +10,12 @@
 /// constrained Delaunay TIN. docs/algorithms.md, "Tiles at projected positions", has the why.
 
 #include "tile_grid.hpp"
-#include "tiled_refine_options.hpp"
 #include "tile_refinement.hpp"
+#include "tiled_refine_options.hpp"
 
 #include "terratin/progress.hpp"
-#include "terratin/tile/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/cell_source.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -28,7 +28,8 @@ class RoundWorkers;
 /// The cells of tile `tile`'s four sides kept as vertices, as indices of the tile's cells (a
 /// corner once), with options.cellPositions; every valid side cell with options.everyCell.
 std::vector<std::uint32_t> keptProjectedSideCells(CellSource& cells, const TileGrid& tiles,
-                                                  std::size_t tile, const TiledRefineOptions& options);
+                                                  std::size_t tile,
+                                                  const TiledRefineOptions& options);
 
 /// refineOneTile for a grid whose cells lie at options.cellPositions (set). The figures are
 /// those of refineOneTile; the tile's TIN is a constrained Delaunay TIN at the positions, its

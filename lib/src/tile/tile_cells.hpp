@@ -9,8 +9,8 @@
 
 #include "../refine/cell_flags.hpp"
 
-#include "terratin/tile/cell_source.hpp"
 #include "terratin/refine/refine.hpp"
+#include "terratin/tile/cell_source.hpp"
 
 #include <algorithm>
 #include <cstddef>

@@ -37,8 +37,8 @@
 /// Here the points come in any order and a triangle has one owner; each field of the other
 /// would cost memory per triangle that this method never reads.
 
-#include "terratin/geometry/point.hpp"
 #include "../huge_pages.hpp"
+#include "terratin/geometry/point.hpp"
 #include "terratin/triangulate/tin_mesh.hpp"
 
 #include <array>

@@ -331,8 +331,8 @@ struct BlockLeaves {
     HugePageArray<NodeId> outside;
 };
 
-std::vector<BlockLeaves> leavesByBlock(const NodeArena& nodes,
-                                       const SymbolicPredicates& predicates, unsigned threads) {
+std::vector<BlockLeaves> leavesByBlock(const NodeArena& nodes, const SymbolicPredicates& predicates,
+                                       unsigned threads) {
     const std::size_t nodeCount = nodes.size();
     const auto isFinite = [&predicates](const DagNode& node) {
         return predicates.isFinite(node.v[0]) && predicates.isFinite(node.v[1]) &&

@@ -3,8 +3,8 @@
 /// Exact duplicate detection for the triangulator's input: which points share their (x, y)
 /// with an earlier point.
 
-#include "terratin/geometry/point.hpp"
 #include "../huge_pages.hpp"
+#include "terratin/geometry/point.hpp"
 
 #include <cstdint>
 #include <span>

@@ -3,8 +3,8 @@
 /// Seeded insertion orders, identical on every platform (std::shuffle and the standard
 /// distributions are implementation-defined, so they are not used).
 
-#include "terratin/geometry/point.hpp"
 #include "../huge_pages.hpp"
+#include "terratin/geometry/point.hpp"
 
 #include <cstdint>
 #include <span>

@@ -86,8 +86,7 @@ bool checkIndices(const TinMesh& mesh, MeshValidation& result) {
 // The edge from corner i to corner i + 1 of triangle t, which has a neighbour: its twin in
 // that neighbour must link back, and the neighbour's far corner must not lie strictly inside
 // t's circumcircle.
-void checkInteriorEdge(const TinMesh& mesh, std::size_t t, std::size_t i,
-                       MeshValidation& result) {
+void checkInteriorEdge(const TinMesh& mesh, std::size_t t, std::size_t i, MeshValidation& result) {
     const std::uint32_t* corner = &mesh.triangles[3 * t];
     const auto n = static_cast<std::size_t>(mesh.neighbours[3 * t + i]);
     // The twin: the edge corner[i+1] -> corner[i] of n, whose link points back to t.
@@ -146,11 +145,11 @@ void checkEuler(const TinMesh& mesh, std::size_t boundaryEdges, MeshValidation& 
     // Each interior edge is seen twice, each boundary edge once.
     const std::size_t interiorHalfEdges = 3 * triangleCount - boundaryEdges;
     const std::size_t edges = boundaryEdges + interiorHalfEdges / 2;
-    result.eulerHolds = interiorHalfEdges % 2 == 0 &&
-                        static_cast<std::int64_t>(mesh.vertices.size()) -
-                                static_cast<std::int64_t>(edges) +
-                                static_cast<std::int64_t>(triangleCount) ==
-                            1;
+    result.eulerHolds =
+        interiorHalfEdges % 2 == 0 && static_cast<std::int64_t>(mesh.vertices.size()) -
+                                              static_cast<std::int64_t>(edges) +
+                                              static_cast<std::int64_t>(triangleCount) ==
+                                          1;
     if (!result.eulerHolds && result.problems.size() < kMaxProblemsListed)
         result.problems.push_back("Euler's relation V - E + F = 1 does not hold");
 }
