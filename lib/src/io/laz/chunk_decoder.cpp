@@ -91,7 +91,8 @@ struct ChunkDecoder::State {
     [[noreturn]] void truncated() const;
 };
 
-ChunkDecoder::ChunkDecoder(const LaszipRecord& record, std::string_view fileName)
+ChunkDecoder::ChunkDecoder(const LaszipRecord& record, std::string_view fileName,
+                           FieldSelection /*fields: every pointwise field is decoded*/)
     : m_state(std::make_unique<State>()) {
     State& s = *m_state;
     s.fileName = std::string(fileName);

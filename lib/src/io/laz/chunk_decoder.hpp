@@ -17,13 +17,24 @@
 
 namespace terratin::io::laz {
 
+/// Which fields of each record a decoder must fill. The layered compressor (3) stores each
+/// field group in its own stream, so a reader that needs only what a TIN is built from skips
+/// the others at no cost; the pointwise compressors decode every field whatever is asked.
+enum class FieldSelection {
+    Every,
+    /// x, y, z, return number, number of returns, classification and the classification
+    /// flags (withheld); every other byte of a record is left as in the chunk's first record.
+    TinFields,
+};
+
 class ChunkDecoder {
 public:
     /// A decoder for the point records `record` describes. Throws InvalidInputError naming
     /// `fileName` when they need what this decoder does not do yet: the layered compressor
     /// (3) of point formats 6-10, wave packets, items stored uncompressed within a compressed
     /// file (version 0).
-    ChunkDecoder(const LaszipRecord& record, std::string_view fileName);
+    ChunkDecoder(const LaszipRecord& record, std::string_view fileName,
+                 FieldSelection fields = FieldSelection::Every);
     ~ChunkDecoder();
     ChunkDecoder(ChunkDecoder&&) noexcept;
     ChunkDecoder& operator=(ChunkDecoder&&) noexcept;
