@@ -136,12 +136,16 @@ case "${1:-}" in
     install_missing_packages "${cli_packages[@]}" "${test_packages[@]}" "${fuzz_packages[@]}"
     use_ccache_when_installed
     cmake --preset fuzz >/dev/null
-    cmake --build --preset fuzz -j "$(nproc)" --target terratin_las_fuzzer terratin_text_fuzzer
-    for reader in las text; do
+    cmake --build --preset fuzz -j "$(nproc)" \
+      --target terratin_las_fuzzer terratin_laz_fuzzer terratin_text_fuzzer
+    for reader in las laz text; do
       found=$(mktemp -d)
+      seeds=("tests/fuzz/corpus/$reader")
+      # The real LAZ files seed the LAZ fuzzer where they are, never copied into the corpus.
+      [ "$reader" = laz ] && [ -d ../shared/dems/laz ] && seeds+=(../shared/dems/laz)
       UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-        "build/fuzz/tests/fuzz/terratin_${reader}_fuzzer" -max_total_time=60 -print_final_stats=1 \
-        "$found" "tests/fuzz/corpus/$reader"
+        "build/fuzz/tests/fuzz/terratin_${reader}_fuzzer" -max_total_time="${FUZZ_SECONDS:-60}" \
+        -print_final_stats=1 "$found" "${seeds[@]}"
       rm -rf "$found"
     done
     ;;

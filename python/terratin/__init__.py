@@ -49,8 +49,7 @@ def build(inputs, output, *, progress=None, **options):
     """The command line's `terratin build INPUT... -o OUTPUT [options]`, as a function.
 
     inputs: a path (str, bytes or os.PathLike) or a list of them: DEM rasters, LAS 1.0-1.4,
-        delimited text or OGR point files, as the command line takes them (LAZ is refused
-        with a clear error for now).
+        LAZ (COPC too), delimited text or OGR point files, as the command line takes them.
     output: the TIN file; its extension chooses the format unless format= is given. None
         with tiles_dir= (the command line's --tiles-dir instead of -o).
     options: the command line's build options by keyword, the long name with "_" for "-":

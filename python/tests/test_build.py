@@ -241,3 +241,14 @@ def test_a_lake_and_a_road_simplified_match_the_command_line(terratin_cli, tmp_p
     assert report["constraints"] == json.loads(cli.stdout)["constraints"]
     assert report["constraints"]["replace_polygons"] == 1
     assert (tmp_path / "py.ply").read_bytes() == (tmp_path / "cli.ply").read_bytes()
+
+
+def test_a_laz_gives_the_tin_of_its_las_twin(shared_dems, tmp_path):
+    laz, las = shared_dems / "laz" / "lidr__Megaplot.laz", shared_dems / "laz" / "lasr__Megaplot.las"
+    if not (laz.exists() and las.exists()):
+        pytest.skip("the shared LAZ files are absent")
+    from_laz = terratin.build(laz, tmp_path / "laz.ply", classes=[2], returns="last")
+    from_las = terratin.build(las, tmp_path / "las.ply", classes=[2], returns="last")
+    assert from_laz["counts"] == from_las["counts"]
+    assert from_laz["crs"]["code"] == "EPSG:26917"
+    assert numpy.array_equal(ply_corners(tmp_path / "laz.ply"), ply_corners(tmp_path / "las.ply"))

@@ -33,9 +33,8 @@ class PointsToTin(TerratinAlgorithm):
         return (
             "Triangulates points into an exactly Delaunay TIN, one polygon per triangle with "
             "terrain attributes. The points come from a point layer (z from the geometry or "
-            "from a field) or from a file: LAS 1.0 to 1.4, or delimited text (x y z columns). "
-            "LAZ is not read yet: terratin refuses it with a message saying to decompress it "
-            "to LAS first. Points at the same x, y are merged."
+            "from a field) or from a file: LAS 1.0 to 1.4, LAZ (COPC too), or delimited text "
+            "(x y z columns). Points at the same x, y are merged."
         )
 
     def createInstance(self):  # noqa: N802 (QGIS's name)
@@ -56,7 +55,7 @@ class PointsToTin(TerratinAlgorithm):
         )
         self.addParameter(
             QgsProcessingParameterFile(
-                self.POINTS_FILE, "Or a point file (LAS 1.0-1.4, delimited text; not LAZ yet)",
+                self.POINTS_FILE, "Or a point file (LAS 1.0-1.4, LAZ, delimited text)",
                 fileFilter="Point files (*.las *.laz *.txt *.csv *.xyz);;All files (*)",
                 optional=True,
             )

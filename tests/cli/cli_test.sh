@@ -370,12 +370,33 @@ case "$case_name" in
     run 1 build small.tif -o out.gpkg --t_srs EPSG:999999 --quiet
     expect_one_error_line "--t_srs 'EPSG:999999'"
     ;;
-  laz_rejected)
-    printf 'LASF' >cloud.laz
-    head -c 400 /dev/zero >>cloud.laz
-    run 1 build cloud.laz -o out.gpkg --quiet
-    expect_one_error_line "LAZ is compressed; not supported"
-    [ ! -e out.gpkg ] || fail "output written for LAZ"
+  laz_builds_the_tin_of_its_las_twin)
+    need_shared laz/lidr__Megaplot.laz
+    need_shared laz/lasr__Megaplot.las
+    run 0 build "$shared/laz/lidr__Megaplot.laz" -o laz.2dm --class 2 --returns last --quiet
+    run 0 build "$shared/laz/lasr__Megaplot.las" -o las.2dm --class 2 --returns last --quiet
+    cmp -s laz.2dm las.2dm || fail "the LAZ and its LAS twin gave different TINs"
+    run 0 build "$shared/laz/lidr__Megaplot.laz" -o one.2dm --class 2 --returns last -j 1 --quiet
+    cmp -s laz.2dm one.2dm || fail "one thread gave another TIN"
+    # Merged with another input, and to a GeoPackage in the file's CRS.
+    need_shared laz/lidr__MixedConifer.laz
+    run 0 build "$shared/laz/lidr__Megaplot.laz" "$shared/laz/lidr__MixedConifer.laz" \
+      -o merged.gpkg --class 2
+    grep -q "input 2: .*lidr__MixedConifer.laz (las, NAD83 / UTM zone 12N.*reprojected" out.txt ||
+      fail "second LAZ input not reported with its CRS"
+    [ -s merged.gpkg ] || fail "no GeoPackage from LAZ"
+    ;;
+  laz_broken_gives_one_error_line)
+    need_shared laz/laszip__broken_version.laz
+    run 1 build "$shared/laz/laszip__broken_version.laz" -o out.gpkg --quiet
+    expect_one_error_line "laszip__broken_version.laz.*POINT10 version 6"
+    [ ! -e out.gpkg ] || fail "output written for a broken LAZ"
+    need_shared pdal__autzen_trim.las
+    need_shared laz/pdal__autzen_trim.laz
+    head -c 300000 "$shared/laz/pdal__autzen_trim.laz" >cut.laz
+    run 1 build cut.laz -o out.gpkg --quiet
+    expect_one_error_line "cut.laz"
+    [ ! -e out.gpkg ] || fail "output written for a truncated LAZ"
     ;;
   truncated_las)
     need_shared pdal__autzen_trim.las

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the LAS and text reader fuzzers (tests/fuzz/corpus/{las,text}).
+"""Writes the seed corpora of the LAS, LAZ and text reader fuzzers (tests/fuzz/corpus/{las,laz,text}).
 
 Small synthetic files, one per layout the readers know: every LAS version and point format,
-GeoTIFF-key and WKT CRS records, an EVLR, extra bytes, a LAZ-marked and a truncated header; text
+GeoTIFF-key and WKT CRS records, an EVLR, extra bytes, a LAZ-marked and a truncated header; LAZ
+with each compressor and item set (a raw first point, then bytes for the decoders to take
+apart; chunked ones without a finished table, so the reader rebuilds it by decoding); text
 with every delimiter, header lines, comments, CRLF, quotes. Run from anywhere; overwrites the
 seeds. gdalsrsinfo (gdal-bin) supplies the WKT of the CRS records.
 """
@@ -61,6 +63,32 @@ def las(minor, fmt, points, vlrs=b"", nvlr=0, evlrs=b"", nevlr=0, extra=0, wkt_b
     return data
 
 
+def laszip_record(compressor, items, chunk_size=50000):
+    """The payload of the 'laszip encoded' VLR: items as (type, size, version)."""
+    head = struct.pack("<HHBBHIIqqH", compressor, 0, 3, 4, 3, 0, chunk_size, -1, -1, len(items))
+    return head + b"".join(struct.pack("<HHH", *item) for item in items)
+
+
+def laz(minor, fmt, count, compressor, items, extra=0):
+    """A LAZ file of `count` points: its first point raw, then pseudo-random coded bytes. The
+    chunked compressors' table pointer points at itself, as a writer interrupted before the
+    table leaves it."""
+    record = laszip_record(compressor, items)
+    base = las(minor, fmt, POINTS[:1], vlr("laszip encoded", 22204, record), 1, extra=extra,
+               format_byte=fmt | (0xC0 if fmt >= 6 else 0x80))
+    data = bytearray(base)
+    struct.pack_into("<I", data, 107, count if fmt < 6 else 0)
+    if minor >= 4:
+        struct.pack_into("<Q", data, 247, count)
+    offset = struct.unpack_from("<I", data, 96)[0]
+    first_point = bytes(data[offset:])
+    del data[offset:]
+    if compressor >= 2:
+        data += struct.pack("<q", offset)
+    noise = bytes((i * 197 + 89) % 256 for i in range(96))
+    return bytes(data) + first_point + noise
+
+
 POINTS = [(0, 0, 1000, 1, 1, 2), (1000, 0, 1100, 1, 2, 1), (0, 1000, 1200, 2, 2, 2),
           (1000, 1000, 900, 1, 1, 5), (500, 500, 1500, 3, 3, 2), (-250, 750, 800, 1, 1, 7)]
 
@@ -78,6 +106,7 @@ def write(kind, name, data):
 
 def main():
     os.makedirs(os.path.join(HERE, "corpus", "las"), exist_ok=True)
+    os.makedirs(os.path.join(HERE, "corpus", "laz"), exist_ok=True)
     os.makedirs(os.path.join(HERE, "corpus", "text"), exist_ok=True)
     wkt = wkt_of("EPSG:32619").encode() + b"\0"
     projected = vlr("LASF_Projection", 34735, geokeys((1024, 0, 1, 1), (1025, 0, 1, 1),
@@ -111,6 +140,18 @@ def main():
     write("las", "empty_points.las", las(2, 0, []))
     # Format 99 (bit 6 without LASzip's bit 7) is an unknown format, not LAZ.
     write("las", "point_format_99.las", las(2, 3, POINTS[:1], format_byte=99))
+
+    point10, gps, rgb, wave = (6, 20, 2), (7, 8, 2), (8, 6, 2), (9, 29, 1)
+    write("laz", "c1_f1_v1.laz", laz(2, 1, 4, 1, [(6, 20, 1), (7, 8, 1)]))
+    write("laz", "c1_f2_v2.laz", laz(2, 2, 4, 1, [point10, rgb]))
+    write("laz", "c2_f3_v2.laz", laz(2, 3, 4, 2, [point10, gps, rgb]))
+    write("laz", "c2_f1_byte.laz", laz(2, 1, 4, 2, [point10, gps, (0, 3, 2)], extra=3))
+    write("laz", "c2_f4_wave.laz", laz(3, 4, 4, 2, [point10, gps, wave]))
+    write("laz", "c3_f6.laz", laz(4, 6, 4, 3, [(10, 30, 3)]))
+    write("laz", "c3_f7_byte.laz", laz(4, 7, 4, 3, [(10, 30, 3), (11, 6, 3), (14, 2, 3)],
+                                       extra=2))
+    write("laz", "c3_f8.laz", laz(4, 8, 4, 3, [(10, 30, 3), (12, 8, 3)]))
+    write("laz", "c3_f10_wave.laz", laz(4, 10, 4, 3, [(10, 30, 3), (12, 8, 3), (13, 29, 3)]))
 
     write("text", "space.xyz", "500000.5 4900000.25 101.5\n500010 4900000 99\n500005 4900010 120.75\n")
     write("text", "comma_header.csv", "x,y,z,id\n1.5,2.5,3.5,1\n4,5,6,2\n7e2,8e-1,-9,3\n")

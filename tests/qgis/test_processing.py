@@ -376,6 +376,22 @@ def test_points_to_tin_keeps_the_las_classes_asked_for(processing, tmp_path):
     assert layer.crs().authid() == "EPSG:2992"
 
 
+def test_points_to_tin_reads_laz_as_its_las_twin(processing, tmp_path):
+    shared = pathlib.Path(os.environ.get("TERRATIN_SHARED_DEMS", "absent")) / "laz"
+    laz, las = shared / "lidr__Megaplot.laz", shared / "lasr__Megaplot.las"
+    if not (laz.exists() and las.exists()):
+        pytest.skip(f"{laz} or its twin is absent")
+    result = processing.run(
+        "terratin:pointstotin",
+        {"POINTS_FILE": str(laz), "CLASSES": "2", "OUTPUT": str(tmp_path / "ground.gpkg")},
+    )
+    ground = cli_counts(las, "-o", tmp_path / "cli.ply", "--class", "2")
+    assert result["VERTICES"] == ground["vertices"]
+    layer = opened(tmp_path / "ground.gpkg")
+    assert layer.featureCount() == ground["triangles"]
+    assert layer.crs().authid() == "EPSG:26917"
+
+
 def test_a_scratch_layer_is_saved_for_terratin_first(processing, tmp_path):
     layer = QgsVectorLayer("PointZ?crs=EPSG:32633", "scratch", "memory")
     from qgis.core import QgsFeature, QgsGeometry

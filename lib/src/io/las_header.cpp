@@ -1,6 +1,5 @@
 #include "las_header.hpp"
 
-#include "../text.hpp"
 #include "terratin/error.hpp"
 
 #include <array>
@@ -8,8 +7,6 @@
 #include <cmath>
 
 namespace terratin::io::detail {
-
-using terratin::detail::lowercase;
 
 namespace {
 
@@ -29,45 +26,46 @@ constexpr std::array<std::uint16_t, 11> kMinRecordLength{20, 28, 26, 34, 57, 63,
     throw InvalidInputError(std::string(kStage) + ": '" + name + "': " + what);
 }
 
-void collectRecord(ByteSource& source, const std::string& userId, std::uint16_t recordId,
-                   std::uint64_t dataOffset, std::uint64_t length, CrsRecords& records) {
-    if (userId == "laszip encoded") {
-        records.laszip = true;
-        return;
-    }
+/// The slot of `parsed` for the record (`userId`, `recordId`), or null for one not kept.
+std::optional<std::vector<std::byte>>* recordSlot(const std::string& userId, std::uint16_t recordId,
+                                                  ParsedHeader& parsed) {
+    if (userId == "laszip encoded")
+        return recordId == 22204 ? &parsed.laszipRecord : nullptr;
     if (userId != "LASF_Projection")
-        return;
-    std::optional<std::vector<std::byte>>* slot = nullptr;
+        return nullptr;
+    CrsRecords& records = parsed.crs;
     switch (recordId) {
     case 34735:
-        slot = &records.geoKeys;
-        break;
+        return &records.geoKeys;
     case 34736:
-        slot = &records.geoDoubles;
-        break;
+        return &records.geoDoubles;
     case 34737:
-        slot = &records.geoAscii;
-        break;
+        return &records.geoAscii;
     case 2112:
-        slot = &records.wkt;
-        break;
+        return &records.wkt;
     default:
-        return;
+        return nullptr;
     }
-    // CRS records are small; an EVLR may claim a 64-bit length, bounded by the file size
-    // already, but no CRS needs more than a few MiB.
-    constexpr std::uint64_t kMaxCrsRecord = std::uint64_t{16} << 20;
-    if (length > kMaxCrsRecord)
+}
+
+void collectRecord(const ByteSource& source, const std::string& userId, std::uint16_t recordId,
+                   std::uint64_t dataOffset, std::uint64_t length, ParsedHeader& parsed) {
+    std::optional<std::vector<std::byte>>* const slot = recordSlot(userId, recordId, parsed);
+    if (slot == nullptr)
+        return;
+    // CRS and LASzip records are small; an EVLR may claim a 64-bit length, bounded by the
+    // file size already, but none needs more than a few MiB.
+    constexpr std::uint64_t kMaxKeptRecord = std::uint64_t{16} << 20;
+    if (length > kMaxKeptRecord)
         return;
     std::vector<std::byte> bytes(static_cast<std::size_t>(length));
     source.read(dataOffset, bytes);
     *slot = std::move(bytes);
 }
 
-/// Refuses what is no LAS file, and LAZ, before anything else is read: the signature, then
-/// LAZ whatever else is wrong (the likeliest reason for a failure), then a file too short for
-/// a header.
-void checkSignature(ByteSource& source, const std::string& name) {
+/// Refuses what is no LAS file before anything else is read: the signature, then a file too
+/// short for a header.
+void checkSignature(const ByteSource& source, const std::string& name) {
     const std::uint64_t fileSize = source.size();
     if (fileSize < 4)
         invalid(name, "not a LAS file (" + std::to_string(fileSize) + " bytes, no LASF signature)");
@@ -75,18 +73,6 @@ void checkSignature(ByteSource& source, const std::string& name) {
     source.read(0, signature);
     if (std::memcmp(signature.data(), "LASF", 4) != 0)
         invalid(name, "not a LAS file (no LASF signature)");
-    // LASzip marks compressed files by setting bit 7 of the point format (byte 104), and bit 6
-    // as well for the LAS 1.4 formats; what is left is a format of 0..10. Any other byte (99 =
-    // bit 6 and 35, say) is an unsupported format, reported later.
-    const bool lazExtension = name.size() >= 4 && lowercase(name.substr(name.size() - 4)) == ".laz";
-    std::array<std::byte, 1> formatProbe{};
-    if (fileSize > 104)
-        source.read(104, formatProbe);
-    const unsigned probedFormat = std::to_integer<unsigned>(formatProbe[0]);
-    const bool lazFormat = (probedFormat & 0x80u) != 0 && (probedFormat & 0x3Fu) <= 10;
-    if (lazExtension || lazFormat)
-        invalid(name, "LAZ is compressed; not supported (decompress it first, e.g. with "
-                      "'pdal translate in.laz out.las' or 'laszip -i in.laz -o out.las')");
     if (fileSize < kHeaderSize12)
         invalid(name, "truncated: " + std::to_string(fileSize) +
                           " bytes, shorter than a LAS header (227 bytes)");
@@ -105,7 +91,12 @@ LasHeader decodeHeader(std::span<const std::byte> bytes, const std::string& name
     h.headerSize = field<std::uint16_t>(bytes, 94);
     h.pointDataOffset = field<std::uint32_t>(bytes, 96);
     h.vlrCount = field<std::uint32_t>(bytes, 100);
-    h.pointFormat = field<std::uint8_t>(bytes, 104);
+    // LASzip marks compressed files by setting bit 7 of the point format, and bit 6 as well
+    // for the LAS 1.4 formats; what is left is a format of 0..10. Any other byte (99 = bit 6
+    // and 35, say) is an unsupported format.
+    const unsigned formatByte = field<std::uint8_t>(bytes, 104);
+    h.compressed = (formatByte & 0x80u) != 0 && (formatByte & 0x3Fu) <= 10;
+    h.pointFormat = static_cast<int>(h.compressed ? formatByte & 0x3Fu : formatByte);
     h.recordLength = field<std::uint16_t>(bytes, 105);
     h.pointCount = field<std::uint32_t>(bytes, 107);
     for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -157,7 +148,7 @@ EvlrPlace decodeLas14Fields(std::span<const std::byte> bytes, LasHeader& h,
 }
 
 /// The scale, the record length and where the points lie, against the file; returns the end
-/// of the point records.
+/// of the point records (of LAZ: their start, the chunk table alone knowing their end).
 std::uint64_t checkPointLayout(const LasHeader& h, std::uint64_t fileSize,
                                const std::string& name) {
     for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -178,6 +169,8 @@ std::uint64_t checkPointLayout(const LasHeader& h, std::uint64_t fileSize,
         invalid(name, "truncated: the point data should start at byte " +
                           std::to_string(h.pointDataOffset) + " but the file has " +
                           std::to_string(fileSize) + " bytes");
+    if (h.compressed)
+        return h.pointDataOffset;
     const std::uint64_t available = fileSize - h.pointDataOffset;
     if (h.pointCount > available / h.recordLength)
         invalid(name, "truncated or lying header: it declares " + std::to_string(h.pointCount) +
@@ -189,7 +182,8 @@ std::uint64_t checkPointLayout(const LasHeader& h, std::uint64_t fileSize,
 }
 
 /// The VLRs, between the header and the point data, each within that space.
-void walkVlrs(ByteSource& source, const LasHeader& h, const std::string& name, CrsRecords& crs) {
+void walkVlrs(const ByteSource& source, const LasHeader& h, const std::string& name,
+              ParsedHeader& parsed) {
     const auto runsIntoPoints = [&](std::uint32_t i) {
         invalid(name, "variable length record " + std::to_string(i + 1) + " of " +
                           std::to_string(h.vlrCount) + " runs into the point data");
@@ -205,14 +199,14 @@ void walkVlrs(ByteSource& source, const LasHeader& h, const std::string& name, C
         const std::uint64_t length = field<std::uint16_t>(vlr, 20);
         if (pos + kVlrHeaderSize + length > h.pointDataOffset)
             runsIntoPoints(i);
-        collectRecord(source, userId, recordId, pos + kVlrHeaderSize, length, crs);
+        collectRecord(source, userId, recordId, pos + kVlrHeaderSize, length, parsed);
         pos += kVlrHeaderSize + length;
     }
 }
 
 /// The EVLRs (1.4), after the point data (which ends at `pointsEnd`), each within the file.
-void walkEvlrs(ByteSource& source, const EvlrPlace& evlrs, std::uint64_t pointsEnd,
-               const std::string& name, CrsRecords& crs) {
+void walkEvlrs(const ByteSource& source, const EvlrPlace& evlrs, std::uint64_t pointsEnd,
+               const std::string& name, ParsedHeader& parsed) {
     if (evlrs.count == 0)
         return;
     const std::uint64_t fileSize = source.size();
@@ -234,14 +228,14 @@ void walkEvlrs(ByteSource& source, const EvlrPlace& evlrs, std::uint64_t pointsE
         const auto length = field<std::uint64_t>(evlr, 20);
         if (length > fileSize - pos - kEvlrHeaderSize)
             runsPastTheEnd(i);
-        collectRecord(source, userId, recordId, pos + kEvlrHeaderSize, length, crs);
+        collectRecord(source, userId, recordId, pos + kEvlrHeaderSize, length, parsed);
         pos += kEvlrHeaderSize + length;
     }
 }
 
 } // namespace
 
-ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
+ParsedHeader parseHeader(const ByteSource& source, const std::string& name) {
     checkSignature(source, name);
     const std::uint64_t fileSize = source.size();
     std::array<std::byte, kHeaderSize14> raw{};
@@ -257,39 +251,18 @@ ParsedHeader parseHeader(ByteSource& source, const std::string& name) {
         source.read(kHeaderSize12,
                     std::span(raw).subspan(kHeaderSize12, kHeaderSize14 - kHeaderSize12));
         evlrs = decodeLas14Fields(bytes, h, name);
+        h.evlrStart = evlrs.start;
+        h.evlrCount = evlrs.count;
     }
     parsed.pointsEnd = checkPointLayout(h, fileSize, name);
-    walkVlrs(source, h, name, parsed.crs);
-    walkEvlrs(source, evlrs, parsed.pointsEnd, name, parsed.crs);
-    if (parsed.crs.laszip)
-        invalid(name, "LAZ is compressed; not supported (it carries a LASzip record)");
+    walkVlrs(source, h, name, parsed);
+    walkEvlrs(source, evlrs, parsed.pointsEnd, name, parsed);
+    // A LASzip record in a file whose format byte says uncompressed is a stale one (a tool
+    // that decompressed the points kept it): the record sizes were checked as LAS above.
+    if (h.compressed && !parsed.laszipRecord)
+        invalid(name, "the point format is marked LASzip-compressed (LAZ), but there is no "
+                      "LASzip record (VLR 'laszip encoded' 22204)");
     return parsed;
-}
-
-FileSource::FileSource(const std::string& path) : m_path(path) {
-    m_file.reset(std::fopen(path.c_str(), "rb"));
-    if (!m_file)
-        throw IoError(std::string(kStage) + ": cannot open '" + path +
-                      "': " + std::strerror(errno));
-    if (fseeko(m_file.get(), 0, SEEK_END) != 0)
-        throw IoError(std::string(kStage) + ": cannot seek in '" + path + "'");
-    const off_t end = ftello(m_file.get());
-    if (end < 0)
-        throw IoError(std::string(kStage) + ": cannot size '" + path + "' (not a file?)");
-    m_size = static_cast<std::uint64_t>(end);
-    m_position = m_size;
-}
-
-void FileSource::read(std::uint64_t offset, std::span<std::byte> out) {
-    if (out.empty())
-        return;
-    if (offset != m_position && fseeko(m_file.get(), static_cast<off_t>(offset), SEEK_SET) != 0)
-        throw IoError(std::string(kStage) + ": cannot seek in '" + m_path + "'");
-    if (std::fread(out.data(), 1, out.size(), m_file.get()) != out.size())
-        throw IoError(std::string(kStage) + ": cannot read " + std::to_string(out.size()) +
-                      " bytes at offset " + std::to_string(offset) + " of '" + m_path +
-                      "' (the file changed while being read?)");
-    m_position = offset + out.size();
 }
 
 std::string trimmedText(std::span<const std::byte> bytes) {

@@ -4,9 +4,10 @@
 /// its size before anything is read at an offset it declares (LAS 1.4 R15, 2.4-2.8): the
 /// public header block is read at fixed byte offsets; 1.0-1.2 stop at byte 227, 1.3 adds the
 /// waveform offset (to 235), 1.4 the EVLR start and count and the 64-bit point counts (to
-/// 375). LAZ is refused here, by its signs (the extension, the point format's compression bits,
-/// a LASzip VLR).
+/// 375). A LAZ file (LASzip's compression bit in the point format byte) is recognised here:
+/// its header is the same, its points are the LAZ reader's (lib/src/io/laz).
 
+#include "byte_source.hpp"
 #include "terratin/io/las_reader.hpp"
 
 #include <cstddef>
@@ -23,47 +24,6 @@
 namespace terratin::io::detail {
 
 inline constexpr std::string_view kLasStage = "LasReader";
-
-/// Reads whole byte ranges that the caller has checked against size().
-class ByteSource {
-public:
-    virtual ~ByteSource() = default;
-    [[nodiscard]] virtual std::uint64_t size() const = 0;
-    /// Fills `out` from `offset`. Precondition: offset + out.size() <= size().
-    virtual void read(std::uint64_t offset, std::span<std::byte> out) = 0;
-};
-
-/// A LAS file held in memory (the fuzzer, tests).
-class MemorySource final : public ByteSource {
-public:
-    explicit MemorySource(std::span<const std::byte> data) : m_data(data) {}
-    [[nodiscard]] std::uint64_t size() const override { return m_data.size(); }
-    void read(std::uint64_t offset, std::span<std::byte> out) override {
-        if (!out.empty())
-            std::memcpy(out.data(), m_data.data() + offset, out.size());
-    }
-
-private:
-    std::span<const std::byte> m_data;
-};
-
-struct FileCloser {
-    void operator()(std::FILE* file) const { std::fclose(file); }
-};
-
-/// A LAS file on disk; IoError (naming `path`) when it cannot be opened, sized or read.
-class FileSource final : public ByteSource {
-public:
-    explicit FileSource(const std::string& path);
-    [[nodiscard]] std::uint64_t size() const override { return m_size; }
-    void read(std::uint64_t offset, std::span<std::byte> out) override;
-
-private:
-    std::string m_path;
-    std::unique_ptr<std::FILE, FileCloser> m_file;
-    std::uint64_t m_size = 0;
-    std::uint64_t m_position = 0;
-};
 
 /// A little-endian field at `pos` of `bytes`; memcpy keeps it free of alignment and aliasing
 /// problems. Precondition: pos + sizeof(T) <= bytes.size().
@@ -82,20 +42,22 @@ struct CrsRecords {
     std::optional<std::vector<std::byte>> geoDoubles; // 34736
     std::optional<std::vector<std::byte>> geoAscii;   // 34737
     std::optional<std::vector<std::byte>> wkt;        // 2112
-    bool laszip = false;
 };
 
-/// The header as read and checked, the CRS records of its (E)VLRs, and the end of the point
-/// records.
+/// The header as read and checked, the CRS records of its (E)VLRs, the payload of the LASzip
+/// VLR (user "laszip encoded", record 22204) of a LAZ file, and the end of the point records
+/// (for LAZ: of the header and VLRs, since only the chunk table knows where its points end).
 struct ParsedHeader {
     LasHeader header;
     CrsRecords crs;
+    std::optional<std::vector<std::byte>> laszipRecord;
     std::uint64_t pointsEnd = 0;
 };
 
 /// The header of `source`, checked against its size, and the CRS records of its (E)VLRs;
-/// InvalidInputError naming `name` for what is no LAS file, is LAZ, or disagrees with the
-/// file's size; IoError when reading fails.
-ParsedHeader parseHeader(ByteSource& source, const std::string& name);
+/// InvalidInputError naming `name` for what is no LAS or LAZ file or disagrees with the
+/// file's size (for LAZ the compressed records are checked by the LAZ reader); IoError when
+/// reading fails.
+ParsedHeader parseHeader(const ByteSource& source, const std::string& name);
 
 } // namespace terratin::io::detail

@@ -270,9 +270,9 @@ std::vector<BuildOptionSpec> makeTable() {
          }},
         // `class` is a Python keyword: the keyword is `classes`.
         {"classes", "class", 0, Kind::Repeatable, false, "C[,C...]", "",
-         "LAS: keep only these classification codes (2 = ground); repeatable", applyClasses},
+         "LAS/LAZ: keep only these classification codes (2 = ground); repeatable", applyClasses},
         {"returns", "returns", 0, Kind::Text, false, "WHICH", "all",
-         "LAS: keep first, last or all returns",
+         "LAS/LAZ: keep first, last or all returns",
          [](BuildOptions& o, const std::string& t, const std::string& n) {
              o.lasReturns = parseChoice<io::LasReturns>(t, n,
                                                         {{"first", io::LasReturns::First},

@@ -69,6 +69,7 @@ io::InputReadOptions readOptionsOf(const BuildOptions& options) {
     read.raster.band = options.band;
     read.las.classes = options.lasClasses;
     read.las.returns = options.lasReturns;
+    read.las.threads = options.triangulation.threads;
     read.text.columns = options.textColumns;
     read.vector.zField = options.zField;
     read.vector.layer = options.inputLayer;

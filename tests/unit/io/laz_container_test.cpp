@@ -266,7 +266,8 @@ TEST_F(EditedLaz, LyingTablesAndHeadersAreClearErrors) {
          "36"},
         {[&] { bytes[0] = std::byte{'X'}; }, "no LASF signature"},
         {[&] { storeLe(bytes.data() + 24, std::uint8_t{2}); }, "LAS version 2.2 is not supported"},
-        {[&] { storeLe(bytes.data() + 96, std::uint32_t{100}); }, "lies outside the bytes after"},
+        {[&] { storeLe(bytes.data() + 96, std::uint32_t{100}); },
+         "lies inside the 227-byte header"},
         {[&] {
              storeLe(bytes.data() + loadLe<std::uint16_t>(bytes.data() + 94) + 20,
                      std::uint16_t{0xFFFF});

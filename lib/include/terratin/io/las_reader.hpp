@@ -32,6 +32,9 @@ struct LasReadOptions {
     /// Classification codes to keep (ASPRS: 2 = ground); empty keeps every class.
     std::vector<int> classes;
     LasReturns returns = LasReturns::All;
+    /// Threads decoding a LAZ file's chunks (0: every hardware thread); the points come in
+    /// file order whatever the number.
+    unsigned threads = 0;
 };
 
 /// The public header block, as far as the reader uses it, after validation.
@@ -41,8 +44,10 @@ struct LasHeader {
     std::uint16_t headerSize = 0;
     std::uint32_t pointDataOffset = 0;
     std::uint32_t vlrCount = 0;
-    /// Point data record format, 0-10.
+    /// Point data record format, 0-10 (without LASzip's compression bits).
     int pointFormat = 0;
+    /// LAZ: the point records are LASzip-compressed (bit 7 of the header's format byte).
+    bool compressed = false;
     std::uint16_t recordLength = 0;
     /// The number of point records: the 64-bit count of LAS 1.4 when set, else the legacy one.
     std::uint64_t pointCount = 0;
@@ -51,6 +56,9 @@ struct LasHeader {
     /// Bounds from the header (min x, min y, min z, max x, max y, max z), in CRS units.
     std::array<double, 6> bounds{};
     std::uint16_t globalEncoding = 0;
+    /// LAS 1.4: where the extended VLRs start and how many there are; 0 and 0 otherwise.
+    std::uint64_t evlrStart = 0;
+    std::uint32_t evlrCount = 0;
 };
 
 /// Reads the LAS file at `path`: points x = X * scale + offset (same for y, z), in file order,

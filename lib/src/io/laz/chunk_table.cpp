@@ -29,9 +29,9 @@ constexpr std::uint64_t kMostBytesPerEntry = 24;
 
 /// The end of the bytes that can hold points: the first EVLR when it follows them (LAS 1.4),
 /// else the end of the file.
-std::uint64_t pointDataEnd(const LazSource& source, const LazHeader& h) {
-    if (h.evlrCount > 0 && h.evlrOffset >= h.pointDataOffset && h.evlrOffset <= source.size())
-        return h.evlrOffset;
+std::uint64_t pointDataEnd(const detail::ByteSource& source, const LasHeader& h) {
+    if (h.evlrCount > 0 && h.evlrStart >= h.pointDataOffset && h.evlrStart <= source.size())
+        return h.evlrStart;
     return source.size();
 }
 
@@ -39,7 +39,7 @@ std::uint64_t fixedChunkCount(std::uint64_t points, std::uint32_t chunkSize) {
     return points / chunkSize + (points % chunkSize != 0 ? 1 : 0);
 }
 
-ChunkList unchunked(const LazSource& source, const LazHeader& h) {
+ChunkList unchunked(const detail::ByteSource& source, const LasHeader& h) {
     ChunkList list;
     if (h.pointCount > 0)
         list.chunks.push_back(
@@ -49,7 +49,7 @@ ChunkList unchunked(const LazSource& source, const LazHeader& h) {
 
 /// Chunk byte ranges and point counts from decoded table entries, checked.
 std::vector<LazChunk> chunksFromEntries(const std::vector<ChunkTableEntry>& entries,
-                                        std::string_view name, const LazHeader& h,
+                                        std::string_view name, const LasHeader& h,
                                         const LaszipRecord& laszip, std::uint64_t tableStart) {
     std::vector<LazChunk> chunks;
     chunks.reserve(entries.size());
@@ -83,8 +83,9 @@ std::vector<LazChunk> chunksFromEntries(const std::vector<ChunkTableEntry>& entr
 }
 
 /// The table at `tableStart`, checked against the header and the file.
-std::vector<LazChunk> readTable(const LazSource& source, std::string_view name, const LazHeader& h,
-                                const LaszipRecord& laszip, std::uint64_t tableStart) {
+std::vector<LazChunk> readTable(const detail::ByteSource& source, std::string_view name,
+                                const LasHeader& h, const LaszipRecord& laszip,
+                                std::uint64_t tableStart) {
     const std::uint64_t chunksStart = h.pointDataOffset + kPointerBytes;
     const std::uint64_t fileSize = source.size();
     if (tableStart < chunksStart || tableStart > fileSize ||
@@ -124,9 +125,10 @@ std::vector<LazChunk> readTable(const LazSource& source, std::string_view name, 
 
 /// Decodes one chunk of `points` points from `offset`, reading more of the file only when
 /// the first guess of its size falls short; returns its compressed size.
-std::uint64_t measureChunk(const LazSource& source, ChunkDecoder& decoder, std::uint64_t offset,
-                           std::uint64_t end, std::uint64_t points, std::string label,
-                           std::vector<std::byte>& bytes, std::vector<std::byte>& records) {
+std::uint64_t measureChunk(const detail::ByteSource& source, ChunkDecoder& decoder,
+                           std::uint64_t offset, std::uint64_t end, std::uint64_t points,
+                           std::string label, std::vector<std::byte>& bytes,
+                           std::vector<std::byte>& records) {
     const std::uint64_t raw = points * decoder.recordLength();
     const std::array<std::uint64_t, 2> guesses{raw + raw / 2 + 4096, 4 * raw + 65536};
     for (std::size_t attempt = 0; attempt < guesses.size(); ++attempt) {
@@ -145,8 +147,8 @@ std::uint64_t measureChunk(const LazSource& source, ChunkDecoder& decoder, std::
 }
 
 /// The chunk list of a file whose table is missing, found by decoding chunk after chunk.
-std::vector<LazChunk> rebuildTable(const LazSource& source, std::string_view name,
-                                   const LazHeader& h, const LaszipRecord& laszip,
+std::vector<LazChunk> rebuildTable(const detail::ByteSource& source, std::string_view name,
+                                   const LasHeader& h, const LaszipRecord& laszip,
                                    const std::string& why) {
     if (laszip.variableChunks())
         throwInvalidLaz(name, why + ", and its chunks have variable point counts, which only "
@@ -178,7 +180,7 @@ std::vector<LazChunk> rebuildTable(const LazSource& source, std::string_view nam
     return chunks;
 }
 
-ChunkList chunked(const LazSource& source, std::string_view name, const LazHeader& h,
+ChunkList chunked(const detail::ByteSource& source, std::string_view name, const LasHeader& h,
                   const LaszipRecord& laszip) {
     const std::uint64_t pointerAt = h.pointDataOffset;
     if (source.size() - pointerAt < kPointerBytes)
@@ -243,8 +245,8 @@ std::vector<ChunkTableEntry> decodeChunkTableEntries(std::span<const std::byte> 
     return entries;
 }
 
-ChunkList locateChunks(const LazSource& source, std::string_view fileName, const LazHeader& header,
-                       const LaszipRecord& laszip) {
+ChunkList locateChunks(const detail::ByteSource& source, std::string_view fileName,
+                       const LasHeader& header, const LaszipRecord& laszip) {
     if (!laszip.chunked())
         return unchunked(source, header);
     return chunked(source, fileName, header, laszip);

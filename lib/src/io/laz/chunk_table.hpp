@@ -6,7 +6,6 @@
 
 #include "laszip_vlr.hpp"
 #include "laz_file.hpp"
-#include "laz_source.hpp"
 
 #include <cstdint>
 #include <span>
@@ -39,7 +38,7 @@ struct ChunkList {
 /// The chunks of the file whose header and LASzip VLR are given, checked against the point
 /// count and the file size. Throws InvalidInputError naming `fileName` when they cannot be
 /// found or disagree with the header.
-[[nodiscard]] ChunkList locateChunks(const LazSource& source, std::string_view fileName,
-                                     const LazHeader& header, const LaszipRecord& laszip);
+[[nodiscard]] ChunkList locateChunks(const detail::ByteSource& source, std::string_view fileName,
+                                     const LasHeader& header, const LaszipRecord& laszip);
 
 } // namespace terratin::io::laz

@@ -11,6 +11,7 @@
 ///         decoder.decode(bytes, file.chunks()[i].pointCount, records, file.chunkLabel(i));
 ///     }
 ///
+/// The header and the VLRs are read and checked as in a LAS file (las_header.hpp).
 /// Layout (LAS 1.4 R15 2.4 for the header; LASzip for the rest): the point data start at
 /// the header's offset to point data, whatever lies between the last VLR and there. The
 /// unchunked compressor (1) stores the points right there. The chunked ones (2, 3) store
@@ -18,8 +19,9 @@
 /// a u32 version (0), a u32 chunk count and, arithmetic-coded, each chunk's compressed size
 /// (and, for variable chunks, its point count), each predicted from the previous chunk's.
 
+#include "../byte_source.hpp"
+#include "../las_header.hpp"
 #include "laszip_vlr.hpp"
-#include "laz_source.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -29,23 +31,6 @@
 #include <vector>
 
 namespace terratin::io::laz {
-
-/// The header fields that place and size the point records.
-struct LazHeader {
-    int versionMajor = 1;
-    int versionMinor = 0;
-    std::uint16_t headerSize = 0;
-    std::uint32_t pointDataOffset = 0;
-    std::uint32_t vlrCount = 0;
-    /// Point data record format 0-10: the header byte without LASzip's compression bits (7, 6).
-    int pointFormat = 0;
-    std::uint16_t recordLength = 0;
-    /// The 64-bit count of LAS 1.4 when set, else the legacy 32-bit one.
-    std::uint64_t pointCount = 0;
-    /// LAS 1.4: the first EVLR and how many; 0 and 0 otherwise.
-    std::uint64_t evlrOffset = 0;
-    std::uint32_t evlrCount = 0;
-};
 
 /// One independently decodable run of points.
 struct LazChunk {
@@ -73,9 +58,14 @@ public:
     [[nodiscard]] static LazFile open(const std::string& path);
     /// The same, from bytes the caller keeps alive as long as the LazFile.
     [[nodiscard]] static LazFile fromMemory(std::span<const std::byte> bytes, std::string name);
+    /// The LAZ file whose header (`parsed`, of a compressed file) was read from `source`,
+    /// which the caller keeps alive as long as the LazFile.
+    [[nodiscard]] static LazFile fromParsedHeader(const detail::ByteSource& source,
+                                                  std::string name,
+                                                  const detail::ParsedHeader& parsed);
 
     [[nodiscard]] const std::string& name() const { return m_name; }
-    [[nodiscard]] const LazHeader& header() const { return m_header; }
+    [[nodiscard]] const LasHeader& header() const { return m_header; }
     [[nodiscard]] const LaszipRecord& laszip() const { return m_laszip; }
     [[nodiscard]] const std::vector<LazChunk>& chunks() const { return m_chunks; }
     [[nodiscard]] ChunkListOrigin chunkListOrigin() const { return m_origin; }
@@ -90,12 +80,14 @@ public:
     void readBytes(std::uint64_t offset, std::span<std::byte> out) const;
 
 private:
-    LazFile(std::unique_ptr<LazSource> source, std::string name);
-    void parse();
+    LazFile(const detail::ByteSource& source, std::string name);
+    void place(const detail::ParsedHeader& parsed);
 
-    std::unique_ptr<LazSource> m_source;
+    /// The source the LazFile opened itself (null when the caller's) and the one it reads.
+    std::unique_ptr<detail::ByteSource> m_ownSource;
+    const detail::ByteSource* m_source = nullptr;
     std::string m_name;
-    LazHeader m_header;
+    LasHeader m_header;
     LaszipRecord m_laszip;
     std::vector<LazChunk> m_chunks;
     ChunkListOrigin m_origin = ChunkListOrigin::NotChunked;
