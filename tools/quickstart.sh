@@ -123,7 +123,8 @@ case "${1:-}" in
     # The geometry and triangulation tests, parallel methods included, under ThreadSanitizer.
     build_preset tsan
     ctest --preset tsan
-    # The simplified constrained build's parallel check, which lives in the I/O library.
+    # The parallel code that lives in the I/O library: the simplified constrained build's check
+    # and the LAZ reader's chunks.
     build_preset tsan-pipeline
     ctest --preset tsan-pipeline
     ;;
