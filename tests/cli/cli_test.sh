@@ -382,7 +382,7 @@ case "$case_name" in
     need_shared laz/lidr__MixedConifer.laz
     run 0 build "$shared/laz/lidr__Megaplot.laz" "$shared/laz/lidr__MixedConifer.laz" \
       -o merged.gpkg --class 2
-    grep -q "input 2: .*lidr__MixedConifer.laz (las, NAD83 / UTM zone 12N.*reprojected" out.txt ||
+    grep -q "input 2: .*lidr__MixedConifer.laz (laz, NAD83 / UTM zone 12N.*reprojected" out.txt ||
       fail "second LAZ input not reported with its CRS"
     [ -s merged.gpkg ] || fail "no GeoPackage from LAZ"
     ;;

@@ -76,6 +76,8 @@ const char* toString(InputKind kind) {
         return "raster";
     case InputKind::Las:
         return "las";
+    case InputKind::Laz:
+        return "laz";
     case InputKind::Text:
         return "text";
     case InputKind::Vector:
@@ -195,6 +197,7 @@ PointCloud readInput(const std::string& path, const InputReadOptions& options,
         return cloud;
     }
     case InputKind::Las:
+    case InputKind::Laz: // detected as LAS; the LAS reader decodes LAZ
         return readLasPoints(path, options.las, progress);
     case InputKind::Text: {
         PointCloud cloud = readTextPoints(path, options.text, progress);

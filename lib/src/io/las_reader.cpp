@@ -83,7 +83,7 @@ PointCloud readPoints(const detail::ByteSource& source, const std::string& name,
     const LasRecordFilter decoder(h, options.returns, keepClass);
     PointCloud cloud;
     cloud.path = name;
-    cloud.kind = InputKind::Las;
+    cloud.kind = h.compressed ? InputKind::Laz : InputKind::Las;
     cloud.crsWkt = crsOf(parsed, name);
     cloud.recordsRead = h.pointCount;
     if (h.compressed) {

@@ -17,11 +17,12 @@ namespace terratin::io {
 enum class InputKind {
     Raster, ///< any raster GDAL opens (GeoTIFF, HGT, DTED, ASCII grid...)
     Las,    ///< ASPRS LAS 1.0-1.4, uncompressed
+    Laz,    ///< LAS compressed by LASzip (COPC too); detected as Las, read by the same reader
     Text,   ///< delimited text, one point per line
     Vector, ///< an OGR vector dataset with point features
 };
 
-/// "raster", "las", "text" or "vector".
+/// "raster", "las", "laz", "text" or "vector".
 const char* toString(InputKind kind);
 
 /// Points read from one input, in the input's own CRS and units.

@@ -159,7 +159,7 @@ struct BuildTimings {
 /// What was read from one input.
 struct InputReport {
     std::string path;
-    /// "raster", "las", "text", "vector".
+    /// "raster", "las", "laz", "text", "vector".
     std::string kind;
     /// The input's CRS (after --s_srs), empty when it has none.
     std::string crsName;
