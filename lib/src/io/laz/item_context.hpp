@@ -8,6 +8,7 @@
 #include "range_decoder.hpp"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 
@@ -23,31 +24,43 @@ namespace terratin::io::laz {
     return static_cast<std::int32_t>(static_cast<std::uint32_t>(a) * static_cast<std::uint32_t>(b));
 }
 
-/// 256 symbol models of 256 symbols, one per value of the byte being predicted (its value in
-/// the previous point). Most files use a few of them, so each is allocated the first time it
-/// is needed and, in every later chunk, reset the first time it is needed there: the same
-/// as resetting all of them at each chunk start, without the cost.
-class ByteContextModels {
+/// `Count` adaptive models of the same alphabet, one per value of a context (the value of a
+/// byte in the previous point, a return count). Most files use a few of them, so each is
+/// allocated the first time it is needed and, after every reset(), reset the first time it is
+/// needed again: the same as resetting all of them at each chunk start, without the cost.
+template <std::size_t Count> class ContextModels {
 public:
-    /// Forget what the models learnt: the start of a chunk.
-    void reset() { ++m_chunkNumber; }
+    /// Models of `symbols` symbols (2-2048).
+    explicit ContextModels(std::uint32_t symbols) : m_symbols(symbols) {}
 
-    [[nodiscard]] SymbolModel& at(std::uint8_t context) {
+    /// Forget what the models learnt: the start of a chunk (or of a scanner channel in it).
+    void reset() { ++m_generation; }
+
+    /// The model of context `context`. Precondition: context < Count.
+    [[nodiscard]] SymbolModel& at(std::size_t context) {
         std::unique_ptr<SymbolModel>& model = m_models[context];
         if (!model) {
-            model = std::make_unique<SymbolModel>(256);
-            m_resetIn[context] = m_chunkNumber;
-        } else if (m_resetIn[context] != m_chunkNumber) {
+            model = std::make_unique<SymbolModel>(m_symbols);
+            m_resetIn[context] = m_generation;
+        } else if (m_resetIn[context] != m_generation) {
             model->reset();
-            m_resetIn[context] = m_chunkNumber;
+            m_resetIn[context] = m_generation;
         }
         return *model;
     }
 
 private:
-    std::array<std::unique_ptr<SymbolModel>, 256> m_models{};
-    std::array<std::uint32_t, 256> m_resetIn{};
-    std::uint32_t m_chunkNumber = 1;
+    std::uint32_t m_symbols;
+    std::array<std::unique_ptr<SymbolModel>, Count> m_models{};
+    std::array<std::uint32_t, Count> m_resetIn{};
+    std::uint32_t m_generation = 1;
+};
+
+/// 256 models of 256 symbols, one per value of the byte being predicted (its value in the
+/// previous point).
+class ByteContextModels : public ContextModels<256> {
+public:
+    ByteContextModels() : ContextModels<256>(256) {}
 };
 
 /// The predictor of POINT10 version 2 for x and y differences: five recent values kept in
