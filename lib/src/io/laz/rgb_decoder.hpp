@@ -26,21 +26,33 @@ private:
     IntegerDecoder m_byteValue;
 };
 
+/// Red, green, blue.
+using Colour = std::array<std::uint16_t, 3>;
+
+/// The models of version 2's colour coding. RGB14 and RGBNIR14 (version 3) code colours the
+/// same way, with one set of these per scanner channel.
+struct ColourModels {
+    ColourModels();
+    /// Back to their initial state, as at the start of every chunk.
+    void reset();
+
+    SymbolModel changedBytes;
+    /// One model per byte: red low, red high, green low, green high, blue low, blue high.
+    std::array<SymbolModel, 6> byteDifference;
+};
+
+/// The colour that follows `last`, as version 2 codes it.
+[[nodiscard]] Colour decodeColourV2(RangeDecoder& decoder, ColourModels& models,
+                                    const Colour& last);
+
 class Rgb12V2Decoder {
 public:
-    Rgb12V2Decoder();
     void start(const std::byte* first);
     void decode(RangeDecoder& decoder, std::byte* out);
 
 private:
-    /// One channel byte (`shift` 0 low, 8 high) of green and blue, predicted from red's.
-    void decodeGreenBlueByte(RangeDecoder& decoder, std::uint32_t changed, unsigned shift,
-                             std::array<std::uint16_t, 3>& colour);
-
-    std::array<std::uint16_t, 3> m_last{};
-    SymbolModel m_changedBytes;
-    /// One model per byte: red low, red high, green low, green high, blue low, blue high.
-    std::array<SymbolModel, 6> m_byteDifference;
+    Colour m_last{};
+    ColourModels m_models;
 };
 
 } // namespace terratin::io::laz

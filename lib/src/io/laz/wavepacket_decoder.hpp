@@ -16,26 +16,42 @@
 
 namespace terratin::io::laz {
 
+/// Bytes of a wave packet record.
+inline constexpr std::size_t kWavePacketSize = 29;
+
+/// The models of the wave packet coding and the two values it carries from one packet to the
+/// next. WAVEPACKET14 (version 3) codes packets the same way, with one set of these per
+/// scanner channel.
+struct WavePacketModels {
+    WavePacketModels();
+    /// Back to their initial state, as at the start of every chunk.
+    void reset();
+
+    SymbolModel descriptorIndex;
+    /// How the offset is coded, one model per how the previous one was.
+    std::array<SymbolModel, 4> offsetKind;
+    IntegerDecoder offsetStep;
+    IntegerDecoder packetSize;
+    /// Return point location and x(t), y(t), z(t): floats, predicted as their bit patterns.
+    IntegerDecoder returnPoint;
+    IntegerDecoder xyz;
+    std::int32_t lastOffsetStep = 0;
+    std::uint32_t lastOffsetKind = 0;
+};
+
+/// Decodes the packet that follows the packet `last` into `out` (kWavePacketSize bytes each;
+/// `out` may be `last`).
+void decodeWavePacket(RangeDecoder& decoder, WavePacketModels& models, const std::byte* last,
+                      std::byte* out);
+
 class WavePacket13V1Decoder {
 public:
-    WavePacket13V1Decoder();
     void start(const std::byte* first);
     void decode(RangeDecoder& decoder, std::byte* out);
 
 private:
-    std::uint64_t m_offset = 0;
-    std::uint32_t m_packetSize = 0;
-    /// Return point location and x(t), y(t), z(t): floats, predicted as their bit patterns.
-    std::array<std::int32_t, 4> m_shape{};
-    std::int32_t m_lastOffsetStep = 0;
-    std::uint32_t m_lastOffsetKind = 0;
-    SymbolModel m_descriptorIndex;
-    /// How the offset is coded, one model per how the previous one was.
-    std::array<SymbolModel, 4> m_offsetKind;
-    IntegerDecoder m_offsetStep;
-    IntegerDecoder m_packetSizeValue;
-    IntegerDecoder m_returnPoint;
-    IntegerDecoder m_xyz;
+    std::array<std::byte, kWavePacketSize> m_last{};
+    WavePacketModels m_models;
 };
 
 } // namespace terratin::io::laz
