@@ -1,12 +1,14 @@
 /// @file
 /// The chunk loop of the pointwise LAZ compressors (1 and 2): the raw first point seeds every
 /// item decoder, then each further point is decoded item after item from one arithmetic
-/// stream (see chunk_decoder.hpp).
+/// stream (see chunk_decoder.hpp). The layered compressor (3) has a loop of its own
+/// (layered_chunk.hpp); this file hands its chunks over.
 
 #include "chunk_decoder.hpp"
 
 #include "extra_bytes_decoder.hpp"
 #include "gpstime_decoder.hpp"
+#include "layered_chunk.hpp"
 #include "laz_error.hpp"
 #include "point10_decoder.hpp"
 #include "range_decoder.hpp"
@@ -39,24 +41,30 @@ ItemDecoder versioned(std::uint16_t version, Args... args) {
     return ItemDecoder(std::in_place_type<V2>, args...);
 }
 
-[[noreturn]] void unsupportedItem(const Item& item, std::string_view fileName) {
+[[noreturn]] void unsupportedItem(const Item& item, Compressor compressor,
+                                  std::string_view fileName) {
     const std::string name = itemName(static_cast<std::uint16_t>(item.type)) + " version " +
                              std::to_string(item.version);
     if (item.version == 0)
         throwInvalidLaz(fileName, name + " means stored uncompressed, which LASzip does not "
                                          "decode inside a compressed point stream");
+    if (item.type >= ItemType::Point14)
+        throwInvalidLaz(fileName, itemName(static_cast<std::uint16_t>(item.type)) +
+                                      " is stored only by the layered compressor (3), not by "
+                                      "the pointwise one (" +
+                                      std::to_string(static_cast<int>(compressor)) + ")");
     throwInvalidLaz(fileName, name + " is not supported by this LAZ decoder yet (it decodes "
                                      "POINT10, GPSTIME11, RGB12 and BYTE versions 1 and 2, "
                                      "WAVEPACKET13 version 1)");
 }
 
-ItemDecoder makeItemDecoder(const Item& item, std::string_view fileName) {
+ItemDecoder makeItemDecoder(const Item& item, Compressor compressor, std::string_view fileName) {
     if (item.version != 1 && item.version != 2)
-        unsupportedItem(item, fileName);
+        unsupportedItem(item, compressor, fileName);
     switch (item.type) {
     case ItemType::WavePacket13:
         if (item.version != 1)
-            unsupportedItem(item, fileName);
+            unsupportedItem(item, compressor, fileName);
         return ItemDecoder(std::in_place_type<WavePacket13V1Decoder>);
     case ItemType::Point10:
         return versioned<Point10V1Decoder, Point10V2Decoder>(item.version);
@@ -68,7 +76,7 @@ ItemDecoder makeItemDecoder(const Item& item, std::string_view fileName) {
         return versioned<ExtraBytesV1Decoder, ExtraBytesV2Decoder>(item.version,
                                                                    std::size_t{item.size});
     default:
-        unsupportedItem(item, fileName);
+        unsupportedItem(item, compressor, fileName);
     }
 }
 
@@ -79,6 +87,8 @@ struct ChunkDecoder::State {
     Compressor compressor = Compressor::None;
     std::size_t recordLength = 0;
     std::vector<PlacedItem> items;
+    /// The layered compressor's own loop; null for the others.
+    std::unique_ptr<LayeredChunkDecoder> layered;
     RangeDecoder decoder;
     std::span<const std::byte> chunk;
     std::uint64_t pointCount = 0;
@@ -86,26 +96,30 @@ struct ChunkDecoder::State {
     std::string label;
 
     void decodeCompressed(std::span<std::byte> records);
+    void decodeLayered(std::span<std::byte> records);
     void startFromRawPoint(std::byte* record);
     void checkStream() const;
     [[noreturn]] void truncated() const;
 };
 
 ChunkDecoder::ChunkDecoder(const LaszipRecord& record, std::string_view fileName,
-                           FieldSelection /*fields: every pointwise field is decoded*/)
+                           FieldSelection fields)
     : m_state(std::make_unique<State>()) {
     State& s = *m_state;
     s.fileName = std::string(fileName);
     s.compressor = record.compressor;
     s.recordLength = record.recordLength();
-    if (record.compressor == Compressor::LayeredChunked)
-        throwInvalidLaz(fileName, "the layered compressor (3) of LAS 1.4 point formats 6-10 is "
-                                  "not supported by this LAZ decoder yet");
+    if (record.compressor == Compressor::LayeredChunked) {
+        s.layered = std::make_unique<LayeredChunkDecoder>(record, fileName, fields);
+        return;
+    }
+    // The pointwise compressors store every field in one stream: all are decoded, whatever
+    // `fields` asks for.
     if (record.compressor == Compressor::None)
         return;
     std::size_t offset = 0;
     for (const Item& item : record.items) {
-        s.items.push_back({makeItemDecoder(item, fileName), offset});
+        s.items.push_back({makeItemDecoder(item, record.compressor, fileName), offset});
         offset += item.size;
     }
 }
@@ -135,7 +149,9 @@ std::size_t ChunkDecoder::bytesUsed() const {
     const State& s = *m_state;
     if (s.compressor == Compressor::None)
         return static_cast<std::size_t>(s.pointsDone) * s.recordLength;
-    return s.pointsDone == 0 ? 0 : s.recordLength + s.decoder.consumed();
+    if (s.pointsDone == 0)
+        return 0;
+    return s.layered ? s.layered->chunkBytes() : s.recordLength + s.decoder.consumed();
 }
 
 void ChunkDecoder::decodeNext(std::span<std::byte> records) {
@@ -160,7 +176,10 @@ void ChunkDecoder::decodeNext(std::span<std::byte> records) {
         s.pointsDone += count;
         return;
     }
-    s.decodeCompressed(records);
+    if (s.layered)
+        s.decodeLayered(records);
+    else
+        s.decodeCompressed(records);
 }
 
 std::size_t ChunkDecoder::decode(std::span<const std::byte> chunk, std::uint64_t pointCount,
@@ -186,6 +205,16 @@ void ChunkDecoder::State::decodeCompressed(std::span<std::byte> records) {
     }
     pointsDone += records.size() / recordLength;
     checkStream();
+}
+
+void ChunkDecoder::State::decodeLayered(std::span<std::byte> records) {
+    std::span<std::byte> rest = records;
+    if (pointsDone == 0) {
+        layered->start(chunk, pointCount, label, records.data());
+        rest = records.subspan(recordLength);
+    }
+    layered->decode(rest);
+    pointsDone += records.size() / recordLength;
 }
 
 void ChunkDecoder::State::startFromRawPoint(std::byte* record) {

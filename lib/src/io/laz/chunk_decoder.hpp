@@ -1,10 +1,11 @@
 #pragma once
 /// @file
 /// Decoding of one chunk of LAZ point data to raw LAS point records. A chunk starts with its
-/// first point stored raw (the record bytes, item after item), then one arithmetic-coded
-/// stream carries the other points; every model starts afresh in each chunk, so chunks
-/// decode independently of each other, on any thread, into a buffer of the caller's.
-/// The unchunked compressor (1) is one chunk holding every point.
+/// first point stored raw (the record bytes, item after item); in the pointwise compressors (1,
+/// 2) one arithmetic-coded stream then carries the other points, in the layered one (3, LAS 1.4
+/// point formats 6-10) one stream per field group (layered_chunk.hpp). Every model starts
+/// afresh in each chunk, so chunks decode independently of each other, on any thread, into a
+/// buffer of the caller's. The unchunked compressor (1) is one chunk holding every point.
 
 #include "laszip_vlr.hpp"
 
@@ -29,10 +30,11 @@ enum class FieldSelection {
 
 class ChunkDecoder {
 public:
-    /// A decoder for the point records `record` describes. Throws InvalidInputError naming
-    /// `fileName` when they need what this decoder does not do yet: the layered compressor
-    /// (3) of point formats 6-10, wave packets, items stored uncompressed within a compressed
-    /// file (version 0).
+    /// A decoder for the point records `record` describes, decoding `fields` of them (the
+    /// layered compressor alone can skip fields; see FieldSelection). Throws InvalidInputError
+    /// naming `fileName` when they need what this decoder does not do: items stored
+    /// uncompressed within a compressed file (version 0), the version 4 items of LAS 1.5, LAS
+    /// 1.4 items under a pointwise compressor or LAS 1.0-1.3 items under the layered one.
     ChunkDecoder(const LaszipRecord& record, std::string_view fileName,
                  FieldSelection fields = FieldSelection::Every);
     ~ChunkDecoder();
