@@ -66,10 +66,11 @@ inline LasRecords lasRecords(const std::filesystem::path& path) {
     return records;
 }
 
-/// Every point of `file`, chunk by chunk, as LAS records; checks on the way that each chunk
-/// used exactly the bytes the chunk table gives it.
-inline std::vector<std::byte> decodeAll(const LazFile& file) {
-    ChunkDecoder decoder(file.laszip(), file.name());
+/// Every point of `file`, chunk by chunk, as LAS records (`fields` of them); checks on the way
+/// that each chunk used exactly the bytes the chunk table gives it.
+inline std::vector<std::byte> decodeAll(const LazFile& file,
+                                        FieldSelection fields = FieldSelection::Every) {
+    ChunkDecoder decoder(file.laszip(), file.name(), fields);
     const std::size_t length = file.header().recordLength;
     std::vector<std::byte> records(length * static_cast<std::size_t>(file.header().pointCount));
     std::vector<std::byte> bytes;
@@ -86,8 +87,42 @@ inline std::vector<std::byte> decodeAll(const LazFile& file) {
     return records;
 }
 
-/// The field of a point record of format `format` (0-5) holding byte `at`.
+/// The field of a point record of format `format` (6-10) holding byte `at`.
+inline std::string fieldAtLas14(int format, std::size_t at) {
+    static const std::array<std::pair<std::size_t, const char*>, 12> base{{{0, "x"},
+                                                                           {4, "y"},
+                                                                           {8, "z"},
+                                                                           {12, "intensity"},
+                                                                           {14, "return byte"},
+                                                                           {15, "flag byte"},
+                                                                           {16, "classification"},
+                                                                           {17, "user data"},
+                                                                           {18, "scan angle"},
+                                                                           {20, "point source id"},
+                                                                           {22, "gps time"},
+                                                                           {30, ""}}};
+    for (std::size_t i = 0; i + 1 < base.size(); ++i)
+        if (at < base[i + 1].first)
+            return base[i].second;
+    std::size_t rest = at - 30;
+    if (format == 7 || format == 8 || format == 10) {
+        const std::size_t colours = format == 7 ? 3 : 4;
+        if (rest < 2 * colours)
+            return std::array<const char*, 4>{"red", "green", "blue", "nir"}[rest / 2];
+        rest -= 2 * colours;
+    }
+    if (format == 9 || format == 10) {
+        if (rest < 29)
+            return "wave packet";
+        rest -= 29;
+    }
+    return "extra byte " + std::to_string(rest);
+}
+
+/// The field of a point record of format `format` (0-10) holding byte `at`.
 inline std::string fieldAt(int format, std::size_t at) {
+    if (format >= 6)
+        return fieldAtLas14(format, at);
     static const std::array<std::pair<std::size_t, const char*>, 10> base{{{0, "x"},
                                                                            {4, "y"},
                                                                            {8, "z"},
