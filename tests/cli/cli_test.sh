@@ -378,6 +378,11 @@ case "$case_name" in
     cmp -s laz.2dm las.2dm || fail "the LAZ and its LAS twin gave different TINs"
     run 0 build "$shared/laz/lidr__Megaplot.laz" -o one.2dm --class 2 --returns last -j 1 --quiet
     cmp -s laz.2dm one.2dm || fail "one thread gave another TIN"
+    # The layered compressor of LAS 1.4 point formats 6-10.
+    need_shared laz/laspy__1_4_w_evlr.laz
+    run 0 build "$shared/laz/laspy__1_4_w_evlr.laz" -o laz14.2dm --quiet
+    run 0 build "$shared/laz/laspy__1_4_w_evlr.las" -o las14.2dm --quiet
+    cmp -s laz14.2dm las14.2dm || fail "the layered LAZ and its LAS twin gave different TINs"
     # Merged with another input, and to a GeoPackage in the file's CRS.
     need_shared laz/lidr__MixedConifer.laz
     run 0 build "$shared/laz/lidr__Megaplot.laz" "$shared/laz/lidr__MixedConifer.laz" \

@@ -45,6 +45,7 @@ const std::vector<Twin> kTwins{
     {"lidr__MixedConifer.laz", "laz/lasr__MixedConifer.las"},
     {"rlas__example.laz", "laz/rlas__example.las"},
     {"lazperf__no-points-1.3.laz", "laz/lazperf__no-points-1.3.las"},
+    {"laspy__1_4_w_evlr.laz", "laz/laspy__1_4_w_evlr.las"}, // layered, EVLRs after the table
 };
 
 bool present(const Twin& twin) {
@@ -181,6 +182,29 @@ TEST(LazParallel, StopsWhenProgressCancels) {
     EXPECT_THROW(readLasPoints(path.string(), optionsWith({}, LasReturns::All, 2), cancelAtOnce),
                  Cancelled);
     EXPECT_EQ(calls, 1);
+}
+
+// Every shared LAZ file reads, every record counted (kept or filtered out), as many as its
+// header says; the broken ones are the next test's.
+TEST(LazReading, ReadsEverySharedFile_AsManyRecordsAsItsHeaderSays) {
+    const auto folder = sharedLaz("");
+    if (!std::filesystem::exists(folder))
+        GTEST_SKIP() << "shared LAZ test files absent";
+    std::size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.path().extension() != ".laz" || name.find("broken") != std::string::npos)
+            continue;
+        const LasHeader header = readLasHeader(entry.path().string());
+        EXPECT_TRUE(header.compressed) << name;
+        const PointCloud cloud =
+            readLasPoints(entry.path().string(), optionsWith({2}, LasReturns::First, 2));
+        EXPECT_EQ(cloud.kind, InputKind::Laz) << name;
+        EXPECT_EQ(cloud.recordsRead, header.pointCount) << name;
+        EXPECT_EQ(cloud.points.size() + cloud.filteredOut, header.pointCount) << name;
+        ++files;
+    }
+    EXPECT_GE(files, 30U);
 }
 
 // The broken files of LASzip's own tests: one line naming the file and what is wrong.

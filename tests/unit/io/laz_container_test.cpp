@@ -235,9 +235,29 @@ TEST_F(EditedLaz, MissingTableIsRebuiltByDecoding) {
     }
 }
 
-TEST_F(EditedLaz, MissingTableOfVariableChunksIsAClearError) {
-    if (!load("laspy__simple.copc.laz"))
+TEST_F(EditedLaz, MissingTableOfLayeredChunksIsRebuiltFromTheirLayouts) {
+    // Fixed chunks (14), then a COPC file's variable ones (65) with EVLRs after the table.
+    for (const char* name :
+         {"pdal__las_with_several_extra_byte_bloc.laz", "laspy__simple.copc.laz"}) {
+        if (!load(name))
+            GTEST_SKIP() << "shared LAZ test files absent";
+        setPointer(pointData);
+        const LazFile file = open();
+        EXPECT_EQ(file.chunkListOrigin(), ChunkListOrigin::Rebuilt) << name;
+        expectOriginalChunks(file);
+    }
+}
+
+TEST_F(EditedLaz, MissingTableOfVariablePointwiseChunksIsAClearError) {
+    if (!load("lidr__Megaplot.laz"))
         GTEST_SKIP() << "shared LAZ test files absent";
+    // The LASzip VLR's chunk size (payload byte 12) set to variable.
+    const std::string_view user = "laszip encoded";
+    const auto at = std::search(bytes.begin(), bytes.end(), user.begin(), user.end(),
+                                [](std::byte b, char c) { return static_cast<char>(b) == c; });
+    ASSERT_NE(at, bytes.end());
+    const auto payload = static_cast<std::size_t>(at - bytes.begin()) - 2 + 54;
+    storeLe(bytes.data() + payload + 12, std::uint32_t{0xFFFFFFFFu});
     setPointer(pointData);
     EXPECT_NE(errorOf([&] { (void)open(); }).find("variable point counts, which only the table"),
               std::string::npos);

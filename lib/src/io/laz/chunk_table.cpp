@@ -2,13 +2,15 @@
 /// Finding the chunks of a LAZ file (see chunk_table.hpp). A writer that could not seek back
 /// (a stream) leaves -1 as the table pointer and appends the table's position as the file's
 /// last 8 bytes; one interrupted before writing the table leaves the pointer pointing at
-/// itself. With fixed-size chunks the table can then be rebuilt by decoding, since each
-/// chunk's coded stream ends exactly where the next chunk starts.
+/// itself. The table can then be rebuilt: a layered chunk states its own size and point count;
+/// a pointwise chunk of a fixed size is decoded, its coded stream ending exactly where the
+/// next chunk starts.
 
 #include "chunk_table.hpp"
 
 #include "chunk_decoder.hpp"
 #include "integer_decoder.hpp"
+#include "layered_chunk.hpp"
 #include "laz_bytes.hpp"
 #include "laz_error.hpp"
 #include "range_decoder.hpp"
@@ -146,16 +148,51 @@ std::uint64_t measureChunk(const detail::ByteSource& source, ChunkDecoder& decod
     return 0; // not reached: the last attempt returns or throws
 }
 
+/// The chunk list of a layered file whose table is missing, from the chunks' own layouts: a
+/// layered chunk states its point count and the sizes of its layers after its first record
+/// (layered_chunk.hpp), so nothing needs decoding, and variable chunks are found too.
+std::vector<LazChunk> rebuildLayeredTable(const detail::ByteSource& source, std::string_view name,
+                                          const LasHeader& h, const LaszipRecord& laszip,
+                                          const std::string& why) {
+    const LayeredChunkDecoder layout(laszip, name, FieldSelection::TinFields);
+    const std::uint64_t end = pointDataEnd(source, h);
+    std::vector<std::byte> head(h.recordLength + 4 + 4 * layout.layerCount());
+    std::vector<LazChunk> chunks;
+    std::uint64_t offset = h.pointDataOffset + kPointerBytes;
+    for (std::uint64_t first = 0; first < h.pointCount;) {
+        const std::string which = "chunk " + std::to_string(chunks.size() + 1);
+        if (end < offset || end - offset < head.size())
+            throwInvalidLaz(name, why +
+                                      "; rebuilding it from the chunks' layouts ran out of "
+                                      "point data at " +
+                                      which + ", after " + std::to_string(first) + " of " +
+                                      std::to_string(h.pointCount) + " points");
+        source.read(offset, head);
+        const auto points = loadLe<std::uint32_t>(head.data() + h.recordLength);
+        std::uint64_t bytes = head.size();
+        for (std::size_t layer = 0; layer < layout.layerCount(); ++layer)
+            bytes += loadLe<std::uint32_t>(head.data() + h.recordLength + 4 + 4 * layer);
+        if (points == 0 || points > h.pointCount - first || bytes > end - offset)
+            throwInvalidLaz(name, why + "; " + which + " found without it states " +
+                                      std::to_string(points) + " points in " +
+                                      std::to_string(bytes) +
+                                      " bytes, which do not fit the header's count or the file");
+        chunks.push_back({offset, bytes, first, points});
+        offset += bytes;
+        first += points;
+    }
+    return chunks;
+}
+
 /// The chunk list of a file whose table is missing, found by decoding chunk after chunk.
 std::vector<LazChunk> rebuildTable(const detail::ByteSource& source, std::string_view name,
                                    const LasHeader& h, const LaszipRecord& laszip,
                                    const std::string& why) {
+    if (laszip.compressor == Compressor::LayeredChunked)
+        return rebuildLayeredTable(source, name, h, laszip, why);
     if (laszip.variableChunks())
         throwInvalidLaz(name, why + ", and its chunks have variable point counts, which only "
                                     "the table records: the chunks cannot be found without it");
-    if (laszip.compressor == Compressor::LayeredChunked)
-        throwInvalidLaz(name, why + "; rebuilding it needs the layered decoder (compressor 3), "
-                                    "which this LAZ decoder does not have yet");
     ChunkDecoder decoder(laszip, name);
     const std::uint64_t end = pointDataEnd(source, h);
     std::vector<LazChunk> chunks;

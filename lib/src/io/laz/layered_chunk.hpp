@@ -54,6 +54,8 @@ public:
     /// than the chunk has left). Throws InvalidInputError when a layer turns out truncated or
     /// corrupt.
     void decode(std::span<std::byte> records);
+    /// The layers of a chunk: POINT14's and those of the items after it.
+    [[nodiscard]] std::size_t layerCount() const { return m_layerCount; }
     /// Bytes of the chunk that its layout accounts for: the first record, the point count, the
     /// layer sizes and every layer.
     [[nodiscard]] std::size_t chunkBytes() const { return m_chunkBytes; }
