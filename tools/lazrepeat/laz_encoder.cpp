@@ -1,0 +1,319 @@
+/// @file
+/// The LAZ range encoder, its models and the integer compressor (see laz_encoder.hpp). Each
+/// step is the mirror of a decoder step: where the decoder narrows its interval around the
+/// code value it reads, the encoder narrows the same interval around the value it writes, so
+/// both lengths stay equal and both renormalise at the same moments.
+
+#include "laz_encoder.hpp"
+
+#include "laz_bytes.hpp"
+#include "range_decoder.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace terratin::lazrepeat {
+
+namespace {
+using io::laz::kRenormaliseBelow;
+/// The decoder's fixed-point widths and count limits (range_decoder.cpp).
+constexpr std::uint32_t kBitProbabilityBits = 13;
+constexpr std::uint32_t kSymbolProbabilityBits = 15;
+constexpr std::uint32_t kBitCountLimit = 1u << 13;
+constexpr std::uint32_t kSymbolCountLimit = 1u << 15;
+constexpr std::uint32_t kMaxSymbols = 1u << 11;
+/// The decoder takes at most 19 raw bits in one step (RangeDecoder::readBits).
+constexpr std::uint32_t kMostBitsInOneStep = 19;
+} // namespace
+
+void EncoderBitModel::reset() {
+    m_zeroCount = 1;
+    m_totalCount = 2;
+    m_zeroProbability = 1u << (kBitProbabilityBits - 1);
+    m_refreshCycle = 4;
+    m_untilRefresh = 4;
+}
+
+void EncoderBitModel::refresh() {
+    m_totalCount += m_refreshCycle;
+    if (m_totalCount > kBitCountLimit) {
+        m_totalCount = (m_totalCount + 1) >> 1;
+        m_zeroCount = (m_zeroCount + 1) >> 1;
+        if (m_zeroCount == m_totalCount)
+            ++m_totalCount;
+    }
+    const std::uint32_t scale = 0x80000000u / m_totalCount;
+    m_zeroProbability = (m_zeroCount * scale) >> (31 - kBitProbabilityBits);
+    m_refreshCycle = std::min<std::uint32_t>((5 * m_refreshCycle) >> 2, 64);
+    m_untilRefresh = m_refreshCycle;
+}
+
+EncoderSymbolModel::EncoderSymbolModel(std::uint32_t symbols) {
+    if (symbols < 2 || symbols > kMaxSymbols)
+        throw std::invalid_argument("EncoderSymbolModel: " + std::to_string(symbols) +
+                                    " symbols, outside 2..2048");
+    m_counts.resize(symbols);
+    m_cumulative.resize(symbols);
+    reset();
+}
+
+void EncoderSymbolModel::reset() {
+    const auto symbols = static_cast<std::uint32_t>(m_counts.size());
+    std::fill(m_counts.begin(), m_counts.end(), 1u);
+    // The first refresh adds the alphabet size to an empty total, as the decoder's does.
+    m_totalCount = 0;
+    m_refreshCycle = symbols;
+    refresh();
+    m_refreshCycle = (symbols + 6) >> 1;
+    m_untilRefresh = m_refreshCycle;
+}
+
+void EncoderSymbolModel::refresh() {
+    const auto symbols = static_cast<std::uint32_t>(m_counts.size());
+    m_totalCount += m_refreshCycle;
+    if (m_totalCount > kSymbolCountLimit) {
+        m_totalCount = 0;
+        for (std::uint32_t& count : m_counts) {
+            count = (count + 1) >> 1;
+            m_totalCount += count;
+        }
+    }
+    const std::uint32_t scale = 0x80000000u / m_totalCount;
+    std::uint32_t below = 0;
+    for (std::uint32_t s = 0; s < symbols; ++s) {
+        m_cumulative[s] = (scale * below) >> (31 - kSymbolProbabilityBits);
+        below += m_counts[s];
+    }
+    m_refreshCycle = std::min((5 * m_refreshCycle) >> 2, (symbols + 6) << 3);
+    m_untilRefresh = m_refreshCycle;
+}
+
+void RangeEncoder::encodeBit(EncoderBitModel& model, std::uint32_t bit) {
+    const std::uint32_t split = model.m_zeroProbability * (m_length >> kBitProbabilityBits);
+    if (bit == 0) {
+        m_length = split;
+        ++model.m_zeroCount;
+    } else {
+        advanceBase(split);
+        m_length -= split;
+    }
+    if (m_length < kRenormaliseBelow)
+        renormalise();
+    if (--model.m_untilRefresh == 0)
+        model.refresh();
+}
+
+void RangeEncoder::encodeSymbol(EncoderSymbolModel& model, std::uint32_t symbol) {
+    if (symbol >= model.symbols())
+        throw std::invalid_argument("RangeEncoder: symbol " + std::to_string(symbol) +
+                                    " outside an alphabet of " + std::to_string(model.symbols()));
+    const std::uint32_t unit = m_length >> kSymbolProbabilityBits;
+    const std::uint32_t low = model.m_cumulative[symbol] * unit;
+    // The last symbol's interval runs to the end of the current one, as the decoder reads it.
+    const std::uint32_t high =
+        symbol + 1 == model.symbols() ? m_length : model.m_cumulative[symbol + 1] * unit;
+    advanceBase(low);
+    m_length = high - low;
+    if (m_length < kRenormaliseBelow)
+        renormalise();
+    ++model.m_counts[symbol];
+    if (--model.m_untilRefresh == 0)
+        model.refresh();
+}
+
+void RangeEncoder::writeFewBits(std::uint32_t count, std::uint32_t value) {
+    m_length >>= count;
+    advanceBase(value * m_length);
+    if (m_length < kRenormaliseBelow)
+        renormalise();
+}
+
+void RangeEncoder::writeBits(std::uint32_t count, std::uint32_t value) {
+    if (count == 0 || count > 32)
+        throw std::invalid_argument("RangeEncoder: " + std::to_string(count) +
+                                    " raw bits, outside 1..32");
+    if (count < 32 && value >> count != 0)
+        throw std::invalid_argument("RangeEncoder: " + std::to_string(value) + " needs more than " +
+                                    std::to_string(count) + " bits");
+    // Wide fields go as their low 16 bits, then the rest: the order the decoder reads them.
+    if (count > kMostBitsInOneStep) {
+        writeFewBits(16, value & 0xFFFFu);
+        writeBits(count - 16, value >> 16);
+        return;
+    }
+    writeFewBits(count, value);
+}
+
+void RangeEncoder::writeInt(std::uint32_t value) {
+    writeFewBits(16, value & 0xFFFFu);
+    writeFewBits(16, value >> 16);
+}
+
+void RangeEncoder::writeInt64(std::uint64_t value) {
+    writeInt(static_cast<std::uint32_t>(value & 0xFFFFFFFFu));
+    writeInt(static_cast<std::uint32_t>(value >> 32));
+}
+
+void RangeEncoder::advanceBase(std::uint32_t amount) {
+    const std::uint32_t before = m_base;
+    m_base += amount;
+    if (m_base < before)
+        propagateCarry();
+}
+
+void RangeEncoder::propagateCarry() {
+    // base + length never passes the top of the interval the bytes out so far leave open, so
+    // a carry always finds a byte below 0xFF to stop at.
+    std::size_t at = m_bytes.size();
+    while (at > 0 && m_bytes[at - 1] == std::byte{0xFF})
+        m_bytes[--at] = std::byte{0};
+    if (at == 0)
+        throw std::logic_error("RangeEncoder: a carry ran past the first byte");
+    m_bytes[at - 1] = static_cast<std::byte>(std::to_integer<unsigned>(m_bytes[at - 1]) + 1);
+}
+
+void RangeEncoder::renormalise() {
+    do {
+        m_bytes.push_back(static_cast<std::byte>(m_base >> 24));
+        m_base <<= 8;
+        m_length <<= 8;
+    } while (m_length < kRenormaliseBelow);
+}
+
+std::vector<std::byte> RangeEncoder::finish() {
+    // The code value the decoder reads is base itself, followed by nothing: it lies inside the
+    // final interval [base, base + length), whatever the decoder would read after it. The
+    // decoder holds 4 bytes more than the encoder has shifted out, so these 4 bytes are
+    // exactly what it reads, and it never asks for one past the end.
+    for (int shift = 24; shift >= 0; shift -= 8)
+        m_bytes.push_back(static_cast<std::byte>((m_base >> shift) & 0xFFu));
+    std::vector<std::byte> bytes = std::move(m_bytes);
+    m_bytes.clear();
+    m_base = 0;
+    m_length = 0xFFFFFFFFu;
+    return bytes;
+}
+
+IntegerEncoder::IntegerEncoder(std::uint32_t bits, std::uint32_t contexts, std::uint32_t highBits,
+                               std::uint32_t range)
+    : m_highBits(highBits) {
+    if (range != 0) {
+        // As IntegerDecoder: the bit length of the range, one fewer for a power of two.
+        m_correctionBits = 0;
+        for (std::uint32_t rest = range; rest != 0; rest >>= 1)
+            ++m_correctionBits;
+        if (range == 1u << (m_correctionBits - 1))
+            --m_correctionBits;
+        m_range = range;
+        m_smallestCorrection = -static_cast<std::int32_t>(range / 2);
+    } else if (bits != 0 && bits < 32) {
+        m_correctionBits = bits;
+        m_range = 1u << bits;
+        m_smallestCorrection = -static_cast<std::int32_t>(m_range / 2);
+    } else {
+        m_correctionBits = 32;
+        m_range = 0;
+        m_smallestCorrection = std::numeric_limits<std::int32_t>::min();
+    }
+    m_classModels.reserve(contexts);
+    for (std::uint32_t c = 0; c < contexts; ++c)
+        m_classModels.emplace_back(m_correctionBits + 1);
+    m_positionModels.reserve(m_correctionBits);
+    for (std::uint32_t k = 1; k <= m_correctionBits; ++k)
+        m_positionModels.emplace_back(1u << (k <= m_highBits ? k : m_highBits));
+}
+
+void IntegerEncoder::reset() {
+    for (EncoderSymbolModel& model : m_classModels)
+        model.reset();
+    m_zeroOrOne.reset();
+    for (EncoderSymbolModel& model : m_positionModels)
+        model.reset();
+    m_lastClass = 0;
+}
+
+void IntegerEncoder::encode(RangeEncoder& encoder, std::int32_t prediction, std::int32_t value,
+                            std::uint32_t context) {
+    if (context >= m_classModels.size())
+        throw std::invalid_argument("IntegerEncoder: context " + std::to_string(context) + " of " +
+                                    std::to_string(m_classModels.size()));
+    // The decoder adds the correction to the prediction modulo 2^32, then folds the sum back
+    // into [0, range): the correction is the difference folded into the range's window.
+    std::int64_t correction = std::int64_t{value} - std::int64_t{prediction};
+    if (m_range == 0) {
+        correction = static_cast<std::int32_t>(static_cast<std::uint32_t>(correction));
+    } else {
+        const std::int64_t smallest = m_smallestCorrection;
+        const std::int64_t largest = smallest + std::int64_t{m_range} - 1;
+        if (correction < smallest)
+            correction += m_range;
+        else if (correction > largest)
+            correction -= m_range;
+    }
+    encodeCorrection(encoder, static_cast<std::int32_t>(correction), context);
+}
+
+void IntegerEncoder::encodeCorrection(RangeEncoder& encoder, std::int32_t correction,
+                                      std::uint32_t context) {
+    // Class k holds the corrections -(2^k - 1) .. -2^(k-1) and 2^(k-1) + 1 .. 2^k; class 0
+    // holds 0 and 1. k is the bit length of |c| for c <= 0, of c - 1 for c > 0.
+    const auto asUnsigned = static_cast<std::uint32_t>(correction);
+    std::uint32_t magnitude = correction <= 0 ? 0u - asUnsigned : asUnsigned - 1;
+    std::uint32_t k = 0;
+    for (; magnitude != 0; magnitude >>= 1)
+        ++k;
+    m_lastClass = k;
+    encoder.encodeSymbol(m_classModels[context], k);
+    if (k == 0) {
+        encoder.encodeBit(m_zeroOrOne, asUnsigned);
+        return;
+    }
+    // Class 32 holds -2^31 alone: its class says it all.
+    if (k >= 32)
+        return;
+    // Negative corrections take the positions 0 .. 2^(k-1) - 1, positive ones the rest.
+    const std::uint32_t position = correction < 0 ? asUnsigned + ((1u << k) - 1) : asUnsigned - 1;
+    if (k <= m_highBits) {
+        encoder.encodeSymbol(m_positionModels[k - 1], position);
+        return;
+    }
+    const std::uint32_t lowBits = k - m_highBits;
+    encoder.encodeSymbol(m_positionModels[k - 1], position >> lowBits);
+    encoder.writeBits(lowBits, position & ((1u << lowBits) - 1));
+}
+
+std::vector<std::byte> encodeChunkTableEntries(std::span<const io::laz::ChunkTableEntry> entries,
+                                               bool variableChunks) {
+    if (entries.empty())
+        return {};
+    RangeEncoder encoder;
+    IntegerEncoder values(32, 2);
+    io::laz::ChunkTableEntry previous;
+    for (const io::laz::ChunkTableEntry& entry : entries) {
+        if (variableChunks)
+            values.encode(encoder, static_cast<std::int32_t>(previous.pointCount),
+                          static_cast<std::int32_t>(entry.pointCount), 0);
+        values.encode(encoder, static_cast<std::int32_t>(previous.byteCount),
+                      static_cast<std::int32_t>(entry.byteCount), 1);
+        previous = entry;
+    }
+    return encoder.finish();
+}
+
+std::vector<std::byte> encodeChunkTable(std::span<const io::laz::ChunkTableEntry> entries,
+                                        bool variableChunks) {
+    if (entries.size() > std::numeric_limits<std::uint32_t>::max())
+        throw std::invalid_argument("encodeChunkTable: " + std::to_string(entries.size()) +
+                                    " chunks, more than a table's 32-bit count holds");
+    const std::vector<std::byte> coded = encodeChunkTableEntries(entries, variableChunks);
+    constexpr std::size_t kTableHeaderBytes = 8;
+    std::vector<std::byte> table(kTableHeaderBytes + coded.size());
+    io::laz::storeLe<std::uint32_t>(table.data(), 0);
+    io::laz::storeLe<std::uint32_t>(table.data() + 4, static_cast<std::uint32_t>(entries.size()));
+    std::copy(coded.begin(), coded.end(), table.begin() + kTableHeaderBytes);
+    return table;
+}
+
+} // namespace terratin::lazrepeat
