@@ -150,8 +150,8 @@ TEST(LazRepeat, LegacyCountsMultipliedAndReturnsKept) {
             << "byte " << at;
 }
 
-/// A LAS 1.4 layered file: the container always; the points when the decoder has compressor
-/// 3 (then the twin too), else a --las run must fail and leave nothing behind.
+/// A LAS 1.4 layered file: the container always; the points and the twin when the decoder
+/// has compressor 3, else a --las run must fail and leave nothing behind.
 void checkLayered(const std::string& name) {
     const fs::path input = sharedLaz(name);
     test::TemporaryDirectory dir;
@@ -187,6 +187,21 @@ void checkLayered(const std::string& name) {
     EXPECT_EQ(io::readLasPoints(dir.file("repeated.laz")).points, repeated(original->points));
     repeatLaz(request(input, dir / "twin.laz", dir / "twin.las"));
     EXPECT_EQ(io::readLasPoints(dir.file("twin.las")).points, repeated(original->points));
+    // Every field of every record, not only what a TIN is built from.
+    const io::laz::test::LasRecords twin = io::laz::test::lasRecords(dir / "twin.las");
+    const auto difference =
+        io::laz::test::firstDifference(twin.bytes, repeated(io::laz::test::decodeAll(in)),
+                                       in.header().recordLength, in.header().pointFormat);
+    EXPECT_FALSE(difference) << name << " twin: " << *difference;
+    const io::LasHeader twinHeader = io::readLasHeader(dir.file("twin.las"));
+    EXPECT_EQ(twinHeader.evlrCount, in.header().evlrCount);
+    if (in.header().evlrCount > 0) {
+        const std::vector<std::byte> twinBytes = io::laz::test::fileBytes(dir / "twin.las");
+        EXPECT_EQ(twinBytes.size() - twinHeader.evlrStart, inBytes.size() - in.header().evlrStart);
+        EXPECT_TRUE(std::equal(inBytes.begin() + static_cast<long>(in.header().evlrStart),
+                               inBytes.end(),
+                               twinBytes.begin() + static_cast<long>(twinHeader.evlrStart)));
+    }
 }
 
 TEST(LazRepeat, LayeredFileWithSeveralExtraByteBlocks) {
