@@ -1,12 +1,12 @@
 // Tests of the scanner channels of the layered LAZ compressor (3) on a synthetic chunk. No
 // shared file uses a channel other than 0, so a chunk is written here with the test encoder
-// (laz_test_encoder.hpp), following LASzip's writer: POINT14 keeps models and predictors per
-// channel, a channel met for the first time starts from the last point of the channel it
+// (tools/lazrepeat/laz_encoder.hpp), following LASzip's writer: POINT14 keeps models and predictors
+// per channel, a channel met for the first time starts from the last point of the channel it
 // leaves; RGB14 follows POINT14's item context (the new channel on a change, else 0) and, on
 // a change to a channel seen before, predicts from the context it leaves. Points whose
 // channel, x, y and grey colour change while everything else stays must decode back exactly.
 
-#include "laz_test_encoder.hpp"
+#include "laz_encoder.hpp"
 
 #include "chunk_decoder.hpp"
 #include "item_context.hpp"
@@ -24,9 +24,9 @@
 namespace terratin::io::laz {
 namespace {
 
-using test::TestEncoder;
-using test::TestIntegerEncoder;
-using test::TestSymbolModel;
+using lazrepeat::EncoderSymbolModel;
+using lazrepeat::IntegerEncoder;
+using lazrepeat::RangeEncoder;
 
 struct SyntheticPoint {
     unsigned channel = 0;
@@ -51,10 +51,10 @@ public:
         Channel& last = m_channels[m_current];
         const bool switched = p.channel != m_current;
         // Context 3 of the change models: the last point was a single return, its time kept.
-        m_out.symbol(last.changes[3], switched ? 64 : 0);
+        m_out.encodeSymbol(last.changes[3], switched ? 64 : 0);
         unsigned context = 0;
         if (switched) {
-            m_out.symbol(last.step, (p.channel + 4 - m_current) % 4 - 1);
+            m_out.encodeSymbol(last.step, (p.channel + 4 - m_current) % 4 - 1);
             if (!m_used[p.channel]) {
                 m_channels[p.channel] = Channel();
                 m_channels[p.channel].x = last.x;
@@ -82,14 +82,14 @@ public:
 private:
     struct Channel {
         std::int32_t x = 0, y = 0;
-        std::vector<TestSymbolModel> changes =
-            std::vector<TestSymbolModel>(8, TestSymbolModel(128));
-        TestSymbolModel step{3};
-        TestIntegerEncoder dx{32, 2};
-        TestIntegerEncoder dy{32, 22};
+        std::vector<EncoderSymbolModel> changes =
+            std::vector<EncoderSymbolModel>(8, EncoderSymbolModel(128));
+        EncoderSymbolModel step{3};
+        IntegerEncoder dx{32, 2};
+        IntegerEncoder dy{32, 22};
         RunningMedian5 dxMedian, dyMedian;
     };
-    TestEncoder m_out;
+    RangeEncoder m_out;
     std::array<Channel, 4> m_channels{};
     std::array<bool, 4> m_used{};
     unsigned m_current;
@@ -115,19 +115,19 @@ public:
         }
         Models& m = m_models[m_current];
         const std::uint8_t last = m_last[lastIndex];
-        m_out.symbol(m.changed, grey != last ? 1 : 0);
+        m_out.encodeSymbol(m.changed, grey != last ? 1 : 0);
         if (grey != last)
-            m_out.symbol(m.redLow, static_cast<std::uint8_t>(grey - last));
+            m_out.encodeSymbol(m.redLow, static_cast<std::uint8_t>(grey - last));
         m_last[lastIndex] = grey;
     }
     std::vector<std::byte> finish() { return m_out.finish(); }
 
 private:
     struct Models {
-        TestSymbolModel changed{128};
-        TestSymbolModel redLow{256};
+        EncoderSymbolModel changed{128};
+        EncoderSymbolModel redLow{256};
     };
-    TestEncoder m_out;
+    RangeEncoder m_out;
     std::array<Models, 4> m_models{};
     std::array<bool, 4> m_used{};
     std::array<std::uint8_t, 4> m_last{};

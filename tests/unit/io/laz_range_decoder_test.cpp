@@ -6,7 +6,7 @@
 // edges files rarely reach.
 
 #include "integer_decoder.hpp"
-#include "laz_test_encoder.hpp"
+#include "laz_encoder.hpp"
 #include "range_decoder.hpp"
 
 #include <gtest/gtest.h>
@@ -20,10 +20,10 @@
 namespace terratin::io::laz {
 namespace {
 
-using test::TestBitModel;
-using test::TestEncoder;
-using test::TestIntegerEncoder;
-using test::TestSymbolModel;
+using lazrepeat::EncoderBitModel;
+using lazrepeat::EncoderSymbolModel;
+using lazrepeat::IntegerEncoder;
+using lazrepeat::RangeEncoder;
 
 std::uint32_t draw(std::mt19937& random) {
     return static_cast<std::uint32_t>(random());
@@ -37,13 +37,13 @@ std::uint32_t skewed(std::mt19937& random, std::uint32_t n) {
 
 TEST(LazRangeDecoder, DecodesSymbolsBitsAndRawFieldsAsEncoded) {
     const std::vector<std::uint32_t> alphabets{2, 3, 6, 16, 17, 33, 64, 128, 256, 512, 516, 2048};
-    std::vector<TestSymbolModel> encoderModels;
+    std::vector<EncoderSymbolModel> encoderModels;
     std::vector<SymbolModel> decoderModels;
     for (const std::uint32_t n : alphabets) {
         encoderModels.emplace_back(n);
         decoderModels.emplace_back(n);
     }
-    TestBitModel encoderBit;
+    EncoderBitModel encoderBit;
     BitModel decoderBit;
     std::mt19937 random(7);
     struct Step {
@@ -53,28 +53,28 @@ TEST(LazRangeDecoder, DecodesSymbolsBitsAndRawFieldsAsEncoded) {
         std::uint64_t value;
     };
     std::vector<Step> steps;
-    TestEncoder encoder;
+    RangeEncoder encoder;
     for (int i = 0; i < 200000; ++i) {
         const int kind = static_cast<int>(draw(random) % 8);
         if (kind < 4) {
             const std::size_t m = draw(random) % alphabets.size();
             const std::uint32_t s = skewed(random, alphabets[m]);
-            encoder.symbol(encoderModels[m], s);
+            encoder.encodeSymbol(encoderModels[m], s);
             steps.push_back({0, m, 0, s});
         } else if (kind < 6) {
             const std::uint32_t b = draw(random) % 5 == 0 ? 1 : 0;
-            encoder.bit(encoderBit, b);
+            encoder.encodeBit(encoderBit, b);
             steps.push_back({1, 0, 0, b});
         } else if (kind == 6) {
             const std::uint32_t width = 1 + draw(random) % 32;
             const std::uint32_t value =
                 width == 32 ? draw(random) : draw(random) & ((1u << width) - 1);
-            encoder.raw(width, value);
+            encoder.writeBits(width, value);
             steps.push_back({2, 0, width, value});
         } else {
             const std::uint64_t value = (std::uint64_t{draw(random)} << 32) | draw(random);
-            encoder.raw(32, static_cast<std::uint32_t>(value));
-            encoder.raw(32, static_cast<std::uint32_t>(value >> 32));
+            encoder.writeBits(32, static_cast<std::uint32_t>(value));
+            encoder.writeBits(32, static_cast<std::uint32_t>(value >> 32));
             steps.push_back({3, 0, 64, value});
         }
     }
@@ -111,7 +111,7 @@ TEST(LazRangeDecoder, IntegersRoundTripAtEveryWidthAndContext) {
     };
     for (const Case c :
          {Case{32, 3, 8}, Case{16, 4, 8}, Case{8, 6, 8}, Case{32, 2, 11}, Case{1, 1, 8}}) {
-        TestIntegerEncoder encoderSide(c.bits, c.contexts, c.highBits);
+        IntegerEncoder encoderSide(c.bits, c.contexts, c.highBits);
         IntegerDecoder decoderSide(c.bits, c.contexts, c.highBits);
         std::mt19937 random(c.bits * 100 + c.contexts);
         const std::uint32_t mask = c.bits >= 32 ? 0xFFFFFFFFu : (1u << c.bits) - 1;
@@ -120,7 +120,7 @@ TEST(LazRangeDecoder, IntegersRoundTripAtEveryWidthAndContext) {
             std::uint32_t context;
         };
         std::vector<Value> values;
-        TestEncoder encoder;
+        RangeEncoder encoder;
         for (int i = 0; i < 50000; ++i) {
             // Mostly small corrections, some of every size, and the extremes.
             const auto prediction = static_cast<std::int32_t>(draw(random) & mask);
@@ -146,11 +146,11 @@ TEST(LazRangeDecoder, IntegersRoundTripAtEveryWidthAndContext) {
 }
 
 TEST(LazRangeDecoder, ReportsAStreamThatEndsTooSoon) {
-    TestSymbolModel encoderModel(256);
-    TestEncoder encoder;
+    EncoderSymbolModel encoderModel(256);
+    RangeEncoder encoder;
     std::mt19937 random(3);
     for (int i = 0; i < 5000; ++i)
-        encoder.symbol(encoderModel, draw(random) % 256);
+        encoder.encodeSymbol(encoderModel, draw(random) % 256);
     std::vector<std::byte> bytes = encoder.finish();
     bytes.resize(bytes.size() / 2);
     SymbolModel model(256);
