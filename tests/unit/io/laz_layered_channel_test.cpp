@@ -1,10 +1,11 @@
 // Tests of the scanner channels of the layered LAZ compressor (3) on a synthetic chunk. No
-// shared file uses a channel other than 0, so a chunk is written here with the test encoder
-// (tools/lazrepeat/laz_encoder.hpp), following LASzip's writer: POINT14 keeps models and predictors
-// per channel, a channel met for the first time starts from the last point of the channel it
-// leaves; RGB14 follows POINT14's item context (the new channel on a change, else 0) and, on
-// a change to a channel seen before, predicts from the context it leaves. Points whose
-// channel, x, y and grey colour change while everything else stays must decode back exactly.
+// shared file uses a channel other than 0, so a chunk is written here with the project's
+// encoder (tools/lazrepeat/laz_encoder.hpp), following LASzip's writer: POINT14 keeps models
+// and predictors per channel, a channel met for the first time starts from the last point of
+// the channel it leaves; RGB14 follows POINT14's item context (the new channel on a change,
+// else 0) and, on a change to a channel seen before, predicts from the context it leaves.
+// Points whose channel, x, y and grey colour change while everything else stays must decode
+// back exactly.
 
 #include "laz_encoder.hpp"
 
