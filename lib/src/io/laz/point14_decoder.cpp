@@ -3,10 +3,10 @@
 
 #include "point14_decoder.hpp"
 
+#include "gpstime_sequences.hpp"
 #include "integer_decoder.hpp"
 #include "item_context.hpp"
 #include "laz_bytes.hpp"
-#include "point14_gpstime.hpp"
 
 #include <cstdlib>
 #include <vector>
@@ -131,7 +131,7 @@ struct Point14V3Decoder::Channel {
     IntegerDecoder intensity{16, 4};
     IntegerDecoder scanAngle{16, 2};
     IntegerDecoder sourceId{16};
-    Point14GpsTime gpsTime;
+    GpsTimeSequences gpsTime{GpsTimeCodes::ChangedOnly};
 
     void start(const Point14Fields& from);
 };
