@@ -1,8 +1,8 @@
 /// @file
-/// The LAZ range encoder, its models and the integer compressor (see laz_encoder.hpp). Each
-/// step is the mirror of a decoder step: where the decoder narrows its interval around the
-/// code value it reads, the encoder narrows the same interval around the value it writes, so
-/// both lengths stay equal and both renormalise at the same moments.
+/// The LAZ range encoder and the integer compressor (see laz_encoder.hpp). Each step is the
+/// mirror of a decoder step: where the decoder narrows its interval around the code value it
+/// reads, the encoder narrows the same interval around the value it writes, so both lengths
+/// stay equal and both renormalise at the same moments.
 
 #include "laz_encoder.hpp"
 
@@ -17,110 +17,33 @@
 namespace terratin::lazrepeat {
 
 namespace {
+using io::laz::kMostRawBitsInOneStep;
 using io::laz::kRenormaliseBelow;
-/// The decoder's fixed-point widths and count limits (range_decoder.cpp).
-constexpr std::uint32_t kBitProbabilityBits = 13;
-constexpr std::uint32_t kSymbolProbabilityBits = 15;
-constexpr std::uint32_t kBitCountLimit = 1u << 13;
-constexpr std::uint32_t kSymbolCountLimit = 1u << 15;
-constexpr std::uint32_t kMaxSymbols = 1u << 11;
-/// The decoder takes at most 19 raw bits in one step (RangeDecoder::readBits).
-constexpr std::uint32_t kMostBitsInOneStep = 19;
 } // namespace
 
-void EncoderBitModel::reset() {
-    m_zeroCount = 1;
-    m_totalCount = 2;
-    m_zeroProbability = 1u << (kBitProbabilityBits - 1);
-    m_refreshCycle = 4;
-    m_untilRefresh = 4;
-}
-
-void EncoderBitModel::refresh() {
-    m_totalCount += m_refreshCycle;
-    if (m_totalCount > kBitCountLimit) {
-        m_totalCount = (m_totalCount + 1) >> 1;
-        m_zeroCount = (m_zeroCount + 1) >> 1;
-        if (m_zeroCount == m_totalCount)
-            ++m_totalCount;
-    }
-    const std::uint32_t scale = 0x80000000u / m_totalCount;
-    m_zeroProbability = (m_zeroCount * scale) >> (31 - kBitProbabilityBits);
-    m_refreshCycle = std::min<std::uint32_t>((5 * m_refreshCycle) >> 2, 64);
-    m_untilRefresh = m_refreshCycle;
-}
-
-EncoderSymbolModel::EncoderSymbolModel(std::uint32_t symbols) {
-    if (symbols < 2 || symbols > kMaxSymbols)
-        throw std::invalid_argument("EncoderSymbolModel: " + std::to_string(symbols) +
-                                    " symbols, outside 2..2048");
-    m_counts.resize(symbols);
-    m_cumulative.resize(symbols);
-    reset();
-}
-
-void EncoderSymbolModel::reset() {
-    const auto symbols = static_cast<std::uint32_t>(m_counts.size());
-    std::fill(m_counts.begin(), m_counts.end(), 1u);
-    // The first refresh adds the alphabet size to an empty total, as the decoder's does.
-    m_totalCount = 0;
-    m_refreshCycle = symbols;
-    refresh();
-    m_refreshCycle = (symbols + 6) >> 1;
-    m_untilRefresh = m_refreshCycle;
-}
-
-void EncoderSymbolModel::refresh() {
-    const auto symbols = static_cast<std::uint32_t>(m_counts.size());
-    m_totalCount += m_refreshCycle;
-    if (m_totalCount > kSymbolCountLimit) {
-        m_totalCount = 0;
-        for (std::uint32_t& count : m_counts) {
-            count = (count + 1) >> 1;
-            m_totalCount += count;
-        }
-    }
-    const std::uint32_t scale = 0x80000000u / m_totalCount;
-    std::uint32_t below = 0;
-    for (std::uint32_t s = 0; s < symbols; ++s) {
-        m_cumulative[s] = (scale * below) >> (31 - kSymbolProbabilityBits);
-        below += m_counts[s];
-    }
-    m_refreshCycle = std::min((5 * m_refreshCycle) >> 2, (symbols + 6) << 3);
-    m_untilRefresh = m_refreshCycle;
-}
-
-void RangeEncoder::encodeBit(EncoderBitModel& model, std::uint32_t bit) {
-    const std::uint32_t split = model.m_zeroProbability * (m_length >> kBitProbabilityBits);
+void RangeEncoder::encodeBit(io::laz::BitModel& model, std::uint32_t bit) {
+    const std::uint32_t split = model.zeroLength(m_length);
     if (bit == 0) {
         m_length = split;
-        ++model.m_zeroCount;
     } else {
         advanceBase(split);
         m_length -= split;
     }
     if (m_length < kRenormaliseBelow)
         renormalise();
-    if (--model.m_untilRefresh == 0)
-        model.refresh();
+    model.update(bit);
 }
 
-void RangeEncoder::encodeSymbol(EncoderSymbolModel& model, std::uint32_t symbol) {
+void RangeEncoder::encodeSymbol(io::laz::SymbolModel& model, std::uint32_t symbol) {
     if (symbol >= model.symbols())
         throw std::invalid_argument("RangeEncoder: symbol " + std::to_string(symbol) +
                                     " outside an alphabet of " + std::to_string(model.symbols()));
-    const std::uint32_t unit = m_length >> kSymbolProbabilityBits;
-    const std::uint32_t low = model.m_cumulative[symbol] * unit;
-    // The last symbol's interval runs to the end of the current one, as the decoder reads it.
-    const std::uint32_t high =
-        symbol + 1 == model.symbols() ? m_length : model.m_cumulative[symbol + 1] * unit;
-    advanceBase(low);
-    m_length = high - low;
+    const io::laz::Subinterval part = model.subinterval(symbol, m_length);
+    advanceBase(part.low);
+    m_length = part.length;
     if (m_length < kRenormaliseBelow)
         renormalise();
-    ++model.m_counts[symbol];
-    if (--model.m_untilRefresh == 0)
-        model.refresh();
+    model.update(symbol);
 }
 
 void RangeEncoder::writeFewBits(std::uint32_t count, std::uint32_t value) {
@@ -138,7 +61,7 @@ void RangeEncoder::writeBits(std::uint32_t count, std::uint32_t value) {
         throw std::invalid_argument("RangeEncoder: " + std::to_string(value) + " needs more than " +
                                     std::to_string(count) + " bits");
     // Wide fields go as their low 16 bits, then the rest: the order the decoder reads them.
-    if (count > kMostBitsInOneStep) {
+    if (count > kMostRawBitsInOneStep) {
         writeFewBits(16, value & 0xFFFFu);
         writeBits(count - 16, value >> 16);
         return;
@@ -226,10 +149,10 @@ IntegerEncoder::IntegerEncoder(std::uint32_t bits, std::uint32_t contexts, std::
 }
 
 void IntegerEncoder::reset() {
-    for (EncoderSymbolModel& model : m_classModels)
+    for (io::laz::SymbolModel& model : m_classModels)
         model.reset();
     m_zeroOrOne.reset();
-    for (EncoderSymbolModel& model : m_positionModels)
+    for (io::laz::SymbolModel& model : m_positionModels)
         model.reset();
     m_lastClass = 0;
 }

@@ -1,16 +1,17 @@
 #pragma once
 /// @file
 /// The encoding side of LAZ's entropy coder, written as the exact inverse of the project's
-/// decoder (lib/src/io/laz/range_decoder.hpp, integer_decoder.hpp): a 32-bit range encoder
-/// with the same adaptive bit and symbol models, LASzip's integer compressor on top of it,
-/// and the chunk table's coded entries. terratin-lazrepeat needs it to write the chunk table
-/// of a repeated file; the tests need it to feed the decoder streams of known content.
+/// decoder (lib/src/io/laz/range_decoder.hpp, integer_decoder.hpp): a 32-bit range encoder,
+/// LASzip's integer compressor on top of it, and the chunk table's coded entries.
+/// terratin-lazrepeat needs it to write the chunk table of a repeated file; the tests need it
+/// to feed the decoder streams of known content.
 ///
-/// Both sides must adapt their models identically, symbol for symbol, so every constant and
-/// refresh rule below is the decoder's (FastAC, Said 2004, as LASzip adapts it, Isenburg
-/// 2013). The decoder keeps its models' state private, so the encoder keeps its own copies.
+/// Both sides must adapt their models identically, symbol for symbol (FastAC, Said 2004, as
+/// LASzip adapts it, Isenburg 2013), so the encoder codes with the decoder's own models
+/// (io::laz::BitModel, SymbolModel) rather than copies of their rules.
 
 #include "chunk_table.hpp"
+#include "range_decoder.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -19,54 +20,14 @@
 
 namespace terratin::lazrepeat {
 
-/// An adaptive model of one binary decision, encoder side: the decoder's BitModel rules.
-class EncoderBitModel {
-public:
-    EncoderBitModel() { reset(); }
-    /// Back to equal odds, as at the start of every chunk.
-    void reset();
-
-private:
-    friend class RangeEncoder;
-    void refresh();
-
-    std::uint32_t m_zeroProbability = 0;
-    std::uint32_t m_zeroCount = 0;
-    std::uint32_t m_totalCount = 0;
-    std::uint32_t m_refreshCycle = 0;
-    std::uint32_t m_untilRefresh = 0;
-};
-
-/// An adaptive model of 2 to 2048 symbols, encoder side: the decoder's SymbolModel counts and
-/// cumulative distribution; the encoder needs no lookup table, it knows its symbol.
-class EncoderSymbolModel {
-public:
-    /// Precondition: 2 <= symbols <= 2048 (checked; std::invalid_argument otherwise).
-    explicit EncoderSymbolModel(std::uint32_t symbols);
-    /// Back to equal counts, as at the start of every chunk.
-    void reset();
-    [[nodiscard]] std::uint32_t symbols() const {
-        return static_cast<std::uint32_t>(m_counts.size());
-    }
-
-private:
-    friend class RangeEncoder;
-    void refresh();
-
-    std::uint32_t m_totalCount = 0;
-    std::uint32_t m_refreshCycle = 0;
-    std::uint32_t m_untilRefresh = 0;
-    std::vector<std::uint32_t> m_counts;
-    std::vector<std::uint32_t> m_cumulative;
-};
-
 /// Encodes one arithmetic-coded stream into memory; finish() returns it. The decoder, started
 /// on exactly those bytes, reads every value back without asking for a byte past their end.
 class RangeEncoder {
 public:
-    void encodeBit(EncoderBitModel& model, std::uint32_t bit);
+    /// `bit`: 0, or anything else for 1 (as BitModel::update counts it).
+    void encodeBit(io::laz::BitModel& model, std::uint32_t bit);
     /// Precondition: symbol < model.symbols() (checked; std::invalid_argument otherwise).
-    void encodeSymbol(EncoderSymbolModel& model, std::uint32_t symbol);
+    void encodeSymbol(io::laz::SymbolModel& model, std::uint32_t symbol);
     /// The low `count` bits (1 to 32) of `value` without a model; RangeDecoder::readBits.
     void writeBits(std::uint32_t count, std::uint32_t value);
     void writeShort(std::uint32_t value) { writeBits(16, value & 0xFFFFu); }
@@ -117,9 +78,9 @@ private:
     std::int32_t m_smallestCorrection = 0;
     std::uint32_t m_highBits = 8;
     std::uint32_t m_lastClass = 0;
-    std::vector<EncoderSymbolModel> m_classModels;
-    EncoderBitModel m_zeroOrOne;
-    std::vector<EncoderSymbolModel> m_positionModels;
+    std::vector<io::laz::SymbolModel> m_classModels;
+    io::laz::BitModel m_zeroOrOne;
+    std::vector<io::laz::SymbolModel> m_positionModels;
 };
 
 /// The arithmetic-coded part of a chunk table (what follows its version and count), the

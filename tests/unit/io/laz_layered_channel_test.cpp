@@ -25,7 +25,6 @@
 namespace terratin::io::laz {
 namespace {
 
-using lazrepeat::EncoderSymbolModel;
 using lazrepeat::IntegerEncoder;
 using lazrepeat::RangeEncoder;
 
@@ -37,6 +36,15 @@ struct SyntheticPoint {
 };
 
 constexpr std::size_t kRecordLength = 36; ///< POINT14 and RGB14
+
+/// A channel's 8 change models of 128 symbols (a SymbolModel moves but is never copied).
+std::vector<SymbolModel> changeModels() {
+    std::vector<SymbolModel> models;
+    models.reserve(8);
+    for (int i = 0; i < 8; ++i)
+        models.emplace_back(128);
+    return models;
+}
 
 /// The returns-and-xy layer of single returns whose time and other fields never change.
 class ReturnsXyWriter {
@@ -83,9 +91,8 @@ public:
 private:
     struct Channel {
         std::int32_t x = 0, y = 0;
-        std::vector<EncoderSymbolModel> changes =
-            std::vector<EncoderSymbolModel>(8, EncoderSymbolModel(128));
-        EncoderSymbolModel step{3};
+        std::vector<SymbolModel> changes = changeModels();
+        SymbolModel step{3};
         IntegerEncoder dx{32, 2};
         IntegerEncoder dy{32, 22};
         RunningMedian5 dxMedian, dyMedian;
@@ -125,8 +132,8 @@ public:
 
 private:
     struct Models {
-        EncoderSymbolModel changed{128};
-        EncoderSymbolModel redLow{256};
+        SymbolModel changed{128};
+        SymbolModel redLow{256};
     };
     RangeEncoder m_out;
     std::array<Models, 4> m_models{};

@@ -1,9 +1,9 @@
-// Tests of the LAZ range decoder, its models and the integer decoder, against an encoder
-// written here from the same published rules (FastAC as LASzip adapts it): random symbols of
-// every alphabet size the format uses, bits, raw fields of 1-32 bits, and integers with
-// corrections up to the full 32-bit range, decoded back exactly and with the encoder's byte
-// count. The real files (laz_decode_test) prove the rules; these prove the mechanics at the
-// edges files rarely reach.
+// Tests of the LAZ range decoder, its models and the integer decoder, against
+// terratin-lazrepeat's encoder (tools/lazrepeat/laz_encoder.hpp), which codes with these same
+// models: random symbols of every alphabet size the format uses, bits, raw fields of 1-32 bits,
+// and integers with corrections up to the full 32-bit range, decoded back exactly and with the
+// encoder's byte count. The real files (laz_decode_test) prove the rules; these prove the
+// mechanics at the edges files rarely reach.
 
 #include "integer_decoder.hpp"
 #include "laz_encoder.hpp"
@@ -20,8 +20,6 @@
 namespace terratin::io::laz {
 namespace {
 
-using lazrepeat::EncoderBitModel;
-using lazrepeat::EncoderSymbolModel;
 using lazrepeat::IntegerEncoder;
 using lazrepeat::RangeEncoder;
 
@@ -37,13 +35,13 @@ std::uint32_t skewed(std::mt19937& random, std::uint32_t n) {
 
 TEST(LazRangeDecoder, DecodesSymbolsBitsAndRawFieldsAsEncoded) {
     const std::vector<std::uint32_t> alphabets{2, 3, 6, 16, 17, 33, 64, 128, 256, 512, 516, 2048};
-    std::vector<EncoderSymbolModel> encoderModels;
+    std::vector<SymbolModel> encoderModels;
     std::vector<SymbolModel> decoderModels;
     for (const std::uint32_t n : alphabets) {
         encoderModels.emplace_back(n);
         decoderModels.emplace_back(n);
     }
-    EncoderBitModel encoderBit;
+    BitModel encoderBit;
     BitModel decoderBit;
     std::mt19937 random(7);
     struct Step {
@@ -146,7 +144,7 @@ TEST(LazRangeDecoder, IntegersRoundTripAtEveryWidthAndContext) {
 }
 
 TEST(LazRangeDecoder, ReportsAStreamThatEndsTooSoon) {
-    EncoderSymbolModel encoderModel(256);
+    SymbolModel encoderModel(256);
     RangeEncoder encoder;
     std::mt19937 random(3);
     for (int i = 0; i < 5000; ++i)
@@ -179,6 +177,30 @@ TEST(LazRangeDecoder, AnEmptyOrHostileStreamStaysInBounds) {
             EXPECT_LT(decoder.readBits(7), 128u);
         }
         EXPECT_TRUE(decoder.overran());
+    }
+}
+
+TEST(LazRangeDecoder, SymbolAtFindsTheSymbolOfEachSubinterval) {
+    // The parts tile the interval, none empty, and the search the decoder makes leads from
+    // either end of a part back to its symbol: with and without the lookup table, after the
+    // counts have moved away from uniform, at the shortest and the longest interval.
+    std::mt19937 random(11);
+    for (const std::uint32_t n : {2u, 5u, 16u, 17u, 300u, 2048u}) {
+        SymbolModel model(n);
+        for (int i = 0; i < 20000; ++i)
+            model.update(skewed(random, n));
+        for (const std::uint32_t length : {kRenormaliseBelow, 0xFFFFFFFFu}) {
+            std::uint32_t end = 0;
+            for (std::uint32_t s = 0; s < n; ++s) {
+                const Subinterval part = model.subinterval(s, length);
+                ASSERT_EQ(part.low, end) << "symbol " << s << " of " << n;
+                ASSERT_GT(part.length, 0u) << "symbol " << s << " of " << n;
+                EXPECT_EQ(model.symbolAt(part.low, length), s) << n << " symbols";
+                EXPECT_EQ(model.symbolAt(part.low + part.length - 1, length), s) << n << " symbols";
+                end = part.low + part.length;
+            }
+            EXPECT_EQ(end, length) << n << " symbols";
+        }
     }
 }
 

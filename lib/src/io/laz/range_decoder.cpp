@@ -1,6 +1,6 @@
 /// @file
 /// Model bookkeeping of the LAZ range decoder (see range_decoder.hpp). The refresh rules
-/// below fix when and how counts become probabilities; the encoder follows the same rules,
+/// below fix when and how counts become probabilities; the encoder adapts these same models,
 /// which is what keeps both sides in step (FastAC, Said 2004; LASzip, Isenburg 2013).
 
 #include "range_decoder.hpp"

@@ -20,17 +20,42 @@ namespace terratin::io::laz {
 /// The interval length is kept in [2^24, 2^32): below 2^24 another byte is shifted in.
 inline constexpr std::uint32_t kRenormaliseBelow = 0x01000000u;
 
+/// At most this many raw bits are coded in one step, so that the interval keeps at least 5 bits
+/// of length; wider fields are split into their low 16 bits and the rest.
+inline constexpr std::uint32_t kMostRawBitsInOneStep = 19;
+
+/// A part of the coder's current interval: its start, as an offset from the interval's, and
+/// its length.
+struct Subinterval {
+    std::uint32_t low = 0;
+    std::uint32_t length = 0;
+};
+
 /// An adaptive model of one binary decision. The probability of a 0 is held in 13-bit fixed
 /// point and recomputed from the counts after 4 bits, then after ever longer runs (x 5/4, at
-/// most 64); counts are halved when they pass 2^13.
+/// most 64); counts are halved when they pass 2^13. The decoder and the encoder both adapt it
+/// through update(), which is what keeps them in step.
 class BitModel {
 public:
     BitModel() { reset(); }
     /// Back to equal odds, as at the start of every chunk.
     void reset();
 
+    /// The length of the part of an interval of `length` that a 0 takes, at its start; a 1
+    /// takes the rest.
+    [[nodiscard]] std::uint32_t zeroLength(std::uint32_t length) const {
+        return m_zeroProbability * (length >> kProbabilityBits);
+    }
+    /// Counts `bit` (0, or anything else for 1) once coded, and refreshes the probability
+    /// when due.
+    void update(std::uint32_t bit) {
+        if (bit == 0)
+            ++m_zeroCount;
+        if (--m_untilRefresh == 0)
+            refresh();
+    }
+
 private:
-    friend class RangeDecoder;
     static constexpr std::uint32_t kProbabilityBits = 13;
     void refresh();
 
@@ -45,7 +70,8 @@ private:
 /// cumulative distribution in 15-bit fixed point recomputed from them after (n + 6) / 2
 /// symbols, then after ever longer runs (x 5/4, at most 8 (n + 6)); counts are halved when
 /// their total passes 2^15. Alphabets of more than 16 symbols also keep a small lookup table
-/// that narrows the search for a symbol to a few entries.
+/// that narrows the decoder's search for a symbol to a few entries. The decoder and the
+/// encoder both adapt it through update(), which is what keeps them in step.
 class SymbolModel {
 public:
     /// Precondition: 2 <= symbols <= 2048 (checked; std::invalid_argument otherwise).
@@ -60,8 +86,21 @@ public:
     void reset();
     [[nodiscard]] std::uint32_t symbols() const { return m_symbols; }
 
+    /// The part of an interval of `length` that `symbol` takes. Precondition:
+    /// symbol < symbols().
+    [[nodiscard]] Subinterval subinterval(std::uint32_t symbol, std::uint32_t length) const;
+    /// The symbol whose part of an interval of `length` holds `offset` (< length); for a larger
+    /// offset, which only a corrupt stream has, still one of the alphabet. O(log symbols).
+    [[nodiscard]] std::uint32_t symbolAt(std::uint32_t offset, std::uint32_t length) const;
+    /// Counts `symbol` once coded, and refreshes the distribution when due. Precondition:
+    /// symbol < symbols().
+    void update(std::uint32_t symbol) {
+        ++m_counts[symbol];
+        if (--m_untilRefresh == 0)
+            refresh();
+    }
+
 private:
-    friend class RangeDecoder;
     static constexpr std::uint32_t kProbabilityBits = 15;
     void refresh();
     void rebuildLookup();
@@ -132,12 +171,51 @@ private:
     std::uint32_t m_length = 0;
 };
 
+inline Subinterval SymbolModel::subinterval(std::uint32_t symbol, std::uint32_t length) const {
+    const std::uint32_t unit = length >> kProbabilityBits;
+    const std::uint32_t low = m_cumulative[symbol] * unit;
+    // The last symbol's part runs to the end of the interval, rounding included.
+    const std::uint32_t high = symbol + 1 == m_symbols ? length : m_cumulative[symbol + 1] * unit;
+    return {low, high - low};
+}
+
+inline std::uint32_t SymbolModel::symbolAt(std::uint32_t offset, std::uint32_t length) const {
+    const std::uint32_t unit = length >> kProbabilityBits;
+    // The symbol s is the last one whose part starts at or below the offset:
+    // cumulative[s] * unit <= offset < cumulative[s + 1] * unit.
+    std::uint32_t symbol = 0;
+    std::uint32_t above = m_symbols;
+    if (m_lookupSize != 0) {
+        const std::uint32_t scaled = offset / unit;
+        std::uint32_t slot = scaled >> m_lookupShift;
+        if (slot > m_lookupSize) // only a corrupt stream gets here
+            slot = m_lookupSize;
+        symbol = m_lookup[slot];
+        above = m_lookup[slot + 1] + 1;
+        while (above > symbol + 1) {
+            const std::uint32_t middle = (symbol + above) >> 1;
+            if (m_cumulative[middle] > scaled)
+                above = middle;
+            else
+                symbol = middle;
+        }
+    } else {
+        while (above > symbol + 1) {
+            const std::uint32_t middle = (symbol + above) >> 1;
+            if (m_cumulative[middle] * unit > offset)
+                above = middle;
+            else
+                symbol = middle;
+        }
+    }
+    return symbol;
+}
+
 inline std::uint32_t RangeDecoder::decodeBit(BitModel& model) {
-    const std::uint32_t split = model.m_zeroProbability * (m_length >> BitModel::kProbabilityBits);
+    const std::uint32_t split = model.zeroLength(m_length);
     std::uint32_t bit = 0;
     if (m_value < split) {
         m_length = split;
-        ++model.m_zeroCount;
     } else {
         bit = 1;
         m_value -= split;
@@ -145,52 +223,18 @@ inline std::uint32_t RangeDecoder::decodeBit(BitModel& model) {
     }
     if (m_length < kRenormaliseBelow)
         renormalise();
-    if (--model.m_untilRefresh == 0)
-        model.refresh();
+    model.update(bit);
     return bit;
 }
 
 inline std::uint32_t RangeDecoder::decodeSymbol(SymbolModel& model) {
-    const std::uint32_t* cumulative = model.m_cumulative;
-    const std::uint32_t unit = m_length >> SymbolModel::kProbabilityBits;
-    // The symbol s is the last one whose interval starts at or below the value:
-    // cumulative[s] * unit <= value < cumulative[s + 1] * unit.
-    std::uint32_t symbol = 0;
-    std::uint32_t above = model.m_symbols;
-    if (model.m_lookupSize != 0) {
-        const std::uint32_t scaled = m_value / unit;
-        std::uint32_t slot = scaled >> model.m_lookupShift;
-        if (slot > model.m_lookupSize) // only a corrupt stream gets here
-            slot = model.m_lookupSize;
-        symbol = model.m_lookup[slot];
-        above = model.m_lookup[slot + 1] + 1;
-        while (above > symbol + 1) {
-            const std::uint32_t middle = (symbol + above) >> 1;
-            if (cumulative[middle] > scaled)
-                above = middle;
-            else
-                symbol = middle;
-        }
-    } else {
-        while (above > symbol + 1) {
-            const std::uint32_t middle = (symbol + above) >> 1;
-            if (cumulative[middle] * unit > m_value)
-                above = middle;
-            else
-                symbol = middle;
-        }
-    }
-    const std::uint32_t low = cumulative[symbol] * unit;
-    // The last symbol's interval runs to the end of the current one, rounding included.
-    const std::uint32_t high =
-        symbol + 1 == model.m_symbols ? m_length : cumulative[symbol + 1] * unit;
-    m_value -= low;
-    m_length = high - low;
+    const std::uint32_t symbol = model.symbolAt(m_value, m_length);
+    const Subinterval part = model.subinterval(symbol, m_length);
+    m_value -= part.low;
+    m_length = part.length;
     if (m_length < kRenormaliseBelow)
         renormalise();
-    ++model.m_counts[symbol];
-    if (--model.m_untilRefresh == 0)
-        model.refresh();
+    model.update(symbol);
     return symbol;
 }
 
@@ -208,9 +252,7 @@ inline std::uint32_t RangeDecoder::readFewBits(std::uint32_t count) {
 }
 
 inline std::uint32_t RangeDecoder::readBits(std::uint32_t count) {
-    // At most 19 bits are taken in one step, so that the interval keeps at least 5 bits of
-    // length; wider fields are split into their low 16 bits and the rest.
-    if (count > 19) {
+    if (count > kMostRawBitsInOneStep) {
         const std::uint32_t low = readFewBits(16);
         return (readBits(count - 16) << 16) | low;
     }
