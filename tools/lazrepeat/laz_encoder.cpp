@@ -119,61 +119,29 @@ std::vector<std::byte> RangeEncoder::finish() {
     return bytes;
 }
 
-IntegerEncoder::IntegerEncoder(std::uint32_t bits, std::uint32_t contexts, std::uint32_t highBits,
-                               std::uint32_t range)
-    : m_highBits(highBits) {
-    if (range != 0) {
-        // As IntegerDecoder: the bit length of the range, one fewer for a power of two.
-        m_correctionBits = 0;
-        for (std::uint32_t rest = range; rest != 0; rest >>= 1)
-            ++m_correctionBits;
-        if (range == 1u << (m_correctionBits - 1))
-            --m_correctionBits;
-        m_range = range;
-        m_smallestCorrection = -static_cast<std::int32_t>(range / 2);
-    } else if (bits != 0 && bits < 32) {
-        m_correctionBits = bits;
-        m_range = 1u << bits;
-        m_smallestCorrection = -static_cast<std::int32_t>(m_range / 2);
-    } else {
-        m_correctionBits = 32;
-        m_range = 0;
-        m_smallestCorrection = std::numeric_limits<std::int32_t>::min();
-    }
-    m_classModels.reserve(contexts);
-    for (std::uint32_t c = 0; c < contexts; ++c)
-        m_classModels.emplace_back(m_correctionBits + 1);
-    m_positionModels.reserve(m_correctionBits);
-    for (std::uint32_t k = 1; k <= m_correctionBits; ++k)
-        m_positionModels.emplace_back(1u << (k <= m_highBits ? k : m_highBits));
-}
-
 void IntegerEncoder::reset() {
-    for (io::laz::SymbolModel& model : m_classModels)
-        model.reset();
-    m_zeroOrOne.reset();
-    for (io::laz::SymbolModel& model : m_positionModels)
-        model.reset();
+    m_models.reset();
     m_lastClass = 0;
 }
 
 void IntegerEncoder::encode(RangeEncoder& encoder, std::int32_t prediction, std::int32_t value,
                             std::uint32_t context) {
-    if (context >= m_classModels.size())
+    if (context >= m_models.classModels.size())
         throw std::invalid_argument("IntegerEncoder: context " + std::to_string(context) + " of " +
-                                    std::to_string(m_classModels.size()));
+                                    std::to_string(m_models.classModels.size()));
     // The decoder adds the correction to the prediction modulo 2^32, then folds the sum back
     // into [0, range): the correction is the difference folded into the range's window.
     std::int64_t correction = std::int64_t{value} - std::int64_t{prediction};
-    if (m_range == 0) {
+    const std::uint32_t range = m_models.valueRange;
+    if (range == 0) {
         correction = static_cast<std::int32_t>(static_cast<std::uint32_t>(correction));
     } else {
-        const std::int64_t smallest = m_smallestCorrection;
-        const std::int64_t largest = smallest + std::int64_t{m_range} - 1;
+        const std::int64_t smallest = m_models.smallestCorrection;
+        const std::int64_t largest = smallest + std::int64_t{range} - 1;
         if (correction < smallest)
-            correction += m_range;
+            correction += range;
         else if (correction > largest)
-            correction -= m_range;
+            correction -= range;
     }
     encodeCorrection(encoder, static_cast<std::int32_t>(correction), context);
 }
@@ -188,9 +156,9 @@ void IntegerEncoder::encodeCorrection(RangeEncoder& encoder, std::int32_t correc
     for (; magnitude != 0; magnitude >>= 1)
         ++k;
     m_lastClass = k;
-    encoder.encodeSymbol(m_classModels[context], k);
+    encoder.encodeSymbol(m_models.classModels[context], k);
     if (k == 0) {
-        encoder.encodeBit(m_zeroOrOne, asUnsigned);
+        encoder.encodeBit(m_models.zeroOrOne, asUnsigned);
         return;
     }
     // Class 32 holds -2^31 alone: its class says it all.
@@ -198,12 +166,13 @@ void IntegerEncoder::encodeCorrection(RangeEncoder& encoder, std::int32_t correc
         return;
     // Negative corrections take the positions 0 .. 2^(k-1) - 1, positive ones the rest.
     const std::uint32_t position = correction < 0 ? asUnsigned + ((1u << k) - 1) : asUnsigned - 1;
-    if (k <= m_highBits) {
-        encoder.encodeSymbol(m_positionModels[k - 1], position);
+    io::laz::SymbolModel& positionModel = m_models.positionModels[k - 1];
+    if (k <= m_models.modelledPositionBits) {
+        encoder.encodeSymbol(positionModel, position);
         return;
     }
-    const std::uint32_t lowBits = k - m_highBits;
-    encoder.encodeSymbol(m_positionModels[k - 1], position >> lowBits);
+    const std::uint32_t lowBits = k - m_models.modelledPositionBits;
+    encoder.encodeSymbol(positionModel, position >> lowBits);
     encoder.writeBits(lowBits, position & ((1u << lowBits) - 1));
 }
 

@@ -8,9 +8,10 @@
 ///
 /// Both sides must adapt their models identically, symbol for symbol (FastAC, Said 2004, as
 /// LASzip adapts it, Isenburg 2013), so the encoder codes with the decoder's own models
-/// (io::laz::BitModel, SymbolModel) rather than copies of their rules.
+/// (io::laz::BitModel, SymbolModel, IntegerModels) rather than copies of their rules.
 
 #include "chunk_table.hpp"
+#include "integer_decoder.hpp"
 #include "range_decoder.hpp"
 
 #include <cstddef>
@@ -52,11 +53,12 @@ private:
 };
 
 /// LASzip's integer compressor, encoder side: the inverse of IntegerDecoder built with the
-/// same arguments (same meaning of `bits`, `contexts`, `highBits` and `range`).
+/// same arguments, from which both build the same io::laz::IntegerModels.
 class IntegerEncoder {
 public:
     explicit IntegerEncoder(std::uint32_t bits, std::uint32_t contexts = 1,
-                            std::uint32_t highBits = 8, std::uint32_t range = 0);
+                            std::uint32_t highBits = 8, std::uint32_t range = 0)
+        : m_models(bits, contexts, highBits, range) {}
 
     /// Every model back to its initial state, as at the start of every chunk.
     void reset();
@@ -72,15 +74,8 @@ public:
 private:
     void encodeCorrection(RangeEncoder& encoder, std::int32_t correction, std::uint32_t context);
 
-    std::uint32_t m_correctionBits = 32;
-    /// 2^bits, or 0 for full 32-bit wrap-around (no folding needed).
-    std::uint32_t m_range = 0;
-    std::int32_t m_smallestCorrection = 0;
-    std::uint32_t m_highBits = 8;
+    io::laz::IntegerModels m_models;
     std::uint32_t m_lastClass = 0;
-    std::vector<io::laz::SymbolModel> m_classModels;
-    io::laz::BitModel m_zeroOrOne;
-    std::vector<io::laz::SymbolModel> m_positionModels;
 };
 
 /// The arithmetic-coded part of a chunk table (what follows its version and count), the
