@@ -4,10 +4,9 @@
 // input); anything else - a crash, a sanitizer report, another exception type, a hang - is a
 // finding.
 //
-// The last byte of the input also picks the filters, as in the LAS fuzzer.
+// The last byte of the input also picks the filters, as in the LAS fuzzer (las_fuzz_input.hpp).
 
-#include "terratin/error.hpp"
-#include "terratin/io/las_reader.hpp"
+#include "las_fuzz_input.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -15,23 +14,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::span<const std::byte> bytes(reinterpret_cast<const std::byte*>(data), size);
-    terratin::io::LasReadOptions options;
+    terratin::io::LasReadOptions options = terratin::fuzz::filtersFromLastByte(bytes);
     options.threads = 2;
-    if (size > 0) {
-        const unsigned selector = data[size - 1];
-        if ((selector & 1u) != 0)
-            options.classes = {2, static_cast<int>(selector >> 1)};
-        options.returns = (selector & 6u) == 2u   ? terratin::io::LasReturns::First
-                          : (selector & 6u) == 4u ? terratin::io::LasReturns::Last
-                                                  : terratin::io::LasReturns::All;
-    }
-    try {
-        const terratin::io::PointCloud cloud =
-            terratin::io::readLasPointsFromMemory(bytes, "fuzz.laz", options);
-        // Postconditions that hold for any accepted file.
-        if (cloud.points.size() + cloud.filteredOut != cloud.recordsRead)
-            __builtin_trap();
-    } catch (const terratin::Error&) {
-    }
+    terratin::fuzz::readAndCheck(bytes, "fuzz.laz", options);
     return 0;
 }
